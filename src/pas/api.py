@@ -1,0 +1,94 @@
+"""The two entry points users call: :func:`run_pas` and :func:`run_as`."""
+
+from __future__ import annotations
+
+from .screening import LFSet
+from .strategies.pas import PAS
+from .study.result import ScreeningResult
+from .study.study import Study
+
+__all__ = ["run_pas", "make_study"]
+
+_STUDY_SETTINGS = ("k1", "k2", "max_failures", "stop_on_convergence", "adaptive_threshold",
+                   "threshold_step", "fp_run")
+
+
+def make_study(strategy, lf_peaks, *, n_waves, p_exp, eps1, eps2=0.1, threshold=None,
+               seed=None, max_hf=None, ids=None, meta=None, **settings) -> Study:
+    """Validate the inputs and build a :class:`~pas.study.study.Study` for ``strategy``.
+
+    ``strategy`` is a class (built with the strategy settings found in
+    ``settings``) or an instance.  Unknown settings raise ``ValueError``.
+    """
+    study_kw = {k: settings.pop(k) for k in _STUDY_SETTINGS if k in settings}
+    if isinstance(strategy, type):
+        try:
+            strategy = strategy(**settings)
+        except TypeError as exc:
+            raise ValueError(f"unknown setting for {strategy.__name__}: {exc}") from None
+    elif settings:
+        raise ValueError(f"unknown settings {sorted(settings)}")
+    lfset = LFSet(lf_peaks, n_waves=n_waves, p_exp=p_exp, threshold=threshold, ids=ids,
+                  meta=meta, min_peaks=max(4, strategy.n_initial))
+    return Study(lfset, strategy, eps1=eps1, eps2=eps2, seed=seed, max_hf=max_hf, **study_kw)
+
+
+def run_pas(lf_peaks, oracle, *, n_waves, p_exp, eps1, eps2=0.1, threshold=None, seed=None,
+            max_hf=None, ids=None, meta=None, batch_size=1, callback=None,
+            **settings) -> ScreeningResult:
+    """Predict the MPM of an HF load with Probabilistic Adaptive Screening.
+
+    Parameters
+    ----------
+    lf_peaks : array-like, shape (n_events,)
+        LF indicator peak of every wave event in the LF Monte-Carlo run.
+    oracle : callable
+        ``oracle(event) -> float``: the HF peak of ``event`` (an
+        :class:`~pas.screening.Event` with ``index``, ``id``, ``lf``, ``d``,
+        ``meta``); 0.0 means no impact (a false positive).  An exception, NaN,
+        inf or a negative value is recorded as a failure, never taken as 0.
+    n_waves : int
+        Number of wave encounters ``n_w`` in the LF Monte-Carlo duration.
+    p_exp : float
+        Target exceedance probability (:func:`pas.p_exp_from_duration`).
+    eps1 : float
+        Stopping limit on the mean change of the predicted distribution,
+        in load units (paper: ≈ 1–2 % of the expected maximum).
+    eps2 : float, default 0.1
+        Stopping limit on the COV of the last K2 MPMs.
+    threshold : float, optional
+        LF threshold ``l0_input`` (Eq. 2).
+    seed : int, optional
+        Seed for reproducible draws (reported on the result when None).
+    max_hf : int, optional
+        Budget of HF evaluations.
+    ids, meta : sequence, optional
+        User ids / metadata per event, passed to the oracle on the event.
+    batch_size : int, default 1
+        Events proposed per iteration.
+    callback : callable, optional
+        ``callback(study, row)`` after every HF result.
+    **settings
+        Strategy settings (:class:`~pas.strategies.pas.PAS`: ``families``,
+        ``z``, ``delta_aic``, ``exclude_at_bound``, ``upper_tail``,
+        ``outlier_k``, ``n_bootstrap``) and study settings (``k1``, ``k2``,
+        ``max_failures``, ``stop_on_convergence``, ``adaptive_threshold``).
+
+    Returns
+    -------
+    ScreeningResult
+
+    Examples
+    --------
+    >>> import numpy as np, pas
+    >>> rng = np.random.default_rng(0)
+    >>> lf = rng.rayleigh(2.0, 3000)
+    >>> res = pas.run_pas(lf, lambda ev: 1.2 * ev.lf ** 1.1, n_waves=3000, p_exp=1e-2,
+    ...                   eps1=0.05, seed=1)
+    >>> bool(res.converged), res.n_hf < 60
+    (True, True)
+    """
+    study = make_study(PAS, lf_peaks, n_waves=n_waves, p_exp=p_exp, eps1=eps1, eps2=eps2,
+                       threshold=threshold, seed=seed, max_hf=max_hf, ids=ids, meta=meta,
+                       **settings)
+    return study.optimize(oracle, batch_size=batch_size, callback=callback)

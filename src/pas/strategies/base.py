@@ -1,0 +1,110 @@
+"""What every screening strategy provides, so one study loop runs PAS and AS alike.
+
+A strategy turns the current LF–HF pairs into a predicted HF exceedance
+distribution (:meth:`Strategy.predict`) and proposes where to sample next
+(:meth:`Strategy.propose`).  Everything about *running* a campaign — the
+oracle, false positives, failures, the adaptive threshold, stopping, the
+store — lives in :mod:`pas.study`, not here.
+"""
+
+from __future__ import annotations
+
+from abc import ABC, abstractmethod
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..screening import LFSet
+from ..stats.exceedance import value_at_exceedance
+from .acquisition import initial_targets, md_select, nearest_available
+
+__all__ = ["Pairs", "Prediction", "Strategy"]
+
+
+@dataclass(frozen=True)
+class Pairs:
+    """The true-positive LF–HF pairs available to a fit.
+
+    ``position`` indexes the :class:`~pas.screening.LFSet` order; ``lf``,
+    ``hf`` and ``d`` (LF exceedance probability) are aligned with it.
+    """
+
+    position: np.ndarray
+    lf: np.ndarray
+    hf: np.ndarray
+    d: np.ndarray
+
+    def __len__(self) -> int:
+        return int(self.position.size)
+
+    def take(self, idx) -> "Pairs":
+        return Pairs(self.position[idx], self.lf[idx], self.hf[idx], self.d[idx])
+
+
+@dataclass
+class Prediction:
+    """A predicted HF exceedance distribution and its MPM (Steps 10–12).
+
+    ``d`` ascending; ``h_mean`` the mean distribution, ``h_low``/``h_high`` its
+    U95 band; ``mpm_band`` the band read at ``P_exp``; ``record`` holds the
+    strategy-specific diagnostics written to the iteration history.
+    """
+
+    d: np.ndarray
+    h_mean: np.ndarray
+    h_low: np.ndarray
+    h_high: np.ndarray
+    mpm: float
+    mpm_band: tuple
+    record: dict = field(default_factory=dict)
+
+    def at(self, p):
+        """The mean distribution interpolated at probabilities ``p`` on ``ln d``."""
+        return value_at_exceedance(self.d, self.h_mean, p)
+
+
+class Strategy(ABC):
+    """Base class of screening strategies (PAS, AS).
+
+    Subclasses set ``name``, ``n_initial`` and ``min_pairs`` and implement
+    :meth:`predict`.  The default :meth:`initial_positions` spreads the
+    initial samples uniformly over ``ln d`` (§2.5) and :meth:`propose` is MD
+    (Eq. 16–17); AS overrides :meth:`propose` with MVPD.
+    """
+
+    name: str = "base"
+    n_initial: int = 4
+    min_pairs: int = 4
+    skip_unsplittable: bool = True
+
+    def reset(self) -> None:
+        """Forget state carried between iterations (e.g. the selected copula)."""
+
+    @abstractmethod
+    def predict(self, pairs: Pairs, lfset: LFSet, rng: np.random.Generator) -> Prediction:
+        """Fit the model to ``pairs`` and predict the HF distribution."""
+
+    def initial_positions(self, lfset: LFSet) -> list[int]:
+        """Initial samples: ``n_initial`` positions uniformly spaced on ``ln d`` (§2.5)."""
+        available = np.ones(lfset.n, dtype=bool)
+        out = []
+        for t in initial_targets(lfset.ln_d, min(self.n_initial, lfset.n)):
+            p = nearest_available(lfset.ln_d, available, t)
+            available[p] = False
+            out.append(p)
+        return out
+
+    def propose(self, selected_d, lfset: LFSet, available: np.ndarray,
+                last: Prediction | None, q: int = 1) -> list[int]:
+        """Next ``q`` positions by maximum distance on ``ln d`` (Eq. 16–17).
+
+        ``selected_d`` are the LF exceedance probabilities of the selected
+        (true-positive) samples; ``available`` marks pool positions that may
+        still be chosen.
+        """
+        return md_select(lfset.ln_d, available, np.log(selected_d), q,
+                         skip_unsplittable=self.skip_unsplittable)
+
+    def model_band(self, pairs: Pairs, lfset: LFSet, rng: np.random.Generator):
+        """Optional U95 band of the MPM including model uncertainty, or None."""
+        return None
