@@ -55,7 +55,8 @@ def md_select(ln_d: np.ndarray, available: np.ndarray, ln_d_selected, q: int = 1
         Batch size; the batch is filled sequentially, each chosen peak joining
         the selected set before the next gap is sought.
     skip_unsplittable : bool, default True
-        Ignore gaps with no available peak inside (module docs).
+        Ignore gaps with no available peak inside (module docs); when no gap
+        can be split, fall back to the paper's rule.
 
     Returns
     -------
@@ -73,9 +74,8 @@ def md_select(ln_d: np.ndarray, available: np.ndarray, ln_d_selected, q: int = 1
         if skip_unsplittable:
             cum = np.concatenate([[0], np.cumsum(available)])
             inside = cum[np.searchsorted(ln_d, hi, "left")] - cum[np.searchsorted(ln_d, lo, "right")]
-            width = np.where(inside > 0, width, -np.inf)
-            if not np.isfinite(width).any():
-                break
+            if (inside > 0).any():
+                width = np.where(inside > 0, width, -np.inf)
         k = int(np.argmax(width))
         p = nearest_available(ln_d, available, lo[k] + (hi[k] - lo[k]) / 2.0)
         if p < 0:

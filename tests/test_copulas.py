@@ -1,0 +1,108 @@
+import copulas.bivariate as cb
+import numpy as np
+import pytest
+import pyvinecopulib as pv
+
+from pas.copulas import (
+    PAPER_FAMILIES,
+    CopulaFit,
+    conditional_quantile,
+    empirical_tail_dependence,
+    fit_candidates,
+    fit_copula,
+    pseudo_observations,
+    select_family,
+)
+
+RNG = np.random.default_rng(11)
+U = RNG.uniform(1e-4, 1 - 1e-4, (5000, 2))
+
+
+def test_pseudo_observations_eq5():
+    u, v = pseudo_observations([3.0, 1.0, 2.0], [10.0, 30.0, 20.0])
+    np.testing.assert_allclose(u, [0.75, 0.25, 0.5])
+    np.testing.assert_allclose(v, [0.25, 0.75, 0.5])
+
+
+@pytest.mark.parametrize("family, rotation, params", [
+    (pv.BicopFamily.gaussian, 0, [[0.7]]),
+    (pv.BicopFamily.student, 0, [[0.6], [3.5]]),
+    (pv.BicopFamily.clayton, 0, [[2.5]]),
+    (pv.BicopFamily.frank, 0, [[7.0]]),
+    (pv.BicopFamily.gumbel, 0, [[2.2]]),
+    (pv.BicopFamily.clayton, 180, [[1.5]]),
+    (pv.BicopFamily.gumbel, 180, [[1.5]]),
+])
+def test_conditional_inverse_matches_pyvinecopulib(family, rotation, params):
+    b = pv.Bicop(family=family, rotation=rotation, parameters=np.array(params))
+    np.testing.assert_allclose(conditional_quantile(b, U[:, 0], U[:, 1]), b.hinv1(U), atol=1e-9)
+
+
+@pytest.mark.parametrize("name, family, theta", [
+    ("clayton", pv.BicopFamily.clayton, 2.0),
+    ("gumbel", pv.BicopFamily.gumbel, 2.0),
+    ("frank", pv.BicopFamily.frank, 6.0),
+])
+def test_conditional_inverse_matches_copulas_package(name, family, theta):
+    # the paper's own stack: copulas' percent_point(y, V) solves dC/dv(u, V) = y; the
+    # families are exchangeable, so it equals our C^-1_{V|U}(y | u=V)
+    ref = cb.Bivariate.from_dict({"copula_type": name.upper(), "theta": theta, "tau": None})
+    cond, r = U[:300, 0], U[:300, 1]
+    expected = ref.percent_point(r, cond)
+    b = pv.Bicop(family=family, parameters=np.array([[theta]]))
+    np.testing.assert_allclose(conditional_quantile(b, cond, r), expected, atol=1e-8)
+
+
+def test_mle_fit_recovers_parameter_and_aic_definition():
+    true = pv.Bicop(family=pv.BicopFamily.gumbel, parameters=np.array([[2.0]]))
+    uv = true.sample(3000, seeds=[5])
+    fits = fit_candidates(*pseudo_observations(uv[:, 0], uv[:, 1]))
+    assert list(fits) == list(PAPER_FAMILIES)
+    assert fits["gumbel"].parameters[0] == pytest.approx(2.0, rel=0.06)
+    assert min(fits, key=lambda k: fits[k].aic) == "gumbel"
+    f = fits["student"]
+    assert f.npars == 2 and f.aic == pytest.approx(2 * 2 - 2 * f.loglik)
+
+
+def _fake(name, aic, at_bound=False):
+    return CopulaFit(name=name, bicop=None, loglik=-aic / 2, aic=aic, npars=1, at_bound=at_bound)
+
+
+def test_aic_hysteresis_needs_four_points():
+    fits = {"gaussian": _fake("gaussian", -10.0), "gumbel": _fake("gumbel", -13.9)}
+    assert select_family(fits, None) == "gumbel"          # no current: plain minimum
+    assert select_family(fits, "gaussian") == "gaussian"  # 3.9 better is not enough
+    fits["gumbel"] = _fake("gumbel", -14.0)
+    assert select_family(fits, "gaussian") == "gumbel"    # 4.0 better switches
+
+
+def test_boundary_fits_excluded_only_when_asked():
+    fits = {"gaussian": _fake("gaussian", -10.0),
+            "student": _fake("student", -30.0, at_bound=True)}
+    assert select_family(fits, "gaussian") == "student"  # the paper's exact rule
+    assert select_family(fits, "gaussian", exclude_at_bound=True) == "gaussian"
+
+
+def test_student_nu_at_lower_bound_is_flagged():
+    # a Student-t sample with very heavy joint tails drives the nu MLE to its bound of 2
+    true = pv.Bicop(family=pv.BicopFamily.student, parameters=np.array([[0.0], [2.0]]))
+    uv = true.sample(4000, seeds=[2])
+    uv = np.r_[uv, np.column_stack([np.r_[np.full(200, 0.999), np.full(200, 0.001)],
+                                    np.r_[np.full(200, 0.001), np.full(200, 0.999)]])]
+    fit = fit_copula("student", *pseudo_observations(uv[:, 0], uv[:, 1]))
+    assert fit.parameters[1] == pytest.approx(2.0, abs=0.01)
+    assert fit.at_bound
+    assert not fit_copula("gaussian", *pseudo_observations(uv[:, 0], uv[:, 1])).at_bound
+
+
+def test_empirical_tail_dependence_comonotone_and_independent():
+    x = np.arange(100.0)
+    assert empirical_tail_dependence(x, x) == (1.0, 1.0)
+    rng = np.random.default_rng(0)
+    lu, ll = empirical_tail_dependence(rng.normal(size=20000), rng.normal(size=20000))
+    assert lu == pytest.approx(0.1, abs=0.03) and ll == pytest.approx(0.1, abs=0.03)
+
+
+def test_unknown_family_rejected():
+    with pytest.raises(ValueError, match="unknown copula family"):
+        fit_copula("gumbal", [0.2, 0.5, 0.7], [0.3, 0.4, 0.8])

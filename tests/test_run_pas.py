@@ -1,0 +1,143 @@
+"""End-to-end PAS on problems with a known answer, and the public API contract."""
+
+import numpy as np
+import pandas as pd
+import pytest
+from conftest import gumbel_problem, monotone_problem, threshold_problem
+
+import pas
+
+
+def test_monotone_indicator_reproduces_mapped_mpm(table_oracle):
+    lf, hf, n_w, p_exp, truth = monotone_problem()
+    oracle = table_oracle(hf)
+    res = pas.run_pas(lf, oracle, n_waves=n_w, p_exp=p_exp, eps1=0.01 * truth, seed=3)
+    assert res.converged
+    assert res.mpm == pytest.approx(truth, rel=0.03)
+    assert res.mpm_band[0] <= res.mpm <= res.mpm_band[1]
+    assert len(set(oracle.calls)) == len(oracle.calls) == res.n_hf  # no event run twice
+    assert res.n_hf < 60
+
+
+def test_known_copula_and_marginals(table_oracle):
+    lf, hf, n_w, p_exp, truth = gumbel_problem()
+    res = pas.run_pas(lf, table_oracle(hf), n_waves=n_w, p_exp=p_exp, eps1=0.01 * truth, seed=5)
+    assert res.converged
+    assert res.mpm == pytest.approx(truth, rel=0.10)
+
+
+def test_threshold_problem_with_false_positives(table_oracle):
+    lf, hf, n_w, p_exp, truth = threshold_problem()
+    res = pas.run_pas(lf, table_oracle(hf), n_waves=n_w, p_exp=p_exp, eps1=0.015 * truth,
+                      threshold=3.0, seed=2)
+    assert res.n_false_positive > 0
+    h = res.history
+    fp = h[h.status == "false_positive"]
+    assert (fp.hf == 0).all() and fp.mpm.isna().all()  # counted, not fitted
+    assert len(res.pairs) == res.n_hf - res.n_false_positive
+    assert res.mpm == pytest.approx(truth, rel=0.10)
+
+
+@pytest.mark.parametrize("make, kwargs", [
+    (monotone_problem, {}),
+    (gumbel_problem, {}),
+    (gumbel_problem, {"exclude_at_bound": False}),
+])
+def test_mpm_stays_put_to_160_samples(make, kwargs, table_oracle):
+    """Stability: past the stopping point the MPM stays within ±15 % after the 30th sample."""
+    lf, hf, n_w, p_exp, truth = make()
+    res = pas.run_pas(lf, table_oracle(hf), n_waves=n_w, p_exp=p_exp, eps1=1.0, seed=0,
+                      max_hf=160, stop_on_convergence=False, n_bootstrap=0, **kwargs)
+    assert res.n_hf == 160
+    f = res.fitted
+    err = f.mpm.to_numpy()[f.n_hf.to_numpy() > 30] / truth - 1
+    assert np.abs(err).max() <= 0.15, f"worst deviation {err[np.argmax(np.abs(err))]:+.3f}"
+
+
+def test_result_api_shape(table_oracle):
+    lf, hf, n_w, p_exp, truth = monotone_problem(n=3000, n_waves=3200)
+    res = pas.run_pas(lf, table_oracle(hf), n_waves=n_w, p_exp=p_exp, eps1=0.05, seed=1,
+                      max_hf=12)
+    assert isinstance(res.mpm, float) and len(res.mpm_band) == 2
+    assert res.n_hf == 12 and res.n_false_positive == 0 and isinstance(res.converged, bool)
+    for col in ["event_index", "event_id", "lf", "hf", "family", "aic_gaussian", "aic_student",
+                "aic_clayton", "aic_gumbel", "aic_frank", "mpm", "E", "COV", "threshold", "tau"]:
+        assert col in res.history, col
+    assert list(res.distribution.columns) == ["exceedance_probability", "h_mean", "h_low", "h_high"]
+    assert isinstance(res.history, pd.DataFrame) and len(res.history) == 12
+    assert res.mpm_band_model is not None
+
+
+def test_same_seed_same_answer(table_oracle):
+    lf, hf, n_w, p_exp, _ = monotone_problem(n=3000, n_waves=3200)
+    a = pas.run_pas(lf, table_oracle(hf), n_waves=n_w, p_exp=p_exp, eps1=0.05, seed=9, max_hf=15)
+    b = pas.run_pas(lf, table_oracle(hf), n_waves=n_w, p_exp=p_exp, eps1=0.05, seed=9, max_hf=15)
+    assert a.mpm == b.mpm and a.history.event_index.tolist() == b.history.event_index.tolist()
+
+
+def test_event_carries_index_lf_and_user_id():
+    lf = np.random.default_rng(0).rayleigh(1.0, 500)
+    seen = []
+
+    def oracle(ev):
+        seen.append(ev)
+        assert ev.lf == lf[ev.index] and ev.id == f"ev{ev.index}" and ev.meta == {"seed": ev.index}
+        return 2 * ev.lf
+
+    pas.run_pas(lf, oracle, n_waves=500, p_exp=0.01, eps1=0.01, seed=0, max_hf=8,
+                ids=[f"ev{i}" for i in range(500)], meta=[{"seed": i} for i in range(500)])
+    assert len(seen) == 8
+
+
+@pytest.mark.parametrize("bad", [
+    lambda ev: float("nan"), lambda ev: float("inf"), lambda ev: -1.0, lambda ev: "abc",
+    lambda ev: 1 / 0,
+])
+def test_oracle_failures_are_not_zero_loads(bad):
+    lf = np.random.default_rng(0).rayleigh(1.0, 500)
+    calls = {"n": 0}
+
+    def oracle(ev):
+        calls["n"] += 1
+        return bad(ev) if calls["n"] in (2, 6) else 3.0 * ev.lf
+
+    res = pas.run_pas(lf, oracle, n_waves=500, p_exp=0.01, eps1=0.01, seed=0, max_hf=10)
+    failed = res.history[res.history.status == "failed"]
+    assert len(failed) == 2 and failed.error.str.len().gt(0).all()
+    assert res.n_failed == 2 and res.n_false_positive == 0 and res.n_hf == 10
+
+
+def test_too_many_failures_stop_with_partial_result():
+    lf = np.random.default_rng(0).rayleigh(1.0, 500)
+    with pytest.raises(pas.OracleFailureLimit, match="max_failures=3") as info:
+        pas.run_pas(lf, lambda ev: float("nan"), n_waves=500, p_exp=0.01, eps1=0.01,
+                    max_failures=3)
+    assert info.value.result.n_failed == 4
+
+
+@pytest.mark.parametrize("kwargs, name", [
+    ({"lf_peaks": []}, "lf_peaks"),
+    ({"lf_peaks": [1.0, np.nan, 2.0, 3.0, 4.0]}, "lf_peaks"),
+    ({"n_waves": 0}, "n_waves"),
+    ({"n_waves": 10.5}, "n_waves"),
+    ({"p_exp": 1.0}, "p_exp"),
+    ({"p_exp": -0.1}, "p_exp"),
+    ({"eps1": 0.0}, "eps1"),
+    ({"threshold": 100.0}, "threshold"),
+])
+def test_bad_inputs_name_the_argument(kwargs, name):
+    args = dict(lf_peaks=np.linspace(1, 5, 50), n_waves=100, p_exp=0.05, eps1=0.1)
+    args.update(kwargs)
+    with pytest.raises(ValueError, match=name):
+        pas.run_pas(args.pop("lf_peaks"), lambda ev: 1.0, **args)
+
+
+def test_unknown_setting_rejected():
+    with pytest.raises(ValueError, match="unknown setting"):
+        pas.run_pas(np.linspace(1, 5, 50), lambda ev: 1.0, n_waves=100, p_exp=0.05, eps1=0.1,
+                    zz=3)
+
+
+def test_fewer_waves_than_peaks_warns_with_both_numbers():
+    with pytest.warns(UserWarning, match=r"n_waves=40.*\(50\)"):
+        pas.make_study(pas.PAS, np.linspace(1, 5, 50), n_waves=40, p_exp=0.05, eps1=0.1)
