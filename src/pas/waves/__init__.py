@@ -1,0 +1,40 @@
+"""Waves and linear ship responses: spectra, realisations, second order, RAOs."""
+
+from .realisation import (
+    ComponentSea,
+    LinearSea,
+    encounter_frequency,
+    linear_sea,
+    mean_encounter_period,
+    period_domain_sea,
+    synthesise,
+    wave_frequency_from_encounter,
+)
+from .second_order import (
+    SecondOrderKernel,
+    direct_second_order,
+    second_order_coefficients,
+    second_order_elevation,
+    second_order_kernel,
+    sharma_dean_kernels,
+)
+from .ship import FERRY_190M, Ship, ShipRAO, relative_elevation_rao, ship_rao, ship_responses
+from .spectra import (
+    GRAVITY,
+    jonswap,
+    mean_period_t1,
+    pierson_moskowitz,
+    spectral_moments,
+    wave_number,
+    zero_crossing_period_tz,
+)
+
+__all__ = [
+    "GRAVITY", "jonswap", "pierson_moskowitz", "spectral_moments", "mean_period_t1",
+    "zero_crossing_period_tz", "wave_number",
+    "LinearSea", "ComponentSea", "linear_sea", "period_domain_sea", "synthesise",
+    "encounter_frequency", "wave_frequency_from_encounter", "mean_encounter_period",
+    "SecondOrderKernel", "sharma_dean_kernels", "second_order_kernel",
+    "second_order_coefficients", "second_order_elevation", "direct_second_order",
+    "Ship", "FERRY_190M", "ShipRAO", "ship_rao", "relative_elevation_rao", "ship_responses",
+]
