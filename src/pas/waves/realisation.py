@@ -92,7 +92,7 @@ def mean_encounter_period(t1, speed, heading, *, g=GRAVITY):
 
     Examples
     --------
-    >>> round(mean_encounter_period(10.0, 5.1, 180.0), 2)  # condition B, Tp,e
+    >>> round(float(mean_encounter_period(10.0, 5.1, 180.0)), 2)  # condition B, Tp,e
     7.54
     """
     t1 = np.asarray(t1, dtype=float)

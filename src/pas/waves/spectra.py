@@ -98,7 +98,7 @@ def jonswap(omega, hs, tp, gamma=3.3, sigma_a=0.07, sigma_b=0.09):
     >>> import numpy as np
     >>> w = np.linspace(0.01, 6.0, 20000)
     >>> s = jonswap(w, 10.0, 11.0)
-    >>> round(4 * np.sqrt(np.trapezoid(s, w)), 3)
+    >>> round(float(4 * np.sqrt(np.trapezoid(s, w))), 3)
     10.0
     """
     _check_sea_state(hs, tp)
