@@ -48,3 +48,13 @@ def test_fit_marginal_tail_mode_uses_upper_part():
 def test_bad_samples(bad):
     with pytest.raises(ValueError):
         fit_weibull3_ls(bad)
+
+
+def test_direct_formulas_match_scipy():
+    w = fit_weibull3_ls(stats.weibull_min(1.3, loc=1.0, scale=2.0).rvs(500, random_state=1))
+    x = np.linspace(w.theta - 1, w.theta + 10, 50)
+    p = np.linspace(1e-6, 1 - 1e-6, 50)
+    np.testing.assert_allclose(w.cdf(x), w.frozen.cdf(x), atol=1e-14)
+    np.testing.assert_allclose(w.sf(x), w.frozen.sf(x), rtol=1e-12)
+    np.testing.assert_allclose(w.ppf(p), w.frozen.ppf(p), rtol=1e-12)
+    np.testing.assert_allclose(w.isf(p), w.frozen.isf(p), rtol=1e-12)

@@ -47,21 +47,26 @@ class Weibull3:
         """The equivalent ``scipy.stats.weibull_min`` frozen distribution."""
         return stats.weibull_min(self.beta, loc=self.theta, scale=self.alpha)
 
+    # Eq. 15 evaluated directly: these run on 10^5 draws per PAS iteration, where
+    # scipy.stats' argument checking costs more than the formula.
+    def _z(self, x):
+        return (np.maximum(np.asarray(x, float) - self.theta, 0.0) / self.alpha) ** self.beta
+
     def cdf(self, x):
         """``P(X ≤ x)``."""
-        return self.frozen.cdf(x)
+        return -np.expm1(-self._z(x))
 
     def sf(self, x):
         """``P(X > x)``, accurate in the far tail."""
-        return self.frozen.sf(x)
+        return np.exp(-self._z(x))
 
     def ppf(self, p):
         """Inverse of :meth:`cdf`."""
-        return self.frozen.ppf(p)
+        return self.theta + self.alpha * (-np.log1p(-np.asarray(p, float))) ** (1.0 / self.beta)
 
     def isf(self, q):
         """Inverse of :meth:`sf`: the value exceeded with probability ``q``."""
-        return self.frozen.isf(q)
+        return self.theta + self.alpha * (-np.log(np.asarray(q, float))) ** (1.0 / self.beta)
 
 
 def upper_tail_fraction(n: int) -> float:

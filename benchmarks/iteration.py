@@ -1,0 +1,99 @@
+"""Benchmark: one PAS iteration at paper scale, and the paper's stack for the draws.
+
+One iteration = Step 7–12 (outlier removal, five MLE copula fits with AIC
+selection, two Weibull LS marginals, z = 10 conditional realisations over
+n0 ≈ 15 000 LF peaks, mean distribution and MPM) plus the MD proposal.
+The paper's stack draws the same conditional samples with the `copulas`
+package (`percent_point`, a brentq root per sample); it is timed on a slice
+and scaled to the full 150 000 draws.
+
+Run: python benchmarks/iteration.py
+Targets (SPEC §7): median ≤ 50 ms per iteration, ≥ 100× the paper's stack.
+"""
+
+from __future__ import annotations
+
+import time
+
+import copulas.bivariate as cb
+import numpy as np
+import pyvinecopulib as pv
+from scipy import stats
+
+from pas.screening import LFSet
+from pas.strategies.base import Pairs
+from pas.strategies.pas import PAS
+
+N, N_W, P_EXP, Z = 15000, 16364, 2.55e-3, 10
+
+
+def make_pairs(lfset, m, rng):
+    pos = np.unique(np.round(np.geomspace(1, lfset.n, m)).astype(int) - 1)
+    while pos.size < m:
+        pos = np.unique(np.r_[pos, rng.integers(0, lfset.n)])
+    cop = pv.Bicop(family=pv.BicopFamily.gumbel, parameters=np.array([[4.0]]))
+    u = stats.rankdata(-lfset.lf[pos]) / (m + 1)
+    v = cop.hinv1(np.column_stack([1 - u, rng.uniform(size=m)]))
+    return Pairs(pos, lfset.lf[pos], stats.weibull_min(1.5, scale=5).ppf(v), lfset.d[pos])
+
+
+def time_iteration(lfset, pairs, repeats, **settings):
+    strat = PAS(**settings)
+    times, families = [], []
+    for k in range(repeats):
+        rng = np.random.default_rng(k)
+        t = time.perf_counter()
+        pred = strat.predict(pairs, lfset, rng)
+        avail = np.ones(lfset.n, bool)
+        avail[pairs.position] = False
+        strat.propose(pairs.d, lfset, avail, pred)
+        times.append(time.perf_counter() - t)
+        families.append(pred.record["family"])
+    return float(np.median(times)), max(set(families), key=families.count)
+
+
+def paper_stack_draws(family, theta, u, n_total, n_slice=1500):
+    """Seconds for ``n_total`` conditional draws with copulas' percent_point (timed on a slice)."""
+    cop = cb.Bivariate.from_dict({"copula_type": family.upper(), "theta": theta, "tau": None})
+    r = np.random.default_rng(0).uniform(1e-6, 1 - 1e-6, n_slice)
+    t = time.perf_counter()
+    cop.percent_point(r, u[:n_slice])
+    return (time.perf_counter() - t) * n_total / n_slice
+
+
+def pas_draws(family, theta, u, n_total):
+    fam = getattr(pv.BicopFamily, family)
+    b = pv.Bicop(family=fam, parameters=np.array([[theta]]))
+    from pas.copulas import conditional_quantile
+    rng = np.random.default_rng(0)
+    t = time.perf_counter()
+    conditional_quantile(b, np.tile(u, n_total // u.size), rng.uniform(1e-6, 1 - 1e-6, n_total))
+    return time.perf_counter() - t
+
+
+def main():
+    rng = np.random.default_rng(1)
+    lfset = LFSet(rng.rayleigh(2.5, N), n_waves=N_W, p_exp=P_EXP)
+    print(f"PAS iteration, n = {N} LF peaks, z = {Z} (median of repeats)")
+    print(f"{'pairs m':>8} {'family':>9} {'ms/iter':>9}  {'forced family':>14} {'ms/iter':>9}")
+    for m in (20, 80, 160):
+        pairs = make_pairs(lfset, m, rng)
+        t, fam = time_iteration(lfset, pairs, 15)
+        worst = []
+        for forced in ("gaussian", "student", "clayton", "gumbel", "frank"):
+            tf, _ = time_iteration(lfset, pairs, 7, families=(forced,))
+            worst.append((tf, forced))
+        tw, fw = max(worst)
+        print(f"{m:>8} {fam:>9} {1e3 * t:>9.1f}  {fw + ' (slowest)':>14} {1e3 * tw:>9.1f}")
+    u = np.sort(rng.uniform(0.001, 0.999, N))
+    n_total = N * Z
+    print(f"\nConditional draws, {n_total} quantiles (n0 = {N}, z = {Z})")
+    for family, theta in (("gumbel", 2.5), ("frank", 8.0), ("clayton", 2.0)):
+        ours = pas_draws(family, theta, u, n_total)
+        paper = paper_stack_draws(family, theta, u, n_total)
+        print(f"  {family:>8}: pas {1e3 * ours:8.1f} ms   copulas package {paper:8.2f} s   "
+              f"ratio {paper / ours:8.0f}x")
+
+
+if __name__ == "__main__":
+    main()
