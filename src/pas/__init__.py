@@ -5,7 +5,7 @@ long low-fidelity (LF) simulation and a few adaptively chosen HF events
 (van Essen & Seyffert 2026).  Start with :func:`run_pas`.
 """
 
-from .api import make_study, run_pas
+from .api import make_study, run_as, run_pas
 from .metrics import m1, m2, m3, metrics
 from .screening import Event, LFSet
 from .stats.exceedance import (
@@ -15,7 +15,7 @@ from .stats.exceedance import (
     p_exp_from_duration,
     quantile_exceedance,
 )
-from .strategies import PAS
+from .strategies import AS, PAS
 from .study import OracleFailureLimit, ScreeningResult, Study
 
 __version__ = "0.1.0"
@@ -24,4 +24,5 @@ __all__ = [
     "run_pas", "make_study", "Study", "ScreeningResult", "OracleFailureLimit", "Event", "LFSet",
     "PAS", "m1", "m2", "m3", "metrics", "p_exp_from_duration", "n_waves_from_duration",
     "mean_period_from_peak_period", "encounter_period", "quantile_exceedance", "__version__",
+    "run_as", "AS",
 ]

@@ -3,11 +3,12 @@
 from __future__ import annotations
 
 from .screening import LFSet
+from .strategies.as_ import AS
 from .strategies.pas import PAS
 from .study.result import ScreeningResult
 from .study.study import Study
 
-__all__ = ["run_pas", "make_study"]
+__all__ = ["run_pas", "run_as", "make_study"]
 
 _STUDY_SETTINGS = ("k1", "k2", "max_failures", "stop_on_convergence", "adaptive_threshold",
                    "threshold_step", "fp_run")
@@ -89,6 +90,75 @@ def run_pas(lf_peaks, oracle, *, n_waves, p_exp, eps1, eps2=0.1, threshold=None,
     (True, True)
     """
     study = make_study(PAS, lf_peaks, n_waves=n_waves, p_exp=p_exp, eps1=eps1, eps2=eps2,
+                       threshold=threshold, seed=seed, max_hf=max_hf, ids=ids, meta=meta,
+                       **settings)
+    return study.optimize(oracle, batch_size=batch_size, callback=callback)
+
+
+def run_as(lf_peaks, oracle, *, n_waves, p_exp, eps1, eps2=0.1, threshold=None, seed=None,
+           max_hf=None, ids=None, meta=None, batch_size=1, callback=None,
+           **settings) -> ScreeningResult:
+    """Predict the MPM of an HF load with Adaptive Screening (paper App. A), the GPR reference.
+
+    Runs :class:`~pas.strategies.as_.AS` in the same study loop as
+    :func:`run_pas`: same screening (steps 1–4), oracle, false positives and
+    stopping rule (App. C); 2 initial samples, the order-statistics
+    assumption (each HF sample gets its event's LF exceedance probability),
+    a single- or multi-fidelity GPR surrogate of ``h`` over ``ln d`` and MVPD
+    acquisition (Eq. 20).  AS is biased non-conservative when the indicator
+    does not rank events like the HF load does.
+
+    Parameters
+    ----------
+    lf_peaks : array-like, shape (n_events,)
+        LF indicator peak of every wave event in the LF Monte-Carlo run.
+    oracle : callable
+        ``oracle(event) -> float``: the HF peak of ``event`` (an
+        :class:`~pas.screening.Event`); 0.0 means no impact (a false
+        positive).  An exception, NaN, inf or a negative value is recorded as
+        a failure, never taken as 0.
+    n_waves : int
+        Number of wave encounters ``n_w`` in the LF Monte-Carlo duration.
+    p_exp : float
+        Target exceedance probability (:func:`pas.p_exp_from_duration`).
+    eps1 : float
+        Stopping limit on the mean change of the predicted distribution,
+        in load units (paper: ≈ 1–2 % of the expected maximum).
+    eps2 : float, default 0.1
+        Stopping limit on the COV of the last K2 MPMs.
+    threshold : float, optional
+        LF threshold ``l0_input`` (Eq. 2).
+    seed : int, optional
+        Seed for reproducible runs (reported on the result when None).
+    max_hf : int, optional
+        Budget of HF evaluations (at least 2).
+    ids, meta : sequence, optional
+        User ids / metadata per event, passed to the oracle on the event.
+    batch_size : int, default 1
+        Events proposed per iteration (the next-best MVPD targets).
+    callback : callable, optional
+        ``callback(study, row)`` after every HF result.
+    **settings
+        Strategy settings (:class:`~pas.strategies.as_.AS`: ``fidelity``
+        ``"multi"``/``"single"``, ``range_factor``, ``n_grid``,
+        ``n_lf_bins``, ``n_restarts``) and study settings (``k1``, ``k2``,
+        ``max_failures``, ``stop_on_convergence``, ``adaptive_threshold``).
+
+    Returns
+    -------
+    ScreeningResult
+
+    Examples
+    --------
+    >>> import numpy as np, pas
+    >>> rng = np.random.default_rng(0)
+    >>> lf = rng.rayleigh(2.0, 3000)
+    >>> res = pas.run_as(lf, lambda ev: 1.2 * ev.lf ** 1.1, n_waves=3000, p_exp=1e-2,
+    ...                  eps1=0.05, seed=1)
+    >>> res.strategy, bool(res.converged)
+    ('as', True)
+    """
+    study = make_study(AS, lf_peaks, n_waves=n_waves, p_exp=p_exp, eps1=eps1, eps2=eps2,
                        threshold=threshold, seed=seed, max_hf=max_hf, ids=ids, meta=meta,
                        **settings)
     return study.optimize(oracle, batch_size=batch_size, callback=callback)
