@@ -141,3 +141,33 @@ def test_unknown_setting_rejected():
 def test_fewer_waves_than_peaks_warns_with_both_numbers():
     with pytest.warns(UserWarning, match=r"n_waves=40.*\(50\)"):
         pas.make_study(pas.PAS, np.linspace(1, 5, 50), n_waves=40, p_exp=0.05, eps1=0.1)
+
+
+def test_unusable_indicator_warns():
+    rng = np.random.default_rng(0)
+    lf = rng.rayleigh(1.0, 2000)
+    hf = rng.permutation(2.0 * lf)  # LF carries no information on the HF ranks
+    with pytest.warns(UserWarning, match="Kendall's tau"):
+        pas.run_pas(lf, lambda ev: hf[ev.index] if hf[ev.index] > 0 else 1.0, n_waves=2000,
+                    p_exp=0.01, eps1=1e-6, seed=0, max_hf=40, n_bootstrap=0)
+
+
+def test_quantiles_of_the_exposure_maximum(table_oracle):
+    lf, hf, n_w, p_exp, truth = monotone_problem(n=3000, n_waves=3200)
+    res = pas.run_pas(lf, table_oracle(hf), n_waves=n_w, p_exp=p_exp, eps1=0.05, seed=1,
+                      max_hf=15, n_bootstrap=0)
+    # q = 1/e is the MPM level: 1 - exp(-P_exp) ~ P_exp
+    assert res.quantile(np.exp(-1)) == pytest.approx(res.mpm, rel=2e-3)
+    assert res.quantile(0.9) > res.mpm
+
+
+@pytest.mark.parametrize("families", [
+    ("gaussian", "gumbel_180", "clayton_180", "joe", "bb1", "bb1_180", "tll"),
+])
+def test_extra_copula_families(families, table_oracle):
+    lf, hf, n_w, p_exp, truth = gumbel_problem(n=3000, n_waves=3300)
+    res = pas.run_pas(lf, table_oracle(hf), n_waves=n_w, p_exp=p_exp, eps1=1.0, seed=1,
+                      max_hf=20, n_bootstrap=0, families=families)
+    assert set(res.fitted.family) <= set(families)
+    assert all(f"aic_{f}" in res.history for f in families)
+    assert res.mpm == pytest.approx(truth, rel=0.25)

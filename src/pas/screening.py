@@ -91,7 +91,7 @@ class LFSet:
         if keep.size < min_peaks:
             raise ValueError(
                 f"threshold: only {keep.size} LF peak(s) lie above threshold={threshold}; "
-                f"PAS needs at least {min_peaks}"
+                f"the screening needs at least {min_peaks}"
             )
         if keep.size > self.n_waves:
             warnings.warn(

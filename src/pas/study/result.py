@@ -7,6 +7,8 @@ from dataclasses import dataclass, field
 import numpy as np
 import pandas as pd
 
+from ..stats.exceedance import quantile_exceedance, value_at_exceedance
+
 __all__ = ["ScreeningResult"]
 
 
@@ -67,6 +69,23 @@ class ScreeningResult:
     def fitted(self) -> pd.DataFrame:
         """History rows where a model was fitted (true-positive iterations)."""
         return self.history[self.history["mpm"].notna()]
+
+    def value_at(self, p):
+        """Mean predicted HF value at exceedance probability ``p`` (per encounter)."""
+        d = self.distribution["exceedance_probability"].to_numpy()
+        if not len(d):
+            raise ValueError("the result has no predicted distribution yet")
+        return value_at_exceedance(d, self.distribution["h_mean"].to_numpy(), p)
+
+    def quantile(self, q: float) -> float:
+        """The ``q``-quantile of the maximum over the exposure duration.
+
+        With ``n_exp = 1 / P_exp`` encounters in the exposure, ``P(max ≤ h) =
+        (1 − d(h))^{n_exp} = q`` gives ``d = 1 − q^{P_exp}``
+        (:func:`pas.stats.exceedance.quantile_exceedance` with ``m/n = P_exp``).
+        ``q = e^{-1}`` is the MPM level; ``q = 0.9`` a common design quantile.
+        """
+        return float(self.value_at(quantile_exceedance(q, self.p_exp, 1.0)))
 
     def summary(self) -> str:
         """A few human-readable lines."""

@@ -11,6 +11,7 @@ positives (paper Step 6), failed oracle calls, the adaptive threshold
 from __future__ import annotations
 
 import math
+import warnings
 
 import numpy as np
 import pandas as pd
@@ -91,11 +92,17 @@ class Study:
     adaptive_threshold : bool, default True
         Raise the acquisition threshold by ``threshold_step`` × max LF after 5
         consecutive false positives rarer-than-selected (§2.4).
+    store : str, os.PathLike or StudyStore, optional
+        Crash-safe SQLite store (:mod:`pas.study.store`): a new one records
+        this study's settings, LF pool, every ask and every result as it
+        happens; an existing one is checked against these settings and
+        replayed, so the study continues where it stopped.  Without a store
+        the study lives in memory only.
     """
 
     def __init__(self, lfset: LFSet, strategy: Strategy, *, eps1, eps2=0.1, k1=20, k2=20,
                  seed=None, max_hf=None, max_failures=10, stop_on_convergence=True,
-                 adaptive_threshold=True, threshold_step=0.02, fp_run=5):
+                 adaptive_threshold=True, threshold_step=0.02, fp_run=5, store=None):
         self.lfset = lfset
         self.strategy = strategy
         strategy.reset()
@@ -122,6 +129,11 @@ class Study:
         self.last: Prediction | None = None
         self.converged = False
         self._initial = None
+        self.store = None
+        if store is not None:
+            from .store import attach
+            attach(self, store)
+        self._warned_tau = False
 
     # -- bookkeeping -------------------------------------------------------
     def _positions(self, status) -> list[int]:
@@ -189,7 +201,10 @@ class Study:
             new = self.strategy.propose(sel_d, self.lfset, self.available(), self.last, q=max(room, 0))
         for p in new:
             self.state[p] = PENDING
-        return [self.lfset.event(p) for p in new]
+        events = [self.lfset.event(p) for p in new]
+        if self.store is not None and events:
+            self.store.record_ask(events)
+        return events
 
     def tell(self, event, value=None, *, error: str | None = None) -> dict:
         """Record the HF result of an asked event and update the model.
@@ -206,6 +221,8 @@ class Study:
         if error is None:
             value, error = check_hf_value(value)
         ev = self.lfset.event(pos)
+        if self.store is not None:
+            self.store.record_result(ev, value, error)
         row = {"row": len(self.rows), "position": pos, "event_index": ev.index, "event_id": ev.id,
                "lf": ev.lf, "d": ev.d, "hf": value, "error": error}
         if error is not None:
@@ -224,6 +241,8 @@ class Study:
         if row["status"] == TRUE_POSITIVE:
             self._iterate(row)
         row["threshold"] = self.l0
+        if self.store is not None:
+            self.store.record_tell(ev, row)
         if self.n_failed > self.max_failures:
             raise OracleFailureLimit(
                 f"the HF oracle failed {self.n_failed} times (max_failures={self.max_failures}); "
@@ -252,14 +271,31 @@ class Study:
         row.update(mpm=pred.mpm, mpm_low=pred.mpm_band[0], mpm_high=pred.mpm_band[1],
                    n_pairs=len(pairs), E=e, E_bar=e_bar, COV=cov, stop=stop)
         self.converged = self.converged or stop
+        tau = pred.record.get("tau", np.nan)
+        if len(pairs) >= 8 and tau <= 0 and not self._warned_tau:
+            self._warned_tau = True
+            warnings.warn(
+                f"Kendall's tau of the {len(pairs)} LF-HF pairs is {tau:.2f} <= 0: the LF "
+                "indicator does not rank the HF loads, so the screening assumption fails; "
+                "check the indicator, its threshold and the event matching", stacklevel=2)
 
     # -- running -----------------------------------------------------------
-    def optimize(self, oracle, *, batch_size: int = 1, callback=None) -> ScreeningResult:
+    def optimize(self, oracle, *, batch_size: int = 1, callback=None, executor=None,
+                 n_workers=None, pending="resubmit") -> ScreeningResult:
         """Run the loop with a Python oracle until the study is finished.
 
         ``callback(study, row)`` is called after every told result (progress
-        output, checkpoints).
+        output, checkpoints).  With a store, an ``executor`` (any
+        :class:`concurrent.futures.Executor`, e.g. a Dask client's
+        ``get_executor()``) or ``n_workers`` (a local process pool) the loop
+        is :func:`pas.study.executor.optimize`, which stores each result as it
+        arrives and handles events left pending by a killed run
+        (``pending="resubmit"`` or ``"wait"``).
         """
+        if self.store is not None or executor is not None or n_workers is not None:
+            from .executor import optimize
+            return optimize(self, oracle, batch_size=batch_size, callback=callback,
+                            executor=executor, n_workers=n_workers, pending=pending)
         while True:
             events = self.ask(batch_size)
             if not events:
