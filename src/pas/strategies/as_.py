@@ -301,6 +301,7 @@ class AS(Strategy):
     name = "as"
     n_initial = 2
     min_pairs = 2
+    spreads_samples = False  # MVPD clusters samples near P_exp
 
     def __init__(self, *, fidelity: str = "multi", range_factor: float = 10.0, n_grid: int = 101,
                  n_lf_bins: int = 200, n_restarts: int = 0):

@@ -76,6 +76,9 @@ class Strategy(ABC):
     n_initial: int = 4
     min_pairs: int = 4
     skip_unsplittable: bool = True
+    #: samples spread over the whole LF range, so Kendall's tau of the pairs
+    #: measures the indicator (False for strategies that cluster samples)
+    spreads_samples: bool = True
 
     def reset(self) -> None:
         """Forget state carried between iterations (e.g. the selected copula)."""

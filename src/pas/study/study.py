@@ -272,7 +272,8 @@ class Study:
                    n_pairs=len(pairs), E=e, E_bar=e_bar, COV=cov, stop=stop)
         self.converged = self.converged or stop
         tau = pred.record.get("tau", np.nan)
-        if len(pairs) >= 8 and tau <= 0 and not self._warned_tau:
+        if (self.strategy.spreads_samples and len(pairs) >= 8 and tau <= 0
+                and not self._warned_tau):
             self._warned_tau = True
             warnings.warn(
                 f"Kendall's tau of the {len(pairs)} LF-HF pairs is {tau:.2f} <= 0: the LF "
