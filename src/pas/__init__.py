@@ -16,7 +16,14 @@ from .stats.exceedance import (
     quantile_exceedance,
 )
 from .strategies import AS, PAS
-from .study import OracleFailureLimit, ScreeningResult, Study
+from .study import (
+    CommandOracle,
+    OracleFailureLimit,
+    ScreeningResult,
+    Study,
+    StudyStore,
+    TableOracle,
+)
 
 __version__ = "0.1.0"
 
@@ -24,5 +31,5 @@ __all__ = [
     "run_pas", "make_study", "Study", "ScreeningResult", "OracleFailureLimit", "Event", "LFSet",
     "PAS", "m1", "m2", "m3", "metrics", "p_exp_from_duration", "n_waves_from_duration",
     "mean_period_from_peak_period", "encounter_period", "quantile_exceedance", "__version__",
-    "run_as", "AS",
+    "run_as", "AS", "StudyStore", "TableOracle", "CommandOracle",
 ]

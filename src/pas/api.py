@@ -15,12 +15,18 @@ _STUDY_SETTINGS = ("k1", "k2", "max_failures", "stop_on_convergence", "adaptive_
 
 
 def make_study(strategy, lf_peaks, *, n_waves, p_exp, eps1, eps2=0.1, threshold=None,
-               seed=None, max_hf=None, ids=None, meta=None, **settings) -> Study:
+               seed=None, max_hf=None, ids=None, meta=None, store=None, **settings) -> Study:
     """Validate the inputs and build a :class:`~pas.study.study.Study` for ``strategy``.
 
     ``strategy`` is a class (built with the strategy settings found in
     ``settings``) or an instance.  Unknown settings raise ``ValueError``.
+    ``store`` (a path or :class:`~pas.study.store.StudyStore`) makes the study
+    crash-safe and resumable; with ``seed=None`` an existing store's seed is used.
     """
+    if store is not None and seed is None:
+        from .study.store import StudyStore, read_settings
+        stored = store.settings() if isinstance(store, StudyStore) else read_settings(store)
+        seed = stored.get("seed")
     study_kw = {k: settings.pop(k) for k in _STUDY_SETTINGS if k in settings}
     if isinstance(strategy, type):
         try:
@@ -31,12 +37,13 @@ def make_study(strategy, lf_peaks, *, n_waves, p_exp, eps1, eps2=0.1, threshold=
         raise ValueError(f"unknown settings {sorted(settings)}")
     lfset = LFSet(lf_peaks, n_waves=n_waves, p_exp=p_exp, threshold=threshold, ids=ids,
                   meta=meta, min_peaks=max(4, strategy.n_initial))
-    return Study(lfset, strategy, eps1=eps1, eps2=eps2, seed=seed, max_hf=max_hf, **study_kw)
+    return Study(lfset, strategy, eps1=eps1, eps2=eps2, seed=seed, max_hf=max_hf, store=store,
+                 **study_kw)
 
 
 def run_pas(lf_peaks, oracle, *, n_waves, p_exp, eps1, eps2=0.1, threshold=None, seed=None,
-            max_hf=None, ids=None, meta=None, batch_size=1, callback=None,
-            **settings) -> ScreeningResult:
+            max_hf=None, ids=None, meta=None, batch_size=1, callback=None, study=None,
+            pending="resubmit", executor=None, n_workers=None, **settings) -> ScreeningResult:
     """Predict the MPM of an HF load with Probabilistic Adaptive Screening.
 
     Parameters
@@ -69,6 +76,21 @@ def run_pas(lf_peaks, oracle, *, n_waves, p_exp, eps1, eps2=0.1, threshold=None,
         Events proposed per iteration.
     callback : callable, optional
         ``callback(study, row)`` after every HF result.
+    study : str or os.PathLike, optional
+        SQLite study store (:mod:`pas.study.store`): created when missing,
+        otherwise checked against this call and continued — no stored HF
+        result is lost or re-run, and the run makes the decisions an
+        uninterrupted one would have made (same ``batch_size``).
+    pending : {"resubmit", "wait"}, default "resubmit"
+        Events a killed run left without a result: run them again, or leave
+        them for ``pas study tell``.
+    executor : concurrent.futures.Executor, optional
+        Runs the oracle calls of a batch concurrently (e.g.
+        ``distributed.Client(...).get_executor()``); results are stored as
+        they arrive.
+    n_workers : int, optional
+        Without ``executor``: a local process pool of this size (the oracle
+        must be picklable).
     **settings
         Strategy settings (:class:`~pas.strategies.pas.PAS`: ``families``,
         ``z``, ``delta_aic``, ``exclude_at_bound``, ``upper_tail``,
@@ -91,13 +113,14 @@ def run_pas(lf_peaks, oracle, *, n_waves, p_exp, eps1, eps2=0.1, threshold=None,
     """
     study = make_study(PAS, lf_peaks, n_waves=n_waves, p_exp=p_exp, eps1=eps1, eps2=eps2,
                        threshold=threshold, seed=seed, max_hf=max_hf, ids=ids, meta=meta,
-                       **settings)
-    return study.optimize(oracle, batch_size=batch_size, callback=callback)
+                       store=study, **settings)
+    return study.optimize(oracle, batch_size=batch_size, callback=callback, executor=executor,
+                          n_workers=n_workers, pending=pending)
 
 
 def run_as(lf_peaks, oracle, *, n_waves, p_exp, eps1, eps2=0.1, threshold=None, seed=None,
-           max_hf=None, ids=None, meta=None, batch_size=1, callback=None,
-           **settings) -> ScreeningResult:
+           max_hf=None, ids=None, meta=None, batch_size=1, callback=None, study=None,
+           pending="resubmit", executor=None, n_workers=None, **settings) -> ScreeningResult:
     """Predict the MPM of an HF load with Adaptive Screening (paper App. A), the GPR reference.
 
     Runs :class:`~pas.strategies.as_.AS` in the same study loop as
@@ -138,6 +161,21 @@ def run_as(lf_peaks, oracle, *, n_waves, p_exp, eps1, eps2=0.1, threshold=None, 
         Events proposed per iteration (the next-best MVPD targets).
     callback : callable, optional
         ``callback(study, row)`` after every HF result.
+    study : str or os.PathLike, optional
+        SQLite study store (:mod:`pas.study.store`): created when missing,
+        otherwise checked against this call and continued — no stored HF
+        result is lost or re-run, and the run makes the decisions an
+        uninterrupted one would have made (same ``batch_size``).
+    pending : {"resubmit", "wait"}, default "resubmit"
+        Events a killed run left without a result: run them again, or leave
+        them for ``pas study tell``.
+    executor : concurrent.futures.Executor, optional
+        Runs the oracle calls of a batch concurrently (e.g.
+        ``distributed.Client(...).get_executor()``); results are stored as
+        they arrive.
+    n_workers : int, optional
+        Without ``executor``: a local process pool of this size (the oracle
+        must be picklable).
     **settings
         Strategy settings (:class:`~pas.strategies.as_.AS`: ``fidelity``
         ``"multi"``/``"single"``, ``range_factor``, ``n_grid``,
@@ -160,5 +198,6 @@ def run_as(lf_peaks, oracle, *, n_waves, p_exp, eps1, eps2=0.1, threshold=None, 
     """
     study = make_study(AS, lf_peaks, n_waves=n_waves, p_exp=p_exp, eps1=eps1, eps2=eps2,
                        threshold=threshold, seed=seed, max_hf=max_hf, ids=ids, meta=meta,
-                       **settings)
-    return study.optimize(oracle, batch_size=batch_size, callback=callback)
+                       store=study, **settings)
+    return study.optimize(oracle, batch_size=batch_size, callback=callback, executor=executor,
+                          n_workers=n_workers, pending=pending)

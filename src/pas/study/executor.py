@@ -1,0 +1,176 @@
+"""Running HF batches through any :class:`concurrent.futures.Executor`, result by result.
+
+:func:`optimize` is the study loop for real campaigns.  It asks the study for a
+batch of ``batch_size`` events (MD batch by sequential fill), hands them to the
+oracle — in this process, in a local :class:`~concurrent.futures.ProcessPoolExecutor`
+(``n_workers``) or on a cluster (a Dask ``distributed.Client(...).get_executor()``,
+see ``docs/cluster.md``) — and writes each result to the study store the
+moment it arrives (``as_completed``).  The study is *told* the results in ask
+order, each as soon as all earlier events of its batch are in, so the
+decisions do not depend on which worker finished first and a resumed run
+repeats them exactly.
+
+Resume: events a killed run left pending are the first batch of the next
+run.  Those whose result reached the store are told without calling the
+oracle; the others are resubmitted (``pending="resubmit"``, the default) or
+left for ``pas study tell`` / :meth:`Study.tell` (``pending="wait"``; their
+results are picked up before each new ask).
+"""
+
+from __future__ import annotations
+
+import pickle
+from concurrent.futures import Executor, ProcessPoolExecutor, as_completed
+
+from .._validation import check_option, check_positive_int
+from .study import OracleFailureLimit, call_oracle
+
+__all__ = ["optimize", "PENDING_POLICIES"]
+
+PENDING_POLICIES = ("resubmit", "wait")
+
+
+def optimize(study, oracle, *, batch_size: int = 1, executor: Executor | None = None,
+             n_workers: int | None = None, pending: str = "resubmit", callback=None):
+    """Run ``study`` to the end with ``oracle``, storing every result as it arrives.
+
+    Parameters
+    ----------
+    study : Study
+        The study, with or without a store (:mod:`pas.study.store`).
+    oracle : callable
+        ``oracle(event) -> float``; must be picklable for a process pool
+        (the oracles of :mod:`pas.study.oracles` are).
+    batch_size : int, default 1
+        Events per ask (``q``); all of a batch run concurrently.
+    executor : concurrent.futures.Executor, optional
+        Where oracle calls run; default: in this process, one at a time.
+    n_workers : int, optional
+        Without ``executor``: run in a local process pool of this size.
+    pending : {"resubmit", "wait"}
+        What to do with events a killed run left without a result.
+    callback : callable, optional
+        ``callback(study, row)`` after every told result.
+
+    Returns
+    -------
+    ScreeningResult
+
+    Raises
+    ------
+    OracleFailureLimit
+        After storing the results of every call still running.
+    """
+    check_option(pending, "pending", PENDING_POLICIES)
+    batch_size = check_positive_int(batch_size, "batch_size")
+    own = None
+    if executor is None and n_workers is not None:
+        own = executor = ProcessPoolExecutor(check_positive_int(n_workers, "n_workers"))
+    try:
+        if isinstance(executor, ProcessPoolExecutor):
+            _check_picklable(oracle)
+        return _Loop(study, oracle, executor, callback).run(batch_size, pending)
+    finally:
+        if own is not None:
+            own.shutdown()
+
+
+def _check_picklable(oracle) -> None:
+    try:
+        pickle.dumps(oracle)
+    except Exception as exc:
+        raise ValueError(f"oracle must be picklable to run in a process pool (use a module-level "
+                         f"function or a pas.study.oracles oracle, not a lambda): {exc}") from None
+
+
+class _Loop:
+    def __init__(self, study, oracle, executor, callback):
+        self.study, self.oracle, self.executor, self.callback = study, oracle, executor, callback
+        self.store = study.store
+
+    def run(self, batch_size: int, pending: str):
+        study = self.study
+        batch = self._left_over(pending)
+        while True:
+            if not batch:
+                self._absorb()
+                self._check_failures()
+                batch = study.ask(batch_size)
+                if not batch:
+                    break
+            self._run_batch(batch)
+            batch = []
+        return study.result()
+
+    def _left_over(self, pending):
+        """Events asked but not told when the loop starts, in ask order."""
+        if self.store is None:
+            return self.study.pending
+        rows = self.store.outstanding()
+        if pending == "wait":
+            rows = [r for r in rows if r[3]]
+        return [self.study.lfset.event(self.study.lfset.position_of(r[0])) for r in rows]
+
+    def _absorb(self):
+        """Tell results that other processes stored for waiting events (arrival order)."""
+        if self.store is None:
+            return
+        for idx, hf, err in self.store.unconsumed():
+            row = self.study.tell(int(idx), hf, error=err)
+            if self.callback is not None:
+                self.callback(self.study, row)
+
+    def _check_failures(self):
+        s = self.study
+        if s.n_failed > s.max_failures:
+            raise OracleFailureLimit(f"the HF oracle failed {s.n_failed} times "
+                                     f"(max_failures={s.max_failures})", result=s.result())
+
+    def _run_batch(self, batch):
+        study, store = self.study, self.store
+        results = {}
+        if store is not None:
+            results = {r[0]: (r[1], r[2]) for r in store.outstanding() if r[3]}
+        todo = [ev for ev in batch if ev.index not in results]
+        if store is not None and todo:
+            store.mark_submitted(todo)
+        told, failure = 0, None
+
+        def tell_ready():
+            nonlocal told, failure
+            while told < len(batch) and batch[told].index in results:
+                ev = batch[told]
+                told += 1
+                if failure is not None:
+                    continue
+                value, error = results[ev.index]
+                try:
+                    row = study.tell(ev, value, error=error)
+                except OracleFailureLimit as exc:
+                    failure = exc
+                    continue
+                if self.callback is not None:
+                    self.callback(study, row)
+
+        tell_ready()
+        for ev, (value, error) in self._execute(todo):
+            if store is not None:
+                store.record_result(ev, value, error)
+            results[ev.index] = (value, error)
+            tell_ready()
+        if failure is not None:
+            raise failure
+
+    def _execute(self, events):
+        """Yield ``(event, (value, error))`` as the oracle calls finish."""
+        if self.executor is None:
+            for ev in events:
+                yield ev, call_oracle(self.oracle, ev)
+            return
+        futures = {self.executor.submit(call_oracle, self.oracle, ev): ev for ev in events}
+        for fut in as_completed(futures):
+            try:
+                out = fut.result()
+            except Exception as exc:  # the worker died or the call could not be shipped
+                out = (None, f"executor: {type(exc).__name__}: {exc}")
+            yield futures[fut], out

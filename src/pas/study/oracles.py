@@ -1,0 +1,268 @@
+"""Built-in HF oracles: a results table and an external command per event.
+
+An oracle is any callable ``oracle(event) -> float`` (0 = no impact, a false
+positive).  A failure is an exception with a message; the study records it as
+a failed event and never takes it as 0.  Both oracles here hold only plain
+data, so they pickle for process pools and Dask workers.
+"""
+
+from __future__ import annotations
+
+import fcntl
+import json
+import math
+import os
+import re
+import signal
+import subprocess
+import time
+from pathlib import Path
+
+import numpy as np
+
+__all__ = ["OracleError", "TableOracle", "CommandOracle", "read_table"]
+
+
+class OracleError(RuntimeError):
+    """An HF evaluation failed; the message is stored with the event."""
+
+
+def read_table(path, *, columns=()):
+    """Read a CSV or Parquet file into a DataFrame, checking that ``columns`` exist."""
+    import pandas as pd
+
+    path = Path(path)
+    if not path.exists():
+        raise FileNotFoundError(f"{path} does not exist")
+    suffix = path.suffix.lower()
+    if suffix == ".parquet":
+        df = pd.read_parquet(path)
+    elif suffix in (".csv", ".txt"):
+        df = pd.read_csv(path)
+    else:
+        raise ValueError(f"{path}: unsupported table format {suffix!r} (use .csv or .parquet)")
+    for c in columns:
+        if c not in df.columns:
+            raise ValueError(f"column {c!r} is missing from {path.name} "
+                             f"(columns: {', '.join(map(str, df.columns))})")
+    return df
+
+
+class TableOracle:
+    """HF results looked up by event id: basin tests or a finished HF Monte-Carlo.
+
+    Parameters
+    ----------
+    table : str, os.PathLike or pandas.DataFrame
+        CSV or Parquet file, or a DataFrame.
+    id_column : str, default "id"
+        Column holding the event ids (matched to ``str(event.id)``).
+    value_column : str, default "hf"
+        Column holding the HF peak (0 = no impact).
+
+    An event missing from the table, or with an empty value, is a failure,
+    never 0.
+
+    Examples
+    --------
+    >>> import pandas as pd
+    >>> from pas.screening import Event
+    >>> oracle = TableOracle(pd.DataFrame({"id": ["a", "b"], "hf": [1.5, 0.0]}))
+    >>> oracle(Event(index=0, id="a", lf=1.0, d=0.1))
+    1.5
+    """
+
+    def __init__(self, table, *, id_column: str = "id", value_column: str = "hf"):
+        import pandas as pd
+
+        if isinstance(table, pd.DataFrame):
+            name, df = "table", table
+            for c in (id_column, value_column):
+                if c not in df.columns:
+                    raise ValueError(f"column {c!r} is missing from the table "
+                                     f"(columns: {', '.join(map(str, df.columns))})")
+        else:
+            name, df = Path(table).name, read_table(table, columns=(id_column, value_column))
+        keys = df[id_column].astype(str)
+        dup = keys[keys.duplicated()]
+        if len(dup):
+            raise ValueError(f"{id_column}: event id {dup.iloc[0]!r} appears more than once in {name}")
+        values = pd.to_numeric(df[value_column], errors="coerce").to_numpy(dtype=float)
+        self.name = name
+        self.values = dict(zip(keys, values.tolist()))
+
+    def __call__(self, event) -> float:
+        key = str(event.id)
+        if key not in self.values:
+            raise OracleError(f"event {key} is not in {self.name}")
+        v = self.values[key]
+        if not math.isfinite(v):
+            raise OracleError(f"{self.name} has no valid value for event {key}")
+        return v
+
+
+_SAFE = re.compile(r"[^A-Za-z0-9._-]")
+
+
+def _event_dir(event) -> str:
+    name = _SAFE.sub("_", str(event.id))
+    return name if name == str(event.id) and name not in (".", "..") else f"{name}-{event.index}"
+
+
+def parse_result(text: str) -> float:
+    """An HF value from a result file: a number, a JSON number or ``{"value": x}``."""
+    text = text.strip()
+    try:
+        return float(text)
+    except ValueError:
+        pass
+    try:
+        obj = json.loads(text)
+    except ValueError:
+        obj = None
+    if isinstance(obj, dict) and "value" in obj:
+        obj = obj["value"]
+    if isinstance(obj, (int, float)) and not isinstance(obj, bool):
+        return float(obj)
+    raise OracleError(f"result file holds {text[:60]!r}, not a number")
+
+
+class CommandOracle:
+    """Run an external program per event (a CFD case, a post-processor), never via a shell.
+
+    Parameters
+    ----------
+    args : sequence of str
+        Argument-list template, e.g. ``["python", "cfd.py", "--event", "{id}",
+        "--lf", "{lf}", "--out", "{result}"]``.  Placeholders: ``{id}``,
+        ``{index}``, ``{lf}``, ``{d}``, ``{workdir}``, ``{result}`` and every
+        key of the event's ``meta`` (``{seed}``, ``{t_start}`` …).
+    root : str or os.PathLike
+        Each event runs in its own working directory ``root/<event id>``,
+        with ``stdout.log`` and ``stderr.log``.
+    timeout : float, optional
+        Seconds before the program (and its process group) is killed.
+    result_name : str, default "result.txt"
+        File the program writes its HF peak to (plain number, JSON number or
+        ``{"value": x}``), relative to the working directory.
+    env : dict, optional
+        Extra environment variables.
+    reuse : bool, default True
+        Take a valid result file left by an earlier run of the same event
+        (e.g. the driver was killed after the program finished) instead of
+        running it again.
+
+    Notes
+    -----
+    A non-zero exit status, a time-out, a missing or unreadable result file
+    raise :class:`OracleError` (recorded as a failed event, never as 0).
+    While the program runs it holds an ``flock`` on ``root/<id>/.lock``
+    (inherited by the program), so a resumed driver waits for a program
+    orphaned by a killed driver and reuses its result instead of starting a
+    second copy.
+    """
+
+    def __init__(self, args, *, root, timeout: float | None = None,
+                 result_name: str = "result.txt", env: dict | None = None, reuse: bool = True):
+        if isinstance(args, (str, bytes)) or not all(isinstance(a, str) for a in args) or not args:
+            raise ValueError("args must be a non-empty list of strings (an argument list, "
+                             "not a shell command line)")
+        if timeout is not None and not (isinstance(timeout, (int, float)) and timeout > 0):
+            raise ValueError(f"timeout must be a positive number of seconds, got {timeout!r}")
+        if not isinstance(result_name, str) or not result_name or os.path.isabs(result_name):
+            raise ValueError(f"result_name must be a relative file name, got {result_name!r}")
+        self.args = list(args)
+        self.root = os.path.abspath(os.fspath(root))
+        self.timeout = None if timeout is None else float(timeout)
+        self.result_name = result_name
+        self.env = dict(env or {})
+        self.reuse = bool(reuse)
+
+    def __repr__(self) -> str:
+        return f"CommandOracle({self.args!r}, root={self.root!r})"
+
+    def command(self, event, workdir: str) -> list[str]:
+        """The argument list for ``event``."""
+        fields = {str(k): v for k, v in event.meta.items()}
+        fields.update(id=event.id, index=event.index, lf=repr(float(event.lf)),
+                      d=repr(float(event.d)), workdir=workdir,
+                      result=os.path.join(workdir, self.result_name))
+        try:
+            return [a.format_map(fields) for a in self.args]
+        except (KeyError, IndexError) as exc:
+            raise OracleError(f"args: placeholder {exc} is neither an event field nor in its "
+                              "meta") from None
+
+    def __call__(self, event) -> float:
+        workdir = os.path.join(self.root, _event_dir(event))
+        os.makedirs(workdir, exist_ok=True)
+        result = os.path.join(workdir, self.result_name)
+        lock = os.open(os.path.join(workdir, ".lock"), os.O_RDWR | os.O_CREAT, 0o644)
+        try:
+            self._lock(lock, event)
+            if self.reuse:
+                value = self._read(result, missing_ok=True)
+                if value is not None and np.isfinite(value) and value >= 0:
+                    return value
+            if os.path.exists(result):
+                os.remove(result)
+            self._run(self.command(event, workdir), workdir, lock)
+            return self._read(result)
+        finally:
+            os.close(lock)
+
+    def _lock(self, fd, event) -> None:
+        deadline = None if self.timeout is None else time.monotonic() + self.timeout
+        while True:
+            try:
+                fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+                return
+            except BlockingIOError:
+                if deadline is not None and time.monotonic() > deadline:
+                    raise OracleError(f"event {event.id}: another run of it still holds "
+                                      f"{self.root}/.../.lock after {self.timeout:g} s") from None
+                time.sleep(0.05)
+
+    def _run(self, cmd, workdir, lock) -> None:
+        env = {**os.environ, **{str(k): str(v) for k, v in self.env.items()}}
+        with open(os.path.join(workdir, "stdout.log"), "wb") as out, \
+                open(os.path.join(workdir, "stderr.log"), "wb") as err:
+            try:
+                proc = subprocess.Popen(cmd, cwd=workdir, env=env, stdin=subprocess.DEVNULL,
+                                        stdout=out, stderr=err, pass_fds=(lock,),
+                                        start_new_session=True)
+            except OSError as exc:
+                raise OracleError(f"cannot start {cmd[0]!r}: {exc}") from None
+            try:
+                code = proc.wait(timeout=self.timeout)
+            except subprocess.TimeoutExpired:
+                os.killpg(proc.pid, signal.SIGKILL)
+                proc.wait()
+                raise OracleError(f"{cmd[0]} timed out after {self.timeout:g} s") from None
+        if code != 0:
+            tail = _last_line(os.path.join(workdir, "stderr.log"))
+            raise OracleError(f"{os.path.basename(cmd[0])} exited with code {code}"
+                              + (f": {tail}" if tail else ""))
+
+    def _read(self, path, *, missing_ok=False):
+        if not os.path.exists(path):
+            if missing_ok:
+                return None
+            raise OracleError(f"the program wrote no result file {path}")
+        with open(path, encoding="utf-8", errors="replace") as f:
+            text = f.read()
+        try:
+            return parse_result(text)
+        except OracleError as exc:
+            if missing_ok:
+                return None
+            raise OracleError(f"{path}: {exc}") from None
+
+
+def _last_line(path: str) -> str:
+    try:
+        with open(path, "rb") as f:
+            lines = f.read()[-2000:].decode(errors="replace").strip().splitlines()
+    except OSError:
+        return ""
+    return lines[-1][:200] if lines else ""

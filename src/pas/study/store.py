@@ -1,0 +1,552 @@
+"""Crash-safe study store: every HF result is on disk the moment it arrives.
+
+One SQLite file per study (standard-library :mod:`sqlite3`), WAL journal,
+``synchronous=FULL``, every write in a ``BEGIN IMMEDIATE`` transaction with a
+busy time-out, so a driver process and any number of ``pas study tell``
+processes can write at the same time without losing a result.  Everything is
+stored as JSON or plain columns; nothing is pickled.
+
+The store is a *log*, not a snapshot.  The model state of a
+:class:`~pas.study.study.Study` (selected copula, stopping windows, adaptive
+threshold) is never serialised: :func:`attach` rebuilds it by replaying the
+stored asks and tells through :meth:`Study.ask` / :meth:`Study.tell` in their
+stored order.  Each fit draws from ``default_rng([seed, len(rows)])``, so the
+replay is exact and a resumed study makes the decisions an uninterrupted one
+would have made.
+
+Schema (version 1)
+------------------
+``schema_version(version)``
+    One row, also ``PRAGMA user_version``.  A store written by a newer schema
+    is refused with an error asking to upgrade pas.
+``meta(key, value)``
+    JSON values: ``settings`` (strategy name and settings, ``n_waves``,
+    ``p_exp``, ``threshold``, ``eps1`` …, ``seed``, ``max_hf``),
+    ``lf_sha256`` (hash of the LF pool), ``created_at``, ``pas_version``,
+    ``seq`` (the last sequence number handed out) and ``op_seq`` (the last
+    ask or tell consumed by a study).
+``lf_peaks(idx, key, event_id, lf, d, meta)``
+    The LF pool the study was created with: every peak over the threshold,
+    keyed by ``idx``, its index in the user's ``lf_peaks``; ``key`` is
+    ``str(event_id)``, ``event_id`` and ``meta`` are JSON.
+``events(idx, key, event_id, lf, d, state, hf, error, batch, batch_pos,
+result_seq, tell_seq, attempts, asked_at, submitted_at, result_at, source)``
+    Every event sent to the HF tool.  ``state`` is ``pending``, ``done``
+    (HF > 0), ``false_positive`` (HF = 0) or ``failed`` (``error`` says why).
+    ``batch`` is the sequence number of the ask that sent it (``batch_pos``
+    its place in that ask); ``result_seq`` the sequence number at which its
+    result arrived; ``tell_seq`` the one at which a study consumed it.
+    ``attempts`` counts hand-overs to an HF tool (a resubmitted pending event
+    has 2).
+``history(row, idx, data, written_at)``
+    The study's history row of each consumed tell (JSON), written in the same
+    transaction as the tell.
+
+Replay order is the asks (grouped by ``batch``) and the consumed tells
+(``tell_seq``) sorted by sequence number.  Results that arrived but were not
+consumed yet (``result_seq`` set, ``tell_seq`` NULL) are consumed by whoever
+drives the study next: :func:`pas.study.executor.optimize` in ask order,
+``pas study ask`` in arrival order.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import math
+import os
+import sqlite3
+import warnings
+from contextlib import contextmanager
+from datetime import datetime, timezone
+
+import numpy as np
+
+__all__ = ["StudyStore", "StoreError", "StoreConflict", "SCHEMA_VERSION", "attach", "open_study",
+           "study_settings", "read_settings", "STATES"]
+
+SCHEMA_VERSION = 1
+STATES = ("pending", "done", "false_positive", "failed")
+#: Settings that may change when a study is resumed (budgets); all others must match.
+RESUMABLE = ("max_hf", "max_failures")
+
+_SCHEMA = f"""
+CREATE TABLE IF NOT EXISTS schema_version (version INTEGER NOT NULL);
+CREATE TABLE IF NOT EXISTS meta (key TEXT PRIMARY KEY, value TEXT NOT NULL);
+CREATE TABLE IF NOT EXISTS lf_peaks (
+    idx INTEGER PRIMARY KEY, key TEXT NOT NULL UNIQUE, event_id TEXT NOT NULL,
+    lf REAL NOT NULL, d REAL NOT NULL, meta TEXT NOT NULL);
+CREATE TABLE IF NOT EXISTS events (
+    idx INTEGER PRIMARY KEY REFERENCES lf_peaks(idx), key TEXT NOT NULL UNIQUE,
+    event_id TEXT NOT NULL, lf REAL NOT NULL, d REAL NOT NULL,
+    state TEXT NOT NULL CHECK (state IN {STATES!r}),
+    hf REAL, error TEXT, batch INTEGER NOT NULL, batch_pos INTEGER NOT NULL,
+    result_seq INTEGER, tell_seq INTEGER UNIQUE, attempts INTEGER NOT NULL DEFAULT 0,
+    asked_at TEXT NOT NULL, submitted_at TEXT, result_at TEXT, source TEXT);
+CREATE TABLE IF NOT EXISTS history (
+    row INTEGER PRIMARY KEY, idx INTEGER NOT NULL, data TEXT NOT NULL, written_at TEXT NOT NULL);
+"""
+
+
+class StoreError(ValueError):
+    """The store cannot be used as asked (version, settings, state); the message says why."""
+
+
+class StoreConflict(StoreError):
+    """Another process consumed tells or asked events since this one read the store."""
+
+
+def _now() -> str:
+    return datetime.now(timezone.utc).isoformat(timespec="milliseconds")
+
+
+def _default(x):
+    if isinstance(x, np.generic):
+        return x.item()
+    if isinstance(x, np.ndarray):
+        return x.tolist()
+    raise TypeError(f"{type(x).__name__} is not JSON-serialisable")
+
+
+def _clean(x):
+    """Non-finite floats become None so the stored text is strict JSON."""
+    if isinstance(x, float) and not math.isfinite(x):
+        return None
+    if isinstance(x, dict):
+        return {str(k): _clean(v) for k, v in x.items()}
+    if isinstance(x, (list, tuple)):
+        return [_clean(v) for v in x]
+    return x
+
+
+def dumps(x) -> str:
+    """Strict JSON text of ``x`` (numpy scalars converted, NaN/inf as null)."""
+    return json.dumps(_clean(json.loads(json.dumps(x, default=_default))), allow_nan=False,
+                      sort_keys=True)
+
+
+def study_settings(study) -> dict:
+    """The JSON settings that define ``study`` (checked when a store is reopened)."""
+    import inspect
+
+    strategy = study.strategy
+    params = {}
+    for name, p in inspect.signature(type(strategy).__init__).parameters.items():
+        if name == "self" or p.kind in (p.VAR_POSITIONAL, p.VAR_KEYWORD):
+            continue
+        if not hasattr(strategy, name):
+            raise StoreError(f"strategy setting {name} is not kept on {type(strategy).__name__} "
+                             "as an attribute, so the store cannot record it")
+        params[name] = getattr(strategy, name)
+    lfset, stop = study.lfset, study.stopping
+    out = {"strategy": strategy.name, "strategy_settings": params, "n_waves": lfset.n_waves,
+           "p_exp": lfset.p_exp, "threshold": lfset.threshold, "eps1": stop.eps1,
+           "eps2": stop.eps2, "k1": stop.k1, "k2": stop.k2, "seed": study.seed,
+           "max_hf": study.max_hf, "max_failures": study.max_failures,
+           "stop_on_convergence": study.stop_on_convergence,
+           "adaptive_threshold": study.adaptive_threshold,
+           "threshold_step": study.threshold_step, "fp_run": study.fp_run}
+    try:
+        return json.loads(dumps(out))
+    except TypeError as exc:
+        raise StoreError(f"study settings must be JSON-serialisable for the store: {exc}") from None
+
+
+def _pool_records(lfset) -> list[tuple]:
+    """``(idx, key, event_id_json, lf, d, meta_json)`` of every pool event, by ``idx``."""
+    out = []
+    for p in np.argsort(lfset.index, kind="stable"):
+        ev = lfset.event(int(p))
+        out.append((ev.index, str(ev.id), dumps(ev.id), ev.lf, ev.d, dumps(ev.meta)))
+    return out
+
+
+def _pool_hash(records) -> str:
+    h = hashlib.sha256()
+    for idx, key, eid, lf, _d, meta in records:
+        h.update(f"{idx}\x1f{key}\x1f{eid}\x1f{float(lf).hex()}\x1f{meta}\x1e".encode())
+    return h.hexdigest()
+
+
+class StudyStore:
+    """One study's SQLite file (module docs for the schema).
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The ``.db`` file.
+    create : bool, default True
+        Create the file when missing; False raises ``FileNotFoundError``.
+    timeout : float, default 120
+        Seconds to wait for another process's write transaction.
+    """
+
+    def __init__(self, path, *, create: bool = True, timeout: float = 120.0):
+        self.path = os.fspath(path)
+        if not create and not os.path.exists(self.path):
+            raise FileNotFoundError(f"study store {self.path} does not exist "
+                                    "(create it with 'pas study create')")
+        try:
+            self._conn = sqlite3.connect(self.path, timeout=timeout, isolation_level=None)
+            self._conn.execute("PRAGMA journal_mode=WAL")
+            self._conn.execute("PRAGMA synchronous=FULL")
+            self._conn.execute("PRAGMA foreign_keys=ON")
+            self._depth = 0
+            self._op_seq = 0
+            with self.transaction() as c:
+                version = c.execute("PRAGMA user_version").fetchone()[0]
+                if version > SCHEMA_VERSION:
+                    raise StoreError(
+                        f"study store {self.path} has schema version {version}; this pas reads "
+                        f"up to version {SCHEMA_VERSION}: upgrade pas to open it")
+                if version == 0:
+                    for stmt in filter(str.strip, _SCHEMA.split(";")):
+                        c.execute(stmt)
+                    c.execute("INSERT INTO schema_version VALUES (?)", (SCHEMA_VERSION,))
+                    c.execute(f"PRAGMA user_version={SCHEMA_VERSION}")
+                    for k, v in (("seq", 0), ("op_seq", 0)):
+                        c.execute("INSERT INTO meta VALUES (?, ?)", (k, json.dumps(v)))
+        except sqlite3.DatabaseError as exc:
+            raise StoreError(f"study store {self.path}: {exc}") from None
+
+    # -- plumbing ----------------------------------------------------------
+    def close(self) -> None:
+        self._conn.close()
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+
+    def __repr__(self) -> str:
+        return f"StudyStore({self.path!r})"
+
+    @contextmanager
+    def transaction(self):
+        """A ``BEGIN IMMEDIATE`` write transaction; nested calls join the outer one."""
+        if self._depth:
+            self._depth += 1
+            try:
+                yield self._conn
+            finally:
+                self._depth -= 1
+            return
+        self._conn.execute("BEGIN IMMEDIATE")
+        self._depth = 1
+        try:
+            yield self._conn
+        except BaseException:
+            self._depth = 0
+            self._conn.execute("ROLLBACK")
+            raise
+        self._depth = 0
+        self._conn.execute("COMMIT")
+
+    @contextmanager
+    def _read(self):
+        """A consistent read snapshot (joins a running write transaction)."""
+        if self._depth:
+            yield self._conn
+            return
+        self._conn.execute("BEGIN")
+        try:
+            yield self._conn
+        finally:
+            self._conn.execute("COMMIT")
+
+    def _meta(self, c, key, default=None):
+        row = c.execute("SELECT value FROM meta WHERE key = ?", (key,)).fetchone()
+        return default if row is None else json.loads(row[0])
+
+    def _set_meta(self, c, key, value) -> None:
+        c.execute("INSERT OR REPLACE INTO meta VALUES (?, ?)", (key, dumps(value)))
+
+    def _next_seq(self, c) -> int:
+        seq = self._meta(c, "seq") + 1
+        self._set_meta(c, "seq", seq)
+        return seq
+
+    def _claim_op(self, c) -> int:
+        """Next op sequence number, refusing when another process consumed or asked meanwhile."""
+        current = self._meta(c, "op_seq")
+        if current != self._op_seq:
+            raise StoreConflict(
+                f"study store {self.path} was changed by another process driving the same study "
+                "(asks or consumed tells); reopen the study to continue")
+        seq = self._next_seq(c)
+        self._set_meta(c, "op_seq", seq)
+        self._op_seq = seq
+        return seq
+
+    # -- creation and identity ---------------------------------------------
+    @property
+    def is_new(self) -> bool:
+        with self._read() as c:
+            return self._meta(c, "settings") is None
+
+    def settings(self) -> dict:
+        """The stored study settings (``{}`` for a new store)."""
+        with self._read() as c:
+            return self._meta(c, "settings", {})
+
+    def initialize(self, settings: dict, lfset) -> None:
+        """Write the settings and LF pool of a new study."""
+        records = _pool_records(lfset)
+        with self.transaction() as c:
+            if self._meta(c, "settings") is not None:
+                raise StoreError(f"study store {self.path} already holds a study")
+            c.executemany("INSERT INTO lf_peaks VALUES (?, ?, ?, ?, ?, ?)", records)
+            for k, v in (("settings", settings), ("lf_sha256", _pool_hash(records)),
+                         ("created_at", _now()), ("pas_version", _pas_version())):
+                self._set_meta(c, k, v)
+
+    def check(self, settings: dict, lfset) -> None:
+        """Raise :class:`StoreError` naming the first setting that differs from the store.
+
+        Budgets (``max_hf``, ``max_failures``) may change; the new values are stored.
+        """
+        with self.transaction() as c:
+            stored = self._meta(c, "settings")
+            for key in sorted(set(stored) | set(settings)):
+                old, new = stored.get(key), settings.get(key)
+                if key == "strategy_settings":
+                    for k in sorted(set(old or {}) | set(new or {})):
+                        if (old or {}).get(k) != (new or {}).get(k):
+                            raise StoreError(self._differs(k, (old or {}).get(k), (new or {}).get(k)))
+                elif old != new and key not in RESUMABLE:
+                    raise StoreError(self._differs(key, old, new))
+            if _pool_hash(_pool_records(lfset)) != self._meta(c, "lf_sha256"):
+                n = c.execute("SELECT COUNT(*) FROM lf_peaks").fetchone()[0]
+                raise StoreError(
+                    f"lf_peaks differ from those the study store {self.path} was created with "
+                    f"({n} peaks over threshold stored, {lfset.n} given; values, ids or meta "
+                    "changed)")
+            if stored != settings:
+                self._set_meta(c, "settings", settings)
+
+    def _differs(self, key, old, new) -> str:
+        return (f"{key} differs from the study store {self.path}: it was created with "
+                f"{key}={old!r}, this call has {key}={new!r}")
+
+    def pool(self):
+        """``(idx, ids, lf, meta)`` of the stored LF pool, ordered by ``idx``."""
+        with self._read() as c:
+            rows = c.execute("SELECT idx, event_id, lf, meta FROM lf_peaks ORDER BY idx").fetchall()
+        return (np.array([r[0] for r in rows], dtype=int), [json.loads(r[1]) for r in rows],
+                np.array([r[2] for r in rows], dtype=float), [json.loads(r[3]) for r in rows])
+
+    # -- the log -----------------------------------------------------------
+    def record_ask(self, events) -> int:
+        """Store a study's ask: ``events`` become pending, in this order."""
+        with self.transaction() as c:
+            seq = self._claim_op(c)
+            now = _now()
+            c.executemany(
+                "INSERT INTO events (idx, key, event_id, lf, d, state, batch, batch_pos, asked_at) "
+                "VALUES (?, ?, ?, ?, ?, 'pending', ?, ?, ?)",
+                [(ev.index, str(ev.id), dumps(ev.id), ev.lf, ev.d, seq, i, now)
+                 for i, ev in enumerate(events)])
+        return seq
+
+    def mark_submitted(self, events) -> None:
+        """Count a hand-over of ``events`` to an HF tool (``attempts`` + 1)."""
+        with self.transaction() as c:
+            c.executemany("UPDATE events SET attempts = attempts + 1, submitted_at = ? WHERE idx = ?",
+                          [(_now(), ev.index) for ev in events])
+
+    def record_result(self, event, value, error=None, *, source=None) -> None:
+        """Store the HF result (``value``) or failure (``error``) of a pending event.
+
+        Idempotent for an identical result; refuses to overwrite a different one.
+        """
+        idx = event if isinstance(event, (int, np.integer)) else event.index
+        with self.transaction() as c:
+            self._put_result(c, int(idx), value, error, source)
+
+    def _put_result(self, c, idx, value, error, source):
+        row = c.execute("SELECT key, state, hf, error, result_seq FROM events WHERE idx = ?",
+                        (idx,)).fetchone()
+        if row is None:
+            raise StoreError(f"event index {idx} was never asked for in {self.path}")
+        key, state, hf, err, rseq = row
+        value = None if error is not None else float(value)
+        if rseq is not None:
+            if (hf, err) == (value, error):
+                return
+            raise StoreError(f"event {key} already has a result in {self.path} ({state}, "
+                             f"hf={hf}, error={err!r}); refusing to overwrite it")
+        state = "failed" if error is not None else ("done" if value > 0 else "false_positive")
+        c.execute("UPDATE events SET state = ?, hf = ?, error = ?, result_seq = ?, result_at = ?, "
+                  "source = ? WHERE idx = ?",
+                  (state, value, error, self._next_seq(c), _now(), source, idx))
+
+    def record_tell(self, event, row: dict) -> None:
+        """Store that the study consumed ``event``'s result, with its history row."""
+        with self.transaction() as c:
+            self._put_result(c, event.index, row.get("hf"), row.get("error"), None)
+            seq = self._claim_op(c)
+            c.execute("UPDATE events SET tell_seq = ? WHERE idx = ?", (seq, event.index))
+            c.execute("INSERT INTO history VALUES (?, ?, ?, ?)",
+                      (row["row"], event.index, dumps(row), _now()))
+
+    def tell_by_key(self, key, value=None, *, error=None, source=None) -> None:
+        """Record a result for the pending event whose id is ``key`` (any process)."""
+        with self.transaction() as c:
+            row = c.execute("SELECT idx, state, result_seq FROM events WHERE key = ?",
+                            (str(key),)).fetchone()
+            if row is None:
+                raise StoreError(f"event {key} was not asked for in {self.path}")
+            if row[2] is not None:
+                raise StoreError(f"event {key} is already told ({row[1]})")
+            self._put_result(c, row[0], value, error, source)
+
+    def ops(self) -> list[tuple]:
+        """The replay log: ``("ask", [idx, ...])`` and ``("tell", idx, hf, error)`` in order.
+
+        Also remembers the last op so later writes can detect another driver.
+        """
+        with self._read() as c:
+            asks = c.execute("SELECT batch, idx FROM events ORDER BY batch, batch_pos").fetchall()
+            tells = c.execute("SELECT tell_seq, idx, hf, error FROM events "
+                              "WHERE tell_seq IS NOT NULL").fetchall()
+            self._op_seq = self._meta(c, "op_seq")
+        ops: dict[int, tuple] = {}
+        for batch, idx in asks:
+            ops.setdefault(batch, ("ask", []))[1].append(idx)
+        for seq, idx, hf, err in tells:
+            ops[seq] = ("tell", idx, hf, err)
+        return [ops[k] for k in sorted(ops)]
+
+    def unconsumed(self) -> list[tuple]:
+        """``(idx, hf, error)`` of results not yet consumed by a study, in arrival order."""
+        with self._read() as c:
+            return c.execute("SELECT idx, hf, error FROM events WHERE result_seq IS NOT NULL "
+                             "AND tell_seq IS NULL ORDER BY result_seq").fetchall()
+
+    def outstanding(self) -> list[tuple]:
+        """``(idx, hf, error, has_result)`` of events not consumed yet, in ask order."""
+        with self._read() as c:
+            return [(r[0], r[1], r[2], r[3] is not None) for r in c.execute(
+                "SELECT idx, hf, error, result_seq FROM events WHERE tell_seq IS NULL "
+                "ORDER BY batch, batch_pos")]
+
+    def events(self):
+        """All events sent to the HF tool as a :class:`pandas.DataFrame`, in ask order."""
+        import pandas as pd
+
+        with self._read() as c:
+            cur = c.execute("SELECT e.*, p.meta FROM events e JOIN lf_peaks p USING (idx) "
+                            "ORDER BY batch, batch_pos")
+            cols = [d[0] for d in cur.description]
+            df = pd.DataFrame(cur.fetchall(), columns=cols)
+        df["event_id"] = [json.loads(x) for x in df["event_id"]]
+        df["meta"] = [json.loads(x) for x in df["meta"]]
+        return df
+
+    def history(self) -> list[dict]:
+        """The stored history rows, in order."""
+        with self._read() as c:
+            return [json.loads(r[0]) for r in c.execute("SELECT data FROM history ORDER BY row")]
+
+
+def _pas_version() -> str:
+    from .. import __version__
+
+    return __version__
+
+
+def read_settings(path) -> dict:
+    """Stored settings of the study at ``path`` (``{}`` when there is no store yet)."""
+    if not os.path.exists(os.fspath(path)):
+        return {}
+    with StudyStore(path, create=False) as store:
+        return store.settings()
+
+
+def attach(study, store) -> None:
+    """Bind ``study`` to ``store``: initialise a new store, or check it and replay it.
+
+    Raises :class:`StoreError` when the stored settings or LF pool differ from
+    ``study``'s, or when the replay does not reproduce the stored asks.
+    """
+    from .study import OracleFailureLimit
+
+    if not isinstance(store, StudyStore):
+        store = StudyStore(store)
+    settings = study_settings(study)
+    with store.transaction():
+        if store.is_new:
+            store.initialize(settings, study.lfset)
+        else:
+            store.check(settings, study.lfset)
+    for n, op in enumerate(store.ops()):
+        if op[0] == "ask":
+            got = [ev.index for ev in study.ask(len(op[1]))]
+            if got != op[1]:
+                raise StoreError(
+                    f"study store {store.path} does not replay: ask #{n} gives events {got} but "
+                    f"the store holds {op[1]} (written by another pas version?)")
+        else:
+            try:
+                study.tell(op[1], op[2], error=op[3])
+            except OracleFailureLimit:
+                pass
+    stored = store.history()
+    if stored and study.rows and stored[-1].get("mpm") is not None:
+        replayed = study.rows[len(stored) - 1].get("mpm")
+        if replayed is None or not math.isclose(replayed, stored[-1]["mpm"], rel_tol=1e-9):
+            warnings.warn(f"replaying {store.path} gives MPM {replayed} where the store recorded "
+                          f"{stored[-1]['mpm']}: library versions changed?", stacklevel=3)
+    study.store = store
+
+
+def open_study(store, *, consume: bool = True):
+    """Rebuild the :class:`~pas.study.study.Study` held by ``store`` (a path or a StudyStore).
+
+    With ``consume`` the results told by other processes and not used yet are
+    told to the study in arrival order (written to the store only when the
+    caller holds its write transaction; see ``pas study ask``).
+    """
+    from ..api import make_study
+    from ..strategies import AS, PAS
+    from .study import OracleFailureLimit
+
+    if not isinstance(store, StudyStore):
+        store = StudyStore(store, create=False)
+    s = store.settings()
+    if not s:
+        raise StoreError(f"study store {store.path} holds no study")
+    strategies = {"pas": PAS, "as": AS}
+    if s["strategy"] not in strategies:
+        raise StoreError(f"strategy {s['strategy']!r} in {store.path} is unknown to this pas")
+    idx, ids, lf, meta = store.pool()
+    n = int(idx[-1]) + 1
+    lf_all = np.full(n, np.nan if s["threshold"] is None else s["threshold"])
+    lf_all[idx] = lf
+    if s["threshold"] is None and idx.size != n:
+        raise StoreError(f"study store {store.path}: LF pool has gaps but no threshold")
+    plain = all(i == j for i, j in zip(ids, idx.tolist()))
+    all_ids = None
+    if not plain:
+        all_ids = [f"\x00below-threshold-{i}" for i in range(n)]
+        for i, e in zip(idx, ids):
+            all_ids[i] = e
+    all_meta = None
+    if any(meta):
+        all_meta = [{} for _ in range(n)]
+        for i, m in zip(idx, meta):
+            all_meta[i] = m
+    keys = ("k1", "k2", "max_failures", "stop_on_convergence", "adaptive_threshold",
+            "threshold_step", "fp_run")
+    study = make_study(strategies[s["strategy"]], lf_all, n_waves=s["n_waves"], p_exp=s["p_exp"],
+                       eps1=s["eps1"], eps2=s["eps2"], threshold=s["threshold"], seed=s["seed"],
+                       max_hf=s["max_hf"], ids=all_ids, meta=all_meta, store=store,
+                       **{k: s[k] for k in keys}, **s["strategy_settings"])
+    if consume:
+        for i, hf, err in store.unconsumed():
+            try:
+                study.tell(int(i), hf, error=err)
+            except OracleFailureLimit:
+                pass
+    return study
