@@ -1,0 +1,598 @@
+"""Figures of a screening result, like the paper's Fig. 6/7/8/16/17/18.
+
+Every function follows pyextremes: it takes ``ax=None`` (a new figure is made
+when omitted), draws on the given Axes otherwise, and returns ``(fig, ax)``, so
+results of several strategies can be composed on one Axes (call twice with the
+same ``ax`` and different ``label``).  Functions that draw more than one panel
+accept ``axes=None`` as well and then return ``(fig, axes)``.
+
+Axis labels carry units through ``unit=`` (the HF load unit) and
+``lf_unit=`` (the LF indicator unit); legends say what every artist is.
+
+No statistics are re-implemented here: the scatter figure refits the
+strategy's copula and marginals from :attr:`ScreeningResult.pairs` with
+:mod:`pas.copulas`, :func:`pas.marginals.fit_marginal` and
+:func:`pas.strategies.pas.remove_outliers`.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+
+__all__ = [
+    "plot_mpm_convergence",
+    "plot_distribution",
+    "plot_scatter",
+    "plot_aic",
+    "plot_metrics",
+    "conditional_quantile_curves",
+]
+
+_FP_COLOR = "tab:red"
+_FAIL_COLOR = "0.45"
+
+
+# -- helpers ---------------------------------------------------------------
+def _new_axes(ax, figsize=(7.0, 4.5)):
+    if ax is not None:
+        return ax.figure, ax
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots(figsize=figsize, layout="constrained")
+    return fig, ax
+
+
+def _with_unit(name: str, unit: str | None) -> str:
+    return f"{name} [{unit}]" if unit else name
+
+
+def _fmt(value: float, unit: str | None = None) -> str:
+    return f"{value:.4g}{(' ' + unit) if unit else ''}"
+
+
+def _history(result) -> pd.DataFrame:
+    hist = getattr(result, "history", None)
+    if not isinstance(hist, pd.DataFrame):
+        raise ValueError("result: expected a ScreeningResult with a history DataFrame")
+    missing = {"n_hf", "status", "mpm"} - set(hist.columns)
+    if missing:
+        raise ValueError(f"result.history lacks the column(s) {sorted(missing)}")
+    return hist
+
+
+def _fitted(hist: pd.DataFrame) -> pd.DataFrame:
+    return hist[pd.to_numeric(hist["mpm"], errors="coerce").notna()]
+
+
+def _strategy_name(result, label):
+    if label:
+        return label
+    name = str(getattr(result, "strategy", "") or "").upper()
+    family = getattr(result, "family", None)
+    return f"{name} ({family})" if name and isinstance(family, str) and family else name or "result"
+
+
+def _convergence_row(hist: pd.DataFrame):
+    """The first history row where the stopping criterion held, or None."""
+    if "stop" not in hist:
+        return None
+    stop = hist["stop"].map(lambda s: s is True or s == 1 or str(s).lower() == "true")
+    hits = hist[stop.to_numpy(dtype=bool)]
+    return None if hits.empty else hits.iloc[0]
+
+
+def _lf_curve(lf):
+    """``(d, l)`` from a tuple/array pair or an object with ``d`` and ``lf`` (an LFSet)."""
+    if hasattr(lf, "d") and hasattr(lf, "lf"):
+        d, values = lf.d, lf.lf
+    else:
+        try:
+            d, values = lf
+        except (TypeError, ValueError):
+            raise ValueError("lf: expected a (d, l) pair of arrays or an LFSet") from None
+    d, values = np.asarray(d, dtype=float), np.asarray(values, dtype=float)
+    if d.shape != values.shape or d.ndim != 1:
+        raise ValueError(f"lf: d and l must be 1-D of equal length, got {d.shape} and {values.shape}")
+    return d, values
+
+
+def _truth_curve(truth):
+    try:
+        d, h = truth
+    except (TypeError, ValueError):
+        raise ValueError("truth: expected a (d, h) pair of arrays") from None
+    d, h = np.asarray(d, dtype=float), np.asarray(h, dtype=float)
+    if d.shape != h.shape or d.ndim != 1:
+        raise ValueError(f"truth: d and h must be 1-D of equal length, got {d.shape} and {h.shape}")
+    return d, h
+
+
+# -- MPM convergence (paper Fig. 6/7 top) -----------------------------------
+def plot_mpm_convergence(result, *, truth=None, ax=None, label=None, unit=None,
+                         quantity="MPM", color=None):
+    """MPM against the number of HF samples, with its U95 band (paper Fig. 6/7, top).
+
+    Parameters
+    ----------
+    result : ScreeningResult
+        From :func:`pas.run_pas` / :func:`pas.run_as` (or rebuilt from files,
+        see :func:`pas.cli.plot.load_result`).
+    truth : float, optional
+        True MPM, drawn as a horizontal line.
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw on; a new figure when omitted.
+    label : str, optional
+        Legend name of this result (default: strategy and final copula, e.g.
+        ``"PAS (gumbel)"``); use it when composing several results.
+    unit : str, optional
+        Unit of the HF load for the axis label (e.g. ``"m"``, ``"kN"``).
+    quantity : str, default "MPM"
+        Name of the predicted quantity for the axis label.
+    color : color, optional
+        Line colour (default: the Axes' next colour).
+
+    Returns
+    -------
+    fig : matplotlib.figure.Figure
+    ax : matplotlib.axes.Axes
+
+    Notes
+    -----
+    The x axis counts HF evaluations ``n_c`` (false positives included,
+    failed calls not).  The band is ``mpm_low``–``mpm_high`` of each fitted
+    iteration (the paper's z-draw band, Eq. 10).  False positives (HF = 0)
+    are marked at the MPM of the iteration they interrupted; the
+    convergence point is the first iteration meeting the App. C criterion.
+
+    Examples
+    --------
+    >>> import numpy as np, pas
+    >>> from pas.plotting import plot_mpm_convergence
+    >>> lf = np.random.default_rng(0).rayleigh(2.0, 3000)
+    >>> res = pas.run_pas(lf, lambda ev: 1.2 * ev.lf ** 1.1, n_waves=3000, p_exp=1e-2,
+    ...                   eps1=0.05, seed=1, n_bootstrap=0)
+    >>> fig, ax = plot_mpm_convergence(res, unit="m")
+    >>> ax.get_ylabel()
+    'MPM [m]'
+    """
+    hist = _history(result)
+    fitted = _fitted(hist)
+    if fitted.empty:
+        raise ValueError("result: no fitted iteration yet, nothing to plot")
+    fig, ax = _new_axes(ax)
+    name = _strategy_name(result, label)
+    n = fitted["n_hf"].to_numpy(dtype=float)
+    mpm = fitted["mpm"].to_numpy(dtype=float)
+    (line,) = ax.plot(n, mpm, "-o", ms=2.5, lw=1.3, color=color, label=f"{name}: MPM")
+    c = line.get_color()
+    if {"mpm_low", "mpm_high"} <= set(fitted.columns):
+        ax.fill_between(n, fitted["mpm_low"].to_numpy(dtype=float),
+                        fitted["mpm_high"].to_numpy(dtype=float), color=c, alpha=0.2, lw=0,
+                        label=f"{name}: U95 band")
+    running = pd.to_numeric(hist["mpm"], errors="coerce").ffill().bfill()
+    for status, marker, mcolor, text in (("false_positive", "x", _FP_COLOR, "false positive (HF = 0)"),
+                                         ("failed", "v", _FAIL_COLOR, "failed HF call")):
+        sel = (hist["status"] == status).to_numpy()
+        if sel.any():
+            ax.plot(hist["n_hf"].to_numpy(dtype=float)[sel], running.to_numpy(dtype=float)[sel],
+                    ls="none", marker=marker, ms=6, mew=1.5, color=mcolor,
+                    label=f"{name}: {text} ×{int(sel.sum())}")
+    conv = _convergence_row(hist)
+    if conv is not None:
+        ax.axvline(float(conv["n_hf"]), color=c, lw=0.9, ls=":")
+        ax.plot([float(conv["n_hf"])], [float(conv["mpm"])], marker="*", ms=13, color=c,
+                mec="k", mew=0.6, ls="none",
+                label=f"{name}: converged at {int(conv['n_hf'])} HF samples, "
+                      f"MPM {_fmt(float(conv['mpm']), unit)}")
+    if truth is not None:
+        ax.axhline(float(truth), color="k", lw=1.2, ls="--", label=f"true MPM {_fmt(float(truth), unit)}")
+    ax.set_xlabel("number of HF samples $n_c$ [-]")
+    ax.set_ylabel(_with_unit(quantity, unit))
+    ax.grid(True, lw=0.3, alpha=0.5)
+    ax.legend(fontsize=7, loc="best")
+    return fig, ax
+
+
+# -- exceedance distribution (paper Fig. 6/7 bottom) ------------------------
+def plot_distribution(result, *, lf=None, truth=None, ax=None, label=None, unit=None,
+                      quantity="HF load", lf_label="LF indicator", color=None,
+                      show_samples=True):
+    """Predicted HF exceedance distribution h*(d) with its U95 band (paper Fig. 6/7, bottom).
+
+    Parameters
+    ----------
+    result : ScreeningResult
+        Uses ``result.distribution`` (``exceedance_probability``, ``h_mean``,
+        ``h_low``, ``h_high``), ``result.pairs``, ``result.p_exp`` and
+        ``result.mpm``/``mpm_band``.
+    lf : (d, l) tuple of arrays or LFSet, optional
+        The LF indicator distribution to draw for reference (same axis; it
+        is usually a different quantity, see ``lf_label``).
+    truth : (d, h) tuple of arrays, optional
+        The true HF exceedance distribution (e.g. from a brute-force HF
+        Monte-Carlo run).
+    ax : matplotlib.axes.Axes, optional
+    label : str, optional
+        Legend name of this result (default: strategy and copula).
+    unit : str, optional
+        Unit of the HF load (and of the LF curve if drawn) for the axis label.
+    quantity : str, default "HF load"
+        Name of the quantity on the value axis.
+    lf_label : str, default "LF indicator"
+        Legend text of the LF curve.
+    color : color, optional
+    show_samples : bool, default True
+        Draw the HF samples at the LF exceedance probability of their event
+        (the order-statistics position AS assumes; PAS does not).
+
+    Returns
+    -------
+    fig, ax
+
+    Notes
+    -----
+    The exceedance axis is logarithmic and reversed, so rarer events lie to
+    the right; ``P_exp`` is a vertical line and the MPM with its U95 band an
+    error bar on it.
+
+    Examples
+    --------
+    >>> import numpy as np, pas
+    >>> from pas.plotting import plot_distribution
+    >>> lf = np.random.default_rng(0).rayleigh(2.0, 3000)
+    >>> res = pas.run_pas(lf, lambda ev: 1.2 * ev.lf ** 1.1, n_waves=3000, p_exp=1e-2,
+    ...                   eps1=0.05, seed=1, n_bootstrap=0)
+    >>> fig, ax = plot_distribution(res, unit="m")
+    >>> ax.get_xscale()
+    'log'
+    """
+    dist = getattr(result, "distribution", None)
+    if not isinstance(dist, pd.DataFrame) or dist.empty:
+        raise ValueError("result: no predicted distribution (no fitted iteration yet)")
+    fig, ax = _new_axes(ax)
+    name = _strategy_name(result, label)
+    d = dist["exceedance_probability"].to_numpy(dtype=float)
+    h = dist["h_mean"].to_numpy(dtype=float)
+    (line,) = ax.plot(d, h, "-", lw=1.6, color=color, label=f"{name}: mean $h^*(d)$")
+    c = line.get_color()
+    if {"h_low", "h_high"} <= set(dist.columns):
+        ax.fill_between(d, dist["h_low"].to_numpy(dtype=float), dist["h_high"].to_numpy(dtype=float),
+                        color=c, alpha=0.2, lw=0, label=f"{name}: U95 band")
+    if lf is not None:
+        d_l, l_v = _lf_curve(lf)
+        ax.plot(d_l, l_v, "-", color="0.5", lw=1.0, label=lf_label)
+    pairs = getattr(result, "pairs", None)
+    if show_samples and isinstance(pairs, pd.DataFrame) and {"d", "hf"} <= set(pairs.columns) \
+            and not pairs.empty:
+        ax.plot(pairs["d"].to_numpy(dtype=float), pairs["hf"].to_numpy(dtype=float), "o", ms=4,
+                mfc="none", mew=1.0, color=c,
+                label=f"{name}: HF samples at their LF exceedance (n = {len(pairs)})")
+    if truth is not None:
+        d_t, h_t = _truth_curve(truth)
+        ax.plot(d_t, h_t, "k--", lw=1.2, label="truth (HF Monte-Carlo)")
+    p_exp = float(result.p_exp)
+    ax.axvline(p_exp, color="0.3", lw=0.8, ls=":", label=f"$P_{{exp}}$ = {p_exp:.3g}")
+    mpm = float(result.mpm)
+    if np.isfinite(mpm):
+        lo, hi = (float(x) for x in result.mpm_band)
+        yerr = None
+        if np.isfinite(lo) and np.isfinite(hi):
+            yerr = [[max(mpm - lo, 0.0)], [max(hi - mpm, 0.0)]]
+        ax.errorbar([p_exp], [mpm], yerr=yerr, fmt="D", ms=6, color=c, mec="k", mew=0.6,
+                    capsize=4, label=f"{name}: MPM {_fmt(mpm, unit)}"
+                                     + (f" (U95 {lo:.4g}–{hi:.4g})" if yerr is not None else ""))
+    ax.set_xscale("log")
+    if not ax.xaxis_inverted():
+        ax.invert_xaxis()
+    ax.set_xlabel("exceedance probability per wave $d$ [-]")
+    ax.set_ylabel(_with_unit(quantity, unit))
+    ax.grid(True, which="both", lw=0.3, alpha=0.5)
+    ax.legend(fontsize=7, loc="upper left")
+    return fig, ax
+
+
+# -- LF–HF scatter with the fitted copula (paper Fig. 4, 16, 19) ------------
+def conditional_quantile_curves(result, lf_grid, quantiles=(0.05, 0.5, 0.95), *,
+                                upper_tail=None, outlier_k=3.0):
+    """Quantiles of HF given LF in real space from a PAS result's final model.
+
+    Refits what the strategy fitted in its last iteration: temporary outlier
+    removal (:func:`pas.strategies.pas.remove_outliers`), the selected
+    family on the pseudo-observations (:func:`pas.copulas.fit_copula`) and
+    both Weibull marginals (:func:`pas.marginals.fit_marginal`); then
+    ``h_q(l) = F_h⁻¹(C⁻¹_{V|U}(q | F_l(l)))``.
+
+    Parameters
+    ----------
+    result : ScreeningResult
+        A PAS result (``result.family`` set, ``result.pairs`` with ``lf``, ``hf``).
+    lf_grid : array-like
+        LF values at which to evaluate the curves.
+    quantiles : sequence of float, default (0.05, 0.5, 0.95)
+        Conditional probabilities, each in (0, 1).
+    upper_tail : bool, optional
+        Weibull upper-tail mode; default as PAS decides it: on when the run
+        had no LF threshold (first history row's ``threshold`` is empty).
+    outlier_k : float, default 3.0
+        Residual limit of the outlier removal (the PAS default).
+
+    Returns
+    -------
+    dict of float -> ndarray
+        One HF curve per quantile, aligned with ``lf_grid``.
+    """
+    from ..copulas import PAPER_FAMILIES, EXTRA_FAMILIES, conditional_quantile, fit_copula, \
+        pseudo_observations
+    from ..marginals import fit_marginal
+    from ..strategies.pas import EPS, remove_outliers
+
+    family = getattr(result, "family", None)
+    if family not in PAPER_FAMILIES + EXTRA_FAMILIES:
+        raise ValueError(f"result.family is {family!r}: only a PAS result has a fitted copula")
+    pairs = result.pairs
+    lf, hf = pairs["lf"].to_numpy(dtype=float), pairs["hf"].to_numpy(dtype=float)
+    keep = remove_outliers(lf, hf, k=outlier_k)
+    lf, hf = lf[keep], hf[keep]
+    if upper_tail is None:
+        thr = result.history["threshold"].iloc[0] if "threshold" in result.history else None
+        upper_tail = thr is None or pd.isna(thr)
+    fit = fit_copula(family, *pseudo_observations(lf, hf))
+    f_l = fit_marginal(lf, upper_tail=upper_tail)
+    f_h = fit_marginal(hf, upper_tail=upper_tail)
+    u = np.clip(f_l.cdf(np.asarray(lf_grid, dtype=float)), EPS, 1 - EPS)
+    out = {}
+    for q in quantiles:
+        if not 0.0 < q < 1.0:
+            raise ValueError(f"quantiles: {q} is not in (0, 1)")
+        v = np.clip(conditional_quantile(fit, u, np.full_like(u, q)), EPS, 1 - EPS)
+        out[float(q)] = f_h.ppf(v)
+    return out
+
+
+def plot_scatter(lf, hf, *, result=None, ax=None, lf_unit=None, unit=None,
+                 lf_label="LF indicator peak", hf_label="HF peak",
+                 quantiles=(0.05, 0.5, 0.95), upper_tail=None, q_tail=0.9):
+    """Scatter of matched LF–HF peaks with Kendall's τ and tail dependence (paper Fig. 16).
+
+    Parameters
+    ----------
+    lf, hf : array-like, shape (n,)
+        Matched LF indicator and HF load peaks (e.g. a validation Monte-Carlo
+        run); HF = 0 marks an event without impact.
+    result : ScreeningResult, optional
+        Highlights the selected LF–HF pairs and, for a PAS result, draws the
+        final fitted copula in real space: the conditional median and the
+        5–95 % quantiles of HF given LF
+        (:func:`conditional_quantile_curves`), over the LF range where the
+        copula is defined (``l ≥ min(l_sel)``).
+    ax : matplotlib.axes.Axes, optional
+    lf_unit, unit : str, optional
+        Units of the LF indicator (x axis) and the HF load (y axis).
+    lf_label, hf_label : str
+        Names of the two quantities for the axis labels.
+    quantiles : sequence of three floats, default (0.05, 0.5, 0.95)
+        Lower, middle and upper conditional quantile drawn.
+    upper_tail : bool, optional
+        Passed to :func:`conditional_quantile_curves`.
+    q_tail : float, default 0.9
+        Level of the empirical tail dependence
+        (:func:`pas.copulas.empirical_tail_dependence`).
+
+    Returns
+    -------
+    fig, ax
+
+    Notes
+    -----
+    τ, λU and λL are computed on all the given pairs and shown in the title
+    and the legend.  Large samples are rasterised in vector output.
+    """
+    from ..copulas import empirical_tail_dependence, kendall_tau
+
+    x, y = np.asarray(lf, dtype=float), np.asarray(hf, dtype=float)
+    if x.shape != y.shape or x.ndim != 1:
+        raise ValueError(f"lf and hf must be 1-D of equal length, got {x.shape} and {y.shape}")
+    ok = np.isfinite(x) & np.isfinite(y)
+    x, y = x[ok], y[ok]
+    if x.size < 3:
+        raise ValueError(f"lf, hf: need at least 3 finite pairs, got {x.size}")
+    fig, ax = _new_axes(ax, figsize=(6.0, 5.0))
+    tau = kendall_tau(x, y)
+    lam_u, lam_l = empirical_tail_dependence(x, y, q=q_tail)
+    stats_txt = f"τ = {tau:.2f}, $λ_U$ = {lam_u:.2f}, $λ_L$ = {lam_l:.2f}"
+    ax.scatter(x, y, s=4, color="0.6", alpha=0.5, lw=0, rasterized=x.size > 2000,
+               label=f"all events (n = {x.size}); {stats_txt}")
+    if result is not None:
+        pairs = result.pairs
+        ax.plot(pairs["lf"], pairs["hf"], "o", ms=5, mfc="none", mew=1.2, color="tab:red",
+                label=f"selected HF samples (n = {len(pairs)} true positives)")
+        family = getattr(result, "family", None)
+        if isinstance(family, str) and family and len(pairs) >= 4:
+            lo_q, mid_q, hi_q = quantiles
+            l_sel = pairs["lf"].to_numpy(dtype=float)
+            grid = np.linspace(l_sel.min(), max(l_sel.max(), x.max()), 200)
+            curves = conditional_quantile_curves(result, grid, (lo_q, mid_q, hi_q),
+                                                 upper_tail=upper_tail)
+            ax.fill_between(grid, curves[lo_q], curves[hi_q], color="tab:blue", alpha=0.2, lw=0,
+                            label=f"{family} copula: {lo_q:.0%}–{hi_q:.0%} of HF given LF")
+            ax.plot(grid, curves[mid_q], "-", color="tab:blue", lw=1.5,
+                    label=f"{family} copula: conditional {'median' if mid_q == 0.5 else f'{mid_q:.0%}'}")
+    ax.set_xlabel(_with_unit(lf_label, lf_unit))
+    ax.set_ylabel(_with_unit(hf_label, unit))
+    ax.set_title(stats_txt, fontsize=9)
+    ax.grid(True, lw=0.3, alpha=0.5)
+    ax.legend(fontsize=7, loc="upper left")
+    return fig, ax
+
+
+# -- copula selection (paper Fig. 17 and 18) --------------------------------
+def plot_aic(result, *, ax=None, axes=None):
+    """AIC of every copula candidate per iteration and the family selected (Fig. 17/18).
+
+    Parameters
+    ----------
+    result : ScreeningResult
+        A PAS result: its history has ``aic_<family>`` and ``family`` columns.
+    ax : matplotlib.axes.Axes, optional
+        Draw a single panel: the AIC curves, the selected family marked by
+        filled markers on its curve.
+    axes : sequence of two Axes, optional
+        Draw two panels: AIC curves (top) and the selected family per
+        iteration (bottom).  When neither ``ax`` nor ``axes`` is given, a new
+        two-panel figure is made.
+
+    Returns
+    -------
+    fig : matplotlib.figure.Figure
+    ax : matplotlib.axes.Axes or ndarray of two Axes
+        The single Axes with ``ax=``, otherwise both panels.
+    """
+    hist = _history(result)
+    fitted = _fitted(hist)
+    aic_cols = [c for c in hist.columns if c.startswith("aic_")]
+    if not aic_cols or fitted.empty:
+        raise ValueError("result: no AIC in the history (plot_aic needs a fitted PAS result)")
+    if ax is not None and axes is not None:
+        raise ValueError("give ax (one panel) or axes (two panels), not both")
+    if ax is not None:
+        fig, top, bottom = ax.figure, ax, None
+    elif axes is not None:
+        top, bottom = axes
+        fig = top.figure
+    else:
+        import matplotlib.pyplot as plt
+
+        fig, (top, bottom) = plt.subplots(2, 1, figsize=(7.0, 6.0), sharex=True,
+                                          height_ratios=(2.2, 1.0), layout="constrained")
+    n = fitted["n_hf"].to_numpy(dtype=float)
+    families = [c[4:] for c in aic_cols]
+    selected = fitted["family"].astype(str).to_numpy()
+    colors = {}
+    for fam, col in zip(families, aic_cols):
+        aic = fitted[col].to_numpy(dtype=float)
+        (line,) = top.plot(n, aic, "-", lw=1.2, label=f"{fam}")
+        colors[fam] = line.get_color()
+        chosen = selected == fam
+        if chosen.any():
+            top.plot(n[chosen], aic[chosen], "o", ms=3.5, color=line.get_color())
+    top.plot([], [], "o", ms=3.5, color="0.3", label="selected family (ΔAIC ≥ 4 to switch)")
+    top.set_ylabel("AIC [-] (lower is better)")
+    top.grid(True, lw=0.3, alpha=0.5)
+    top.legend(fontsize=7, ncol=2, loc="best")
+    if bottom is None:
+        top.set_xlabel("number of HF samples $n_c$ [-]")
+        return fig, top
+    idx = {f: i for i, f in enumerate(families)}
+    for fam in families:
+        sel = selected == fam
+        if sel.any():
+            bottom.plot(n[sel], np.full(sel.sum(), idx[fam]), "s", ms=4, color=colors[fam],
+                        ls="none", label=f"{fam} ×{int(sel.sum())}")
+    bottom.set_yticks(range(len(families)), families)
+    bottom.set_ylim(-0.6, len(families) - 0.4)
+    bottom.set_ylabel("selected copula")
+    bottom.set_xlabel("number of HF samples $n_c$ [-]")
+    bottom.grid(True, axis="x", lw=0.3, alpha=0.5)
+    return fig, np.array([top, bottom])
+
+
+# -- validation metrics (paper Fig. 8) --------------------------------------
+_METRICS = ("M1", "M2", "M3")
+_METRIC_LABEL = {
+    "M1": "$M_1 = n_c/n_w$ [%] (HF cost)",
+    "M2": "$M_2$ [%] (MPM error)",
+    "M3": "$M_3$ [%] (distribution error)",
+}
+
+
+def plot_metrics(table, *, ax=None, axes=None, percent=True):
+    """Grouped bars of the validation metrics M1, M2, M3 per case (paper Fig. 8).
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        Columns ``case``, ``M1``, ``M2``, ``M3`` and optionally ``strategy``
+        (one bar per strategy within each case).  Metrics are fractions
+        (``pas.metrics``); missing values are left blank.
+    ax : matplotlib.axes.Axes, optional
+        Draw all three metrics on one panel, grouped per case (bars per
+        metric × strategy).
+    axes : sequence of three Axes, optional
+        One panel per metric.  When neither ``ax`` nor ``axes`` is given, a
+        new three-panel figure is made (the metrics have different scales).
+    percent : bool, default True
+        Show the metrics in percent.
+
+    Returns
+    -------
+    fig : matplotlib.figure.Figure
+    ax : matplotlib.axes.Axes or ndarray of three Axes
+    """
+    if not isinstance(table, pd.DataFrame):
+        table = pd.DataFrame(table)
+    missing = {"case", *_METRICS} - set(table.columns)
+    if missing:
+        raise ValueError(f"table lacks the column(s) {sorted(missing)}")
+    if table.empty:
+        raise ValueError("table is empty")
+    if ax is not None and axes is not None:
+        raise ValueError("give ax (one panel) or axes (three panels), not both")
+    tab = table.copy()
+    if "strategy" not in tab:
+        tab["strategy"] = ""
+    tab["strategy"] = tab["strategy"].fillna("").astype(str)
+    tab["case"] = tab["case"].astype(str)
+    cases = list(dict.fromkeys(tab["case"]))
+    strategies = list(dict.fromkeys(tab["strategy"]))
+    scale = 100.0 if percent else 1.0
+    x = np.arange(len(cases))
+
+    def value(case, strat, metric):
+        rows = tab[(tab["case"] == case) & (tab["strategy"] == strat)]
+        return float(pd.to_numeric(rows[metric], errors="coerce").mean()) * scale if len(rows) else np.nan
+
+    def label_of(strat, metric=None):
+        parts = [p for p in (metric, strat.upper() if strat else "") if p]
+        return " ".join(parts) or "value"
+
+    if ax is not None:
+        fig = ax.figure
+        series = [(m, s) for m in _METRICS for s in strategies]
+        width = 0.8 / len(series)
+        for k, (m, s) in enumerate(series):
+            vals = [value(c, s, m) for c in cases]
+            ax.bar(x - 0.4 + width * (k + 0.5), vals, width, label=label_of(s, m),
+                   color=f"C{_METRICS.index(m)}", alpha=1.0 - 0.35 * strategies.index(s) / max(1, len(strategies)),
+                   edgecolor="k", lw=0.4)
+        ax.axhline(0.0, color="k", lw=0.6)
+        ax.set_xticks(x, cases)
+        ax.set_xlabel("validation case")
+        ax.set_ylabel("metric [%]" if percent else "metric [-]")
+        ax.grid(True, axis="y", lw=0.3, alpha=0.5)
+        ax.legend(fontsize=7, ncol=len(strategies))
+        return fig, ax
+    if axes is None:
+        import matplotlib.pyplot as plt
+
+        fig, axes = plt.subplots(3, 1, figsize=(7.0, 7.0), sharex=True, layout="constrained")
+    else:
+        axes = list(axes)
+        if len(axes) != 3:
+            raise ValueError(f"axes: expected three Axes (M1, M2, M3), got {len(axes)}")
+        fig = axes[0].figure
+    width = 0.8 / len(strategies)
+    for panel, m in zip(axes, _METRICS):
+        for k, s in enumerate(strategies):
+            vals = [value(c, s, m) for c in cases]
+            panel.bar(x - 0.4 + width * (k + 0.5), vals, width, label=label_of(s) if s else m,
+                      color=f"C{k}", edgecolor="k", lw=0.4)
+        panel.axhline(0.0, color="k", lw=0.6)
+        label = _METRIC_LABEL[m] if percent else _METRIC_LABEL[m].replace("[%]", "[-]")
+        panel.set_ylabel(label, fontsize=8)
+        panel.grid(True, axis="y", lw=0.3, alpha=0.5)
+        if any(strategies):
+            panel.legend(fontsize=7, ncol=len(strategies))
+    axes[-1].set_xticks(x, cases)
+    axes[-1].set_xlabel("validation case")
+    return fig, np.asarray(axes)
