@@ -35,3 +35,35 @@ __all__ += [
     "wave_troughs", "matched_peaks", "rise_times", "rise_velocities", "peaks_over_threshold",
     "mask_near_joins",
 ]
+from .convergence import MPMConvergence, mpm_convergence, random_subsets, rms_difference, seeds_needed
+from .records import (
+    MPM_QUANTILE,
+    RecordAnalysis,
+    analyse_record,
+    mpm_pooled,
+    mpm_seed_maxima,
+    mpm_weibull,
+    pooled_peaks_distribution,
+    quantile_pooled,
+    seed_maxima,
+    seed_maxima_distribution,
+    seed_peaks,
+)
+from .theory import (
+    forristall_crest_exceedance,
+    forristall_crest_mpm,
+    forristall_crest_quantile,
+    forristall_parameters,
+    rayleigh_crest_exceedance,
+    rayleigh_crest_mpm,
+    rayleigh_crest_quantile,
+)
+
+__all__ += [
+    "MPM_QUANTILE", "seed_peaks", "pooled_peaks_distribution", "seed_maxima",
+    "seed_maxima_distribution", "mpm_pooled", "quantile_pooled", "mpm_seed_maxima", "mpm_weibull",
+    "RecordAnalysis", "analyse_record", "random_subsets", "rms_difference", "seeds_needed",
+    "MPMConvergence", "mpm_convergence", "rayleigh_crest_exceedance", "rayleigh_crest_quantile",
+    "rayleigh_crest_mpm", "forristall_parameters", "forristall_crest_exceedance",
+    "forristall_crest_quantile", "forristall_crest_mpm",
+]
