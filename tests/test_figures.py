@@ -1,0 +1,217 @@
+"""Result figures: each type is drawn into a file and checked for real content."""
+
+import matplotlib
+
+matplotlib.use("Agg")
+
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+import pandas as pd  # noqa: E402
+import pytest  # noqa: E402
+
+import pas  # noqa: E402
+from pas.plotting import (  # noqa: E402
+    conditional_quantile_curves,
+    plot_aic,
+    plot_distribution,
+    plot_metrics,
+    plot_mpm_convergence,
+    plot_scatter,
+)
+from pas.stats.exceedance import exceedance_probabilities  # noqa: E402
+
+N, NW, P = 3000, 3200, 3e-3
+
+
+@pytest.fixture(scope="module")
+def problem():
+    """HF = 1.2 l^1.1 · lognormal noise, no impact below l = 1 (false positives)."""
+    rng = np.random.default_rng(3)
+    lf = rng.rayleigh(2.0, N)
+    hf = np.where(lf < 1.0, 0.0, 1.2 * lf**1.1 * rng.lognormal(0.0, 0.08, N))
+    return lf, hf
+
+
+@pytest.fixture(scope="module")
+def result(problem):
+    lf, hf = problem
+    return pas.run_pas(lf, lambda ev: hf[ev.index], n_waves=NW, p_exp=P, eps1=0.2, seed=2,
+                       max_hf=30, n_bootstrap=0, k1=9, k2=9, stop_on_convergence=False)
+
+
+@pytest.fixture(autouse=True)
+def _close():
+    yield
+    plt.close("all")
+
+
+def _save(fig, tmp_path, name):
+    """Save ``fig`` and check it holds much more than an empty figure of its size."""
+    path = tmp_path / f"{name}.png"
+    fig.savefig(path, dpi=80)
+    blank = plt.figure(figsize=fig.get_size_inches())
+    blank.add_subplot()
+    blank_path = tmp_path / f"{name}-blank.png"
+    blank.savefig(blank_path, dpi=80)
+    assert path.exists() and path.stat().st_size > 1.3 * blank_path.stat().st_size, \
+        "figure file is (nearly) empty"
+    return path
+
+
+def _legend_texts(ax):
+    leg = ax.get_legend()
+    assert leg is not None, "no legend"
+    return [t.get_text() for t in leg.get_texts()]
+
+
+def test_result_has_what_the_figures_show(result):
+    # the fixture problem must exercise false positives and convergence
+    assert result.n_false_positive >= 1
+    assert (result.history["stop"] == True).any()  # noqa: E712 (object column with NaN)
+
+
+def test_mpm_convergence(result, tmp_path):
+    fig, ax = plot_mpm_convergence(result, truth=11.0, unit="m")
+    _save(fig, tmp_path, "mpm")
+    fitted = result.fitted
+    line = ax.get_lines()[0]
+    np.testing.assert_allclose(line.get_xdata(), fitted["n_hf"])
+    np.testing.assert_allclose(line.get_ydata(), fitted["mpm"])
+    assert len(ax.collections) == 1  # the U95 band
+    texts = _legend_texts(ax)
+    assert any("U95" in t for t in texts)
+    assert any("false positive" in t and f"×{result.n_false_positive}" in t for t in texts)
+    assert any("converged at" in t for t in texts)
+    assert any("true MPM 11 m" in t for t in texts)
+    assert ax.get_ylabel() == "MPM [m]" and "HF samples" in ax.get_xlabel()
+
+
+def test_mpm_convergence_composes_on_one_axes(result, tmp_path):
+    fig, ax = plot_mpm_convergence(result, label="run A")
+    fig2, ax2 = plot_mpm_convergence(result, label="run B", ax=ax)
+    assert fig2 is fig and ax2 is ax
+    texts = _legend_texts(ax)
+    assert any(t.startswith("run A") for t in texts) and any(t.startswith("run B") for t in texts)
+    assert ax.get_lines()[0].get_color() != [ln for ln in ax.get_lines()
+                                             if ln.get_label() == "run B: MPM"][0].get_color()
+    _save(fig, tmp_path, "mpm2")
+
+
+def test_distribution(problem, result, tmp_path):
+    lf, hf = problem
+    truth = exceedance_probabilities(hf[hf > 0], NW)
+    lfset = pas.LFSet(lf, n_waves=NW, p_exp=P)
+    fig, ax = plot_distribution(result, lf=lfset, truth=truth, unit="kN")
+    _save(fig, tmp_path, "distribution")
+    assert ax.get_xscale() == "log" and ax.xaxis_inverted()
+    assert ax.get_ylabel() == "HF load [kN]"
+    texts = _legend_texts(ax)
+    for needle in ("mean", "U95", "LF indicator", "HF samples", "truth", "P_{exp}", "MPM"):
+        assert any(needle in t for t in texts), needle
+    mean_line = ax.get_lines()[0]
+    np.testing.assert_allclose(mean_line.get_ydata(), result.distribution["h_mean"])
+    # the P_exp marker sits at P_exp and the MPM
+    pexp = [ln for ln in ax.get_lines() if "P_{exp}" in ln.get_label()][0]
+    assert pexp.get_xdata()[0] == pytest.approx(P)
+    # an (d, l) tuple works like an LFSet
+    fig2, ax2 = plot_distribution(result, lf=(lfset.d, lfset.lf))
+    assert len(ax2.get_lines()) == len(ax.get_lines()) - 1  # no truth line
+
+
+def test_distribution_rejects_bad_lf(result):
+    with pytest.raises(ValueError, match="lf"):
+        plot_distribution(result, lf=np.arange(5.0))
+
+
+def test_scatter_plain_and_with_result(problem, result, tmp_path):
+    lf, hf = problem
+    fig, ax = plot_scatter(lf, hf, lf_unit="m", unit="m")
+    _save(fig, tmp_path, "scatter_plain")
+    assert "τ = " in ax.get_title() and "λ_U" in ax.get_title()
+    tau = pas.copulas.kendall_tau(lf, hf)
+    assert f"τ = {tau:.2f}" in ax.get_title()
+    assert ax.get_xlabel() == "LF indicator peak [m]"
+
+    fig, ax = plot_scatter(lf, hf, result=result, lf_unit="m", unit="m")
+    _save(fig, tmp_path, "scatter_result")
+    texts = _legend_texts(ax)
+    assert any("selected HF samples" in t for t in texts)
+    assert any(f"{result.family} copula" in t and "median" in t for t in texts)
+    assert any("5%–95%" in t for t in texts)
+    sel = [ln for ln in ax.get_lines() if "selected" in ln.get_label()][0]
+    assert len(sel.get_xdata()) == len(result.pairs)
+
+
+def test_conditional_quantile_curves_describe_the_population(problem, result):
+    """The refitted copula's 5–95 % band covers most events and its median tracks the law."""
+    lf, hf = problem
+    l_min = result.pairs["lf"].min()
+    grid = np.linspace(l_min, lf.max(), 100)
+    q = conditional_quantile_curves(result, grid)
+    assert set(q) == {0.05, 0.5, 0.95}
+    assert np.all(q[0.05] < q[0.5]) and np.all(q[0.5] < q[0.95])
+    # median close to the noise-free law 1.2 l^1.1 over the sampled LF range
+    rel = q[0.5] / (1.2 * grid**1.1) - 1.0
+    assert np.max(np.abs(rel)) < 0.15
+    # coverage of the population events above min(l_sel)
+    m = lf >= l_min
+    lo = np.interp(lf[m], grid, q[0.05])
+    hi = np.interp(lf[m], grid, q[0.95])
+    coverage = np.mean((hf[m] >= lo) & (hf[m] <= hi))
+    assert 0.7 < coverage <= 1.0
+
+
+def test_aic_two_panels_and_single(result, tmp_path):
+    fig, axes = plot_aic(result)
+    _save(fig, tmp_path, "aic")
+    top, bottom = axes
+    aic_lines = [ln for ln in top.get_lines() if ln.get_linestyle() == "-"]
+    assert len(aic_lines) == 5
+    assert {ln.get_label() for ln in aic_lines} == set(pas.copulas.PAPER_FAMILIES)
+    # selected family per iteration: one marker per fitted iteration
+    n_marks = sum(len(ln.get_xdata()) for ln in bottom.get_lines())
+    assert n_marks == len(result.fitted)
+    assert [t.get_text() for t in bottom.get_yticklabels()] == list(pas.copulas.PAPER_FAMILIES)
+
+    fig, ax = plt.subplots()
+    fig2, ax2 = plot_aic(result, ax=ax)
+    assert ax2 is ax and "AIC" in ax.get_ylabel()
+
+
+def test_aic_needs_a_pas_result(problem):
+    lf, hf = problem
+    res = pas.run_as(lf, lambda ev: hf[ev.index], n_waves=NW, p_exp=P, eps1=0.05, seed=2,
+                     max_hf=8, stop_on_convergence=False)
+    with pytest.raises(ValueError, match="AIC"):
+        plot_aic(res)
+    # the other figures work for AS too
+    plot_mpm_convergence(res)
+    plot_distribution(res)
+    plot_scatter(lf, hf, result=res)
+
+
+def test_metrics(tmp_path):
+    table = pd.DataFrame({
+        "case": ["1a", "1a", "2a", "2a", "3a", "3a"],
+        "strategy": ["pas", "as"] * 3,
+        "M1": [0.002, 0.001, 0.003, 0.002, 0.01, 0.012],
+        "M2": [0.01, -0.03, 0.02, -0.04, 0.05, -0.2],
+        "M3": [0.02, -0.05, 0.01, -0.06, 0.1, -0.3],
+    })
+    fig, axes = plot_metrics(table)
+    _save(fig, tmp_path, "metrics")
+    assert len(axes) == 3
+    for panel, metric in zip(axes, ("M1", "M2", "M3")):
+        assert len(panel.patches) == 6
+        heights = sorted(p.get_height() for p in panel.patches)
+        assert heights == pytest.approx(sorted(100 * table[metric]))
+        assert {t.get_text() for t in panel.get_legend().get_texts()} == {"PAS", "AS"}
+    assert [t.get_text() for t in axes[-1].get_xticklabels()] == ["1a", "2a", "3a"]
+
+    fig, ax = plt.subplots()
+    plot_metrics(table.drop(columns="strategy").iloc[::2], ax=ax)
+    _save(fig, tmp_path, "metrics_single")
+    assert len(ax.patches) == 9  # 3 cases × 3 metrics
+
+    with pytest.raises(ValueError, match="M3"):
+        plot_metrics(table.drop(columns="M3"))
