@@ -72,11 +72,14 @@ def value_at_exceedance(d, values, p):
 
 
 def quantile_exceedance(q: float, m: float, n: float) -> float:
-    """Peak exceedance probability of the q-quantile of the maximum of ``m`` waves.
+    """Peak exceedance probability of the q-quantile of the exposure maximum.
 
-    For ``n`` peaks over the record and ``m`` encounters in the exposure
-    duration, ``P_q = 1 − q^{m/n}`` (van Essen, Scharnke & Seyffert 2023).
-    ``q = e^{-1} ≈ 0.368`` gives the MPM level ``≈ 1/m`` for large ``m``.
+    A record of ``n`` wave encounters covering ``m`` exposure durations (e.g.
+    ``m`` one-hour seeds) has ``n/m`` encounters per exposure, and the maximum
+    over one exposure is below the level with exceedance ``P`` with probability
+    ``(1 − P)^{n/m}``; setting that to ``q`` gives ``P_q = 1 − q^{m/n}``
+    (van Essen, Scharnke & Seyffert 2023).  ``q = e^{-1} ≈ 0.368`` gives the MPM
+    level ``≈ m/n``, one exceedance per exposure.
 
     Examples
     --------
