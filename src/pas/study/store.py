@@ -390,16 +390,25 @@ class StudyStore:
             c.execute("INSERT INTO history VALUES (?, ?, ?, ?)",
                       (row["row"], event.index, dumps(row), _now()))
 
-    def tell_by_key(self, key, value=None, *, error=None, source=None) -> None:
-        """Record a result for the pending event whose id is ``key`` (any process)."""
+    def tell_by_key(self, key, value=None, *, error=None, source=None) -> bool:
+        """Record a result for the pending event whose id is ``key`` (any process).
+
+        Returns False when the identical result is already stored; a different
+        one raises :class:`StoreError`.
+        """
         with self.transaction() as c:
-            row = c.execute("SELECT idx, state, result_seq FROM events WHERE key = ?",
+            row = c.execute("SELECT idx, state, result_seq, hf, error FROM events WHERE key = ?",
                             (str(key),)).fetchone()
             if row is None:
                 raise StoreError(f"event {key} was not asked for in {self.path}")
+            value = None if error is not None else float(value)
             if row[2] is not None:
-                raise StoreError(f"event {key} is already told ({row[1]})")
+                if (row[3], row[4]) == (value, error):
+                    return False
+                raise StoreError(f"event {key} is already told ({row[1]}, hf={row[3]}, "
+                                 f"error={row[4]!r})")
             self._put_result(c, row[0], value, error, source)
+            return True
 
     def ops(self) -> list[tuple]:
         """The replay log: ``("ask", [idx, ...])`` and ``("tell", idx, hf, error)`` in order.

@@ -1,0 +1,371 @@
+"""``pas study``: ask/tell campaigns whose HF results arrive from another process, days later.
+
+::
+
+    pas study create STUDY.db --config study.toml
+    pas study ask STUDY.db [-n N] [--format table|csv|json] [-o FILE]
+    pas study tell STUDY.db EVENT VALUE | EVENT --error MSG | --csv results.csv
+    pas study status STUDY.db [--json]
+
+The study file is a :mod:`pas.study.store` (SQLite): ``tell`` only records the
+result (any number of processes at once), ``ask`` replays the study, uses the
+results told since the last ask and marks the next events pending.
+
+The TOML file (paths relative to it)::
+
+    n_waves = 16364          # required: wave encounters in the LF run
+    p_exp = 2.55e-3          # required: target exceedance probability
+    eps1 = 0.1               # required: stopping limit, load units
+    eps2 = 0.1
+    threshold = 2.0          # LF threshold (optional)
+    strategy = "pas"         # or "as"
+    seed = 1
+    max_hf = 60
+
+    [lf]
+    file = "peaks.csv"       # .csv, .parquet or .npy
+    column = "lf"            # required for .csv/.parquet
+    id_column = "event"      # optional: event ids (default: row index)
+    meta_columns = ["seed", "t_start", "t_end"]   # optional: handed to the HF tool
+
+    [settings]               # strategy and study settings
+    n_bootstrap = 0
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import sys
+import tomllib
+from pathlib import Path
+
+import numpy as np
+
+__all__ = ["add_parser", "run", "load_config", "load_peaks"]
+
+_TOP = {"n_waves": int, "p_exp": float, "eps1": float, "eps2": float, "threshold": float,
+        "strategy": str, "seed": int, "max_hf": int, "lf": dict, "settings": dict}
+_LF = {"file": str, "column": str, "id_column": str, "meta_columns": list}
+_REQUIRED = ("n_waves", "p_exp", "eps1", "lf")
+
+
+def add_parser(sub) -> None:
+    p = sub.add_parser("study", help="ask/tell HF campaigns kept in a crash-safe study file",
+                       description=__doc__.split("\n\n")[0])
+    cmds = p.add_subparsers(dest="study_command", metavar="<action>", required=True)
+    c = cmds.add_parser("create", help="create STUDY.db from a TOML configuration")
+    c.add_argument("study", metavar="STUDY.db")
+    c.add_argument("--config", required=True, metavar="study.toml")
+    a = cmds.add_parser("ask", help="print the next event(s) for the HF tool, marked pending")
+    a.add_argument("study", metavar="STUDY.db")
+    a.add_argument("-n", type=int, default=1, metavar="N", help="events wanted (default 1)")
+    a.add_argument("--format", choices=("table", "csv", "json"), default="table")
+    a.add_argument("-o", "--output", metavar="FILE", help="write to FILE instead of stdout")
+    t = cmds.add_parser("tell", help="record HF results (from any process)")
+    t.add_argument("study", metavar="STUDY.db")
+    t.add_argument("event", nargs="?", metavar="EVENT", help="event id as printed by ask")
+    t.add_argument("value", nargs="?", metavar="VALUE", help="HF peak load (0 = no impact)")
+    t.add_argument("--error", metavar="MSG", help="record a failed HF evaluation instead")
+    t.add_argument("--csv", metavar="FILE", help="results table (CSV or Parquet)")
+    t.add_argument("--id-column", default="id")
+    t.add_argument("--value-column", default="value")
+    s = cmds.add_parser("status", help="convergence, MPM so far, counts and pending events")
+    s.add_argument("study", metavar="STUDY.db")
+    s.add_argument("--json", action="store_true")
+    p.set_defaults(func=run)
+
+
+def run(args) -> int:
+    return {"create": _create, "ask": _ask, "tell": _tell, "status": _status}[
+        args.study_command](args)
+
+
+# -- configuration ----------------------------------------------------------
+def _typed(value, kind, field, where):
+    ok = {int: lambda v: isinstance(v, int) and not isinstance(v, bool),
+          float: lambda v: isinstance(v, (int, float)) and not isinstance(v, bool),
+          str: lambda v: isinstance(v, str), dict: lambda v: isinstance(v, dict),
+          list: lambda v: isinstance(v, list) and all(isinstance(x, str) for x in v)}[kind](value)
+    if not ok:
+        what = {int: "an integer", float: "a number", str: "a string", dict: "a table",
+                list: "a list of strings"}[kind]
+        raise ValueError(f"{where}: {field} must be {what}, got {value!r}")
+    return float(value) if kind is float else value
+
+
+def load_config(path) -> dict:
+    """Read and check a study TOML file; returns the checked keys plus ``lf`` data."""
+    path = Path(path)
+    if not path.exists():
+        raise FileNotFoundError(f"config file {path} does not exist")
+    try:
+        raw = tomllib.loads(path.read_text(encoding="utf-8"))
+    except tomllib.TOMLDecodeError as exc:
+        raise ValueError(f"{path.name}: {exc}") from None
+    where = path.name
+    for key in raw:
+        if key not in _TOP:
+            raise ValueError(f"{where}: unknown key {key!r} (known: {', '.join(_TOP)})")
+    for key in _REQUIRED:
+        if key not in raw:
+            raise ValueError(f"{where}: {key} is missing")
+    cfg = {k: _typed(v, _TOP[k], k, where) for k, v in raw.items()}
+    lf = cfg["lf"]
+    for key in lf:
+        if key not in _LF:
+            raise ValueError(f"{where}: unknown key lf.{key} (known: {', '.join(_LF)})")
+    if "file" not in lf:
+        raise ValueError(f"{where}: lf.file is missing")
+    cfg["lf"] = {k: _typed(v, _LF[k], f"lf.{k}", where) for k, v in lf.items()}
+    strategy = cfg.setdefault("strategy", "pas")
+    if strategy not in ("pas", "as"):
+        raise ValueError(f"{where}: strategy must be 'pas' or 'as', got {strategy!r}")
+    cfg["lf"]["file"] = str((path.parent / cfg["lf"]["file"]))
+    return cfg
+
+
+def load_peaks(lf_cfg: dict):
+    """LF peaks, ids and meta from the file named in the ``[lf]`` table."""
+    import pandas as pd
+
+    from ..study.oracles import read_table
+
+    file = Path(lf_cfg["file"])
+    col, id_col = lf_cfg.get("column"), lf_cfg.get("id_column")
+    meta_cols = lf_cfg.get("meta_columns", [])
+    if file.suffix.lower() == ".npy":
+        if not file.exists():
+            raise FileNotFoundError(f"lf.file {file} does not exist")
+        arr = np.load(file, allow_pickle=False)
+        if arr.dtype.names is None:
+            if id_col or meta_cols:
+                raise ValueError(f"lf.id_column/lf.meta_columns need a structured array; "
+                                 f"{file.name} is a plain array")
+            df = pd.DataFrame({"lf": np.ravel(arr)})
+            col = col or "lf"
+        else:
+            df = pd.DataFrame({n: arr[n] for n in arr.dtype.names})
+    else:
+        df = None
+    if col is None:
+        raise ValueError(f"lf.column is missing (the column of {file.name} with the LF peaks)")
+    wanted = [col] + ([id_col] if id_col else []) + list(meta_cols)
+    if df is None:
+        try:
+            df = read_table(file, columns=wanted)
+        except FileNotFoundError:
+            raise FileNotFoundError(f"lf.file {file} does not exist") from None
+    for c in wanted:
+        if c not in df.columns:
+            raise ValueError(f"lf: column {c!r} is missing from {file.name} "
+                             f"(columns: {', '.join(map(str, df.columns))})")
+    lf = pd.to_numeric(df[col], errors="coerce").to_numpy(dtype=float)
+    bad = np.flatnonzero(~np.isfinite(lf))
+    if bad.size:
+        raise ValueError(f"lf: column {col!r} of {file.name} has a missing or non-numeric value "
+                         f"in data row {bad[0] + 1}")
+    ids = None
+    if id_col:
+        if df[id_col].isna().any():
+            row = int(np.flatnonzero(df[id_col].isna().to_numpy())[0]) + 1
+            raise ValueError(f"lf: column {id_col!r} of {file.name} is empty in data row {row}")
+        ids = df[id_col].tolist()
+        keys = pd.Series(ids).astype(str)
+        if keys.duplicated().any():
+            raise ValueError(f"lf: column {id_col!r} of {file.name} repeats the id "
+                             f"{keys[keys.duplicated()].iloc[0]!r}")
+    meta = df[meta_cols].to_dict("records") if meta_cols else None
+    return lf, ids, meta
+
+
+# -- actions ----------------------------------------------------------------
+def _create(args) -> int:
+    from ..api import make_study
+    from ..strategies import AS, PAS
+
+    cfg = load_config(args.config)
+    if os.path.exists(args.study):
+        raise ValueError(f"{args.study} already exists (continue it with 'pas study ask')")
+    lf, ids, meta = load_peaks(cfg["lf"])
+    kw = {k: cfg[k] for k in ("eps2", "threshold", "seed", "max_hf") if k in cfg}
+    try:
+        study = make_study({"pas": PAS, "as": AS}[cfg["strategy"]], lf, n_waves=cfg["n_waves"],
+                           p_exp=cfg["p_exp"], eps1=cfg["eps1"], ids=ids, meta=meta,
+                           store=args.study, **kw, **cfg.get("settings", {}))
+    except BaseException:
+        for suffix in ("", "-wal", "-shm"):
+            if os.path.exists(args.study + suffix):
+                os.remove(args.study + suffix)
+        raise
+    study.store.close()
+    print(f"created {args.study}: {study.strategy.name.upper()} on {study.lfset.n} LF peaks "
+          f"(seed {study.seed}); next: pas study ask {args.study}")
+    return 0
+
+
+def _event_row(ev) -> dict:
+    row = {"id": ev.id, "index": ev.index, "lf": ev.lf, "d": ev.d}
+    for k, v in ev.meta.items():
+        row[k if k not in row else f"meta.{k}"] = v
+    return row
+
+
+def _ask(args) -> int:
+    from ..study.store import StudyStore, open_study
+
+    if args.n < 1:
+        raise ValueError(f"-n must be at least 1, got {args.n}")
+    store = StudyStore(args.study, create=False)
+    with store.transaction():
+        study = open_study(store)
+        initial = not study.state
+        events = study.ask(args.n)
+        if initial and len(events) < args.n:
+            events += study.ask(args.n - len(events))
+        if events:
+            store.mark_submitted(events)
+    store.close()
+    if not events:
+        print(f"{args.study}: nothing to ask ({_why_finished(study)})", file=sys.stderr)
+        return 0
+    _emit([_event_row(ev) for ev in events], args.format, args.output)
+    return 0
+
+
+def _emit(rows, fmt, output) -> None:
+    import pandas as pd
+
+    if fmt == "json":
+        text = json.dumps(rows, indent=1, default=str) + "\n"
+    elif fmt == "csv":
+        text = pd.DataFrame(rows).to_csv(index=False)
+    else:
+        text = pd.DataFrame(rows).to_string(index=False) + "\n"
+    if output:
+        Path(output).write_text(text, encoding="utf-8")
+    else:
+        sys.stdout.write(text)
+
+
+def _why_finished(study) -> str:
+    if study.converged:
+        return "converged"
+    if study.max_hf is not None and study.n_hf + len(study.pending) >= study.max_hf:
+        return f"max_hf={study.max_hf} reached, counting {len(study.pending)} pending"
+    return "no LF peak left to sample"
+
+
+def _check_value(text, field, where):
+    try:
+        v = float(text)
+    except (TypeError, ValueError):
+        raise ValueError(f"{where}{field} must be a number (the HF peak, 0 = no impact), "
+                         f"got {text!r}") from None
+    if not math.isfinite(v) or v < 0:
+        raise ValueError(f"{where}{field} must be a finite load >= 0 (0 = no impact), got {text!r}; "
+                         "record a failed evaluation with --error/an 'error' column")
+    return v
+
+
+def _tell(args) -> int:
+    from ..study.oracles import read_table
+    from ..study.store import StudyStore
+
+    if args.csv:
+        if args.event is not None or args.error is not None:
+            raise ValueError("give either EVENT VALUE / EVENT --error MSG or --csv FILE, not both")
+        df = read_table(args.csv, columns=(args.id_column, args.value_column))
+        name = Path(args.csv).name
+        errors = df["error"] if "error" in df.columns else None
+        told = []
+        for i in range(len(df)):
+            key = df[args.id_column].iloc[i]
+            if key is None or (isinstance(key, float) and math.isnan(key)):
+                raise ValueError(f"{name}: column {args.id_column!r} is empty in data row {i + 1}")
+            err = None if errors is None or errors.isna().iloc[i] else str(errors.iloc[i])
+            val = None if err else _check_value(df[args.value_column].iloc[i],
+                                                f"column {args.value_column!r}",
+                                                f"{name}, data row {i + 1}: ")
+            told.append((key, val, err))
+    else:
+        if args.event is None:
+            raise ValueError("EVENT is required (or --csv FILE)")
+        if args.value is None and args.error is None:
+            raise ValueError("VALUE is required (or --error MSG to record a failed evaluation)")
+        if args.value is not None and args.error is not None:
+            raise ValueError("give VALUE or --error MSG, not both")
+        val = None if args.error else _check_value(args.value, "VALUE", "")
+        told = [(args.event, val, args.error)]
+    new = 0
+    with StudyStore(args.study, create=False) as store:
+        with store.transaction():
+            for key, val, err in told:
+                new += bool(store.tell_by_key(_key(key), val, error=err, source="cli"))
+    print(f"stored {new} result(s) in {args.study}"
+          + (f" ({len(told) - new} already stored)" if new < len(told) else ""))
+    return 0
+
+
+def _key(x) -> str:
+    if isinstance(x, float) and x.is_integer():
+        return str(int(x))
+    return str(x)
+
+
+def _status(args) -> int:
+    from ..study.store import StudyStore, open_study
+    from ..study.study import OracleFailureLimit
+
+    with StudyStore(args.study, create=False) as store:
+        study = open_study(store, consume=False)
+        study.store = None
+        waiting = store.unconsumed()
+        for idx, hf, err in waiting:
+            try:
+                study.tell(int(idx), hf, error=err)
+            except OracleFailureLimit:
+                pass
+        events = store.events()
+    pend = events[events["state"] == "pending"]
+    fitted = [r for r in study.rows if r.get("mpm") is not None]
+    last = fitted[-1] if fitted else {}
+    info = {
+        "study": args.study, "strategy": study.strategy.name, "seed": study.seed,
+        "n_hf": study.n_hf, "n_false_positive": study.n_false_positive,
+        "n_failed": study.n_failed, "n_pending": len(pend), "results_not_yet_used": len(waiting),
+        "max_hf": study.max_hf, "mpm": last.get("mpm"),
+        "mpm_band": [last.get("mpm_low"), last.get("mpm_high")] if last else None,
+        "family": last.get("family"), "E_bar": last.get("E_bar"), "COV": last.get("COV"),
+        "eps1": study.stopping.eps1, "eps2": study.stopping.eps2,
+        "converged": bool(study.converged), "finished": bool(study.finished),
+        "pending": [{"id": r.event_id, "index": int(r.idx), "lf": r.lf, "d": r.d,
+                     "asked_at": r.asked_at} for r in pend.itertuples()],
+    }
+    if args.json:
+        from ..study.store import dumps
+        print(dumps(info))
+        return 0
+    print(f"{args.study}: {info['strategy'].upper()}, seed {info['seed']}")
+    print(f"HF evaluations {info['n_hf']} (false positive {info['n_false_positive']}), failed "
+          f"{info['n_failed']}, pending {info['n_pending']}"
+          + (f", budget {study.max_hf}" if study.max_hf else ""))
+    if last:
+        print(f"MPM so far {info['mpm']:.5g} (U95 {last['mpm_low']:.5g} - {last['mpm_high']:.5g})"
+              f", copula {info['family']}" if info["family"] else
+              f"MPM so far {info['mpm']:.5g}")
+        print(f"convergence: E_bar {_fmt(info['E_bar'])} (< eps1 {info['eps1']:g}), COV "
+              f"{_fmt(info['COV'])} (< eps2 {info['eps2']:g}): "
+              + ("converged" if info["converged"] else "not converged"))
+    else:
+        print("no model fitted yet")
+    if info["pending"]:
+        print("pending:")
+        for p in info["pending"]:
+            print(f"  {p['id']}  (index {p['index']}, lf {p['lf']:.5g}, asked {p['asked_at']})")
+    return 0
+
+
+def _fmt(x) -> str:
+    return "n/a" if x is None or (isinstance(x, float) and math.isnan(x)) else f"{x:.3g}"
