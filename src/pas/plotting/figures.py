@@ -352,7 +352,7 @@ def conditional_quantile_curves(result, lf_grid, quantiles=(0.05, 0.5, 0.95), *,
 
 def plot_scatter(lf, hf, *, result=None, ax=None, lf_unit=None, unit=None,
                  lf_label="LF indicator peak", hf_label="HF peak",
-                 quantiles=(0.05, 0.5, 0.95), upper_tail=None, q_tail=0.9):
+                 quantiles=(0.05, 0.5, 0.95), upper_tail=None, q_tail=0.9, label="all events"):
     """Scatter of matched LF–HF peaks with Kendall's τ and tail dependence (paper Fig. 16).
 
     Parameters
@@ -378,6 +378,8 @@ def plot_scatter(lf, hf, *, result=None, ax=None, lf_unit=None, unit=None,
     q_tail : float, default 0.9
         Level of the empirical tail dependence
         (:func:`pas.copulas.empirical_tail_dependence`).
+    label : str, default "all events"
+        Legend name of the ``lf``/``hf`` points.
 
     Returns
     -------
@@ -402,7 +404,7 @@ def plot_scatter(lf, hf, *, result=None, ax=None, lf_unit=None, unit=None,
     lam_u, lam_l = empirical_tail_dependence(x, y, q=q_tail)
     stats_txt = f"τ = {tau:.2f}, $λ_U$ = {lam_u:.2f}, $λ_L$ = {lam_l:.2f}"
     ax.scatter(x, y, s=4, color="0.6", alpha=0.5, lw=0, rasterized=x.size > 2000,
-               label=f"all events (n = {x.size}); {stats_txt}")
+               label=f"{label} (n = {x.size}); {stats_txt}")
     if result is not None:
         pairs = result.pairs
         ax.plot(pairs["lf"], pairs["hf"], "o", ms=5, mfc="none", mew=1.2, color="tab:red",

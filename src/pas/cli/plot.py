@@ -1,0 +1,175 @@
+"""``pas plot``: draw the figures of a finished ``pas run`` from its output folder.
+
+::
+
+    pas plot RESULT_DIR [--kind mpm|distribution|scatter|aic|all] [--out FILE]
+
+Reads the files :func:`pas.cli.run.write_result` wrote (``summary.json``,
+``history.csv``, ``distribution.csv``, ``pairs.csv``, ``range_curves.csv``,
+``lf_curve.csv``) and draws them with :mod:`pas.plotting.figures`.  The
+scatter shows every evaluated LF–HF pair (false positives at HF = 0) with
+the final copula; no oracle is called again.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+from pathlib import Path
+
+import numpy as np
+
+__all__ = ["add_parser", "run", "load_result", "KINDS"]
+
+KINDS = ("mpm", "distribution", "scatter", "aic")
+
+EPILOG = """\
+examples:
+  pas plot run1                                   # MPM convergence -> run1/mpm.png
+  pas plot run1 --kind distribution --out dist.pdf
+  pas plot run1 --kind all                        # every figure -> run1/figures/*.png
+  pas plot run1 --kind all --out report/ --format svg
+  pas plot run1 --kind mpm --truth 10.53 --unit m # with the true MPM and a unit
+"""
+
+
+def _float_or_none(x):
+    return float("nan") if x is None else float(x)
+
+
+def load_result(path):
+    """Rebuild a :class:`~pas.study.result.ScreeningResult` from a ``pas run`` folder.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The ``--out`` folder of ``pas run``.
+
+    Returns
+    -------
+    result : ScreeningResult
+    summary : dict
+        ``summary.json`` (including the run's ``inputs``).
+    lf_curve : tuple of ndarray or None
+        ``(d, l)`` of the LF peaks over the threshold, when saved.
+    """
+    import pandas as pd
+
+    from ..study.result import ScreeningResult
+
+    path = Path(path)
+    if not path.is_dir():
+        raise FileNotFoundError(f"RESULT_DIR {path} is not a folder")
+    need = ("summary.json", "history.csv", "distribution.csv", "pairs.csv")
+    missing = [f for f in need if not (path / f).exists()]
+    if missing:
+        raise FileNotFoundError(f"RESULT_DIR {path} lacks {', '.join(missing)} "
+                                "(is it the --out folder of 'pas run'?)")
+    try:
+        s = json.loads((path / "summary.json").read_text(encoding="utf-8"))
+    except json.JSONDecodeError as exc:
+        raise ValueError(f"{path / 'summary.json'}: not valid JSON ({exc})") from None
+    for key in ("strategy", "mpm", "mpm_band", "n_hf", "p_exp", "n_waves"):
+        if key not in s:
+            raise ValueError(f"{path / 'summary.json'}: field {key!r} is missing")
+    history = pd.read_csv(path / "history.csv")
+    curves_file = path / "range_curves.csv"
+    if curves_file.exists():
+        curves = pd.read_csv(curves_file, index_col="row")
+        curves.columns = curves.columns.astype(float)
+    else:
+        curves = pd.DataFrame()
+    band = tuple(_float_or_none(x) for x in s["mpm_band"])
+    result = ScreeningResult(
+        strategy=s["strategy"], mpm=_float_or_none(s["mpm"]), mpm_band=band,
+        mpm_band_sampling=tuple(_float_or_none(x) for x in s.get("mpm_band_sampling") or band),
+        mpm_band_model=(None if s.get("mpm_band_model") is None
+                        else tuple(_float_or_none(x) for x in s["mpm_band_model"])),
+        n_hf=int(s["n_hf"]), n_false_positive=int(s.get("n_false_positive", 0)),
+        n_failed=int(s.get("n_failed", 0)), converged=bool(s.get("converged", False)),
+        history=history, distribution=pd.read_csv(path / "distribution.csv"),
+        pairs=pd.read_csv(path / "pairs.csv"), range_curves=curves, p_exp=float(s["p_exp"]),
+        n_waves=int(s["n_waves"]), seed=s.get("seed"), family=s.get("family"),
+    )
+    lf_curve = None
+    if (path / "lf_curve.csv").exists():
+        lc = pd.read_csv(path / "lf_curve.csv")
+        lf_curve = (lc["d"].to_numpy(dtype=float), lc["lf"].to_numpy(dtype=float))
+    return result, s, lf_curve
+
+
+def _draw(kind, result, summary, lf_curve, args):
+    from ..plotting import figures
+
+    inputs = summary.get("inputs") or {}
+    unit = args.unit if args.unit is not None else inputs.get("unit")
+    lf_unit = args.lf_unit if args.lf_unit is not None else inputs.get("lf_unit")
+    if kind == "mpm":
+        return figures.plot_mpm_convergence(result, truth=args.truth, unit=unit)[0]
+    if kind == "distribution":
+        return figures.plot_distribution(result, lf=lf_curve, unit=unit)[0]
+    if kind == "scatter":
+        h = result.history
+        ok = h["status"].isin(["true_positive", "false_positive"]).to_numpy()
+        lf = h["lf"].to_numpy(dtype=float)[ok]
+        hf = h["hf"].to_numpy(dtype=float)[ok]
+        return figures.plot_scatter(lf, hf, result=result, lf_unit=lf_unit, unit=unit,
+                                    label="evaluated events")[0]
+    if kind == "aic":
+        return figures.plot_aic(result)[0]
+    raise ValueError(f"--kind: unknown figure {kind!r}")  # argparse prevents this
+
+
+def add_parser(sub) -> None:
+    """Register ``pas plot`` on the sub-command parser ``sub``."""
+    p = sub.add_parser("plot", help="draw the figures of a 'pas run' output folder",
+                       description=__doc__.split("\n\n")[0].replace("``", ""),
+                       formatter_class=argparse.RawDescriptionHelpFormatter, epilog=EPILOG)
+    p.add_argument("result_dir", metavar="RESULT_DIR", help="the --out folder of 'pas run'")
+    p.add_argument("--kind", choices=KINDS + ("all",), default="mpm",
+                   help="which figure (default: mpm); 'all' draws every figure that applies")
+    p.add_argument("--out", metavar="FILE",
+                   help="output file (one kind; format from the extension) or folder (--kind all);"
+                        " default RESULT_DIR/<kind>.png or RESULT_DIR/figures/")
+    p.add_argument("--format", default="png", choices=("png", "pdf", "svg"),
+                   help="file format for --kind all (default png)")
+    p.add_argument("--dpi", type=int, default=150, help="resolution of raster output (default 150)")
+    p.add_argument("--truth", type=float, metavar="H", help="true MPM to draw on the mpm figure")
+    p.add_argument("--unit", help="HF load unit for the axes (default: from pas run --unit)")
+    p.add_argument("--lf-unit", help="LF indicator unit (default: from pas run --lf-unit)")
+    p.set_defaults(func=run)
+
+
+def run(args) -> int:
+    """Execute ``pas plot``; prints the path of every file written."""
+    import matplotlib
+
+    matplotlib.use("Agg")  # files only, also without a display
+    import matplotlib.pyplot as plt
+
+    if args.truth is not None and not math.isfinite(args.truth):
+        raise ValueError(f"--truth must be a finite number, got {args.truth}")
+    if args.dpi <= 0:
+        raise ValueError(f"--dpi must be positive, got {args.dpi}")
+    result, summary, lf_curve = load_result(args.result_dir)
+    if result.distribution.empty or not np.isfinite(result.mpm):
+        raise ValueError(f"RESULT_DIR {args.result_dir}: the run made no fit yet, nothing to draw")
+    base = Path(args.result_dir)
+    if args.kind == "all":
+        folder = Path(args.out) if args.out else base / "figures"
+        folder.mkdir(parents=True, exist_ok=True)
+        kinds = [k for k in KINDS if k != "aic" or result.strategy == "pas"]
+        targets = [(k, folder / f"{k}.{args.format}") for k in kinds]
+    else:
+        target = Path(args.out) if args.out else base / f"{args.kind}.png"
+        if target.suffix.lower().lstrip(".") not in ("png", "pdf", "svg"):
+            raise ValueError(f"--out: {target.name} needs a .png, .pdf or .svg extension")
+        target.parent.mkdir(parents=True, exist_ok=True)
+        targets = [(args.kind, target)]
+    for kind, target in targets:
+        fig = _draw(kind, result, summary, lf_curve, args)
+        fig.savefig(target, dpi=args.dpi)
+        plt.close(fig)
+        print(target)
+    return 0

@@ -1,0 +1,224 @@
+"""``pas run`` and ``pas plot``: files in, result files and figures out, one-line errors."""
+
+import json
+import os
+import sys
+import textwrap
+
+import matplotlib
+
+matplotlib.use("Agg")
+
+import numpy as np  # noqa: E402
+import pandas as pd  # noqa: E402
+import pytest  # noqa: E402
+
+import pas  # noqa: E402
+from pas.cli import main  # noqa: E402
+from pas.cli.plot import load_result  # noqa: E402
+from pas.cli.run import OUTPUT_FILES  # noqa: E402
+from pas.study.oracles import TableOracle  # noqa: E402
+
+N, NW, P, EPS1 = 3000, 3200, 3e-3, 0.2
+COMMON = ["--n-waves", str(NW), "--p-exp", str(P), "--eps1", str(EPS1), "--seed", "1"]
+
+
+@pytest.fixture(scope="module")
+def files(tmp_path_factory):
+    """LF peaks keyed by event id, HF results of every event in a separate table."""
+    d = tmp_path_factory.mktemp("inputs")
+    rng = np.random.default_rng(0)
+    lf = rng.rayleigh(2.0, N)
+    hf = np.where(lf < 1.0, 0.0, 1.2 * lf**1.1 * rng.lognormal(0, 0.08, N))
+    ids = [f"ev{i:05d}" for i in range(N)]
+    pd.DataFrame({"id": ids, "rwe": lf, "seed": np.arange(N) % 97}).to_csv(d / "lf.csv", index=False)
+    pd.DataFrame({"event": ids, "force": hf}).to_csv(d / "hf.csv", index=False)
+    np.save(d / "lf.npy", lf)
+    (d / "my_oracle.py").write_text(textwrap.dedent("""\
+        import os
+
+        def load(event):
+            log = os.environ.get("PAS_TEST_ORACLE_LOG")
+            if log:
+                with open(log, "a") as f:
+                    f.write(f"{event.id}\\n")
+            return 1.2 * event.lf ** 1.1
+        """))
+    return d, lf, hf, ids
+
+
+def _run(capsys, *argv):
+    code = main([str(a) for a in argv])
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+def test_run_with_table_oracle_writes_everything_and_matches_the_api(files, tmp_path, capsys):
+    d, _, _, ids = files
+    out = tmp_path / "r1"
+    code, stdout, stderr = _run(capsys, "run", d / "lf.csv", "--lf-column", "rwe",
+                                "--oracle", f"table:{d / 'hf.csv'}:event:force", *COMMON,
+                                "--out", out, "--unit", "kN")
+    assert code == 0, stderr
+    for f in OUTPUT_FILES:
+        assert (out / f).exists(), f
+    summary = json.loads((out / "summary.json").read_text())
+    # the same study through the Python API gives the same answer (the values as read
+    # back from the CSV files, which pandas parses to within an ulp)
+    lf = pd.read_csv(d / "lf.csv")["rwe"].to_numpy()
+    ref = pas.run_pas(lf, TableOracle(d / "hf.csv", id_column="event", value_column="force"), ids=ids,
+                      n_waves=NW, p_exp=P, eps1=EPS1, seed=1)
+    assert summary["mpm"] == pytest.approx(ref.mpm, rel=1e-12)
+    assert summary["n_hf"] == ref.n_hf and summary["family"] == ref.family
+    assert summary["inputs"]["unit"] == "kN" and summary["inputs"]["seed"] == 1
+    hist = pd.read_csv(out / "history.csv")
+    assert len(hist) == ref.n_hf + ref.n_failed
+    assert hist["event_id"].astype(str).tolist() == ref.history["event_id"].astype(str).tolist()
+    # progress on stderr: one line per HF result with MPM, E_bar, COV once fitted
+    lines = [ln for ln in stderr.splitlines() if ln.startswith("[pas]")]
+    assert len(lines) == len(hist)
+    assert "MPM" in lines[-1] and "E_bar" in lines[-1] and "COV" in lines[-1]
+    assert any("false positive" in ln for ln in lines) == bool(ref.n_false_positive)
+    assert ref.summary() in stdout
+    # the files rebuild the result
+    res, s, lf_curve = load_result(out)
+    assert res.mpm == pytest.approx(ref.mpm) and res.family == ref.family
+    pd.testing.assert_frame_equal(res.distribution, ref.distribution, check_exact=False)
+    assert lf_curve[0].size == N and np.all(np.diff(lf_curve[1]) <= 0)
+    assert res.range_curves.shape == ref.range_curves.shape
+
+
+def test_run_json_quiet_npy_python_oracle(files, tmp_path, capsys, monkeypatch):
+    d, *_ = files
+    log = tmp_path / "calls.log"
+    monkeypatch.setenv("PAS_TEST_ORACLE_LOG", str(log))
+    out = tmp_path / "r2"
+    argv = ["run", d / "lf.npy", "--oracle", f"python:{d / 'my_oracle.py'}:load", *COMMON,
+            "--out", out, "--quiet", "--json", "--max-hf", "12"]
+    code, stdout, stderr = _run(capsys, *argv)
+    assert code == 0 and stderr == ""
+    summary = json.loads(stdout)
+    assert summary["n_hf"] <= 12 and np.isfinite(summary["mpm"])
+    n_calls = len(log.read_text().splitlines())
+    assert n_calls == summary["n_hf"]
+    # run again into the same folder: the study store answers, the oracle is not called again
+    code, stdout2, _ = _run(capsys, *argv)
+    assert code == 0
+    assert json.loads(stdout2)["mpm"] == pytest.approx(summary["mpm"], rel=1e-12)
+    assert len(log.read_text().splitlines()) == n_calls
+
+
+def test_python_oracle_by_module_name(files, tmp_path, capsys, monkeypatch):
+    d, *_ = files
+    monkeypatch.syspath_prepend(str(d))
+    code, stdout, stderr = _run(capsys, "run", d / "lf.npy", "--oracle", "python:my_oracle:load",
+                                *COMMON, "--out", tmp_path / "r3", "--quiet", "--no-store",
+                                "--strategy", "as", "--max-hf", "8")
+    assert code == 0, stderr
+    assert stdout.startswith("AS: MPM")
+    assert not (tmp_path / "r3" / "study.sqlite").exists()
+
+
+def test_command_oracle(files, tmp_path, capsys):
+    d, *_ = files
+    script = tmp_path / "cfd.py"
+    script.write_text("import sys\nlf, seed, out = float(sys.argv[1]), int(sys.argv[2]), sys.argv[3]\n"
+                      "open(out, 'w').write(str(1.2 * lf ** 1.1))\n")
+    out = tmp_path / "r4"
+    cmd = f"command:{sys.executable} {script} {{lf}} {{seed}} {{result}}"
+    code, stdout, stderr = _run(capsys, "run", d / "lf.csv", "--lf-column", "rwe",
+                                "--meta-columns", "seed", "--oracle", cmd, *COMMON, "--out", out,
+                                "--max-hf", "6", "--quiet", "--no-store")
+    assert code == 0, stderr
+    hist = pd.read_csv(out / "history.csv")
+    assert (hist["status"] == "true_positive").all()
+    np.testing.assert_allclose(hist["hf"], 1.2 * hist["lf"] ** 1.1, rtol=1e-12)
+    runs = sorted(p.name for p in (out / "hf-runs").iterdir())
+    assert runs == sorted(hist["event_id"].astype(str))
+
+
+@pytest.mark.parametrize("argv, field", [
+    (["--lf-column", "nope"], "--lf-column"),
+    (["--lf-column", "rwe", "--id-column", "nope"], "--id-column"),
+    ([], "--lf-column"),  # lf.csv has several columns and none is called "lf"
+])
+def test_bad_lf_columns(files, tmp_path, capsys, argv, field):
+    d, *_ = files
+    code, _, err = _run(capsys, "run", d / "lf.csv", *argv, "--oracle",
+                        f"table:{d / 'hf.csv'}:event:force", *COMMON, "--out", tmp_path / "x")
+    assert code == 2
+    assert err.count("\n") == 1 and err.startswith("pas run: error:") and field in err
+
+
+@pytest.mark.parametrize("spec, needle", [
+    ("nonsense", "--oracle"),
+    ("table:{d}/hf.csv", "'id'"),               # default id column is missing
+    ("table:{d}/hf.csv:event", "--oracle"),     # id without value column
+    ("table:{d}/missing.csv", "missing.csv"),
+    ("python:{d}/my_oracle.py:nope", "nope"),
+    ("python:no_such_module_xyz:f", "no_such_module_xyz"),
+    ("shell:ls", "unknown kind"),
+])
+def test_bad_oracle_specs(files, tmp_path, capsys, spec, needle):
+    d, *_ = files
+    code, _, err = _run(capsys, "run", d / "lf.csv", "--lf-column", "rwe", "--oracle",
+                        spec.format(d=d), *COMMON, "--out", tmp_path / "x")
+    assert code == 2
+    assert err.count("\n") == 1 and needle in err
+
+
+@pytest.mark.parametrize("opt, value, needle", [
+    ("--p-exp", "1.5", "--p-exp"),
+    ("--p-exp", "1e-9", "p_exp"),     # below the rarest LF event
+    ("--eps1", "-1", "--eps1"),
+    ("--threshold", "100", "threshold"),
+])
+def test_bad_numbers(files, tmp_path, capsys, opt, value, needle):
+    d, *_ = files
+    opts = {"--n-waves": NW, "--p-exp": P, "--eps1": EPS1, opt: value}
+    code, _, err = _run(capsys, "run", d / "lf.npy", "--oracle",
+                        f"python:{d / 'my_oracle.py'}:load",
+                        *[x for kv in opts.items() for x in kv], "--out", tmp_path / "x")
+    assert code == 2 and needle in err and err.count("\n") == 1
+    assert not (tmp_path / "x").exists()
+
+
+def test_missing_lf_file(files, tmp_path, capsys):
+    d, *_ = files
+    code, _, err = _run(capsys, "run", tmp_path / "none.csv", "--oracle", "table:x.csv", *COMMON)
+    assert code == 2 and "LF_FILE" in err
+
+
+def test_help_has_examples(capsys):
+    for cmd in ("run", "plot"):
+        with pytest.raises(SystemExit) as exc:
+            main([cmd, "--help"])
+        assert exc.value.code == 0
+        text = capsys.readouterr().out
+        assert "examples:" in text and f"pas {cmd} " in text.split("examples:")[1]
+
+
+def test_plot_redraws_from_the_output_folder(files, tmp_path, capsys):
+    d, *_ = files
+    out = tmp_path / "r5"
+    code, _, err = _run(capsys, "run", d / "lf.csv", "--lf-column", "rwe", "--oracle",
+                        f"table:{d / 'hf.csv'}:event:force", *COMMON, "--out", out, "--quiet",
+                        "--no-store", "--unit", "kN", "--lf-unit", "m")
+    assert code == 0, err
+    code, stdout, err = _run(capsys, "plot", out, "--kind", "all")
+    assert code == 0, err
+    written = stdout.split()
+    assert sorted(os.path.basename(p) for p in written) == \
+        ["aic.png", "distribution.png", "mpm.png", "scatter.png"]
+    for p in written:
+        assert os.path.getsize(p) > 20_000
+    code, stdout, err = _run(capsys, "plot", out, "--kind", "distribution", "--out",
+                             tmp_path / "dist.pdf")
+    assert code == 0 and (tmp_path / "dist.pdf").stat().st_size > 5_000
+    code, stdout, err = _run(capsys, "plot", out, "--kind", "mpm", "--truth", "10.5")
+    assert code == 0 and (out / "mpm.png").exists()
+    # errors: not a run folder, bad extension
+    code, _, err = _run(capsys, "plot", tmp_path, "--kind", "mpm")
+    assert code == 2 and "summary.json" in err and err.count("\n") == 1
+    code, _, err = _run(capsys, "plot", out, "--out", tmp_path / "fig.txt")
+    assert code == 2 and "--out" in err
