@@ -151,15 +151,16 @@ def load_peaks(lf_cfg: dict):
         df = None
     if col is None:
         raise ValueError(f"lf.column is missing (the column of {file.name} with the LF peaks)")
-    wanted = [col] + ([id_col] if id_col else []) + list(meta_cols)
+    wanted = [("lf.column", col)] + ([("lf.id_column", id_col)] if id_col else []) + [
+        ("lf.meta_columns", c) for c in meta_cols]
     if df is None:
         try:
-            df = read_table(file, columns=wanted)
+            df = read_table(file)
         except FileNotFoundError:
             raise FileNotFoundError(f"lf.file {file} does not exist") from None
-    for c in wanted:
+    for field, c in wanted:
         if c not in df.columns:
-            raise ValueError(f"lf: column {c!r} is missing from {file.name} "
+            raise ValueError(f"{field}: column {c!r} is missing from {file.name} "
                              f"(columns: {', '.join(map(str, df.columns))})")
     lf = pd.to_numeric(df[col], errors="coerce").to_numpy(dtype=float)
     bad = np.flatnonzero(~np.isfinite(lf))

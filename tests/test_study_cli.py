@@ -1,0 +1,169 @@
+"""``pas study create/ask/tell/status``: a campaign, concurrent tells and one-line errors."""
+
+import json
+import multiprocessing as mp
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from pas.cli import main
+from pas.study.store import StudyStore
+
+N = 2000
+
+TOML = """
+n_waves = 2000
+p_exp = 0.01
+eps1 = 0.01
+seed = 3
+{extra}
+[lf]
+file = "peaks.csv"
+column = "lf"
+id_column = "event"
+meta_columns = ["seed", "t_start"]
+
+[settings]
+n_bootstrap = 0
+"""
+
+
+def write_case(folder, extra="max_hf = 30", toml=None):
+    rng = np.random.default_rng(0)
+    pd.DataFrame({"event": [f"e{i}" for i in range(N)], "lf": rng.rayleigh(1.0, N),
+                  "seed": np.arange(N) % 50, "t_start": np.arange(N) * 20.0}
+                 ).to_csv(folder / "peaks.csv", index=False)
+    (folder / "study.toml").write_text(toml if toml is not None else TOML.format(extra=extra))
+    return str(folder / "study.toml")
+
+
+def cli(*argv):
+    try:
+        return main(list(argv))
+    except SystemExit as exc:  # argparse usage errors
+        return exc.code
+
+
+def hf_of(lf):
+    return 1.2 * np.asarray(lf) ** 1.1
+
+
+def test_campaign_through_the_cli(tmp_path, capsys):
+    cfg = write_case(tmp_path)
+    db = str(tmp_path / "s.db")
+    assert cli("study", "create", db, "--config", cfg) == 0
+    for _ in range(4):
+        assert cli("study", "ask", db, "-n", "3", "--format", "csv", "-o", str(tmp_path / "a.csv")) == 0
+        asked = pd.read_csv(tmp_path / "a.csv")
+        assert list(asked.columns) == ["id", "index", "lf", "d", "seed", "t_start"]
+        np.testing.assert_array_equal(asked["t_start"], asked["index"] * 20.0)
+        asked["value"] = hf_of(asked["lf"])
+        asked.loc[asked.index[-1], "error"] = "mesh failure" if _ == 1 else None
+        asked[["id", "value", "error"]].to_csv(tmp_path / "r.csv", index=False)
+        assert cli("study", "tell", db, "--csv", str(tmp_path / "r.csv")) == 0
+    capsys.readouterr()
+    assert cli("study", "ask", db, "--format", "json") == 0
+    (nxt,) = json.loads(capsys.readouterr().out)
+    assert set(nxt) == {"id", "index", "lf", "d", "seed", "t_start"}
+    assert cli("study", "tell", db, nxt["id"], repr(float(hf_of(nxt["lf"])))) == 0
+    capsys.readouterr()
+    assert cli("study", "status", db, "--json") == 0
+    status = json.loads(capsys.readouterr().out)
+    assert (status["n_hf"], status["n_failed"], status["n_pending"]) == (13, 1, 0)
+    assert status["mpm"] > 0 and status["results_not_yet_used"] == 1
+    assert cli("study", "status", db) == 0
+    text = capsys.readouterr().out
+    assert "MPM so far" in text and "HF evaluations 13" in text
+    with StudyStore(db, create=False) as store:
+        ev = store.events()
+        assert (ev["source"] == "cli").all() and (ev["attempts"] == 1).all()
+        assert (ev["state"] == "failed").sum() == 1
+
+
+def _tell_many(db, items):
+    for key, value in items:
+        assert main(["study", "tell", db, key, repr(value)]) == 0
+
+
+def test_eight_processes_tell_200_results(tmp_path, capsys):
+    cfg = write_case(tmp_path, extra="")
+    db = str(tmp_path / "s.db")
+    assert cli("study", "create", db, "--config", cfg) == 0
+    assert cli("study", "ask", db, "-n", "200", "--format", "csv", "-o", str(tmp_path / "a.csv")) == 0
+    asked = pd.read_csv(tmp_path / "a.csv")
+    assert len(asked) == 200
+    items = list(zip(asked["id"], hf_of(asked["lf"]).tolist()))
+    ctx = mp.get_context("forkserver")
+    ctx.set_forkserver_preload(["pas", "pas.cli.study"])
+    procs = [ctx.Process(target=_tell_many, args=(db, items[i::8])) for i in range(8)]
+    for p in procs:
+        p.start()
+    for p in procs:
+        p.join()
+    assert [p.exitcode for p in procs] == [0] * 8
+    with StudyStore(db, create=False) as store:
+        ev = store.events().set_index("key")
+    assert len(ev) == 200 and (ev["state"] == "done").all()
+    assert ev["result_seq"].is_unique
+    np.testing.assert_array_equal(ev.loc[asked["id"], "hf"], hf_of(asked["lf"]))
+
+
+BAD_TOML = [
+    ("n_waves", TOML.format(extra="").replace("n_waves = 2000", "")),
+    ("n_waves", TOML.format(extra="").replace("n_waves = 2000", 'n_waves = "many"')),
+    ("p_exp", TOML.format(extra="").replace("p_exp = 0.01", "p_exp = 2.0")),
+    ("eps1", TOML.format(extra="").replace("eps1 = 0.01", "eps1 = -1")),
+    ("strategy", TOML.format(extra='strategy = "gpr"')),
+    ("max_hf", TOML.format(extra="max_hf = 2.5")),
+    ("colour", TOML.format(extra='colour = "red"')),
+    ("lf.file", TOML.format(extra="").replace('file = "peaks.csv"', "")),
+    ("lf.meta_columns", TOML.format(extra="").replace('["seed", "t_start"]', '"seed"')),
+    ("lf.column: column 'height'", TOML.format(extra="").replace('column = "lf"', 'column = "height"')),
+    ("z", TOML.format(extra="").replace("n_bootstrap = 0", "z = 1")),
+    ("'lf'", "NAN_IN_LF"),
+]
+
+
+@pytest.mark.parametrize("argv,field", [
+    (["study", "create", "{db}", "--config", "{cfg}", "BAD:" + str(i)], f)
+    for i, (f, _) in enumerate(BAD_TOML)] + [
+    (["study", "ask", "{db}", "-n", "0"], "-n"),
+    (["study", "ask", "{db}", "--format", "xml"], "--format"),
+    (["study", "ask"], "STUDY.db"),
+    (["study", "ask", "{dir}/missing.db"], "missing.db"),
+    (["study", "tell", "{db}", "e764", "abc"], "VALUE"),
+    (["study", "tell", "{db}", "e764", "-3"], "VALUE"),
+    (["study", "tell", "{db}", "e764"], "VALUE"),
+    (["study", "tell", "{db}"], "EVENT"),
+    (["study", "tell", "{db}", "e5", "1.0"], "e5"),
+    (["study", "tell", "{db}", "--csv", "{dir}/nocol.csv"], "'value'"),
+    (["study", "tell", "{db}", "--csv", "{dir}/nan.csv"], "'value'"),
+    (["study", "create", "{db}", "--config", "{cfg}"], "already exists"),
+    (["study", "status", "{db}", "--colour"], "--colour"),
+])
+def test_bad_inputs_exit_2_naming_the_field(tmp_path, capsys, argv, field):
+    cfg = write_case(tmp_path)
+    db = str(tmp_path / "s.db")
+    assert cli("study", "create", db, "--config", cfg) == 0
+    assert cli("study", "ask", db, "-n", "1") == 0
+    pd.DataFrame({"id": ["e764"], "hf": [1.0]}).to_csv(tmp_path / "nocol.csv", index=False)
+    pd.DataFrame({"id": ["e764", "e914"], "value": [1.0, None]}).to_csv(tmp_path / "nan.csv",
+                                                                        index=False)
+    if argv[-1].startswith("BAD:"):
+        text = BAD_TOML[int(argv[-1][4:])][1]
+        if text == "NAN_IN_LF":
+            text = TOML.format(extra="")
+            peaks = pd.read_csv(tmp_path / "peaks.csv")
+            peaks.loc[17, "lf"] = np.nan
+            peaks.to_csv(tmp_path / "peaks.csv", index=False)
+        (tmp_path / "bad.toml").write_text(text)
+        argv = argv[:-1]
+        argv[2], argv[4] = str(tmp_path / "new.db"), str(tmp_path / "bad.toml")
+    argv = [a.format(db=db, cfg=cfg, dir=tmp_path) for a in argv]
+    capsys.readouterr()
+    assert cli(*argv) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert field in err[-1], err
+    assert err[-1].startswith("pas") and ": error: " in err[-1]
+    assert not (tmp_path / "new.db").exists()
