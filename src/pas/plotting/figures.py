@@ -282,6 +282,19 @@ def plot_distribution(result, *, lf=None, truth=None, ax=None, label=None, unit=
         ax.errorbar([p_exp], [mpm], yerr=yerr, fmt="D", ms=6, color=c, mec="k", mew=0.6,
                     capsize=4, label=f"{name}: MPM {_fmt(mpm, unit)}"
                                      + (f" (U95 {lo:.4g}–{hi:.4g})" if yerr is not None else ""))
+    # far from P_exp the Weibull marginals may extrapolate the mean curve below every
+    # observed load (even below 0); keep the view on the data
+    seen = [h[d <= 10 * p_exp]]
+    if isinstance(pairs, pd.DataFrame) and "hf" in pairs:
+        seen.append(pairs["hf"].to_numpy(dtype=float))
+    if truth is not None:
+        seen.append(_truth_curve(truth)[1])
+    seen = np.concatenate([np.ravel(x) for x in seen])
+    seen = seen[np.isfinite(seen)]
+    if seen.size and np.nanmin(h) < seen.min():
+        lo, hi = ax.get_ylim()
+        span = hi - min(seen.min(), 0.0)
+        ax.set_ylim(max(lo, min(seen.min(), 0.0) - 0.05 * span), hi)
     ax.set_xscale("log")
     if not ax.xaxis_inverted():
         ax.invert_xaxis()
