@@ -16,6 +16,11 @@ window, HF = the crest of ``eta1 + eta2`` in the same window.
   its own random phases.  The paper does not give its noise spectrum; this is
   our choice.
 
+A window in which the HF surface stays at or below zero (1b: a short wave of
+the noisy LF sitting in a trough of the true surface; rare and tiny) has no HF
+crest: HF = 0, which PAS treats as a non-event.  Their number is recorded in
+``info["n_hf_nonpositive"]``.
+
 There is no free coefficient: the HF truth is physics (Sharma–Dean) only.
 """
 
@@ -31,7 +36,7 @@ from ._common import DT, condition_sea, phase_seed, windows
 
 __all__ = ["generate_case1", "NOISE", "VERSION"]
 
-VERSION = "1"
+VERSION = "2"
 NOISE = {"hs": 2.0, "tp": 11.0, "gamma": 3.3}
 """The 1b noise wave system (frozen)."""
 OMEGA_MAX = 5.0  # rad/s, linear components and second-order interactions (paper E.3)
@@ -58,7 +63,7 @@ def generate_case1(spec, seed, n_seeds, duration, n_waves, *, noise=False):
     cond = spec.condition
     out = {k: [] for k in ("lf", "hf", "seed_no", "t_start", "t_end")}
     hs_real, m0s, lin_crests = [], [], []
-    kernel = None
+    kernel, n_nonpos = None, 0
     for k in range(n_seeds):
         sea = condition_sea(cond, duration, seed, k, omega_max=OMEGA_MAX)
         if kernel is None:
@@ -68,7 +73,9 @@ def generate_case1(spec, seed, n_seeds, duration, n_waves, *, noise=False):
         lf_sig = eta1 + _noise(duration, seed, k, eta1.size) if noise else eta1
         u, t0, t1 = windows(lf_sig)
         lf, _ = segment_max(lf_sig, u)
-        hf, _ = segment_max(eta1 + eta2, u)
+        hf = segment_max(eta1 + eta2, u)[0]
+        n_nonpos += int(np.count_nonzero(hf <= 0))
+        hf = np.maximum(hf, 0.0)
         for name, v in (("lf", lf), ("hf", hf), ("t_start", t0), ("t_end", t1),
                         ("seed_no", np.full(lf.size, k))):
             out[name].append(v)
@@ -76,8 +83,10 @@ def generate_case1(spec, seed, n_seeds, duration, n_waves, *, noise=False):
         m0s.append(sea.m0)
         lin_crests.append(segment_max(eta1, windows(eta1)[0])[0] if noise else lf)
     events = {k: np.concatenate(v) for k, v in out.items()}
-    return events, _physics(spec, np.concatenate(lin_crests), events["hf"], hs_real,
-                            float(np.mean(m0s)), n_waves, noise)
+    info = _physics(spec, np.concatenate(lin_crests), events["hf"], hs_real,
+                    float(np.mean(m0s)), n_waves, noise)
+    info["n_hf_nonpositive"] = n_nonpos
+    return events, info
 
 
 def _physics(spec, lin, hf, hs_real, m0, n_waves, noise):
