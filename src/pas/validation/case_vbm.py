@@ -47,7 +47,7 @@ from ._common import DT, condition_sea, windows
 
 __all__ = ["generate_case2", "COEFFICIENTS", "VERSION"]
 
-VERSION = "1"
+VERSION = "2"
 COEFFICIENTS = {
     "vbm_factor": 0.69,     # calibrated once (see module docs); frozen
     "tan_flare": 0.08,      # effective tan(phi) of the bow flare; calibrated once; frozen
