@@ -55,7 +55,7 @@ def test_table_oracle_csv_and_parquet(tmp_path):
 
 
 def test_table_oracle_bad_tables(tmp_path):
-    with pytest.raises(ValueError, match="'hf' is missing"):
+    with pytest.raises(ValueError, match="value_column: column 'hf' is missing"):
         TableOracle(pd.DataFrame({"id": [1], "load": [2.0]}))
     with pytest.raises(ValueError, match="id: event id '1' appears more than once"):
         TableOracle(pd.DataFrame({"id": [1, 1], "hf": [2.0, 3.0]}))

@@ -122,6 +122,10 @@ BAD_TOML = [
     ("lf.column: column 'height'", TOML.format(extra="").replace('column = "lf"', 'column = "height"')),
     ("z", TOML.format(extra="").replace("n_bootstrap = 0", "z = 1")),
     ("'lf'", "NAN_IN_LF"),
+    ("oracle.timeout", TOML.format(extra="") + '[oracle]\ncommand = ["x"]\ntimeout = "long"\n'),
+    ("oracle.command", TOML.format(extra="") + '[oracle]\nroot = "r"\n'),
+    ("oracle: id_column: column 'id'", TOML.format(extra="") + '[oracle]\ntable = "peaks.csv"\n'),
+    ("batch_size", TOML.format(extra="batch_size = 0")),
 ]
 
 
@@ -141,6 +145,7 @@ BAD_TOML = [
     (["study", "tell", "{db}", "--csv", "{dir}/nan.csv"], "'value'"),
     (["study", "create", "{db}", "--config", "{cfg}"], "already exists"),
     (["study", "status", "{db}", "--colour"], "--colour"),
+    (["study", "run", "{db}"], "no oracle"),
 ])
 def test_bad_inputs_exit_2_naming_the_field(tmp_path, capsys, argv, field):
     cfg = write_case(tmp_path)
@@ -167,3 +172,42 @@ def test_bad_inputs_exit_2_naming_the_field(tmp_path, capsys, argv, field):
     assert field in err[-1], err
     assert err[-1].startswith("pas") and ": error: " in err[-1]
     assert not (tmp_path / "new.db").exists()
+
+
+def test_study_run_with_command_oracle_survives_sigkill(tmp_path, capsys):
+    """``python -m pas study run`` killed once, then continued: nothing lost or re-run."""
+    import os
+    import signal
+    import subprocess
+    import sys
+    from collections import Counter
+    from pathlib import Path
+
+    import _campaign
+    import pas
+
+    script = _campaign.write_script(tmp_path)
+    log = tmp_path / "hf.log"
+    oracle = (f'[oracle]\ncommand = ["{sys.executable}", "{script}", "{{id}}", "{{index}}", '
+              f'"{{lf}}", "{{result}}", "{log}"]\nroot = "runs"\ntimeout = 60\n')
+    cfg = write_case(tmp_path, extra="max_hf = 14\nbatch_size = 2")
+    Path(cfg).write_text(Path(cfg).read_text() + oracle)
+    db = str(tmp_path / "s.db")
+    assert cli("study", "create", db, "--config", cfg) == 0
+    env = {**os.environ, "PYTHONPATH": os.pathsep.join(
+        [str(Path(pas.__file__).parents[1]), os.environ.get("PYTHONPATH", "")])}
+    proc = subprocess.Popen([sys.executable, "-m", "pas", "study", "run", db],
+                            stdout=subprocess.PIPE, env=env)
+    proc.stdout.readline()  # the first HF result is in
+    os.kill(proc.pid, signal.SIGKILL)
+    proc.wait()
+    proc.stdout.close()
+    capsys.readouterr()
+    assert cli("study", "run", db) == 0
+    assert "14 HF evaluations" in capsys.readouterr().out
+    with StudyStore(db, create=False) as store:
+        ev = store.events()
+    done = Counter(log.read_text().split())
+    assert len(ev) == 14 and set(ev["state"]) == {"done"} and max(done.values()) == 1
+    assert set(done) == set(ev["key"])
+    np.testing.assert_array_equal(ev["hf"], _campaign.oracle_value(ev["lf"], ev["idx"]))

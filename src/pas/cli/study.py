@@ -6,6 +6,7 @@
     pas study ask STUDY.db [-n N] [--format table|csv|json] [-o FILE]
     pas study tell STUDY.db EVENT VALUE | EVENT --error MSG | --csv results.csv
     pas study status STUDY.db [--json]
+    pas study run STUDY.db [-q Q] [--workers N] [--pending resubmit|wait]
 
 The study file is a :mod:`pas.study.store` (SQLite): ``tell`` only records the
 result (any number of processes at once), ``ask`` replays the study, uses the
@@ -30,6 +31,16 @@ The TOML file (paths relative to it)::
 
     [settings]               # strategy and study settings
     n_bootstrap = 0
+
+    [oracle]                 # optional, for 'pas study run': a command per event ...
+    command = ["python", "cfd.py", "--event", "{id}", "--lf", "{lf}", "--out", "{result}"]
+    root = "runs"            # per-event working directories root/<id>
+    timeout = 36000          # seconds
+    # ... or a table of results:  table = "basin.csv", id_column = "id", value_column = "hf"
+
+``pas study run`` drives the study with that oracle, storing each result as it
+arrives; kill it at any time and run it again to continue (same ``-q``; the
+batch size of the first run is the default).
 """
 
 from __future__ import annotations
@@ -46,9 +57,12 @@ import numpy as np
 __all__ = ["add_parser", "run", "load_config", "load_peaks"]
 
 _TOP = {"n_waves": int, "p_exp": float, "eps1": float, "eps2": float, "threshold": float,
-        "strategy": str, "seed": int, "max_hf": int, "lf": dict, "settings": dict}
+        "strategy": str, "seed": int, "max_hf": int, "batch_size": int, "lf": dict,
+        "settings": dict, "oracle": dict}
 _LF = {"file": str, "column": str, "id_column": str, "meta_columns": list}
 _REQUIRED = ("n_waves", "p_exp", "eps1", "lf")
+_ORACLE = {"command": list, "root": str, "timeout": float, "result_name": str, "table": str,
+           "id_column": str, "value_column": str}
 
 
 def add_parser(sub) -> None:
@@ -71,6 +85,14 @@ def add_parser(sub) -> None:
     t.add_argument("--csv", metavar="FILE", help="results table (CSV or Parquet)")
     t.add_argument("--id-column", default="id")
     t.add_argument("--value-column", default="value")
+    r = cmds.add_parser("run", help="drive the study with the [oracle] of its TOML file")
+    r.add_argument("study", metavar="STUDY.db")
+    r.add_argument("-q", "--batch-size", type=int, metavar="Q",
+                   help="events per batch (default: the study's batch_size, else 1)")
+    r.add_argument("--workers", type=int, metavar="N", help="run a batch in N local processes")
+    r.add_argument("--pending", choices=("resubmit", "wait"), default="resubmit",
+                   help="events a killed run left without a result (default resubmit)")
+    r.add_argument("--quiet", action="store_true", help="no line per HF result")
     s = cmds.add_parser("status", help="convergence, MPM so far, counts and pending events")
     s.add_argument("study", metavar="STUDY.db")
     s.add_argument("--json", action="store_true")
@@ -78,7 +100,7 @@ def add_parser(sub) -> None:
 
 
 def run(args) -> int:
-    return {"create": _create, "ask": _ask, "tell": _tell, "status": _status}[
+    return {"create": _create, "ask": _ask, "tell": _tell, "status": _status, "run": _drive}[
         args.study_command](args)
 
 
@@ -123,7 +145,44 @@ def load_config(path) -> dict:
     if strategy not in ("pas", "as"):
         raise ValueError(f"{where}: strategy must be 'pas' or 'as', got {strategy!r}")
     cfg["lf"]["file"] = str((path.parent / cfg["lf"]["file"]))
+    if "oracle" in cfg:
+        cfg["oracle"] = _oracle_config(cfg["oracle"], path.parent, where)
+    if cfg.get("batch_size", 1) < 1:
+        raise ValueError(f"{where}: batch_size must be at least 1, got {cfg['batch_size']}")
     return cfg
+
+
+def _oracle_config(o: dict, base: Path, where: str) -> dict:
+    for key in o:
+        if key not in _ORACLE:
+            raise ValueError(f"{where}: unknown key oracle.{key} (known: {', '.join(_ORACLE)})")
+    o = {k: _typed(v, _ORACLE[k], f"oracle.{k}", where) for k, v in o.items()}
+    if ("command" in o) == ("table" in o):
+        raise ValueError(f"{where}: oracle needs exactly one of oracle.command and oracle.table")
+    if "command" in o:
+        if not o["command"]:
+            raise ValueError(f"{where}: oracle.command must not be empty")
+        o["root"] = str((base / o.get("root", "runs")).resolve())
+        if o.get("timeout", 1) <= 0:
+            raise ValueError(f"{where}: oracle.timeout must be > 0, got {o['timeout']}")
+    else:
+        o["table"] = str((base / o["table"]).resolve())
+    try:
+        make_oracle(o)
+    except (ValueError, FileNotFoundError) as exc:
+        raise ValueError(f"{where}: oracle: {exc}") from None
+    return o
+
+
+def make_oracle(o: dict):
+    """The :mod:`pas.study.oracles` oracle described by a checked ``[oracle]`` table."""
+    from ..study.oracles import CommandOracle, TableOracle
+
+    if "command" in o:
+        return CommandOracle(o["command"], root=o["root"], timeout=o.get("timeout"),
+                             result_name=o.get("result_name", "result.txt"))
+    return TableOracle(o["table"], id_column=o.get("id_column", "id"),
+                       value_column=o.get("value_column", "hf"))
 
 
 def load_peaks(lf_cfg: dict):
@@ -200,6 +259,9 @@ def _create(args) -> int:
             if os.path.exists(args.study + suffix):
                 os.remove(args.study + suffix)
         raise
+    study.store.put("batch_size", cfg.get("batch_size", 1))
+    if "oracle" in cfg:
+        study.store.put("oracle", cfg["oracle"])
     study.store.close()
     print(f"created {args.study}: {study.strategy.name.upper()} on {study.lfset.n} LF peaks "
           f"(seed {study.seed}); next: pas study ask {args.study}")
@@ -313,6 +375,34 @@ def _key(x) -> str:
     if isinstance(x, float) and x.is_integer():
         return str(int(x))
     return str(x)
+
+
+def _drive(args) -> int:
+    from ..study.store import StudyStore, open_study
+
+    store = StudyStore(args.study, create=False)
+    spec = store.get("oracle")
+    if spec is None:
+        raise ValueError(f"{args.study} has no oracle: add an [oracle] table to the TOML file "
+                         "at create time, or use 'pas study ask/tell'")
+    q = args.batch_size if args.batch_size is not None else store.get("batch_size", 1)
+    if q < 1:
+        raise ValueError(f"--batch-size must be at least 1, got {q}")
+    if args.workers is not None and args.workers < 1:
+        raise ValueError(f"--workers must be at least 1, got {args.workers}")
+    study = open_study(store, consume=False)
+
+    def progress(study, row):
+        if not args.quiet:
+            mpm = row.get("mpm")
+            print(f"{row['n_hf']:4d}  {row['event_id']}  {row['status']:<14}  hf={row['hf']}"
+                  + (f"  MPM {mpm:.5g}" if mpm is not None else ""), flush=True)
+
+    res = study.optimize(make_oracle(spec), batch_size=q, n_workers=args.workers,
+                         pending=args.pending, callback=progress)
+    store.close()
+    print(res.summary())
+    return 0
 
 
 def _status(args) -> int:

@@ -76,13 +76,13 @@ class TableOracle:
         import pandas as pd
 
         if isinstance(table, pd.DataFrame):
-            name, df = "table", table
-            for c in (id_column, value_column):
-                if c not in df.columns:
-                    raise ValueError(f"column {c!r} is missing from the table "
-                                     f"(columns: {', '.join(map(str, df.columns))})")
+            name, df = "the table", table
         else:
-            name, df = Path(table).name, read_table(table, columns=(id_column, value_column))
+            name, df = Path(table).name, read_table(table)
+        for field, c in (("id_column", id_column), ("value_column", value_column)):
+            if c not in df.columns:
+                raise ValueError(f"{field}: column {c!r} is missing from {name} "
+                                 f"(columns: {', '.join(map(str, df.columns))})")
         keys = df[id_column].astype(str)
         dup = keys[keys.duplicated()]
         if len(dup):

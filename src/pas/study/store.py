@@ -24,7 +24,8 @@ Schema (version 1)
     ``p_exp``, ``threshold``, ``eps1`` …, ``seed``, ``max_hf``),
     ``lf_sha256`` (hash of the LF pool), ``created_at``, ``pas_version``,
     ``seq`` (the last sequence number handed out) and ``op_seq`` (the last
-    ask or tell consumed by a study).
+    ask or tell consumed by a study); ``oracle`` and ``batch_size`` when the
+    study was created by ``pas study create`` with an ``[oracle]`` table.
 ``lf_peaks(idx, key, event_id, lf, d, meta)``
     The LF pool the study was created with: every peak over the threshold,
     keyed by ``idx``, its index in the user's ``lf_peaks``; ``key`` is
@@ -328,6 +329,18 @@ class StudyStore:
     def _differs(self, key, old, new) -> str:
         return (f"{key} differs from the study store {self.path}: it was created with "
                 f"{key}={old!r}, this call has {key}={new!r}")
+
+    def get(self, key, default=None):
+        """A JSON value from the ``meta`` table (e.g. ``"oracle"``, ``"batch_size"``)."""
+        with self._read() as c:
+            return self._meta(c, key, default)
+
+    def put(self, key, value) -> None:
+        """Store a JSON value in the ``meta`` table (not the reserved keys)."""
+        if key in ("settings", "lf_sha256", "seq", "op_seq", "created_at", "pas_version"):
+            raise StoreError(f"meta key {key!r} is reserved")
+        with self.transaction() as c:
+            self._set_meta(c, key, value)
 
     def pool(self):
         """``(idx, ids, lf, meta)`` of the stored LF pool, ordered by ``idx``."""
