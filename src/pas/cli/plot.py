@@ -16,6 +16,7 @@ from __future__ import annotations
 import argparse
 import json
 import math
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -145,7 +146,10 @@ def run(args) -> int:
     """Execute ``pas plot``; prints the path of every file written."""
     import matplotlib
 
-    matplotlib.use("Agg")  # files only, also without a display
+    if "matplotlib.pyplot" not in sys.modules:
+        # a fresh CLI process draws files only, also without a display; called from a
+        # notebook or a GUI session, the user's backend is left alone
+        matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
     if args.truth is not None and not math.isfinite(args.truth):
