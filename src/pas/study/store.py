@@ -14,6 +14,18 @@ stored order.  Each fit draws from ``default_rng([seed, len(rows)])``, so the
 replay is exact and a resumed study makes the decisions an uninterrupted one
 would have made.
 
+Examples
+--------
+One process asks, any process tells, the next ask continues the same study::
+
+    study = pas.make_study(pas.PAS, lf, n_waves=n_w, p_exp=p, eps1=0.05, seed=1,
+                           store="campaign.db")
+    events = study.ask()                    # stored as pending
+    ...                                     # days later, elsewhere:
+    StudyStore("campaign.db").tell_by_key(events[0].id, 4.2)
+    study = open_study("campaign.db")       # replayed, the new result used
+    study.ask()
+
 Schema (version 1)
 ------------------
 ``schema_version(version)``
