@@ -171,3 +171,19 @@ def test_extra_copula_families(families, table_oracle):
     assert set(res.fitted.family) <= set(families)
     assert all(f"aic_{f}" in res.history for f in families)
     assert res.mpm == pytest.approx(truth, rel=0.25)
+
+
+def test_degenerate_pairs_do_not_stop_the_campaign():
+    # the first HF answers are all equal: no Weibull fit is possible until spread arrives
+    lf = np.random.default_rng(0).rayleigh(1.0, 800)
+    calls = {"n": 0}
+
+    def oracle(ev):
+        calls["n"] += 1
+        return 5.0 if calls["n"] <= 5 else 2.0 * ev.lf
+
+    with pytest.warns(UserWarning, match="no model fit"):
+        res = pas.run_pas(lf, oracle, n_waves=800, p_exp=0.01, eps1=0.01, seed=0, max_hf=14,
+                          n_bootstrap=0)
+    assert res.n_hf == 14 and res.history.fit_error.notna().any()
+    assert np.isfinite(res.mpm)

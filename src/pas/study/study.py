@@ -262,7 +262,14 @@ class Study:
                 self.state[p] == PENDING for p in self._initial):
             return
         rng = np.random.default_rng([self.seed, len(self.rows)])
-        pred = self.strategy.predict(pairs, self.lfset, rng)
+        try:
+            pred = self.strategy.predict(pairs, self.lfset, rng)
+        except (ValueError, np.linalg.LinAlgError, RuntimeError) as exc:
+            # degenerate pairs (e.g. all HF values equal) must not stop a campaign:
+            # the result stays recorded, the model waits for more data
+            row["fit_error"] = f"{type(exc).__name__}: {exc}"
+            warnings.warn(f"no model fit after event {row['event_id']}: {exc}", stacklevel=2)
+            return
         self.last = pred
         h_range = pred.at(self.grid)
         e, e_bar, cov, stop = self.stopping.update(h_range, pred.mpm)
@@ -312,7 +319,7 @@ class Study:
     def history(self) -> pd.DataFrame:
         cols = ["row", "n_hf", "event_index", "event_id", "lf", "d", "hf", "status", "family",
                 "mpm", "mpm_low", "mpm_high", "E", "E_bar", "COV", "threshold", "tau",
-                "lambda_u", "lambda_l", "n_pairs", "n_outliers", "error"]
+                "lambda_u", "lambda_l", "n_pairs", "n_outliers", "error", "fit_error"]
         df = pd.DataFrame(self.rows)
         for c in cols:
             if c not in df:
