@@ -20,7 +20,8 @@ NOTEBOOKS = sorted((Path(__file__).resolve().parents[1] / "notebooks").glob("*.i
 
 def test_notebooks_are_there():
     names = [p.name for p in NOTEBOOKS]
-    assert "01_quickstart.ipynb" in names and "03_external_hf_results.ipynb" in names
+    assert names == ["01_quickstart.ipynb", "02_validation_cases.ipynb",
+                     "03_external_hf_results.ipynb"]
 
 
 @pytest.mark.parametrize("path", NOTEBOOKS, ids=lambda p: p.stem)
