@@ -106,6 +106,10 @@ def test_run_json_quiet_npy_python_oracle(files, tmp_path, capsys, monkeypatch):
     assert code == 0
     assert json.loads(stdout2)["mpm"] == pytest.approx(summary["mpm"], rel=1e-12)
     assert len(log.read_text().splitlines()) == n_calls
+    # a different setting into the same folder is refused, naming the setting
+    argv[argv.index("--eps1") + 1] = "0.3"
+    code, _, err = _run(capsys, *argv)
+    assert code == 2 and "eps1" in err and "--out" in err and err.count("\n") == 1
 
 
 def test_python_oracle_by_module_name(files, tmp_path, capsys, monkeypatch):

@@ -388,6 +388,7 @@ def run(args) -> int:
     """Execute ``pas run``; returns the exit code (0 done, 1 oracle failure limit)."""
     from ..api import run_as, run_pas
     from ..screening import LFSet
+    from ..study.store import StoreError
     from ..study.study import OracleFailureLimit
 
     if not (0.0 < args.p_exp < 1.0):
@@ -422,6 +423,8 @@ def run(args) -> int:
     failed = None
     try:
         result = fn(lf, oracle, **kw)
+    except StoreError as exc:
+        raise ValueError(f"{exc} (to start a new study use another --out or --no-store)") from None
     except OracleFailureLimit as exc:
         if exc.result is None:
             raise ValueError(str(exc)) from None
