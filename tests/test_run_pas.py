@@ -187,3 +187,12 @@ def test_degenerate_pairs_do_not_stop_the_campaign():
                           n_bootstrap=0)
     assert res.n_hf == 14 and res.history.fit_error.notna().any()
     assert np.isfinite(res.mpm)
+
+
+def test_impact_model_on_threshold_problem(table_oracle):
+    lf, hf, n_w, p_exp, truth = threshold_problem()
+    res = pas.run_pas(lf, table_oracle(hf), n_waves=n_w, p_exp=p_exp, eps1=0.015 * truth,
+                      threshold=3.0, seed=2, impact_model=True)
+    assert res.n_false_positive > 0
+    assert (res.distribution.h_mean == 0).any()  # some conditioning peaks give no impact
+    assert res.mpm == pytest.approx(truth, rel=0.10)

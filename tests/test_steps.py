@@ -111,3 +111,27 @@ def test_pas_predict_runs_on_minimal_pairs():
     pred = PAS().predict(pairs, s, np.random.default_rng(0))
     assert np.all(np.diff(pred.d) > 0) and np.all(np.diff(pred.h_mean) <= 1e-12)
     assert pred.mpm_band[0] <= pred.mpm <= pred.mpm_band[1]
+
+
+def test_impact_probability_rises_with_lf():
+    from pas.strategies.pas import impact_probability
+
+    assert impact_probability([5.0, 6.0], []) is None
+    rng = np.random.default_rng(0)
+    lf = rng.uniform(10, 20, 400)
+    hit = rng.uniform(size=400) < 1 / (1 + np.exp(-(lf - 14)))
+    p = impact_probability(lf[hit], lf[~hit])
+    low, mid, high = p(np.array([11.0, 14.0, 19.0]))
+    assert low < 0.15 and 0.3 < mid < 0.7 and high > 0.9
+
+
+def test_outliers_leave_the_marginals_by_default():
+    s = LFSet(np.linspace(10, 0.1, 500), n_waves=600, p_exp=0.01)
+    pos = np.arange(0, 500, 25)
+    hf = 2 * s.lf[pos] + 1
+    hf[1] += 60.0  # one genuine heavy load far off the trend
+    pairs = Pairs(pos, s.lf[pos], hf, s.d[pos])
+    all_ = PAS(marginals_from="all").predict(pairs, s, np.random.default_rng(0))
+    kept = PAS(marginals_from="kept").predict(pairs, s, np.random.default_rng(0))
+    assert all_.record["n_outliers"] == kept.record["n_outliers"] == 1
+    assert all_.h_mean[0] > kept.h_mean[0]  # the HF tail keeps the heavy load

@@ -33,12 +33,14 @@ class Pairs:
     lf: np.ndarray
     hf: np.ndarray
     d: np.ndarray
+    #: LF values of the evaluated false positives (HF = 0), for impact models
+    fp_lf: np.ndarray = field(default_factory=lambda: np.empty(0))
 
     def __len__(self) -> int:
         return int(self.position.size)
 
     def take(self, idx) -> "Pairs":
-        return Pairs(self.position[idx], self.lf[idx], self.hf[idx], self.d[idx])
+        return Pairs(self.position[idx], self.lf[idx], self.hf[idx], self.d[idx], self.fp_lf)
 
 
 @dataclass

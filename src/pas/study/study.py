@@ -158,8 +158,9 @@ class Study:
     def pairs(self) -> Pairs:
         """True-positive pairs in evaluation order."""
         pos = np.array([r["position"] for r in self.rows if r["status"] == TRUE_POSITIVE], dtype=int)
+        fp = np.array([r["position"] for r in self.rows if r["status"] == FALSE_POSITIVE], dtype=int)
         return Pairs(pos, self.lfset.lf[pos], np.array([self.value[p] for p in pos], dtype=float),
-                     self.lfset.d[pos])
+                     self.lfset.d[pos], self.lfset.lf[fp])
 
     def available(self) -> np.ndarray:
         mask = np.ones(self.lfset.n, dtype=bool)
