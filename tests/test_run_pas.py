@@ -196,3 +196,18 @@ def test_impact_model_on_threshold_problem(table_oracle):
     assert res.n_false_positive > 0
     assert (res.distribution.h_mean == 0).any()  # some conditioning peaks give no impact
     assert res.mpm == pytest.approx(truth, rel=0.10)
+
+
+def test_failed_initial_samples_are_replaced():
+    lf = np.random.default_rng(0).rayleigh(1.0, 500)
+    calls = {"n": 0}
+
+    def oracle(ev):
+        calls["n"] += 1
+        if calls["n"] <= 4:
+            raise RuntimeError("solver crashed")
+        return 2.0 * ev.lf
+
+    res = pas.run_pas(lf, oracle, n_waves=500, p_exp=0.01, eps1=0.01, seed=0, max_hf=8,
+                      n_bootstrap=0)
+    assert res.n_failed == 4 and res.n_hf == 8 and np.isfinite(res.mpm)

@@ -89,12 +89,18 @@ class Strategy(ABC):
     def predict(self, pairs: Pairs, lfset: LFSet, rng: np.random.Generator) -> Prediction:
         """Fit the model to ``pairs`` and predict the HF distribution."""
 
-    def initial_positions(self, lfset: LFSet) -> list[int]:
-        """Initial samples: ``n_initial`` positions uniformly spaced on ``ln d`` (§2.5)."""
-        available = np.ones(lfset.n, dtype=bool)
+    def initial_positions(self, lfset: LFSet, available=None) -> list[int]:
+        """Initial samples: ``n_initial`` positions uniformly spaced on ``ln d`` (§2.5).
+
+        With ``available`` (after failed oracle calls) the nearest peaks still
+        available to the same targets.
+        """
+        available = np.ones(lfset.n, dtype=bool) if available is None else available.copy()
         out = []
         for t in initial_targets(lfset.ln_d, min(self.n_initial, lfset.n)):
             p = nearest_available(lfset.ln_d, available, t)
+            if p < 0:
+                break
             available[p] = False
             out.append(p)
         return out

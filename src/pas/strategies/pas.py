@@ -104,7 +104,9 @@ def draw_conditional_hf(fit: CopulaFit, lf_marginal, hf_marginal, lf_cond, z: in
     u = np.clip(lf_marginal.cdf(lf_cond), eps, 1 - eps)
     r = rng.uniform(eps, 1 - eps, size=(z, u.size))
     v = np.clip(conditional_quantile(fit, u[None, :], r), eps, 1 - eps)
-    return hf_marginal.ppf(v)
+    # HF loads are non-negative by the oracle's contract; a Weibull location
+    # below zero must not produce negative loads in the bulk
+    return np.maximum(hf_marginal.ppf(v), 0.0)
 
 
 def impact_probability(lf_true, lf_false):

@@ -140,25 +140,10 @@ def dumps(x) -> str:
 
 def study_settings(study) -> dict:
     """The JSON settings that define ``study`` (checked when a store is reopened)."""
-    import inspect
-
-    strategy = study.strategy
-    params = {}
-    for name, p in inspect.signature(type(strategy).__init__).parameters.items():
-        if name == "self" or p.kind in (p.VAR_POSITIONAL, p.VAR_KEYWORD):
-            continue
-        if not hasattr(strategy, name):
-            raise StoreError(f"strategy setting {name} is not kept on {type(strategy).__name__} "
-                             "as an attribute, so the store cannot record it")
-        params[name] = getattr(strategy, name)
-    lfset, stop = study.lfset, study.stopping
-    out = {"strategy": strategy.name, "strategy_settings": params, "n_waves": lfset.n_waves,
-           "p_exp": lfset.p_exp, "threshold": lfset.threshold, "eps1": stop.eps1,
-           "eps2": stop.eps2, "k1": stop.k1, "k2": stop.k2, "seed": study.seed,
-           "max_hf": study.max_hf, "max_failures": study.max_failures,
-           "stop_on_convergence": study.stop_on_convergence,
-           "adaptive_threshold": study.adaptive_threshold,
-           "threshold_step": study.threshold_step, "fp_run": study.fp_run}
+    try:
+        out = study.settings()
+    except AttributeError as exc:
+        raise StoreError(f"{exc}, so the store cannot record it") from None
     try:
         return json.loads(dumps(out))
     except TypeError as exc:

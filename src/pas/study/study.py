@@ -10,6 +10,7 @@ positives (paper Step 6), failed oracle calls, the adaptive threshold
 
 from __future__ import annotations
 
+import inspect
 import math
 import warnings
 
@@ -199,7 +200,11 @@ class Study:
             else:
                 sel_d = self.lfset.d[[r["position"] for r in self.rows if r["status"] != FAILED] +
                                      self._positions(PENDING)]
-            new = self.strategy.propose(sel_d, self.lfset, self.available(), self.last, q=max(room, 0))
+            if len(sel_d) >= 2:
+                new = self.strategy.propose(sel_d, self.lfset, self.available(), self.last,
+                                            q=max(room, 0))
+            else:  # initial samples failed: try the next peaks nearest the initial targets
+                new = self.strategy.initial_positions(self.lfset, self.available())[:max(room, 0)]
         for p in new:
             self.state[p] = PENDING
         events = [self.lfset.event(p) for p in new]
@@ -316,6 +321,26 @@ class Study:
                     callback(self, row)
         return self.result()
 
+    def settings(self) -> dict:
+        """Everything that defines this study: strategy settings and study settings."""
+        strategy = self.strategy
+        params = {}
+        for name, p in inspect.signature(type(strategy).__init__).parameters.items():
+            if name == "self" or p.kind in (p.VAR_POSITIONAL, p.VAR_KEYWORD):
+                continue
+            if not hasattr(strategy, name):
+                raise AttributeError(f"strategy setting {name} is not kept on "
+                                     f"{type(strategy).__name__} as an attribute")
+            params[name] = getattr(strategy, name)
+        lfset, stop = self.lfset, self.stopping
+        return {"strategy": strategy.name, "strategy_settings": params,
+                "n_waves": lfset.n_waves, "p_exp": lfset.p_exp, "threshold": lfset.threshold,
+                "eps1": stop.eps1, "eps2": stop.eps2, "k1": stop.k1, "k2": stop.k2,
+                "seed": self.seed, "max_hf": self.max_hf, "max_failures": self.max_failures,
+                "stop_on_convergence": self.stop_on_convergence,
+                "adaptive_threshold": self.adaptive_threshold,
+                "threshold_step": self.threshold_step, "fp_run": self.fp_run}
+
     # -- results -----------------------------------------------------------
     def history(self) -> pd.DataFrame:
         cols = ["row", "n_hf", "event_index", "event_id", "lf", "d", "hf", "status", "family",
@@ -342,7 +367,8 @@ class Study:
                 converged=False, history=hist,
                 distribution=distribution_frame([], [], [], []),
                 pairs=pd.DataFrame({"lf": pairs.lf, "hf": pairs.hf}), range_curves=curves,
-                p_exp=self.lfset.p_exp, n_waves=self.lfset.n_waves, seed=self.seed)
+                p_exp=self.lfset.p_exp, n_waves=self.lfset.n_waves, seed=self.seed,
+                settings=self.settings())
         pred = self.last
         band = pred.mpm_band
         model = None
@@ -361,5 +387,5 @@ class Study:
             distribution=distribution_frame(pred.d, pred.h_mean, pred.h_low, pred.h_high),
             pairs=pd.DataFrame({"event_id": ids, "lf": pairs.lf, "hf": pairs.hf, "d": pairs.d}),
             range_curves=curves, p_exp=self.lfset.p_exp, n_waves=self.lfset.n_waves,
-            seed=self.seed, family=pred.record.get("family"),
+            seed=self.seed, family=pred.record.get("family"), settings=self.settings(),
         )

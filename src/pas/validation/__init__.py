@@ -10,13 +10,8 @@ runs PAS (and AS) on them as a user would.  See ``cases/README.md``.
 from .data import CaseData
 from .generate import cache_path, generate_case
 from .registry import CASE_IDS, CASES, CONDITIONS, CaseSpec, Condition, get_case
+from .reproduce import reproduce  # noqa: E402  (the function; the module stays importable)
 
 __all__ = ["CaseData", "generate_case", "cache_path", "CASES", "CASE_IDS", "CONDITIONS",
            "CaseSpec", "Condition", "get_case", "reproduce"]
 
-
-def __getattr__(name):
-    if name == "reproduce":
-        from .reproduce import reproduce
-        return reproduce
-    raise AttributeError(name)

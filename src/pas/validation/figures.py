@@ -16,8 +16,6 @@ __all__ = ["write_figures"]
 
 def write_figures(out, datasets, results, table) -> list[Path]:
     """Write the figures into ``out``; returns the paths."""
-    import matplotlib
-    matplotlib.use("Agg", force=False)
     import matplotlib.pyplot as plt
 
     from ..plotting.figures import (plot_distribution, plot_metrics, plot_mpm_convergence,
