@@ -58,9 +58,9 @@ def test_campaign_through_the_cli(tmp_path, capsys):
         asked = pd.read_csv(tmp_path / "a.csv")
         assert list(asked.columns) == ["id", "index", "lf", "d", "seed", "t_start"]
         np.testing.assert_array_equal(asked["t_start"], asked["index"] * 20.0)
-        asked["value"] = hf_of(asked["lf"])
+        asked["hf"] = hf_of(asked["lf"])
         asked.loc[asked.index[-1], "error"] = "mesh failure" if _ == 1 else None
-        asked[["id", "value", "error"]].to_csv(tmp_path / "r.csv", index=False)
+        asked[["id", "hf", "error"]].to_csv(tmp_path / "r.csv", index=False)
         assert cli("study", "tell", db, "--csv", str(tmp_path / "r.csv")) == 0
     capsys.readouterr()
     assert cli("study", "ask", db, "--format", "json") == 0
@@ -141,8 +141,8 @@ BAD_TOML = [
     (["study", "tell", "{db}", "e764"], "VALUE"),
     (["study", "tell", "{db}"], "EVENT"),
     (["study", "tell", "{db}", "e5", "1.0"], "e5"),
-    (["study", "tell", "{db}", "--csv", "{dir}/nocol.csv"], "'value'"),
-    (["study", "tell", "{db}", "--csv", "{dir}/nan.csv"], "'value'"),
+    (["study", "tell", "{db}", "--csv", "{dir}/nocol.csv"], "'hf'"),
+    (["study", "tell", "{db}", "--csv", "{dir}/nan.csv"], "'hf'"),
     (["study", "create", "{db}", "--config", "{cfg}"], "already exists"),
     (["study", "status", "{db}", "--colour"], "--colour"),
     (["study", "run", "{db}"], "no oracle"),
@@ -152,8 +152,8 @@ def test_bad_inputs_exit_2_naming_the_field(tmp_path, capsys, argv, field):
     db = str(tmp_path / "s.db")
     assert cli("study", "create", db, "--config", cfg) == 0
     assert cli("study", "ask", db, "-n", "1") == 0
-    pd.DataFrame({"id": ["e764"], "hf": [1.0]}).to_csv(tmp_path / "nocol.csv", index=False)
-    pd.DataFrame({"id": ["e764", "e914"], "value": [1.0, None]}).to_csv(tmp_path / "nan.csv",
+    pd.DataFrame({"id": ["e764"], "load": [1.0]}).to_csv(tmp_path / "nocol.csv", index=False)
+    pd.DataFrame({"id": ["e764", "e914"], "hf": [1.0, None]}).to_csv(tmp_path / "nan.csv",
                                                                         index=False)
     if argv[-1].startswith("BAD:"):
         text = BAD_TOML[int(argv[-1][4:])][1]

@@ -45,6 +45,8 @@ batch size of the first run is the default).
 
 from __future__ import annotations
 
+import argparse
+
 import json
 import math
 import os
@@ -65,9 +67,22 @@ _ORACLE = {"command": list, "root": str, "timeout": float, "result_name": str, "
            "id_column": str, "value_column": str}
 
 
+EPILOG = """\
+examples:
+  pas study create campaign.db --config study.toml   # LF peaks, n_w, P_exp, eps1 from TOML
+  pas study ask campaign.db -n 4 --format csv -o next.csv   # next 4 events for the basin/CFD
+  pas study tell campaign.db 1532 812.5              # event id 1532 gave 812.5 kN
+  pas study tell campaign.db 877 0                   # no impact: a false positive
+  pas study tell campaign.db --csv results.csv       # columns id, hf (from any process)
+  pas study status campaign.db                       # MPM so far, convergence, pending
+  pas study run campaign.db -q 4 --workers 4         # drive it with the TOML's [oracle]
+"""
+
+
 def add_parser(sub) -> None:
     p = sub.add_parser("study", help="ask/tell HF campaigns kept in a crash-safe study file",
-                       description=__doc__.split("\n\n")[0])
+                       description=__doc__.split("\n\n")[0],
+                       formatter_class=argparse.RawDescriptionHelpFormatter, epilog=EPILOG)
     cmds = p.add_subparsers(dest="study_command", metavar="<action>", required=True)
     c = cmds.add_parser("create", help="create STUDY.db from a TOML configuration")
     c.add_argument("study", metavar="STUDY.db")
@@ -84,7 +99,8 @@ def add_parser(sub) -> None:
     t.add_argument("--error", metavar="MSG", help="record a failed HF evaluation instead")
     t.add_argument("--csv", metavar="FILE", help="results table (CSV or Parquet)")
     t.add_argument("--id-column", default="id")
-    t.add_argument("--value-column", default="value")
+    t.add_argument("--value-column", default="hf",
+                   help="column of the HF values (default hf, as the table oracle)")
     r = cmds.add_parser("run", help="drive the study with the [oracle] of its TOML file")
     r.add_argument("study", metavar="STUDY.db")
     r.add_argument("-q", "--batch-size", type=int, metavar="Q",
@@ -446,8 +462,8 @@ def _status(args) -> int:
         print(f"MPM so far {info['mpm']:.5g} (U95 {last['mpm_low']:.5g} - {last['mpm_high']:.5g})"
               f", copula {info['family']}" if info["family"] else
               f"MPM so far {info['mpm']:.5g}")
-        print(f"convergence: E_bar {_fmt(info['E_bar'])} (< eps1 {info['eps1']:g}), COV "
-              f"{_fmt(info['COV'])} (< eps2 {info['eps2']:g}): "
+        print(f"convergence: E_bar {_fmt(info['E_bar'])} (limit eps1 {info['eps1']:g}), COV "
+              f"{_fmt(info['COV'])} (limit eps2 {info['eps2']:g}): "
               + ("converged" if info["converged"] else "not converged"))
     else:
         print("no model fitted yet")
