@@ -4,9 +4,9 @@
 
     pas run LF_FILE --oracle SPEC --n-waves N --p-exp P --eps1 E [options]
 
-``LF_FILE`` is a CSV (one row per wave event; ``--lf-column`` names the LF
-peak column, ``--id-column`` the event ids) or a NumPy ``.npy`` file (a 1-D
-array, or a structured array with named columns).  The oracle ``SPEC`` is one
+``LF_FILE`` is a CSV or Parquet table (one row per wave event; ``--lf-column``
+names the LF peak column, ``--id-column`` the event ids) or a NumPy ``.npy``
+file (a 1-D array, or a structured array with named columns).  The oracle ``SPEC`` is one
 of
 
 ``table:FILE[:ID_COLUMN:VALUE_COLUMN]``
@@ -77,99 +77,27 @@ examples:
 
 
 # -- inputs -------------------------------------------------------------------
-def load_lf_file(path, *, column=None, id_column=None, meta_columns=()):
-    """Read LF peaks (and optional ids and metadata) from a CSV or ``.npy`` file.
+_LF_FILE_NAMES = {"file": "LF_FILE", "column": "--lf-column", "id_column": "--id-column",
+                  "meta_columns": "--meta-columns"}
 
-    Parameters
-    ----------
-    path : str or os.PathLike
-        ``.csv``/``.txt`` (header row required) or ``.npy`` (1-D array or
-        structured array).
-    column : str, optional
-        Column of the LF peaks; default ``lf`` if present, else the only
-        column.
-    id_column : str, optional
-        Column of event ids; default ``id`` if present, else the row index.
-    meta_columns : sequence of str
-        Columns handed to the oracle as ``event.meta``.
+
+def load_lf_file(path, *, column=None, id_column=None, meta_columns=()):
+    """Read LF peaks (and optional ids and metadata) for ``pas run``.
+
+    :func:`pas.io.read_lf_peaks` with the defaults of ``pas run`` (column
+    ``lf`` if present, else the only column; ids from ``id`` if present) and
+    errors naming its options.
 
     Returns
     -------
     lf : ndarray
     ids : list or None
     meta : list of dict or None
-
-    Raises
-    ------
-    ValueError
-        Naming the column/option to fix.
     """
-    import pandas as pd
+    from ..io import read_lf_peaks
 
-    path = Path(path)
-    if not path.exists():
-        raise FileNotFoundError(f"LF_FILE {path} does not exist")
-    suffix = path.suffix.lower()
-    if suffix == ".npy":
-        try:
-            arr = np.load(path, allow_pickle=False)
-        except ValueError as exc:
-            raise ValueError(f"LF_FILE {path.name}: not a plain .npy array ({exc})") from None
-        if arr.dtype.names is None:
-            if arr.ndim != 1:
-                raise ValueError(f"LF_FILE {path.name}: expected a 1-D array, got shape {arr.shape}")
-            df = pd.DataFrame({"lf": arr})
-        else:
-            df = pd.DataFrame({n: arr[n] for n in arr.dtype.names})
-    elif suffix in (".csv", ".txt"):
-        try:
-            df = pd.read_csv(path)
-        except (pd.errors.ParserError, pd.errors.EmptyDataError, UnicodeDecodeError) as exc:
-            raise ValueError(f"LF_FILE {path.name}: cannot read it as CSV ({exc})") from None
-    else:
-        raise ValueError(f"LF_FILE {path.name}: unsupported format {suffix!r} (use .csv or .npy)")
-    cols = [str(c) for c in df.columns]
-    df.columns = cols
-    if column is None:
-        if "lf" in cols:
-            column = "lf"
-        elif len(cols) == 1:
-            column = cols[0]
-        else:
-            raise ValueError(f"--lf-column: {path.name} has columns {', '.join(cols)}; "
-                             "name the one holding the LF peaks")
-    if column not in cols:
-        raise ValueError(f"--lf-column: column {column!r} is not in {path.name} "
-                         f"(columns: {', '.join(cols)})")
-    lf = pd.to_numeric(df[column], errors="coerce").to_numpy(dtype=float)
-    bad = np.flatnonzero(~np.isfinite(lf))
-    if bad.size:
-        raise ValueError(f"--lf-column: column {column!r} of {path.name} has a missing or "
-                         f"non-numeric value in data row {bad[0] + 1}")
-    if id_column is None and "id" in cols and column != "id":
-        id_column = "id"
-    ids = None
-    if id_column is not None:
-        if id_column not in cols:
-            raise ValueError(f"--id-column: column {id_column!r} is not in {path.name} "
-                             f"(columns: {', '.join(cols)})")
-        col = df[id_column]
-        if col.isna().any():
-            raise ValueError(f"--id-column: column {id_column!r} of {path.name} is empty in data "
-                             f"row {int(np.flatnonzero(col.isna().to_numpy())[0]) + 1}")
-        keys = col.astype(str)
-        if keys.duplicated().any():
-            raise ValueError(f"--id-column: column {id_column!r} of {path.name} repeats the id "
-                             f"{keys[keys.duplicated()].iloc[0]!r}")
-        ids = [x.item() if hasattr(x, "item") else x for x in col.tolist()]
-    meta = None
-    if meta_columns:
-        missing = [c for c in meta_columns if c not in cols]
-        if missing:
-            raise ValueError(f"--meta-columns: {', '.join(map(repr, missing))} not in {path.name} "
-                             f"(columns: {', '.join(cols)})")
-        meta = df[list(meta_columns)].to_dict("records")
-    return lf, ids, meta
+    return read_lf_peaks(path, column=column, id_column=id_column, meta_columns=meta_columns,
+                         guess_columns=True, names=_LF_FILE_NAMES)
 
 
 def _load_python_function(target: str, func: str):
@@ -346,7 +274,7 @@ def add_parser(sub) -> None:
         "run", help="run PAS (or AS) on an LF peak file with an HF oracle",
         description=__doc__.split("\n\n")[0].replace("``", ""),
         formatter_class=argparse.RawDescriptionHelpFormatter, epilog=EPILOG)
-    p.add_argument("lf_file", metavar="LF_FILE", help="LF peaks: .csv (header row) or .npy")
+    p.add_argument("lf_file", metavar="LF_FILE", help="LF peaks: .csv (header row), .parquet or .npy")
     p.add_argument("--lf-column", metavar="COL",
                    help="column with the LF peaks (default: 'lf', or the only column)")
     p.add_argument("--id-column", metavar="COL",

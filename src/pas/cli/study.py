@@ -54,8 +54,6 @@ import sys
 import tomllib
 from pathlib import Path
 
-import numpy as np
-
 __all__ = ["add_parser", "run", "load_config", "load_peaks"]
 
 _TOP = {"n_waves": int, "p_exp": float, "eps1": float, "eps2": float, "threshold": float,
@@ -201,59 +199,17 @@ def make_oracle(o: dict):
                        value_column=o.get("value_column", "hf"))
 
 
+_LF_NAMES = {"file": "lf.file", "column": "lf.column", "id_column": "lf.id_column",
+             "meta_columns": "lf.meta_columns"}
+
+
 def load_peaks(lf_cfg: dict):
-    """LF peaks, ids and meta from the file named in the ``[lf]`` table."""
-    import pandas as pd
+    """LF peaks, ids and meta from the file named in the ``[lf]`` table (:func:`pas.io.read_lf_peaks`)."""
+    from ..io import read_lf_peaks
 
-    from ..study.oracles import read_table
-
-    file = Path(lf_cfg["file"])
-    col, id_col = lf_cfg.get("column"), lf_cfg.get("id_column")
-    meta_cols = lf_cfg.get("meta_columns", [])
-    if file.suffix.lower() == ".npy":
-        if not file.exists():
-            raise FileNotFoundError(f"lf.file {file} does not exist")
-        arr = np.load(file, allow_pickle=False)
-        if arr.dtype.names is None:
-            if id_col or meta_cols:
-                raise ValueError(f"lf.id_column/lf.meta_columns need a structured array; "
-                                 f"{file.name} is a plain array")
-            df = pd.DataFrame({"lf": np.ravel(arr)})
-            col = col or "lf"
-        else:
-            df = pd.DataFrame({n: arr[n] for n in arr.dtype.names})
-    else:
-        df = None
-    if col is None:
-        raise ValueError(f"lf.column is missing (the column of {file.name} with the LF peaks)")
-    wanted = [("lf.column", col)] + ([("lf.id_column", id_col)] if id_col else []) + [
-        ("lf.meta_columns", c) for c in meta_cols]
-    if df is None:
-        try:
-            df = read_table(file)
-        except FileNotFoundError:
-            raise FileNotFoundError(f"lf.file {file} does not exist") from None
-    for field, c in wanted:
-        if c not in df.columns:
-            raise ValueError(f"{field}: column {c!r} is missing from {file.name} "
-                             f"(columns: {', '.join(map(str, df.columns))})")
-    lf = pd.to_numeric(df[col], errors="coerce").to_numpy(dtype=float)
-    bad = np.flatnonzero(~np.isfinite(lf))
-    if bad.size:
-        raise ValueError(f"lf: column {col!r} of {file.name} has a missing or non-numeric value "
-                         f"in data row {bad[0] + 1}")
-    ids = None
-    if id_col:
-        if df[id_col].isna().any():
-            row = int(np.flatnonzero(df[id_col].isna().to_numpy())[0]) + 1
-            raise ValueError(f"lf: column {id_col!r} of {file.name} is empty in data row {row}")
-        ids = df[id_col].tolist()
-        keys = pd.Series(ids).astype(str)
-        if keys.duplicated().any():
-            raise ValueError(f"lf: column {id_col!r} of {file.name} repeats the id "
-                             f"{keys[keys.duplicated()].iloc[0]!r}")
-    meta = df[meta_cols].to_dict("records") if meta_cols else None
-    return lf, ids, meta
+    return read_lf_peaks(lf_cfg["file"], column=lf_cfg.get("column"),
+                         id_column=lf_cfg.get("id_column"),
+                         meta_columns=lf_cfg.get("meta_columns", ()), names=_LF_NAMES)
 
 
 # -- actions ----------------------------------------------------------------
