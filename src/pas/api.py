@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import textwrap
+
 from .screening import LFSet
 from .strategies.as_ import AS
 from .strategies.pas import PAS
@@ -41,6 +43,85 @@ def make_study(strategy, lf_peaks, *, n_waves, p_exp, eps1, eps2=0.1, threshold=
                  **study_kw)
 
 
+_PARAMETERS = """\
+lf_peaks : array-like, shape (n_events,)
+    LF indicator peak of every wave event in the LF Monte-Carlo run.
+oracle : callable
+    ``oracle(event) -> float``: the HF peak of ``event`` (an
+    :class:`~pas.screening.Event` with ``index``, ``id``, ``lf``, ``d``,
+    ``meta``); 0.0 means no impact (a false positive).  An exception, NaN,
+    inf or a negative value is recorded as a failure, never taken as 0.
+n_waves : int
+    Number of wave encounters ``n_w`` in the LF Monte-Carlo duration.
+p_exp : float
+    Target exceedance probability (:func:`pas.p_exp_from_duration`).
+eps1 : float
+    Stopping limit on the mean change of the predicted distribution,
+    in load units (paper: ≈ 1–2 % of the expected maximum).
+eps2 : float, default 0.1
+    Stopping limit on the COV of the last K2 MPMs.
+threshold : float, optional
+    LF threshold ``l0_input`` (Eq. 2).
+seed : int, optional
+    Seed for reproducible {seeded} (reported on the result when None).
+max_hf : int, optional
+    Budget of HF evaluations{max_hf}.
+ids, meta : sequence, optional
+    User ids / metadata per event, passed to the oracle on the event.
+batch_size : int, default 1
+    Events proposed per iteration{batch}.
+callback : callable, optional
+    ``callback(study, row)`` after every HF result.
+study : str or os.PathLike, optional
+    SQLite study store (:mod:`pas.study.store`): created when missing,
+    otherwise checked against this call and continued — no stored HF
+    result is lost or re-run, and the run makes the decisions an
+    uninterrupted one would have made (same ``batch_size``).
+pending : {{"resubmit", "wait"}}, default "resubmit"
+    Events a killed run left without a result: run them again, or leave
+    them for ``pas study tell``.
+executor : concurrent.futures.Executor, optional
+    Runs the oracle calls of a batch concurrently (e.g.
+    ``distributed.Client(...).get_executor()``); results are stored as
+    they arrive.
+n_workers : int, optional
+    Without ``executor``: a local process pool of this size (the oracle
+    must be picklable).
+**settings
+    Strategy settings ({settings}) and study settings (``k1``, ``k2``,
+    ``max_failures``, ``stop_on_convergence``, ``adaptive_threshold``).
+"""
+"""The parameters :func:`run_pas` and :func:`run_as` share, written once; :func:`_documented`
+fills in what differs."""
+
+
+def _documented(**fields):
+    """Put :data:`_PARAMETERS`, formatted with ``fields``, at ``{parameters}`` in the docstring.
+
+    A field of several lines continues at the indentation of a description.
+    """
+    fields = {k: v.replace("\n", "\n    ") for k, v in fields.items()}
+    text = textwrap.indent(_PARAMETERS.format(**fields), "    ")
+
+    def decorate(fn):
+        if fn.__doc__:  # None under python -OO
+            fn.__doc__ = fn.__doc__.replace("    {parameters}\n", text)
+        return fn
+    return decorate
+
+
+def _run(strategy, lf_peaks, oracle, *, study, batch_size, callback, pending, executor,
+         n_workers, settings, **study_kw) -> ScreeningResult:
+    """The body of :func:`run_pas` and :func:`run_as`: build the study, then optimise it."""
+    built = make_study(strategy, lf_peaks, store=study, **study_kw, **settings)
+    return built.optimize(oracle, batch_size=batch_size, callback=callback, executor=executor,
+                          n_workers=n_workers, pending=pending)
+
+
+@_documented(seeded="draws", max_hf="", batch="", settings="""\
+:class:`~pas.strategies.pas.PAS`: ``families``,
+``z``, ``delta_aic``, ``exclude_at_bound``, ``upper_tail``,
+``outlier_k``, ``n_bootstrap``""")
 def run_pas(lf_peaks, oracle, *, n_waves, p_exp, eps1, eps2=0.1, threshold=None, seed=None,
             max_hf=None, ids=None, meta=None, batch_size=1, callback=None, study=None,
             pending="resubmit", executor=None, n_workers=None, **settings) -> ScreeningResult:
@@ -48,54 +129,7 @@ def run_pas(lf_peaks, oracle, *, n_waves, p_exp, eps1, eps2=0.1, threshold=None,
 
     Parameters
     ----------
-    lf_peaks : array-like, shape (n_events,)
-        LF indicator peak of every wave event in the LF Monte-Carlo run.
-    oracle : callable
-        ``oracle(event) -> float``: the HF peak of ``event`` (an
-        :class:`~pas.screening.Event` with ``index``, ``id``, ``lf``, ``d``,
-        ``meta``); 0.0 means no impact (a false positive).  An exception, NaN,
-        inf or a negative value is recorded as a failure, never taken as 0.
-    n_waves : int
-        Number of wave encounters ``n_w`` in the LF Monte-Carlo duration.
-    p_exp : float
-        Target exceedance probability (:func:`pas.p_exp_from_duration`).
-    eps1 : float
-        Stopping limit on the mean change of the predicted distribution,
-        in load units (paper: ≈ 1–2 % of the expected maximum).
-    eps2 : float, default 0.1
-        Stopping limit on the COV of the last K2 MPMs.
-    threshold : float, optional
-        LF threshold ``l0_input`` (Eq. 2).
-    seed : int, optional
-        Seed for reproducible draws (reported on the result when None).
-    max_hf : int, optional
-        Budget of HF evaluations.
-    ids, meta : sequence, optional
-        User ids / metadata per event, passed to the oracle on the event.
-    batch_size : int, default 1
-        Events proposed per iteration.
-    callback : callable, optional
-        ``callback(study, row)`` after every HF result.
-    study : str or os.PathLike, optional
-        SQLite study store (:mod:`pas.study.store`): created when missing,
-        otherwise checked against this call and continued — no stored HF
-        result is lost or re-run, and the run makes the decisions an
-        uninterrupted one would have made (same ``batch_size``).
-    pending : {"resubmit", "wait"}, default "resubmit"
-        Events a killed run left without a result: run them again, or leave
-        them for ``pas study tell``.
-    executor : concurrent.futures.Executor, optional
-        Runs the oracle calls of a batch concurrently (e.g.
-        ``distributed.Client(...).get_executor()``); results are stored as
-        they arrive.
-    n_workers : int, optional
-        Without ``executor``: a local process pool of this size (the oracle
-        must be picklable).
-    **settings
-        Strategy settings (:class:`~pas.strategies.pas.PAS`: ``families``,
-        ``z``, ``delta_aic``, ``exclude_at_bound``, ``upper_tail``,
-        ``outlier_k``, ``n_bootstrap``) and study settings (``k1``, ``k2``,
-        ``max_failures``, ``stop_on_convergence``, ``adaptive_threshold``).
+    {parameters}
 
     Returns
     -------
@@ -111,13 +145,14 @@ def run_pas(lf_peaks, oracle, *, n_waves, p_exp, eps1, eps2=0.1, threshold=None,
     >>> bool(res.converged), res.n_hf < 60
     (True, True)
     """
-    study = make_study(PAS, lf_peaks, n_waves=n_waves, p_exp=p_exp, eps1=eps1, eps2=eps2,
-                       threshold=threshold, seed=seed, max_hf=max_hf, ids=ids, meta=meta,
-                       store=study, **settings)
-    return study.optimize(oracle, batch_size=batch_size, callback=callback, executor=executor,
-                          n_workers=n_workers, pending=pending)
+    return _run(PAS, **locals())  # locals() is exactly the parameters here
 
 
+@_documented(seeded="runs", max_hf=" (at least 2)", batch=" (the next-best MVPD targets)",
+             settings="""\
+:class:`~pas.strategies.as_.AS`: ``fidelity``
+``"multi"``/``"single"``, ``range_factor``, ``n_grid``,
+``n_lf_bins``, ``n_restarts``""")
 def run_as(lf_peaks, oracle, *, n_waves, p_exp, eps1, eps2=0.1, threshold=None, seed=None,
            max_hf=None, ids=None, meta=None, batch_size=1, callback=None, study=None,
            pending="resubmit", executor=None, n_workers=None, **settings) -> ScreeningResult:
@@ -133,54 +168,7 @@ def run_as(lf_peaks, oracle, *, n_waves, p_exp, eps1, eps2=0.1, threshold=None, 
 
     Parameters
     ----------
-    lf_peaks : array-like, shape (n_events,)
-        LF indicator peak of every wave event in the LF Monte-Carlo run.
-    oracle : callable
-        ``oracle(event) -> float``: the HF peak of ``event`` (an
-        :class:`~pas.screening.Event`); 0.0 means no impact (a false
-        positive).  An exception, NaN, inf or a negative value is recorded as
-        a failure, never taken as 0.
-    n_waves : int
-        Number of wave encounters ``n_w`` in the LF Monte-Carlo duration.
-    p_exp : float
-        Target exceedance probability (:func:`pas.p_exp_from_duration`).
-    eps1 : float
-        Stopping limit on the mean change of the predicted distribution,
-        in load units (paper: ≈ 1–2 % of the expected maximum).
-    eps2 : float, default 0.1
-        Stopping limit on the COV of the last K2 MPMs.
-    threshold : float, optional
-        LF threshold ``l0_input`` (Eq. 2).
-    seed : int, optional
-        Seed for reproducible runs (reported on the result when None).
-    max_hf : int, optional
-        Budget of HF evaluations (at least 2).
-    ids, meta : sequence, optional
-        User ids / metadata per event, passed to the oracle on the event.
-    batch_size : int, default 1
-        Events proposed per iteration (the next-best MVPD targets).
-    callback : callable, optional
-        ``callback(study, row)`` after every HF result.
-    study : str or os.PathLike, optional
-        SQLite study store (:mod:`pas.study.store`): created when missing,
-        otherwise checked against this call and continued — no stored HF
-        result is lost or re-run, and the run makes the decisions an
-        uninterrupted one would have made (same ``batch_size``).
-    pending : {"resubmit", "wait"}, default "resubmit"
-        Events a killed run left without a result: run them again, or leave
-        them for ``pas study tell``.
-    executor : concurrent.futures.Executor, optional
-        Runs the oracle calls of a batch concurrently (e.g.
-        ``distributed.Client(...).get_executor()``); results are stored as
-        they arrive.
-    n_workers : int, optional
-        Without ``executor``: a local process pool of this size (the oracle
-        must be picklable).
-    **settings
-        Strategy settings (:class:`~pas.strategies.as_.AS`: ``fidelity``
-        ``"multi"``/``"single"``, ``range_factor``, ``n_grid``,
-        ``n_lf_bins``, ``n_restarts``) and study settings (``k1``, ``k2``,
-        ``max_failures``, ``stop_on_convergence``, ``adaptive_threshold``).
+    {parameters}
 
     Returns
     -------
@@ -196,8 +184,4 @@ def run_as(lf_peaks, oracle, *, n_waves, p_exp, eps1, eps2=0.1, threshold=None, 
     >>> res.strategy, bool(res.converged)
     ('as', True)
     """
-    study = make_study(AS, lf_peaks, n_waves=n_waves, p_exp=p_exp, eps1=eps1, eps2=eps2,
-                       threshold=threshold, seed=seed, max_hf=max_hf, ids=ids, meta=meta,
-                       store=study, **settings)
-    return study.optimize(oracle, batch_size=batch_size, callback=callback, executor=executor,
-                          n_workers=n_workers, pending=pending)
+    return _run(AS, **locals())  # locals() is exactly the parameters here
