@@ -73,6 +73,18 @@ def _strategy_name(result, label):
     return f"{name} ({family})" if name and isinstance(family, str) and family else name or "result"
 
 
+def _plot_with_band(ax, x, table, mean, low, high, fmt, *, name, label, color, **style):
+    """Plot column ``mean`` of ``table`` over ``x`` and, when ``table`` has the columns
+    ``low`` and ``high``, its U95 band in the same colour; returns that colour."""
+    (line,) = ax.plot(x, table[mean].to_numpy(dtype=float), fmt, color=color,
+                      label=f"{name}: {label}", **style)
+    c = line.get_color()
+    if {low, high} <= set(table.columns):
+        ax.fill_between(x, table[low].to_numpy(dtype=float), table[high].to_numpy(dtype=float),
+                        color=c, alpha=0.2, lw=0, label=f"{name}: U95 band")
+    return c
+
+
 def _convergence_row(hist: pd.DataFrame):
     """The first history row where the stopping criterion held, or None."""
     if "stop" not in hist:
@@ -163,13 +175,8 @@ def plot_mpm_convergence(result, *, truth=None, ax=None, label=None, unit=None,
     fig, ax = _new_axes(ax)
     name = _strategy_name(result, label)
     n = fitted["n_hf"].to_numpy(dtype=float)
-    mpm = fitted["mpm"].to_numpy(dtype=float)
-    (line,) = ax.plot(n, mpm, "-o", ms=2.5, lw=1.3, color=color, label=f"{name}: MPM")
-    c = line.get_color()
-    if {"mpm_low", "mpm_high"} <= set(fitted.columns):
-        ax.fill_between(n, fitted["mpm_low"].to_numpy(dtype=float),
-                        fitted["mpm_high"].to_numpy(dtype=float), color=c, alpha=0.2, lw=0,
-                        label=f"{name}: U95 band")
+    c = _plot_with_band(ax, n, fitted, "mpm", "mpm_low", "mpm_high", "-o", name=name,
+                        label="MPM", color=color, ms=2.5, lw=1.3)
     running = pd.to_numeric(hist["mpm"], errors="coerce").ffill().bfill()
     for status, marker, mcolor, text in (("false_positive", "x", _FP_COLOR, "false positive (HF = 0)"),
                                          ("failed", "v", _FAIL_COLOR, "failed HF call")):
@@ -254,11 +261,8 @@ def plot_distribution(result, *, lf=None, truth=None, ax=None, label=None, unit=
     name = _strategy_name(result, label)
     d = dist["exceedance_probability"].to_numpy(dtype=float)
     h = dist["h_mean"].to_numpy(dtype=float)
-    (line,) = ax.plot(d, h, "-", lw=1.6, color=color, label=f"{name}: mean $h^*(d)$")
-    c = line.get_color()
-    if {"h_low", "h_high"} <= set(dist.columns):
-        ax.fill_between(d, dist["h_low"].to_numpy(dtype=float), dist["h_high"].to_numpy(dtype=float),
-                        color=c, alpha=0.2, lw=0, label=f"{name}: U95 band")
+    c = _plot_with_band(ax, d, dist, "h_mean", "h_low", "h_high", "-", name=name,
+                        label="mean $h^*(d)$", color=color, lw=1.6)
     if lf is not None:
         d_l, l_v = _lf_curve(lf)
         ax.plot(d_l, l_v, "-", color="0.5", lw=1.0, label=lf_label)

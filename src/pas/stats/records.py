@@ -127,6 +127,13 @@ def _exposure(exposure_encounters, n_total, n_seeds):
     return check_positive(exposure_encounters, "exposure_encounters")
 
 
+def _record(peaks, n_encounters, exposure_encounters):
+    """A checked record: its seeds, total encounters and encounters per exposure duration."""
+    seeds = seed_peaks(peaks)
+    n_total = _total_encounters(n_encounters, len(seeds))
+    return seeds, n_total, _exposure(exposure_encounters, n_total, len(seeds))
+
+
 # ----------------------------------------------------------- distributions
 def pooled_peaks_distribution(peaks, n_encounters):
     """Exceedance distribution of the pooled peaks of all seeds (Eq. 3).
@@ -221,10 +228,8 @@ def quantile_pooled(peaks, n_encounters, q=MPM_QUANTILE, *, exposure_encounters=
     -------
     float
     """
-    seeds = seed_peaks(peaks)
+    seeds, n_total, n_t = _record(peaks, n_encounters, exposure_encounters)
     d, v = pooled_peaks_distribution(seeds, n_encounters)
-    n_total = _total_encounters(n_encounters, len(seeds))
-    n_t = _exposure(exposure_encounters, n_total, len(seeds))
     p = quantile_exceedance(q, n_total / n_t, n_total)
     return _read_pooled(d, v, p, below=below)
 
@@ -255,10 +260,8 @@ def mpm_pooled(peaks, n_encounters, *, exposure_encounters=None, below=0.0):
     >>> round(mpm_pooled(crests, 40 * 400), 1)   # theory: 10 sqrt(ln 400 / 8) = 8.65
     8.8
     """
-    seeds = seed_peaks(peaks)
+    seeds, n_total, n_t = _record(peaks, n_encounters, exposure_encounters)
     d, v = pooled_peaks_distribution(seeds, n_encounters)
-    n_total = _total_encounters(n_encounters, len(seeds))
-    n_t = _exposure(exposure_encounters, n_total, len(seeds))
     return _read_pooled(d, v, 1.0 / n_t, below=below)
 
 
@@ -332,10 +335,8 @@ def mpm_weibull(peaks, n_encounters, *, exposure_encounters=None, top_fraction=0
     fit : Weibull3
         The fitted distribution of a peak.
     """
-    seeds = seed_peaks(peaks)
+    seeds, n_total, n_t = _record(peaks, n_encounters, exposure_encounters)
     pooled = np.concatenate(seeds)
-    n_total = _total_encounters(n_encounters, len(seeds))
-    n_t = _exposure(exposure_encounters, n_total, len(seeds))
     fit = fit_weibull3_ls(pooled, top_fraction=top_fraction)
     return _weibull_mpm(fit, pooled.size, n_total, 1.0 / n_t), fit
 
@@ -427,10 +428,8 @@ def analyse_record(peaks, n_encounters, *, exposure_encounters=None, top_fractio
     -------
     RecordAnalysis
     """
-    seeds = seed_peaks(peaks)
+    seeds, n_total, n_t = _record(peaks, n_encounters, exposure_encounters)
     d, v = pooled_peaks_distribution(seeds, n_encounters)
-    n_total = _total_encounters(n_encounters, len(seeds))
-    n_t = _exposure(exposure_encounters, n_total, len(seeds))
     p_t = 1.0 / n_t
     maxima = seed_maxima(seeds, empty=empty)
     p_m, m_sorted = seed_maxima_distribution(maxima)
