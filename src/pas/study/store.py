@@ -6,13 +6,9 @@ busy time-out, so a driver process and any number of ``pas study tell``
 processes can write at the same time without losing a result.  Everything is
 stored as JSON or plain columns; nothing is pickled.
 
-The store is a *log*, not a snapshot.  The model state of a
-:class:`~pas.study.study.Study` (selected copula, stopping windows, adaptive
-threshold) is never serialised: :func:`attach` rebuilds it by replaying the
-stored asks and tells through :meth:`Study.ask` / :meth:`Study.tell` in their
-stored order.  Each fit draws from ``default_rng([seed, len(rows)])``, so the
-replay is exact and a resumed study makes the decisions an uninterrupted one
-would have made.
+The tables are described in :mod:`pas.study.schema`; rebuilding a study from
+them (:func:`attach`, :func:`open_study`) is :mod:`pas.study.replay`.  Both
+are re-exported here.
 
 Examples
 --------
@@ -25,149 +21,27 @@ One process asks, any process tells, the next ask continues the same study::
     StudyStore("campaign.db").tell_by_key(events[0].id, 4.2)
     study = open_study("campaign.db")       # replayed, the new result used
     study.ask()
-
-Schema (version 1)
-------------------
-``schema_version(version)``
-    One row, also ``PRAGMA user_version``.  A store written by a newer schema
-    is refused with an error asking to upgrade pas.
-``meta(key, value)``
-    JSON values: ``settings`` (strategy name and settings, ``n_waves``,
-    ``p_exp``, ``threshold``, ``eps1`` …, ``seed``, ``max_hf``),
-    ``lf_sha256`` (hash of the LF pool), ``created_at``, ``pas_version``,
-    ``seq`` (the last sequence number handed out) and ``op_seq`` (the last
-    ask or tell consumed by a study); ``oracle`` and ``batch_size`` when the
-    study was created by ``pas study create`` with an ``[oracle]`` table.
-``lf_peaks(idx, key, event_id, lf, d, meta)``
-    The LF pool the study was created with: every peak over the threshold,
-    keyed by ``idx``, its index in the user's ``lf_peaks``; ``key`` is
-    ``str(event_id)``, ``event_id`` and ``meta`` are JSON.
-``events(idx, key, event_id, lf, d, state, hf, error, batch, batch_pos,
-result_seq, tell_seq, attempts, asked_at, submitted_at, result_at, source)``
-    Every event sent to the HF tool.  ``state`` is ``pending``, ``done``
-    (HF > 0), ``false_positive`` (HF = 0) or ``failed`` (``error`` says why).
-    ``batch`` is the sequence number of the ask that sent it (``batch_pos``
-    its place in that ask); ``result_seq`` the sequence number at which its
-    result arrived; ``tell_seq`` the one at which a study consumed it.
-    ``attempts`` counts hand-overs to an HF tool (a resubmitted pending event
-    has 2).
-``history(row, idx, data, written_at)``
-    The study's history row of each consumed tell (JSON), written in the same
-    transaction as the tell.
-
-Replay order is the asks (grouped by ``batch``) and the consumed tells
-(``tell_seq``) sorted by sequence number.  Results that arrived but were not
-consumed yet (``result_seq`` set, ``tell_seq`` NULL) are consumed by whoever
-drives the study next: :func:`pas.study.executor.optimize` in ask order,
-``pas study ask`` in arrival order.
 """
 
 from __future__ import annotations
 
-import hashlib
 import json
-import math
 import os
 import sqlite3
-import warnings
 from contextlib import contextmanager
-from datetime import datetime, timezone
 
 import numpy as np
+
+from .replay import attach, open_study, study_settings
+from .schema import (_SCHEMA, RESUMABLE, SCHEMA_VERSION, STATES, StoreConflict, StoreError, _now,
+                     _pool_hash, _pool_records, dumps)
 
 __all__ = ["StudyStore", "StoreError", "StoreConflict", "SCHEMA_VERSION", "attach", "open_study",
            "study_settings", "read_settings", "STATES"]
 
-SCHEMA_VERSION = 1
-STATES = ("pending", "done", "false_positive", "failed")
-#: Settings that may change when a study is resumed (budgets); all others must match.
-RESUMABLE = ("max_hf", "max_failures")
-
-_SCHEMA = f"""
-CREATE TABLE IF NOT EXISTS schema_version (version INTEGER NOT NULL);
-CREATE TABLE IF NOT EXISTS meta (key TEXT PRIMARY KEY, value TEXT NOT NULL);
-CREATE TABLE IF NOT EXISTS lf_peaks (
-    idx INTEGER PRIMARY KEY, key TEXT NOT NULL UNIQUE, event_id TEXT NOT NULL,
-    lf REAL NOT NULL, d REAL NOT NULL, meta TEXT NOT NULL);
-CREATE TABLE IF NOT EXISTS events (
-    idx INTEGER PRIMARY KEY REFERENCES lf_peaks(idx), key TEXT NOT NULL UNIQUE,
-    event_id TEXT NOT NULL, lf REAL NOT NULL, d REAL NOT NULL,
-    state TEXT NOT NULL CHECK (state IN {STATES!r}),
-    hf REAL, error TEXT, batch INTEGER NOT NULL, batch_pos INTEGER NOT NULL,
-    result_seq INTEGER, tell_seq INTEGER UNIQUE, attempts INTEGER NOT NULL DEFAULT 0,
-    asked_at TEXT NOT NULL, submitted_at TEXT, result_at TEXT, source TEXT);
-CREATE TABLE IF NOT EXISTS history (
-    row INTEGER PRIMARY KEY, idx INTEGER NOT NULL, data TEXT NOT NULL, written_at TEXT NOT NULL);
-"""
-
-
-class StoreError(ValueError):
-    """The store cannot be used as asked (version, settings, state); the message says why."""
-
-
-class StoreConflict(StoreError):
-    """Another process consumed tells or asked events since this one read the store."""
-
-
-def _now() -> str:
-    return datetime.now(timezone.utc).isoformat(timespec="milliseconds")
-
-
-def _default(x):
-    if isinstance(x, np.generic):
-        return x.item()
-    if isinstance(x, np.ndarray):
-        return x.tolist()
-    raise TypeError(f"{type(x).__name__} is not JSON-serialisable")
-
-
-def _clean(x):
-    """Non-finite floats become None so the stored text is strict JSON."""
-    if isinstance(x, float) and not math.isfinite(x):
-        return None
-    if isinstance(x, dict):
-        return {str(k): _clean(v) for k, v in x.items()}
-    if isinstance(x, (list, tuple)):
-        return [_clean(v) for v in x]
-    return x
-
-
-def dumps(x) -> str:
-    """Strict JSON text of ``x`` (numpy scalars converted, NaN/inf as null)."""
-    return json.dumps(_clean(json.loads(json.dumps(x, default=_default))), allow_nan=False,
-                      sort_keys=True)
-
-
-def study_settings(study) -> dict:
-    """The JSON settings that define ``study`` (checked when a store is reopened)."""
-    try:
-        out = study.settings()
-    except AttributeError as exc:
-        raise StoreError(f"{exc}, so the store cannot record it") from None
-    try:
-        return json.loads(dumps(out))
-    except TypeError as exc:
-        raise StoreError(f"study settings must be JSON-serialisable for the store: {exc}") from None
-
-
-def _pool_records(lfset) -> list[tuple]:
-    """``(idx, key, event_id_json, lf, d, meta_json)`` of every pool event, by ``idx``."""
-    out = []
-    for p in np.argsort(lfset.index, kind="stable"):
-        ev = lfset.event(int(p))
-        out.append((ev.index, str(ev.id), dumps(ev.id), ev.lf, ev.d, dumps(ev.meta)))
-    return out
-
-
-def _pool_hash(records) -> str:
-    h = hashlib.sha256()
-    for idx, key, eid, lf, _d, meta in records:
-        h.update(f"{idx}\x1f{key}\x1f{eid}\x1f{float(lf).hex()}\x1f{meta}\x1e".encode())
-    return h.hexdigest()
-
 
 class StudyStore:
-    """One study's SQLite file (module docs for the schema).
+    """One study's SQLite file (:mod:`pas.study.schema` for the tables).
 
     Parameters
     ----------
@@ -481,91 +355,3 @@ def read_settings(path) -> dict:
         return {}
     with StudyStore(path, create=False) as store:
         return store.settings()
-
-
-def attach(study, store) -> None:
-    """Bind ``study`` to ``store``: initialise a new store, or check it and replay it.
-
-    Raises :class:`StoreError` when the stored settings or LF pool differ from
-    ``study``'s, or when the replay does not reproduce the stored asks.
-    """
-    from .study import OracleFailureLimit
-
-    if not isinstance(store, StudyStore):
-        store = StudyStore(store)
-    settings = study_settings(study)
-    with store.transaction():
-        if store.is_new:
-            store.initialize(settings, study.lfset)
-        else:
-            store.check(settings, study.lfset)
-    for n, op in enumerate(store.ops()):
-        if op[0] == "ask":
-            got = [ev.index for ev in study.ask(len(op[1]))]
-            if got != op[1]:
-                raise StoreError(
-                    f"study store {store.path} does not replay: ask #{n} gives events {got} but "
-                    f"the store holds {op[1]} (written by another pas version?)")
-        else:
-            try:
-                study.tell(op[1], op[2], error=op[3])
-            except OracleFailureLimit:
-                pass
-    stored = store.history()
-    if stored and study.rows and stored[-1].get("mpm") is not None:
-        replayed = study.rows[len(stored) - 1].get("mpm")
-        if replayed is None or not math.isclose(replayed, stored[-1]["mpm"], rel_tol=1e-9):
-            warnings.warn(f"replaying {store.path} gives MPM {replayed} where the store recorded "
-                          f"{stored[-1]['mpm']}: library versions changed?", stacklevel=3)
-    study.store = store
-
-
-def open_study(store, *, consume: bool = True):
-    """Rebuild the :class:`~pas.study.study.Study` held by ``store`` (a path or a StudyStore).
-
-    With ``consume`` the results told by other processes and not used yet are
-    told to the study in arrival order (written to the store only when the
-    caller holds its write transaction; see ``pas study ask``).
-    """
-    from ..api import make_study
-    from ..strategies import AS, PAS
-    from .study import OracleFailureLimit
-
-    if not isinstance(store, StudyStore):
-        store = StudyStore(store, create=False)
-    s = store.settings()
-    if not s:
-        raise StoreError(f"study store {store.path} holds no study")
-    strategies = {"pas": PAS, "as": AS}
-    if s["strategy"] not in strategies:
-        raise StoreError(f"strategy {s['strategy']!r} in {store.path} is unknown to this pas")
-    idx, ids, lf, meta = store.pool()
-    n = int(idx[-1]) + 1
-    lf_all = np.full(n, np.nan if s["threshold"] is None else s["threshold"])
-    lf_all[idx] = lf
-    if s["threshold"] is None and idx.size != n:
-        raise StoreError(f"study store {store.path}: LF pool has gaps but no threshold")
-    plain = all(i == j for i, j in zip(ids, idx.tolist()))
-    all_ids = None
-    if not plain:
-        all_ids = [f"\x00below-threshold-{i}" for i in range(n)]
-        for i, e in zip(idx, ids):
-            all_ids[i] = e
-    all_meta = None
-    if any(meta):
-        all_meta = [{} for _ in range(n)]
-        for i, m in zip(idx, meta):
-            all_meta[i] = m
-    keys = ("k1", "k2", "max_failures", "stop_on_convergence", "adaptive_threshold",
-            "threshold_step", "fp_run")
-    study = make_study(strategies[s["strategy"]], lf_all, n_waves=s["n_waves"], p_exp=s["p_exp"],
-                       eps1=s["eps1"], eps2=s["eps2"], threshold=s["threshold"], seed=s["seed"],
-                       max_hf=s["max_hf"], ids=all_ids, meta=all_meta, store=store,
-                       **{k: s[k] for k in keys}, **s["strategy_settings"])
-    if consume:
-        for i, hf, err in store.unconsumed():
-            try:
-                study.tell(int(i), hf, error=err)
-            except OracleFailureLimit:
-                pass
-    return study

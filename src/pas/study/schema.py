@@ -1,0 +1,126 @@
+"""The study store's schema and encoding: SQL tables, version, states, errors and JSON.
+
+:class:`~pas.study.store.StudyStore` writes and reads these tables;
+:mod:`pas.study.replay` rebuilds a study from them.
+
+Schema (version 1)
+------------------
+``schema_version(version)``
+    One row, also ``PRAGMA user_version``.  A store written by a newer schema
+    is refused with an error asking to upgrade pas.
+``meta(key, value)``
+    JSON values: ``settings`` (strategy name and settings, ``n_waves``,
+    ``p_exp``, ``threshold``, ``eps1`` …, ``seed``, ``max_hf``),
+    ``lf_sha256`` (hash of the LF pool), ``created_at``, ``pas_version``,
+    ``seq`` (the last sequence number handed out) and ``op_seq`` (the last
+    ask or tell consumed by a study); ``oracle`` and ``batch_size`` when the
+    study was created by ``pas study create`` with an ``[oracle]`` table.
+``lf_peaks(idx, key, event_id, lf, d, meta)``
+    The LF pool the study was created with: every peak over the threshold,
+    keyed by ``idx``, its index in the user's ``lf_peaks``; ``key`` is
+    ``str(event_id)``, ``event_id`` and ``meta`` are JSON.
+``events(idx, key, event_id, lf, d, state, hf, error, batch, batch_pos,
+result_seq, tell_seq, attempts, asked_at, submitted_at, result_at, source)``
+    Every event sent to the HF tool.  ``state`` is ``pending``, ``done``
+    (HF > 0), ``false_positive`` (HF = 0) or ``failed`` (``error`` says why).
+    ``batch`` is the sequence number of the ask that sent it (``batch_pos``
+    its place in that ask); ``result_seq`` the sequence number at which its
+    result arrived; ``tell_seq`` the one at which a study consumed it.
+    ``attempts`` counts hand-overs to an HF tool (a resubmitted pending event
+    has 2).
+``history(row, idx, data, written_at)``
+    The study's history row of each consumed tell (JSON), written in the same
+    transaction as the tell.
+
+Replay order is the asks (grouped by ``batch``) and the consumed tells
+(``tell_seq``) sorted by sequence number.  Results that arrived but were not
+consumed yet (``result_seq`` set, ``tell_seq`` NULL) are consumed by whoever
+drives the study next: :func:`pas.study.executor.optimize` in ask order,
+``pas study ask`` in arrival order.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import math
+from datetime import datetime, timezone
+
+import numpy as np
+
+__all__ = ["SCHEMA_VERSION", "STATES", "RESUMABLE", "StoreError", "StoreConflict", "dumps"]
+
+SCHEMA_VERSION = 1
+STATES = ("pending", "done", "false_positive", "failed")
+#: Settings that may change when a study is resumed (budgets); all others must match.
+RESUMABLE = ("max_hf", "max_failures")
+
+_SCHEMA = f"""
+CREATE TABLE IF NOT EXISTS schema_version (version INTEGER NOT NULL);
+CREATE TABLE IF NOT EXISTS meta (key TEXT PRIMARY KEY, value TEXT NOT NULL);
+CREATE TABLE IF NOT EXISTS lf_peaks (
+    idx INTEGER PRIMARY KEY, key TEXT NOT NULL UNIQUE, event_id TEXT NOT NULL,
+    lf REAL NOT NULL, d REAL NOT NULL, meta TEXT NOT NULL);
+CREATE TABLE IF NOT EXISTS events (
+    idx INTEGER PRIMARY KEY REFERENCES lf_peaks(idx), key TEXT NOT NULL UNIQUE,
+    event_id TEXT NOT NULL, lf REAL NOT NULL, d REAL NOT NULL,
+    state TEXT NOT NULL CHECK (state IN {STATES!r}),
+    hf REAL, error TEXT, batch INTEGER NOT NULL, batch_pos INTEGER NOT NULL,
+    result_seq INTEGER, tell_seq INTEGER UNIQUE, attempts INTEGER NOT NULL DEFAULT 0,
+    asked_at TEXT NOT NULL, submitted_at TEXT, result_at TEXT, source TEXT);
+CREATE TABLE IF NOT EXISTS history (
+    row INTEGER PRIMARY KEY, idx INTEGER NOT NULL, data TEXT NOT NULL, written_at TEXT NOT NULL);
+"""
+
+
+class StoreError(ValueError):
+    """The store cannot be used as asked (version, settings, state); the message says why."""
+
+
+class StoreConflict(StoreError):
+    """Another process consumed tells or asked events since this one read the store."""
+
+
+def _now() -> str:
+    return datetime.now(timezone.utc).isoformat(timespec="milliseconds")
+
+
+def _default(x):
+    if isinstance(x, np.generic):
+        return x.item()
+    if isinstance(x, np.ndarray):
+        return x.tolist()
+    raise TypeError(f"{type(x).__name__} is not JSON-serialisable")
+
+
+def _clean(x):
+    """Non-finite floats become None so the stored text is strict JSON."""
+    if isinstance(x, float) and not math.isfinite(x):
+        return None
+    if isinstance(x, dict):
+        return {str(k): _clean(v) for k, v in x.items()}
+    if isinstance(x, (list, tuple)):
+        return [_clean(v) for v in x]
+    return x
+
+
+def dumps(x) -> str:
+    """Strict JSON text of ``x`` (numpy scalars converted, NaN/inf as null)."""
+    return json.dumps(_clean(json.loads(json.dumps(x, default=_default))), allow_nan=False,
+                      sort_keys=True)
+
+
+def _pool_records(lfset) -> list[tuple]:
+    """``(idx, key, event_id_json, lf, d, meta_json)`` of every pool event, by ``idx``."""
+    out = []
+    for p in np.argsort(lfset.index, kind="stable"):
+        ev = lfset.event(int(p))
+        out.append((ev.index, str(ev.id), dumps(ev.id), ev.lf, ev.d, dumps(ev.meta)))
+    return out
+
+
+def _pool_hash(records) -> str:
+    h = hashlib.sha256()
+    for idx, key, eid, lf, _d, meta in records:
+        h.update(f"{idx}\x1f{key}\x1f{eid}\x1f{float(lf).hex()}\x1f{meta}\x1e".encode())
+    return h.hexdigest()
