@@ -1,0 +1,113 @@
+"""The TOML file of ``pas study create``: reading and checking it, its oracle and LF peaks.
+
+The keys are described in :mod:`pas.cli.study`; every error is one line
+naming the key to fix (``lf.column``, ``oracle.timeout`` ...).
+"""
+
+from __future__ import annotations
+
+import tomllib
+from pathlib import Path
+
+__all__ = ["load_config", "load_peaks", "make_oracle"]
+
+_TOP = {"n_waves": int, "p_exp": float, "eps1": float, "eps2": float, "threshold": float,
+        "strategy": str, "seed": int, "max_hf": int, "batch_size": int, "lf": dict,
+        "settings": dict, "oracle": dict}
+_LF = {"file": str, "column": str, "id_column": str, "meta_columns": list}
+_REQUIRED = ("n_waves", "p_exp", "eps1", "lf")
+_ORACLE = {"command": list, "root": str, "timeout": float, "result_name": str, "table": str,
+           "id_column": str, "value_column": str}
+
+
+def _typed(value, kind, field, where):
+    ok = {int: lambda v: isinstance(v, int) and not isinstance(v, bool),
+          float: lambda v: isinstance(v, (int, float)) and not isinstance(v, bool),
+          str: lambda v: isinstance(v, str), dict: lambda v: isinstance(v, dict),
+          list: lambda v: isinstance(v, list) and all(isinstance(x, str) for x in v)}[kind](value)
+    if not ok:
+        what = {int: "an integer", float: "a number", str: "a string", dict: "a table",
+                list: "a list of strings"}[kind]
+        raise ValueError(f"{where}: {field} must be {what}, got {value!r}")
+    return float(value) if kind is float else value
+
+
+def load_config(path) -> dict:
+    """Read and check a study TOML file; returns the checked keys plus ``lf`` data."""
+    path = Path(path)
+    if not path.exists():
+        raise FileNotFoundError(f"config file {path} does not exist")
+    try:
+        raw = tomllib.loads(path.read_text(encoding="utf-8"))
+    except tomllib.TOMLDecodeError as exc:
+        raise ValueError(f"{path.name}: {exc}") from None
+    where = path.name
+    for key in raw:
+        if key not in _TOP:
+            raise ValueError(f"{where}: unknown key {key!r} (known: {', '.join(_TOP)})")
+    for key in _REQUIRED:
+        if key not in raw:
+            raise ValueError(f"{where}: {key} is missing")
+    cfg = {k: _typed(v, _TOP[k], k, where) for k, v in raw.items()}
+    lf = cfg["lf"]
+    for key in lf:
+        if key not in _LF:
+            raise ValueError(f"{where}: unknown key lf.{key} (known: {', '.join(_LF)})")
+    if "file" not in lf:
+        raise ValueError(f"{where}: lf.file is missing")
+    cfg["lf"] = {k: _typed(v, _LF[k], f"lf.{k}", where) for k, v in lf.items()}
+    strategy = cfg.setdefault("strategy", "pas")
+    if strategy not in ("pas", "as"):
+        raise ValueError(f"{where}: strategy must be 'pas' or 'as', got {strategy!r}")
+    cfg["lf"]["file"] = str((path.parent / cfg["lf"]["file"]))
+    if "oracle" in cfg:
+        cfg["oracle"] = _oracle_config(cfg["oracle"], path.parent, where)
+    if cfg.get("batch_size", 1) < 1:
+        raise ValueError(f"{where}: batch_size must be at least 1, got {cfg['batch_size']}")
+    return cfg
+
+
+def _oracle_config(o: dict, base: Path, where: str) -> dict:
+    for key in o:
+        if key not in _ORACLE:
+            raise ValueError(f"{where}: unknown key oracle.{key} (known: {', '.join(_ORACLE)})")
+    o = {k: _typed(v, _ORACLE[k], f"oracle.{k}", where) for k, v in o.items()}
+    if ("command" in o) == ("table" in o):
+        raise ValueError(f"{where}: oracle needs exactly one of oracle.command and oracle.table")
+    if "command" in o:
+        if not o["command"]:
+            raise ValueError(f"{where}: oracle.command must not be empty")
+        o["root"] = str((base / o.get("root", "runs")).resolve())
+        if o.get("timeout", 1) <= 0:
+            raise ValueError(f"{where}: oracle.timeout must be > 0, got {o['timeout']}")
+    else:
+        o["table"] = str((base / o["table"]).resolve())
+    try:
+        make_oracle(o)
+    except (ValueError, FileNotFoundError) as exc:
+        raise ValueError(f"{where}: oracle: {exc}") from None
+    return o
+
+
+def make_oracle(o: dict):
+    """The :mod:`pas.study.oracles` oracle described by a checked ``[oracle]`` table."""
+    from ..study.oracles import CommandOracle, TableOracle
+
+    if "command" in o:
+        return CommandOracle(o["command"], root=o["root"], timeout=o.get("timeout"),
+                             result_name=o.get("result_name", "result.txt"))
+    return TableOracle(o["table"], id_column=o.get("id_column", "id"),
+                       value_column=o.get("value_column", "hf"))
+
+
+_LF_NAMES = {"file": "lf.file", "column": "lf.column", "id_column": "lf.id_column",
+             "meta_columns": "lf.meta_columns"}
+
+
+def load_peaks(lf_cfg: dict):
+    """LF peaks, ids and meta from the file named in the ``[lf]`` table (:func:`pas.io.read_lf_peaks`)."""
+    from ..io import read_lf_peaks
+
+    return read_lf_peaks(lf_cfg["file"], column=lf_cfg.get("column"),
+                         id_column=lf_cfg.get("id_column"),
+                         meta_columns=lf_cfg.get("meta_columns", ()), names=_LF_NAMES)
