@@ -1,0 +1,180 @@
+"""Convergence figures of a screening result: MPM against the number of HF
+samples (paper Fig. 6/7, top) and the copula AIC per iteration (Fig. 17/18).
+
+See :mod:`pas.plotting.figures` for the conventions shared by all figures
+(``ax=None`` -> ``(fig, ax)``, units in the axis labels).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+
+from ._common import _fitted, _fmt, _history, _new_axes, _plot_with_band, _strategy_name, \
+    _with_unit
+
+__all__ = ["plot_mpm_convergence", "plot_aic"]
+
+_FP_COLOR = "tab:red"
+_FAIL_COLOR = "0.45"
+
+
+def _convergence_row(hist: pd.DataFrame):
+    """The first history row where the stopping criterion held, or None."""
+    if "stop" not in hist:
+        return None
+    stop = hist["stop"].map(lambda s: s is True or s == 1 or str(s).lower() == "true")
+    hits = hist[stop.to_numpy(dtype=bool)]
+    return None if hits.empty else hits.iloc[0]
+
+
+# -- MPM convergence (paper Fig. 6/7 top) -----------------------------------
+def plot_mpm_convergence(result, *, truth=None, ax=None, label=None, unit=None,
+                         quantity="MPM", color=None):
+    """MPM against the number of HF samples, with its U95 band (paper Fig. 6/7, top).
+
+    Parameters
+    ----------
+    result : ScreeningResult
+        From :func:`pas.run_pas` / :func:`pas.run_as` (or rebuilt from files,
+        see :func:`pas.cli.plot.load_result`).
+    truth : float, optional
+        True MPM, drawn as a horizontal line.
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw on; a new figure when omitted.
+    label : str, optional
+        Legend name of this result (default: strategy and final copula, e.g.
+        ``"PAS (gumbel)"``); use it when composing several results.
+    unit : str, optional
+        Unit of the HF load for the axis label (e.g. ``"m"``, ``"kN"``).
+    quantity : str, default "MPM"
+        Name of the predicted quantity for the axis label.
+    color : color, optional
+        Line colour (default: the Axes' next colour).
+
+    Returns
+    -------
+    fig : matplotlib.figure.Figure
+    ax : matplotlib.axes.Axes
+
+    Notes
+    -----
+    The x axis counts HF evaluations ``n_c`` (false positives included,
+    failed calls not).  The band is ``mpm_low``–``mpm_high`` of each fitted
+    iteration (the paper's z-draw band, Eq. 10).  False positives (HF = 0)
+    are marked at the MPM of the iteration they interrupted; the
+    convergence point is the first iteration meeting the App. C criterion.
+
+    Examples
+    --------
+    >>> import numpy as np, pas
+    >>> from pas.plotting import plot_mpm_convergence
+    >>> lf = np.random.default_rng(0).rayleigh(2.0, 3000)
+    >>> res = pas.run_pas(lf, lambda ev: 1.2 * ev.lf ** 1.1, n_waves=3000, p_exp=1e-2,
+    ...                   eps1=0.05, seed=1, n_bootstrap=0)
+    >>> fig, ax = plot_mpm_convergence(res, unit="m")
+    >>> ax.get_ylabel()
+    'MPM [m]'
+    """
+    hist = _history(result)
+    fitted = _fitted(hist)
+    if fitted.empty:
+        raise ValueError("result: no fitted iteration yet, nothing to plot")
+    fig, ax = _new_axes(ax)
+    name = _strategy_name(result, label)
+    n = fitted["n_hf"].to_numpy(dtype=float)
+    c = _plot_with_band(ax, n, fitted, "mpm", "mpm_low", "mpm_high", "-o", name=name,
+                        label="MPM", color=color, ms=2.5, lw=1.3)
+    running = pd.to_numeric(hist["mpm"], errors="coerce").ffill().bfill()
+    for status, marker, mcolor, text in (("false_positive", "x", _FP_COLOR, "false positive (HF = 0)"),
+                                         ("failed", "v", _FAIL_COLOR, "failed HF call")):
+        sel = (hist["status"] == status).to_numpy()
+        if sel.any():
+            ax.plot(hist["n_hf"].to_numpy(dtype=float)[sel], running.to_numpy(dtype=float)[sel],
+                    ls="none", marker=marker, ms=6, mew=1.5, color=mcolor,
+                    label=f"{name}: {text} ×{int(sel.sum())}")
+    conv = _convergence_row(hist)
+    if conv is not None:
+        ax.axvline(float(conv["n_hf"]), color=c, lw=0.9, ls=":")
+        ax.plot([float(conv["n_hf"])], [float(conv["mpm"])], marker="*", ms=13, color=c,
+                mec="k", mew=0.6, ls="none",
+                label=f"{name}: converged at {int(conv['n_hf'])} HF samples, "
+                      f"MPM {_fmt(float(conv['mpm']), unit)}")
+    if truth is not None:
+        ax.axhline(float(truth), color="k", lw=1.2, ls="--", label=f"true MPM {_fmt(float(truth), unit)}")
+    ax.set_xlabel("number of HF samples $n_c$ [-]")
+    ax.set_ylabel(_with_unit(quantity, unit))
+    ax.grid(True, lw=0.3, alpha=0.5)
+    ax.legend(fontsize=7, loc="best")
+    return fig, ax
+
+
+# -- copula selection (paper Fig. 17 and 18) --------------------------------
+def plot_aic(result, *, ax=None, axes=None):
+    """AIC of every copula candidate per iteration and the family selected (Fig. 17/18).
+
+    Parameters
+    ----------
+    result : ScreeningResult
+        A PAS result: its history has ``aic_<family>`` and ``family`` columns.
+    ax : matplotlib.axes.Axes, optional
+        Draw a single panel: the AIC curves, the selected family marked by
+        filled markers on its curve.
+    axes : sequence of two Axes, optional
+        Draw two panels: AIC curves (top) and the selected family per
+        iteration (bottom).  When neither ``ax`` nor ``axes`` is given, a new
+        two-panel figure is made.
+
+    Returns
+    -------
+    fig : matplotlib.figure.Figure
+    ax : matplotlib.axes.Axes or ndarray of two Axes
+        The single Axes with ``ax=``, otherwise both panels.
+    """
+    hist = _history(result)
+    fitted = _fitted(hist)
+    aic_cols = [c for c in hist.columns if c.startswith("aic_")]
+    if not aic_cols or fitted.empty:
+        raise ValueError("result: no AIC in the history (plot_aic needs a fitted PAS result)")
+    if ax is not None and axes is not None:
+        raise ValueError("give ax (one panel) or axes (two panels), not both")
+    if ax is not None:
+        fig, top, bottom = ax.figure, ax, None
+    elif axes is not None:
+        top, bottom = axes
+        fig = top.figure
+    else:
+        import matplotlib.pyplot as plt
+
+        fig, (top, bottom) = plt.subplots(2, 1, figsize=(7.0, 6.0), sharex=True,
+                                          height_ratios=(2.2, 1.0), layout="constrained")
+    n = fitted["n_hf"].to_numpy(dtype=float)
+    families = [c[4:] for c in aic_cols]
+    selected = fitted["family"].astype(str).to_numpy()
+    colors = {}
+    for fam, col in zip(families, aic_cols):
+        aic = fitted[col].to_numpy(dtype=float)
+        (line,) = top.plot(n, aic, "-", lw=1.2, label=f"{fam}")
+        colors[fam] = line.get_color()
+        chosen = selected == fam
+        if chosen.any():
+            top.plot(n[chosen], aic[chosen], "o", ms=3.5, color=line.get_color())
+    top.plot([], [], "o", ms=3.5, color="0.3", label="selected family (ΔAIC ≥ 4 to switch)")
+    top.set_ylabel("AIC [-] (lower is better)")
+    top.grid(True, lw=0.3, alpha=0.5)
+    top.legend(fontsize=7, ncol=2, loc="best")
+    if bottom is None:
+        top.set_xlabel("number of HF samples $n_c$ [-]")
+        return fig, top
+    idx = {f: i for i, f in enumerate(families)}
+    for fam in families:
+        sel = selected == fam
+        if sel.any():
+            bottom.plot(n[sel], np.full(sel.sum(), idx[fam]), "s", ms=4, color=colors[fam],
+                        ls="none", label=f"{fam} ×{int(sel.sum())}")
+    bottom.set_yticks(range(len(families)), families)
+    bottom.set_ylim(-0.6, len(families) - 0.4)
+    bottom.set_ylabel("selected copula")
+    bottom.set_xlabel("number of HF samples $n_c$ [-]")
+    bottom.grid(True, axis="x", lw=0.3, alpha=0.5)
+    return fig, np.array([top, bottom])

@@ -1,0 +1,288 @@
+"""Distribution figures of a screening result: the predicted HF exceedance
+distribution (paper Fig. 6/7, bottom) and the LF–HF scatter with the fitted
+copula (Fig. 4/16/19), plus :func:`conditional_quantile_curves` behind it.
+
+No statistics are re-implemented here: the scatter figure refits the
+strategy's copula and marginals from :attr:`ScreeningResult.pairs` with
+:mod:`pas.copulas`, :func:`pas.marginals.fit_marginal` and
+:func:`pas.strategies.pas.remove_outliers`.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+
+from ._common import _fmt, _new_axes, _plot_with_band, _strategy_name, _with_unit
+
+__all__ = ["plot_distribution", "plot_scatter", "conditional_quantile_curves"]
+
+
+def _lf_curve(lf):
+    """``(d, l)`` from a tuple/array pair or an object with ``d`` and ``lf`` (an LFSet)."""
+    if hasattr(lf, "d") and hasattr(lf, "lf"):
+        d, values = lf.d, lf.lf
+    else:
+        try:
+            d, values = lf
+        except (TypeError, ValueError):
+            raise ValueError("lf: expected a (d, l) pair of arrays or an LFSet") from None
+    d, values = np.asarray(d, dtype=float), np.asarray(values, dtype=float)
+    if d.shape != values.shape or d.ndim != 1:
+        raise ValueError(f"lf: d and l must be 1-D of equal length, got {d.shape} and {values.shape}")
+    return d, values
+
+
+def _truth_curve(truth):
+    try:
+        d, h = truth
+    except (TypeError, ValueError):
+        raise ValueError("truth: expected a (d, h) pair of arrays") from None
+    d, h = np.asarray(d, dtype=float), np.asarray(h, dtype=float)
+    if d.shape != h.shape or d.ndim != 1:
+        raise ValueError(f"truth: d and h must be 1-D of equal length, got {d.shape} and {h.shape}")
+    return d, h
+
+
+# -- exceedance distribution (paper Fig. 6/7 bottom) ------------------------
+def plot_distribution(result, *, lf=None, truth=None, ax=None, label=None, unit=None,
+                      quantity="HF load", lf_label="LF indicator", color=None,
+                      show_samples=True):
+    """Predicted HF exceedance distribution h*(d) with its U95 band (paper Fig. 6/7, bottom).
+
+    Parameters
+    ----------
+    result : ScreeningResult
+        Uses ``result.distribution`` (``exceedance_probability``, ``h_mean``,
+        ``h_low``, ``h_high``), ``result.pairs``, ``result.p_exp`` and
+        ``result.mpm``/``mpm_band``.
+    lf : (d, l) tuple of arrays or LFSet, optional
+        The LF indicator distribution to draw for reference (same axis; it
+        is usually a different quantity, see ``lf_label``).
+    truth : (d, h) tuple of arrays, optional
+        The true HF exceedance distribution (e.g. from a brute-force HF
+        Monte-Carlo run).
+    ax : matplotlib.axes.Axes, optional
+    label : str, optional
+        Legend name of this result (default: strategy and copula).
+    unit : str, optional
+        Unit of the HF load (and of the LF curve if drawn) for the axis label.
+    quantity : str, default "HF load"
+        Name of the quantity on the value axis.
+    lf_label : str, default "LF indicator"
+        Legend text of the LF curve.
+    color : color, optional
+    show_samples : bool, default True
+        Draw the HF samples at the LF exceedance probability of their event
+        (the order-statistics position AS assumes; PAS does not).
+
+    Returns
+    -------
+    fig, ax
+
+    Notes
+    -----
+    The exceedance axis is logarithmic and reversed, so rarer events lie to
+    the right; ``P_exp`` is a vertical line and the MPM with its U95 band an
+    error bar on it.
+
+    Examples
+    --------
+    >>> import numpy as np, pas
+    >>> from pas.plotting import plot_distribution
+    >>> lf = np.random.default_rng(0).rayleigh(2.0, 3000)
+    >>> res = pas.run_pas(lf, lambda ev: 1.2 * ev.lf ** 1.1, n_waves=3000, p_exp=1e-2,
+    ...                   eps1=0.05, seed=1, n_bootstrap=0)
+    >>> fig, ax = plot_distribution(res, unit="m")
+    >>> ax.get_xscale()
+    'log'
+    """
+    dist = getattr(result, "distribution", None)
+    if not isinstance(dist, pd.DataFrame) or dist.empty:
+        raise ValueError("result: no predicted distribution (no fitted iteration yet)")
+    fig, ax = _new_axes(ax)
+    name = _strategy_name(result, label)
+    d = dist["exceedance_probability"].to_numpy(dtype=float)
+    h = dist["h_mean"].to_numpy(dtype=float)
+    c = _plot_with_band(ax, d, dist, "h_mean", "h_low", "h_high", "-", name=name,
+                        label="mean $h^*(d)$", color=color, lw=1.6)
+    if lf is not None:
+        d_l, l_v = _lf_curve(lf)
+        ax.plot(d_l, l_v, "-", color="0.5", lw=1.0, label=lf_label)
+    pairs = getattr(result, "pairs", None)
+    if show_samples and isinstance(pairs, pd.DataFrame) and {"d", "hf"} <= set(pairs.columns) \
+            and not pairs.empty:
+        ax.plot(pairs["d"].to_numpy(dtype=float), pairs["hf"].to_numpy(dtype=float), "o", ms=4,
+                mfc="none", mew=1.0, color=c,
+                label=f"{name}: HF samples at their LF exceedance (n = {len(pairs)})")
+    if truth is not None:
+        d_t, h_t = _truth_curve(truth)
+        ax.plot(d_t, h_t, "k--", lw=1.2, label="truth (HF Monte-Carlo)")
+    p_exp = float(result.p_exp)
+    ax.axvline(p_exp, color="0.3", lw=0.8, ls=":", label=f"$P_{{exp}}$ = {p_exp:.3g}")
+    mpm = float(result.mpm)
+    if np.isfinite(mpm):
+        lo, hi = (float(x) for x in result.mpm_band)
+        yerr = None
+        if np.isfinite(lo) and np.isfinite(hi):
+            yerr = [[max(mpm - lo, 0.0)], [max(hi - mpm, 0.0)]]
+        ax.errorbar([p_exp], [mpm], yerr=yerr, fmt="D", ms=6, color=c, mec="k", mew=0.6,
+                    capsize=4, label=f"{name}: MPM {_fmt(mpm, unit)}"
+                                     + (f" (U95 {lo:.4g}–{hi:.4g})" if yerr is not None else ""))
+    # far from P_exp the Weibull marginals may extrapolate the mean curve below every
+    # observed load (even below 0); keep the view on the data
+    seen = [h[d <= 10 * p_exp]]
+    if isinstance(pairs, pd.DataFrame) and "hf" in pairs:
+        seen.append(pairs["hf"].to_numpy(dtype=float))
+    if truth is not None:
+        seen.append(_truth_curve(truth)[1])
+    seen = np.concatenate([np.ravel(x) for x in seen])
+    seen = seen[np.isfinite(seen)]
+    if seen.size and np.nanmin(h) < seen.min():
+        lo, hi = ax.get_ylim()
+        span = hi - min(seen.min(), 0.0)
+        ax.set_ylim(max(lo, min(seen.min(), 0.0) - 0.05 * span), hi)
+    ax.set_xscale("log")
+    if not ax.xaxis_inverted():
+        ax.invert_xaxis()
+    ax.set_xlabel("exceedance probability per wave $d$ [-]")
+    ax.set_ylabel(_with_unit(quantity, unit))
+    ax.grid(True, which="both", lw=0.3, alpha=0.5)
+    ax.legend(fontsize=7, loc="upper left")
+    return fig, ax
+
+
+# -- LF–HF scatter with the fitted copula (paper Fig. 4, 16, 19) ------------
+def conditional_quantile_curves(result, lf_grid, quantiles=(0.05, 0.5, 0.95), *,
+                                upper_tail=None, outlier_k=3.0):
+    """Quantiles of HF given LF in real space from a PAS result's final model.
+
+    Refits what the strategy fitted in its last iteration: temporary outlier
+    removal (:func:`pas.strategies.pas.remove_outliers`), the selected
+    family on the pseudo-observations (:func:`pas.copulas.fit_copula`) and
+    both Weibull marginals (:func:`pas.marginals.fit_marginal`); then
+    ``h_q(l) = F_h⁻¹(C⁻¹_{V|U}(q | F_l(l)))``.
+
+    Parameters
+    ----------
+    result : ScreeningResult
+        A PAS result (``result.family`` set, ``result.pairs`` with ``lf``, ``hf``).
+    lf_grid : array-like
+        LF values at which to evaluate the curves.
+    quantiles : sequence of float, default (0.05, 0.5, 0.95)
+        Conditional probabilities, each in (0, 1).
+    upper_tail : bool, optional
+        Weibull upper-tail mode; default as PAS decides it: on when the run
+        had no LF threshold (first history row's ``threshold`` is empty).
+    outlier_k : float, default 3.0
+        Residual limit of the outlier removal (the PAS default).
+
+    Returns
+    -------
+    dict of float -> ndarray
+        One HF curve per quantile, aligned with ``lf_grid``.
+    """
+    from ..copulas import PAPER_FAMILIES, EXTRA_FAMILIES, conditional_quantile, fit_copula, \
+        pseudo_observations
+    from ..marginals import fit_marginal
+    from ..strategies.pas import EPS, remove_outliers
+
+    family = getattr(result, "family", None)
+    if family not in PAPER_FAMILIES + EXTRA_FAMILIES:
+        raise ValueError(f"result.family is {family!r}: only a PAS result has a fitted copula")
+    pairs = result.pairs
+    lf, hf = pairs["lf"].to_numpy(dtype=float), pairs["hf"].to_numpy(dtype=float)
+    keep = remove_outliers(lf, hf, k=outlier_k)
+    lf, hf = lf[keep], hf[keep]
+    if upper_tail is None:
+        thr = result.history["threshold"].iloc[0] if "threshold" in result.history else None
+        upper_tail = thr is None or pd.isna(thr)
+    fit = fit_copula(family, *pseudo_observations(lf, hf))
+    f_l = fit_marginal(lf, upper_tail=upper_tail)
+    f_h = fit_marginal(hf, upper_tail=upper_tail)
+    u = np.clip(f_l.cdf(np.asarray(lf_grid, dtype=float)), EPS, 1 - EPS)
+    out = {}
+    for q in quantiles:
+        if not 0.0 < q < 1.0:
+            raise ValueError(f"quantiles: {q} is not in (0, 1)")
+        v = np.clip(conditional_quantile(fit, u, np.full_like(u, q)), EPS, 1 - EPS)
+        out[float(q)] = f_h.ppf(v)
+    return out
+
+
+def plot_scatter(lf, hf, *, result=None, ax=None, lf_unit=None, unit=None,
+                 lf_label="LF indicator peak", hf_label="HF peak",
+                 quantiles=(0.05, 0.5, 0.95), upper_tail=None, q_tail=0.9, label="all events"):
+    """Scatter of matched LF–HF peaks with Kendall's τ and tail dependence (paper Fig. 16).
+
+    Parameters
+    ----------
+    lf, hf : array-like, shape (n,)
+        Matched LF indicator and HF load peaks (e.g. a validation Monte-Carlo
+        run); HF = 0 marks an event without impact.
+    result : ScreeningResult, optional
+        Highlights the selected LF–HF pairs and, for a PAS result, draws the
+        final fitted copula in real space: the conditional median and the
+        5–95 % quantiles of HF given LF
+        (:func:`conditional_quantile_curves`), over the LF range where the
+        copula is defined (``l ≥ min(l_sel)``).
+    ax : matplotlib.axes.Axes, optional
+    lf_unit, unit : str, optional
+        Units of the LF indicator (x axis) and the HF load (y axis).
+    lf_label, hf_label : str
+        Names of the two quantities for the axis labels.
+    quantiles : sequence of three floats, default (0.05, 0.5, 0.95)
+        Lower, middle and upper conditional quantile drawn.
+    upper_tail : bool, optional
+        Passed to :func:`conditional_quantile_curves`.
+    q_tail : float, default 0.9
+        Level of the empirical tail dependence
+        (:func:`pas.copulas.empirical_tail_dependence`).
+    label : str, default "all events"
+        Legend name of the ``lf``/``hf`` points.
+
+    Returns
+    -------
+    fig, ax
+
+    Notes
+    -----
+    τ, λU and λL are computed on all the given pairs and shown in the title
+    and the legend.  Large samples are rasterised in vector output.
+    """
+    from ..copulas import empirical_tail_dependence, kendall_tau
+
+    x, y = np.asarray(lf, dtype=float), np.asarray(hf, dtype=float)
+    if x.shape != y.shape or x.ndim != 1:
+        raise ValueError(f"lf and hf must be 1-D of equal length, got {x.shape} and {y.shape}")
+    ok = np.isfinite(x) & np.isfinite(y)
+    x, y = x[ok], y[ok]
+    if x.size < 3:
+        raise ValueError(f"lf, hf: need at least 3 finite pairs, got {x.size}")
+    fig, ax = _new_axes(ax, figsize=(6.0, 5.0))
+    tau = kendall_tau(x, y)
+    lam_u, lam_l = empirical_tail_dependence(x, y, q=q_tail)
+    stats_txt = f"τ = {tau:.2f}, $λ_U$ = {lam_u:.2f}, $λ_L$ = {lam_l:.2f}"
+    ax.scatter(x, y, s=4, color="0.6", alpha=0.5, lw=0, rasterized=x.size > 2000,
+               label=f"{label} (n = {x.size}); {stats_txt}")
+    if result is not None:
+        pairs = result.pairs
+        ax.plot(pairs["lf"], pairs["hf"], "o", ms=5, mfc="none", mew=1.2, color="tab:red",
+                label=f"selected HF samples (n = {len(pairs)} true positives)")
+        family = getattr(result, "family", None)
+        if isinstance(family, str) and family and len(pairs) >= 4:
+            lo_q, mid_q, hi_q = quantiles
+            l_sel = pairs["lf"].to_numpy(dtype=float)
+            grid = np.linspace(l_sel.min(), max(l_sel.max(), x.max()), 200)
+            curves = conditional_quantile_curves(result, grid, (lo_q, mid_q, hi_q),
+                                                 upper_tail=upper_tail)
+            ax.fill_between(grid, curves[lo_q], curves[hi_q], color="tab:blue", alpha=0.2, lw=0,
+                            label=f"{family} copula: {lo_q:.0%}–{hi_q:.0%} of HF given LF")
+            ax.plot(grid, curves[mid_q], "-", color="tab:blue", lw=1.5,
+                    label=f"{family} copula: conditional {'median' if mid_q == 0.5 else f'{mid_q:.0%}'}")
+    ax.set_xlabel(_with_unit(lf_label, lf_unit))
+    ax.set_ylabel(_with_unit(hf_label, unit))
+    ax.set_title(stats_txt, fontsize=9)
+    ax.grid(True, lw=0.3, alpha=0.5)
+    ax.legend(fontsize=7, loc="upper left")
+    return fig, ax

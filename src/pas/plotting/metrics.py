@@ -1,0 +1,108 @@
+"""Validation-metrics figure: grouped bars of M1, M2, M3 per case (paper Fig. 8)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+
+__all__ = ["plot_metrics"]
+
+# -- validation metrics (paper Fig. 8) --------------------------------------
+_METRICS = ("M1", "M2", "M3")
+_METRIC_LABEL = {
+    "M1": "$M_1 = n_c/n_w$ [%] (HF cost)",
+    "M2": "$M_2$ [%] (MPM error)",
+    "M3": "$M_3$ [%] (distribution error)",
+}
+
+
+def plot_metrics(table, *, ax=None, axes=None, percent=True):
+    """Grouped bars of the validation metrics M1, M2, M3 per case (paper Fig. 8).
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        Columns ``case``, ``M1``, ``M2``, ``M3`` and optionally ``strategy``
+        (one bar per strategy within each case).  Metrics are fractions
+        (``pas.metrics``); missing values are left blank.
+    ax : matplotlib.axes.Axes, optional
+        Draw all three metrics on one panel, grouped per case (bars per
+        metric × strategy).
+    axes : sequence of three Axes, optional
+        One panel per metric.  When neither ``ax`` nor ``axes`` is given, a
+        new three-panel figure is made (the metrics have different scales).
+    percent : bool, default True
+        Show the metrics in percent.
+
+    Returns
+    -------
+    fig : matplotlib.figure.Figure
+    ax : matplotlib.axes.Axes or ndarray of three Axes
+    """
+    if not isinstance(table, pd.DataFrame):
+        table = pd.DataFrame(table)
+    missing = {"case", *_METRICS} - set(table.columns)
+    if missing:
+        raise ValueError(f"table lacks the column(s) {sorted(missing)}")
+    if table.empty:
+        raise ValueError("table is empty")
+    if ax is not None and axes is not None:
+        raise ValueError("give ax (one panel) or axes (three panels), not both")
+    tab = table.copy()
+    if "strategy" not in tab:
+        tab["strategy"] = ""
+    tab["strategy"] = tab["strategy"].fillna("").astype(str)
+    tab["case"] = tab["case"].astype(str)
+    cases = list(dict.fromkeys(tab["case"]))
+    strategies = list(dict.fromkeys(tab["strategy"]))
+    scale = 100.0 if percent else 1.0
+    x = np.arange(len(cases))
+
+    def value(case, strat, metric):
+        rows = tab[(tab["case"] == case) & (tab["strategy"] == strat)]
+        return float(pd.to_numeric(rows[metric], errors="coerce").mean()) * scale if len(rows) else np.nan
+
+    def label_of(strat, metric=None):
+        parts = [p for p in (metric, strat.upper() if strat else "") if p]
+        return " ".join(parts) or "value"
+
+    if ax is not None:
+        fig = ax.figure
+        series = [(m, s) for m in _METRICS for s in strategies]
+        width = 0.8 / len(series)
+        for k, (m, s) in enumerate(series):
+            vals = [value(c, s, m) for c in cases]
+            ax.bar(x - 0.4 + width * (k + 0.5), vals, width, label=label_of(s, m),
+                   color=f"C{_METRICS.index(m)}", alpha=1.0 - 0.35 * strategies.index(s) / max(1, len(strategies)),
+                   edgecolor="k", lw=0.4)
+        ax.axhline(0.0, color="k", lw=0.6)
+        ax.set_xticks(x, cases)
+        ax.set_xlabel("validation case")
+        ax.set_ylabel("metric [%]" if percent else "metric [-]")
+        ax.grid(True, axis="y", lw=0.3, alpha=0.5)
+        ax.legend(fontsize=7, ncol=len(strategies))
+        return fig, ax
+    if axes is None:
+        import matplotlib.pyplot as plt
+
+        fig, axes = plt.subplots(3, 1, figsize=(7.0, 7.0), sharex=True, layout="constrained")
+    else:
+        axes = list(axes)
+        if len(axes) != 3:
+            raise ValueError(f"axes: expected three Axes (M1, M2, M3), got {len(axes)}")
+        fig = axes[0].figure
+    width = 0.8 / len(strategies)
+    for panel, m in zip(axes, _METRICS):
+        for k, s in enumerate(strategies):
+            vals = [value(c, s, m) for c in cases]
+            panel.bar(x - 0.4 + width * (k + 0.5), vals, width, label=label_of(s) if s else m,
+                      color=f"C{k}", edgecolor="k", lw=0.4)
+        panel.axhline(0.0, color="k", lw=0.6)
+        label = _METRIC_LABEL[m] if percent else _METRIC_LABEL[m].replace("[%]", "[-]")
+        panel.set_ylabel(label, fontsize=8)
+        panel.grid(True, axis="y", lw=0.3, alpha=0.5)
+        if any(strategies):
+            panel.legend(fontsize=7, ncol=len(strategies))
+    axes[-1].set_xticks(x, cases)
+    axes[-1].set_xlabel("validation case")
+    return fig, np.asarray(axes)
