@@ -112,3 +112,21 @@ def test_empirical_tail_dependence_comonotone_and_independent():
 def test_unknown_family_rejected():
     with pytest.raises(ValueError, match="unknown copula family"):
         fit_copula("gumbal", [0.2, 0.5, 0.7], [0.3, 0.4, 0.8])
+
+
+def test_frank_inverse_accurate_at_strong_dependence():
+    # forward Frank h-function in 60-digit decimal arithmetic as the reference
+    from decimal import Decimal, getcontext
+
+    getcontext().prec = 60
+    th = 34.0
+    b = pv.Bicop(family=pv.BicopFamily.frank, parameters=np.array([[th]]))
+    rng = np.random.default_rng(4)
+    u = np.r_[rng.uniform(0.9, 1 - 1e-6, 30), rng.uniform(1e-6, 0.1, 10)]
+    r = rng.uniform(1e-6, 1 - 1e-6, 40)
+    v = conditional_quantile(b, u, r)
+    T = Decimal(th)
+    for ui, vi, ri in zip(u, v, r):
+        a, bb = (-T * Decimal(ui)).exp(), (-T * Decimal(vi)).exp()
+        h = a * (bb - 1) / ((-T).exp() - 1 + (a - 1) * (bb - 1))
+        assert abs(float(h) - ri) < 1e-8

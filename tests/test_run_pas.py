@@ -211,3 +211,48 @@ def test_failed_initial_samples_are_replaced():
     res = pas.run_pas(lf, oracle, n_waves=500, p_exp=0.01, eps1=0.01, seed=0, max_hf=8,
                       n_bootstrap=0)
     assert res.n_failed == 4 and res.n_hf == 8 and np.isfinite(res.mpm)
+
+
+def _fp_band_problem():
+    """Impacts only for the top 40 LF peaks and the 5 lowest pool peaks: a band of
+    false positives in between that MD keeps probing."""
+    n_w = 5000
+    lf = np.sort(np.random.default_rng(0).rayleigh(3.0, n_w))[::-1]
+    pool = np.flatnonzero(lf > 5.0)
+    hf = np.zeros(n_w)
+    hf[:40] = 10 * lf[:40]
+    hf[pool[-5:]] = 1.0 + np.linspace(0, 0.1, 5)
+    return lf, hf, n_w
+
+
+def test_adaptive_threshold_stops_false_positives_eating_the_budget():
+    lf, hf, n_w = _fp_band_problem()
+    res = pas.run_pas(lf, lambda ev: float(hf[ev.index]), n_waves=n_w, p_exp=2e-3, eps1=0.01,
+                      threshold=5.0, seed=0, max_hf=60, n_bootstrap=0)
+    thresholds = res.history.threshold.dropna()
+    assert thresholds.max() > 5.0  # the §2.4 rule fired
+    assert res.n_false_positive < 30
+    off = pas.run_pas(lf, lambda ev: float(hf[ev.index]), n_waves=n_w, p_exp=2e-3, eps1=0.01,
+                      threshold=5.0, seed=0, max_hf=60, n_bootstrap=0, adaptive_threshold=False)
+    assert off.n_false_positive > 50  # without it the band eats the budget
+
+
+def test_all_false_positives_do_not_exhaust_the_pool():
+    lf = np.random.default_rng(1).rayleigh(3.0, 5000)
+    pool = int((lf > 6.0).sum())
+    res = pas.run_pas(lf, lambda ev: 0.0, n_waves=5000, p_exp=5e-3, eps1=0.01, threshold=6.0,
+                      seed=0, n_bootstrap=0)
+    assert res.n_false_positive == res.n_hf < pool / 2
+    assert not res.converged and np.isnan(res.mpm)
+
+
+def test_short_range_warns_and_cannot_converge():
+    n_w = 10000
+    lf = np.random.default_rng(0).rayleigh(3.0, n_w)
+    order = np.argsort(-lf)
+    hf = np.zeros(n_w)
+    hf[order[:120]] = 10 * lf[order[:120]]  # impacts end at d = 0.012 < 2 P_exp
+    with pytest.warns(UserWarning, match="short of"):
+        res = pas.run_pas(lf, lambda ev: float(hf[ev.index]), n_waves=n_w, p_exp=0.01,
+                          eps1=1e3, threshold=6.0, seed=0, max_hf=40, n_bootstrap=0)
+    assert not res.converged and res.history.range_short.any()

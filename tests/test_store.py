@@ -182,3 +182,19 @@ def test_sigkill_resume_loses_nothing_and_reruns_nothing(tmp_path):
     assert list(res.history["event_id"]) == list(ref.history["event_id"])
     np.testing.assert_array_equal(res.history["mpm"], ref.history["mpm"])
     assert sorted(open(ref_log).read().split()) == sorted(completed)
+
+
+def test_resume_after_unusable_indicator_warning(tmp_path):
+    # a fit with tau <= 0 during replay must not break the resume
+    import warnings
+
+    rng = np.random.default_rng(0)
+    lf = rng.rayleigh(3.0, 3000)
+    hf = 1.0 / lf + rng.uniform(0, 0.01, 3000)
+    kw = dict(n_waves=3000, p_exp=1e-2, eps1=1e-9, seed=0, max_hf=12, n_bootstrap=0,
+              study=str(tmp_path / "s.db"))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        first = pas.run_pas(lf, lambda ev: float(hf[ev.index]), **kw)
+        again = pas.run_pas(lf, lambda ev: float(hf[ev.index]), **kw)
+    assert again.mpm == first.mpm and again.n_hf == first.n_hf == 12

@@ -89,7 +89,8 @@ n_workers : int, optional
     must be picklable).
 **settings
     Strategy settings ({settings}) and study settings (``k1``, ``k2``,
-    ``max_failures``, ``stop_on_convergence``, ``adaptive_threshold``).
+    ``max_failures``, ``stop_on_convergence``, ``adaptive_threshold``,
+    ``threshold_step``, ``fp_run``).
 """
 """The parameters :func:`run_pas` and :func:`run_as` share, written once; :func:`_documented`
 fills in what differs."""
@@ -121,7 +122,8 @@ def _run(strategy, lf_peaks, oracle, *, study, batch_size, callback, pending, ex
 @_documented(seeded="draws", max_hf="", batch="", settings="""\
 :class:`~pas.strategies.pas.PAS`: ``families``,
 ``z``, ``delta_aic``, ``exclude_at_bound``, ``upper_tail``,
-``outlier_k``, ``n_bootstrap``""")
+``outlier_k``, ``n_bootstrap``, ``skip_unsplittable``, ``marginals_from``,
+``impact_model``""")
 def run_pas(lf_peaks, oracle, *, n_waves, p_exp, eps1, eps2=0.1, threshold=None, seed=None,
             max_hf=None, ids=None, meta=None, batch_size=1, callback=None, study=None,
             pending="resubmit", executor=None, n_workers=None, **settings) -> ScreeningResult:

@@ -109,7 +109,8 @@ def _at_bound(bicop: pv.Bicop, name: str) -> bool:
     if name.startswith("gaussian") or name.startswith("student"):
         # |ρ| = 1 is degenerate; ν at either end is the boundary case of SPEC §8.
         return bool(np.any(np.abs(p - lo) < tol) or np.any(np.abs(p - hi) < tol))
-    # one-parameter Archimedean: the lower bound is independence, a legitimate fit
+    # one-parameter families: the lower bound is independence (Clayton, Gumbel, Joe)
+    # or strong negative dependence (Frank) — neither is the boundary case of SPEC §8
     return bool(np.any(np.abs(p - hi) < tol))
 
 
@@ -193,8 +194,10 @@ def _hinv1(fam, p, bicop, u, r):
         th = p[0]
         if abs(th) < 1e-8:
             return np.broadcast_to(r, np.broadcast_shapes(u.shape, r.shape)).copy()
-        a = np.exp(-th * u)
-        return -np.log1p(r * np.expm1(-th) / (r + (1 - r) * a)) / th
+        # algebraically −ln(1 + r(e^{−θ}−1)/(r + (1−r)e^{−θu}))/θ, rearranged so that
+        # nothing cancels for large θ and u near 1
+        return (u - np.log((1 - r) + r * np.exp(-th * (1 - u))) / th
+                + np.log(r + (1 - r) * np.exp(-th * u)) / th)
     if fam == pv.BicopFamily.gumbel and p[0] > 1 + 1e-6:
         # h(v|u) = r with x = −ln u, w = ((−ln u)^θ + (−ln v)^θ)^{1/θ} gives
         # w + (θ−1) ln w = x + (θ−1) ln x − ln r, solved by w = (θ−1) ω(s) with

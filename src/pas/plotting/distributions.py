@@ -175,31 +175,32 @@ def conditional_quantile_curves(result, lf_grid, quantiles=(0.05, 0.5, 0.95), *,
         Weibull upper-tail mode; default as PAS decides it: on when the run
         had no LF threshold (first history row's ``threshold`` is empty).
     outlier_k : float, default 3.0
-        Residual limit of the outlier removal (the PAS default).
+        Residual limit of the outlier removal when the result does not
+        record its settings (a result's own ``settings`` take precedence,
+        as do its ``upper_tail`` and ``marginals_from``).
 
     Returns
     -------
     dict of float -> ndarray
         One HF curve per quantile, aligned with ``lf_grid``.
     """
-    from ..copulas import PAPER_FAMILIES, EXTRA_FAMILIES, conditional_quantile, fit_copula, \
-        pseudo_observations
-    from ..marginals import fit_marginal
-    from ..strategies.pas import EPS, remove_outliers
+    from ..copulas import EXTRA_FAMILIES, PAPER_FAMILIES, conditional_quantile
+    from ..strategies.pas import EPS, fit_model
 
     family = getattr(result, "family", None)
     if family not in PAPER_FAMILIES + EXTRA_FAMILIES:
         raise ValueError(f"result.family is {family!r}: only a PAS result has a fitted copula")
     pairs = result.pairs
     lf, hf = pairs["lf"].to_numpy(dtype=float), pairs["hf"].to_numpy(dtype=float)
-    keep = remove_outliers(lf, hf, k=outlier_k)
-    lf, hf = lf[keep], hf[keep]
+    used = (getattr(result, "settings", None) or {}).get("strategy_settings", {})
+    if upper_tail is None:
+        upper_tail = used.get("upper_tail")
     if upper_tail is None:
         thr = result.history["threshold"].iloc[0] if "threshold" in result.history else None
         upper_tail = thr is None or pd.isna(thr)
-    fit = fit_copula(family, *pseudo_observations(lf, hf))
-    f_l = fit_marginal(lf, upper_tail=upper_tail)
-    f_h = fit_marginal(hf, upper_tail=upper_tail)
+    fit, f_l, f_h = fit_model(lf, hf, family, outlier_k=used.get("outlier_k", outlier_k),
+                              upper_tail=upper_tail,
+                              marginals_from=used.get("marginals_from", "all"))
     u = np.clip(f_l.cdf(np.asarray(lf_grid, dtype=float)), EPS, 1 - EPS)
     out = {}
     for q in quantiles:

@@ -60,8 +60,9 @@ def value_at_exceedance(d, values, p):
 
     ``d`` must be ascending (as returned by :func:`exceedance_probabilities`);
     ``values`` may be 1-D (one distribution) or 2-D with distributions in rows.
-    ``p`` outside ``[d[0], d[-1]]`` is clamped to the end value; callers that
-    care check :func:`probability_in_range` first.
+    ``p`` outside ``[d[0], d[-1]]`` is clamped to the end value; callers
+    compare ``p`` with ``d[-1]`` first where that matters (the study does, and
+    refuses to converge on a clamped MPM).
     """
     ln_d = np.log(np.asarray(d, dtype=float))
     ln_p = np.log(np.asarray(p, dtype=float))

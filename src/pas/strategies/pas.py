@@ -66,6 +66,7 @@ __all__ = [
     "conditioning_set",
     "draw_conditional_hf",
     "impact_probability",
+    "fit_model",
     "hf_distribution",
 ]
 
@@ -123,6 +124,21 @@ def impact_probability(lf_true, lf_false):
     mu, sd = x.mean(), x.std() or 1.0
     model = LogisticRegression(C=1.0).fit(((x - mu) / sd)[:, None], y)
     return lambda l: model.predict_proba(((np.asarray(l, float) - mu) / sd)[:, None])[:, 1]
+
+
+def fit_model(lf, hf, family: str, *, outlier_k: float = 3.0, upper_tail: bool = True,
+              marginals_from: str = "all"):
+    """Steps 7–9 for one copula family: ``(copula fit, LF marginal, HF marginal)``.
+
+    Outliers (Step 7) leave the copula fit; the marginals see all pairs or the
+    kept ones (``marginals_from``, module docs).  Used to redraw a result's
+    final model (:func:`pas.plotting.conditional_quantile_curves`).
+    """
+    lf, hf = np.asarray(lf, float), np.asarray(hf, float)
+    keep = remove_outliers(lf, hf, k=outlier_k)
+    fit = fit_copula(family, *pseudo_observations(lf[keep], hf[keep]))
+    m_lf, m_hf = (lf, hf) if marginals_from == "all" else (lf[keep], hf[keep])
+    return fit, fit_marginal(m_lf, upper_tail=upper_tail), fit_marginal(m_hf, upper_tail=upper_tail)
 
 
 def hf_distribution(h_draws, n_waves: int):

@@ -91,8 +91,9 @@ class Study:
     stop_on_convergence : bool, default True
         False keeps sampling until ``max_hf`` or the pool is empty.
     adaptive_threshold : bool, default True
-        Raise the acquisition threshold by ``threshold_step`` × max LF after 5
-        consecutive false positives rarer-than-selected (§2.4).
+        Raise the acquisition threshold by ``threshold_step`` × max LF after
+        ``fp_run`` (5) consecutive false positives (§2.4; see
+        :meth:`_maybe_raise_threshold` for the reading of the paper's rule).
     store : str, os.PathLike or StudyStore, optional
         Crash-safe SQLite store (:mod:`pas.study.store`): a new one records
         this study's settings, LF pool, every ask and every result as it
@@ -130,11 +131,12 @@ class Study:
         self.last: Prediction | None = None
         self.converged = False
         self._initial = None
+        self._warned_tau = False
+        self._warned_range = False
         self.store = None
         if store is not None:
             from .store import attach
             attach(self, store)
-        self._warned_tau = False
 
     # -- bookkeeping -------------------------------------------------------
     def _positions(self, status) -> list[int]:
@@ -256,9 +258,18 @@ class Study:
         return row
 
     def _maybe_raise_threshold(self, ev: Event) -> None:
+        """§2.4: after ``fp_run`` consecutive false positives, raise ``l0``.
+
+        The paper adds "and the exceedance probability of a new sample
+        exceeds that of any existing sample".  Read as *every* selected
+        sample, the rule can never fire under MD, whose proposals lie inside
+        gaps between selected samples, and false positives could then eat the
+        whole budget; it is read as *some* selected sample (the new sample is
+        not the rarest one).  With no true positive yet the condition is void.
+        """
         tp = self.pairs()
-        if (self.adaptive_threshold and self.consecutive_fp >= self.fp_run and len(tp)
-                and ev.d > tp.d.max()):
+        if (self.adaptive_threshold and self.consecutive_fp >= self.fp_run
+                and (len(tp) == 0 or ev.d > tp.d.min())):
             base = self.lfset.lf.min() if self.l0 is None else self.l0
             self.l0 = float(base + self.threshold_step * self.lfset.lf.max())
 
@@ -279,6 +290,18 @@ class Study:
         self.last = pred
         h_range = pred.at(self.grid)
         e, e_bar, cov, stop = self.stopping.update(h_range, pred.mpm)
+        if pred.d[-1] < self.grid[-1]:
+            # the conditioning set does not reach 2·P_exp: the MPM and the stopping
+            # range would be read off a clamped end of the distribution
+            stop = False
+            row["range_short"] = True
+            if not self._warned_range:
+                self._warned_range = True
+                warnings.warn(
+                    f"the predicted distribution ends at d = {pred.d[-1]:.3g}, short of "
+                    f"2·P_exp = {self.grid[-1]:.3g}: the lowest true positive lies above the "
+                    "LF level of P_exp, so the MPM is extrapolated and the study cannot "
+                    "converge; lower the threshold or check the false positives", stacklevel=2)
         self.curves[row["row"]] = h_range
         row.update(pred.record)
         row.update(mpm=pred.mpm, mpm_low=pred.mpm_band[0], mpm_high=pred.mpm_band[1],
