@@ -132,7 +132,6 @@ class Study:
         self.converged = False
         self._initial = None
         self._warned_tau = False
-        self._warned_range = False
         self.store = None
         if store is not None:
             from .store import attach
@@ -295,13 +294,6 @@ class Study:
             # range would be read off a clamped end of the distribution
             stop = False
             row["range_short"] = True
-            if not self._warned_range:
-                self._warned_range = True
-                warnings.warn(
-                    f"the predicted distribution ends at d = {pred.d[-1]:.3g}, short of "
-                    f"2·P_exp = {self.grid[-1]:.3g}: the lowest true positive lies above the "
-                    "LF level of P_exp, so the MPM is extrapolated and the study cannot "
-                    "converge; lower the threshold or check the false positives", stacklevel=2)
         self.curves[row["row"]] = h_range
         row.update(pred.record)
         row.update(mpm=pred.mpm, mpm_low=pred.mpm_band[0], mpm_high=pred.mpm_band[1],
@@ -393,6 +385,13 @@ class Study:
                 p_exp=self.lfset.p_exp, n_waves=self.lfset.n_waves, seed=self.seed,
                 settings=self.settings())
         pred = self.last
+        if pred.d[-1] < self.grid[-1]:
+            warnings.warn(
+                f"the predicted distribution ends at d = {pred.d[-1]:.3g}, short of "
+                f"2·P_exp = {self.grid[-1]:.3g}: the lowest true positive lies above the LF "
+                "level of P_exp, so the MPM is read off the end of the distribution and the "
+                "study cannot converge; lower the threshold or check the false positives",
+                stacklevel=2)
         band = pred.mpm_band
         model = None
         if model_band:
