@@ -18,30 +18,28 @@ from ._common import _fmt, _new_axes, _plot_with_band, _strategy_name, _with_uni
 __all__ = ["plot_distribution", "plot_scatter", "conditional_quantile_curves"]
 
 
-def _lf_curve(lf):
-    """``(d, l)`` from a tuple/array pair or an object with ``d`` and ``lf`` (an LFSet)."""
-    if hasattr(lf, "d") and hasattr(lf, "lf"):
-        d, values = lf.d, lf.lf
-    else:
-        try:
-            d, values = lf
-        except (TypeError, ValueError):
-            raise ValueError("lf: expected a (d, l) pair of arrays or an LFSet") from None
+def _pair_curve(value, name, sym, alternative=""):
+    """A ``(d, values)`` pair of equal-length 1-D arrays, or a ValueError naming ``name``."""
+    try:
+        d, values = value
+    except (TypeError, ValueError):
+        raise ValueError(f"{name}: expected a (d, {sym}) pair of arrays{alternative}") from None
     d, values = np.asarray(d, dtype=float), np.asarray(values, dtype=float)
     if d.shape != values.shape or d.ndim != 1:
-        raise ValueError(f"lf: d and l must be 1-D of equal length, got {d.shape} and {values.shape}")
+        raise ValueError(f"{name}: d and {sym} must be 1-D of equal length, "
+                         f"got {d.shape} and {values.shape}")
     return d, values
 
 
+def _lf_curve(lf):
+    """``(d, l)`` from a tuple/array pair or an object with ``d`` and ``lf`` (an LFSet)."""
+    if hasattr(lf, "d") and hasattr(lf, "lf"):
+        lf = (lf.d, lf.lf)
+    return _pair_curve(lf, "lf", "l", " or an LFSet")
+
+
 def _truth_curve(truth):
-    try:
-        d, h = truth
-    except (TypeError, ValueError):
-        raise ValueError("truth: expected a (d, h) pair of arrays") from None
-    d, h = np.asarray(d, dtype=float), np.asarray(h, dtype=float)
-    if d.shape != h.shape or d.ndim != 1:
-        raise ValueError(f"truth: d and h must be 1-D of equal length, got {d.shape} and {h.shape}")
-    return d, h
+    return _pair_curve(truth, "truth", "h")
 
 
 # -- exceedance distribution (paper Fig. 6/7 bottom) ------------------------
