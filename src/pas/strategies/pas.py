@@ -66,6 +66,7 @@ __all__ = [
     "conditioning_set",
     "draw_conditional_hf",
     "impact_probability",
+    "fit_marginals",
     "fit_model",
     "hf_distribution",
 ]
@@ -126,6 +127,17 @@ def impact_probability(lf_true, lf_false):
     return lambda l: model.predict_proba(((np.asarray(l, float) - mu) / sd)[:, None])[:, 1]
 
 
+def fit_marginals(lf, hf, keep, *, upper_tail: bool, marginals_from: str = "all"):
+    """Step 9's Weibull marginals: ``(F_l, F_h, lf_sample)``.
+
+    Fitted to all pairs or to the ``keep`` mask of Step 7 (``marginals_from``,
+    module docs); ``lf_sample`` is the LF sample they saw, whose minimum is the
+    conditioning level ``l0``.
+    """
+    m_lf, m_hf = (lf, hf) if marginals_from == "all" else (lf[keep], hf[keep])
+    return fit_marginal(m_lf, upper_tail=upper_tail), fit_marginal(m_hf, upper_tail=upper_tail), m_lf
+
+
 def fit_model(lf, hf, family: str, *, outlier_k: float = 3.0, upper_tail: bool = True,
               marginals_from: str = "all"):
     """Steps 7–9 for one copula family: ``(copula fit, LF marginal, HF marginal)``.
@@ -137,8 +149,9 @@ def fit_model(lf, hf, family: str, *, outlier_k: float = 3.0, upper_tail: bool =
     lf, hf = np.asarray(lf, float), np.asarray(hf, float)
     keep = remove_outliers(lf, hf, k=outlier_k)
     fit = fit_copula(family, *pseudo_observations(lf[keep], hf[keep]))
-    m_lf, m_hf = (lf, hf) if marginals_from == "all" else (lf[keep], hf[keep])
-    return fit, fit_marginal(m_lf, upper_tail=upper_tail), fit_marginal(m_hf, upper_tail=upper_tail)
+    f_l, f_h, _ = fit_marginals(lf, hf, keep, upper_tail=upper_tail,
+                                marginals_from=marginals_from)
+    return fit, f_l, f_h
 
 
 def hf_distribution(h_draws, n_waves: int):
@@ -215,11 +228,14 @@ class PAS(Strategy):
     def _upper_tail(self, lfset: LFSet) -> bool:
         return lfset.threshold is None if self.upper_tail is None else self.upper_tail
 
-    def _distribution(self, fit, lf, hf, lfset, rng, z, fp_lf=()):
-        tail = self._upper_tail(lfset)
-        f_l, f_h = fit_marginal(lf, upper_tail=tail), fit_marginal(hf, upper_tail=tail)
+    def _marginals(self, lf, hf, keep, lfset):
+        return fit_marginals(lf, hf, keep, upper_tail=self._upper_tail(lfset),
+                             marginals_from=self.marginals_from)
+
+    def _distribution(self, fit, marginals, lfset, rng, fp_lf=()):
+        f_l, f_h, lf = marginals
         cond = conditioning_set(lfset.lf, lf.min())
-        draws = draw_conditional_hf(fit, f_l, f_h, cond, z, rng)
+        draws = draw_conditional_hf(fit, f_l, f_h, cond, self.z, rng)
         p_imp = impact_probability(lf, fp_lf) if self.impact_model else None
         if p_imp is not None:
             hit = rng.uniform(size=draws.shape) < p_imp(cond)[None, :]
@@ -234,8 +250,8 @@ class PAS(Strategy):
         self.family_ = select_family(fits, self.family_, delta_aic=self.delta_aic,
                                      exclude_at_bound=self.exclude_at_bound)
         fit = fits[self.family_]
-        m_lf, m_hf = (pairs.lf, pairs.hf) if self.marginals_from == "all" else (lf, hf)
-        d, mean, low, high = self._distribution(fit, m_lf, m_hf, lfset, rng, self.z, pairs.fp_lf)
+        marginals = self._marginals(pairs.lf, pairs.hf, keep, lfset)
+        d, mean, low, high = self._distribution(fit, marginals, lfset, rng, pairs.fp_lf)
         p = lfset.p_exp
         lam_u, lam_l = empirical_tail_dependence(pairs.lf, pairs.hf)
         record = {
@@ -272,10 +288,10 @@ class PAS(Strategy):
             lf, hf = b.lf[keep], b.hf[keep]
             if np.ptp(lf) == 0 or np.ptp(hf) == 0 or lf.size < 3:
                 continue
-            m_lf, m_hf = (b.lf, b.hf) if self.marginals_from == "all" else (lf, hf)
             try:
                 fit = fit_copula(self.family_, *pseudo_observations(lf, hf))
-                d, mean, _, _ = self._distribution(fit, m_lf, m_hf, lfset, rng, self.z, b.fp_lf)
+                marginals = self._marginals(b.lf, b.hf, keep, lfset)
+                d, mean, _, _ = self._distribution(fit, marginals, lfset, rng, b.fp_lf)
             except ValueError:
                 continue
             mpms.append(float(value_at_exceedance(d, mean, lfset.p_exp)))
