@@ -1,4 +1,7 @@
-"""Accuracy of PAS and AS on the eight analogues as a distribution over replications.
+"""Accuracy of PAS and AS on the analogues as a distribution over replications.
+
+Default: all twelve ids (eight paper-like, four ``-hard``); ``--cases`` takes
+any of them, e.g. ``--cases 3a,3a-hard``.
 
 Each replication r = 0 … N−1 draws a *new* analogue data set (wave phases and
 the random parts of the HF model seeded with r) and runs each strategy with
