@@ -1,5 +1,15 @@
-"""Waves and linear ship responses: spectra, realisations, second order, RAOs."""
+"""Waves and linear ship responses: spectra, realisations, second order, RAOs, design waves."""
 
+from .design import (
+    FormResult,
+    ResponseSurrogate,
+    form_rcw,
+    mler,
+    mler_amplitudes,
+    rayleigh_target,
+    response_surrogate,
+)
+from .episode import Episode, design_episode
 from .realisation import (
     ComponentSea,
     LinearSea,
@@ -37,4 +47,6 @@ __all__ = [
     "SecondOrderKernel", "sharma_dean_kernels", "second_order_kernel",
     "second_order_coefficients", "second_order_elevation", "direct_second_order",
     "Ship", "FERRY_190M", "ShipRAO", "ship_rao", "relative_elevation_rao", "ship_responses",
+    "ResponseSurrogate", "response_surrogate", "mler_amplitudes", "mler", "FormResult",
+    "form_rcw", "rayleigh_target", "Episode", "design_episode",
 ]
