@@ -1,5 +1,6 @@
 """Figures: ``plot_*(..., ax=None) -> (fig, ax)`` so users can compose them."""
 
+from .design import plot_design_points, plot_nonlinear_factor
 from .records import plot_convergence, plot_record_exceedance
 from .figures import (
     conditional_quantile_curves,
