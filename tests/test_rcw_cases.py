@@ -14,6 +14,7 @@ from pas.validation import CASE_IDS, generate_case, get_case
 from pas.validation import case_impacts, case_vbm, case_waves
 from pas.validation._common import DT, condition_sea
 from pas.validation.episodes import case_surrogate, episode_oracle, run_rcw_case
+from pas.waves.episode import design_episode
 
 DURATION = 900.0
 # Random parts off: no deflection margin (mean 1e-9 m), no log-normal scatter.
@@ -104,3 +105,15 @@ def test_cli_reproduce_design_waves(tmp_path, monkeypatch, capsys):
     assert (out / "design_2a.png").stat().st_size > 0
     assert main(["reproduce", "2a", "--strategies", "pas,rcx"]) == 2
     assert "unknown rcx" in capsys.readouterr().err
+
+
+def test_case1_rcw_holds_the_hf_crest_at_the_linear_target():
+    """Why FORM-RCW misses case 1 (README): its surrogate *is* the HF crest, so the
+    episode's second-order crest equals the linear target; MLER's exceeds it."""
+    oracle = episode_oracle("1a")
+    s = case_surrogate("1a", duration=300.0)
+    rcw = oracle(design_episode(s, 9.0))
+    assert rcw == pytest.approx(9.0, rel=1e-6)
+    mler = oracle(design_episode(case_surrogate("1a", duration=300.0, second_order=False), 9.0,
+                                 method="mler"))
+    assert mler > 1.1 * 9.0
