@@ -19,7 +19,9 @@ every case:
 
 The linear peak per event is the LF indicator for cases 1–3; for case 4 (whose
 indicator is the rise velocity) the station-19 relative-elevation crest per
-LF wave is re-synthesised with the generator's own functions.
+LF wave is re-synthesised with the generator's own functions.  For case 3 it
+also prints the peak of the HF model's non-linear bow RWE ``R''`` (before the
+bow wave) in the RCW and MLER episodes, against the target.
 
 Run: ``python benchmarks/design_waves_diagnosis.py [--seed 0] [--cases 1a,4a]``
 """
@@ -34,7 +36,8 @@ from pas.stats.peaks import segment_max
 from pas.validation import CASE_IDS, generate_case, get_case
 from pas.validation import case_impacts
 from pas.validation._common import DT, condition_sea, seed_plan, windows
-from pas.validation.episodes import run_rcw_case
+from pas.validation.episodes import _window, case_surrogate, run_rcw_case
+from pas.waves.episode import design_episode
 from pas.waves import FERRY_190M, second_order_kernel
 
 
@@ -51,6 +54,21 @@ def _rwe19_crests(spec, seed):
         r_lf = sea.synthesise(lin, DT)[1]
         out.append(segment_max(r_lf, windows(r_lf)[0])[0])
     return np.concatenate(out)
+
+
+def _bow_rwe_peaks(case, target):
+    """Peak of the HF model's R'' (no bow wave) in the wave at t0: RCW and MLER episodes."""
+    c = case_impacts.COEFFICIENTS
+    out = []
+    for method in ("form", "mler"):
+        ep = design_episode(case_surrogate(case, second_order=method == "form"), target,
+                            method=method)
+        sea = ep.sea
+        kern = second_order_kernel(sea, omega_max=case_impacts.OMEGA_MAX_2)
+        lin, nl, _ = case_impacts._rwe(sea, kern, FERRY_190M.length / 2.0, 0.0, c["c_sw"])
+        win = _window(sea.synthesise(lin, DT)[1], ep.t0)
+        out.append(float(segment_max(sea.synthesise(nl, DT)[1], win)[0][0]))
+    return out
 
 
 def main(argv=None):
@@ -76,6 +94,10 @@ def main(argv=None):
         print(f"{case:4s}  {target:<9.4g}  {rcw.mpm:<9.4g}  {mler.mpm:<9.4g}  "
               f"{np.median(data.hf[near]):<9.4g} ({int(near.sum()):3d})              "
               f"{data.truth_mpm:<9.4g}  {share:.2f} of {int(high.sum())}", flush=True)
+        if spec.family == "3":
+            r, m = _bow_rwe_peaks(case, target)
+            print(f"      non-linear bow RWE peak R'' in the episode: RCW {r:.3f} m, MLER {m:.3f} m "
+                  f"(target {target:.3f} m: {r / target - 1:+.1%}, {m / target - 1:+.1%})")
 
 
 if __name__ == "__main__":

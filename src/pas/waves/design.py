@@ -41,9 +41,10 @@ Der Kiureghian 1995; the paper's MHLGA, Santos et al. 2012, is of this kind).
 
 References
 ----------
-Dermatis, A., Kim, Y.J., Ducrozet, G., Bouscasse, B., Le Touzé, D., Seyffert,
-H.C. (2025). Response-conditioned waves with a higher-order spectral numerical
-wave tank for the extreme vertical bending moment of a containership (CC BY).
+Dermatis, A., Lasbleis, M., Kim, S., de Hauteclocque, G., Bouscasse, B.,
+Ducrozet, G. (2025). A multi-fidelity approach for the evaluation of extreme
+wave loads using nonlinear response-conditioned waves. Ocean Engineering 316,
+119919. doi:10.1016/j.oceaneng.2024.119919 (CC BY 4.0)
 
 Adegeest, L.J.M., Braathen, A., Løseth, R.M. (1998). Use of non-linear sea-loads
 simulations in design of ships. PRADS'98.
