@@ -16,7 +16,7 @@ import pytest
 from scipy import integrate, optimize
 
 import pas
-from pas.waves import direct_second_order, jonswap, wave_number
+from pas.waves import direct_second_order, jonswap
 from pas.waves.design import form_rcw, mler, mler_amplitudes, rayleigh_target, response_surrogate
 from pas.waves.episode import design_episode
 

@@ -7,7 +7,7 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from ._common import _new_axes, _strategy_name, _with_unit
+from ._common import _exceedance_axes, _new_axes, _strategy_name, _with_unit
 
 __all__ = ["plot_design_points", "plot_nonlinear_factor"]
 
@@ -72,13 +72,7 @@ def plot_design_points(result, *, ax=None, label=None, unit=None, quantity="HF l
     p_exp = float(result.p_exp)
     if show_p_exp:
         ax.axvline(p_exp, color="0.3", lw=0.8, ls=":", label=f"$P_{{exp}}$ = {p_exp:.3g}")
-    ax.set_xscale("log")
-    if not ax.xaxis_inverted():
-        ax.invert_xaxis()
-    ax.set_xlabel("exceedance probability per wave $d$ [-]")
-    ax.set_ylabel(_with_unit(quantity, unit))
-    ax.grid(True, which="both", lw=0.3, alpha=0.5)
-    ax.legend(fontsize=7, loc="upper left")
+    _exceedance_axes(ax, quantity, unit)
     return fig, ax
 
 
