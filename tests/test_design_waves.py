@@ -17,7 +17,8 @@ from scipy import integrate, optimize
 
 import pas
 from pas.waves import direct_second_order, jonswap
-from pas.waves.design import form_rcw, mler, mler_amplitudes, rayleigh_target, response_surrogate
+from pas.waves import response_surrogate
+from pas.waves.design import form_rcw, mler, mler_amplitudes, rayleigh_target
 from pas.waves.episode import design_episode
 
 DATA = Path(__file__).parent / "data" / "mler_mhkit.json"

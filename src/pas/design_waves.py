@@ -31,7 +31,8 @@ from .stats.exceedance import exceedance_probabilities, value_at_exceedance
 from .strategies.stopping import range_grid
 from .study.result import ScreeningResult, distribution_frame
 from .study.study import call_oracle
-from .waves.design import ResponseSurrogate, rayleigh_target
+from .waves.design import rayleigh_target
+from .waves.surrogate import ResponseSurrogate
 from .waves.episode import METHODS, Episode, design_episode
 
 __all__ = ["run_rcw", "rcw_levels", "rcw_targets", "rcw_episodes", "TARGETS"]
@@ -136,7 +137,7 @@ def run_rcw(surrogate, oracle, *, p_exp, levels=None, target="rayleigh", lf_peak
     Parameters
     ----------
     surrogate : ResponseSurrogate
-        From :func:`pas.waves.design.response_surrogate`: the sea, the linear
+        From :func:`pas.waves.response_surrogate`: the sea, the linear
         transfer function of the conditioned response and the wave model
         (linear, or linear + second order).
     oracle : callable
@@ -175,7 +176,7 @@ def run_rcw(surrogate, oracle, *, p_exp, levels=None, target="rayleigh", lf_peak
     --------
     >>> import pas
     >>> from pas.waves import jonswap
-    >>> from pas.waves.design import response_surrogate
+    >>> from pas.waves import response_surrogate
     >>> s = response_surrogate(lambda w: jonswap(w, 10.0, 11.0), lambda w: 1.0 + 0 * w,
     ...                        depth=30.0, omega_max=2.0, second_order=False)
     >>> res = pas.run_rcw(s, lambda ep: 1.1 * ep.target, p_exp=1e-3)
@@ -184,7 +185,7 @@ def run_rcw(surrogate, oracle, *, p_exp, levels=None, target="rayleigh", lf_peak
     """
     if not isinstance(surrogate, ResponseSurrogate):
         raise ValueError("surrogate must be a ResponseSurrogate "
-                         "(pas.waves.design.response_surrogate)")
+                         "(pas.waves.response_surrogate)")
     if not callable(oracle):
         raise ValueError("oracle must be a callable oracle(episode) -> float")
     if method not in METHODS:

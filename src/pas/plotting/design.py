@@ -51,7 +51,7 @@ def plot_design_points(result, *, ax=None, label=None, unit=None, quantity="HF l
     --------
     >>> import pas
     >>> from pas.waves import jonswap
-    >>> from pas.waves.design import response_surrogate
+    >>> from pas.waves import response_surrogate
     >>> from pas.plotting.design import plot_design_points
     >>> s = response_surrogate(lambda w: jonswap(w, 10.0, 11.0), lambda w: 1.0 + 0 * w,
     ...                        depth=30.0, omega_max=2.0, second_order=False)

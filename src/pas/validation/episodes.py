@@ -44,7 +44,7 @@ from ..design_waves import run_rcw
 from ..stats.peaks import segment_max, segment_min, zero_upcrossings
 from ..waves import (FERRY_190M, jonswap, second_order_elevation, second_order_kernel,
                      ship_rao, wave_number)
-from ..waves.design import response_surrogate
+from ..waves.surrogate import response_surrogate
 from ..waves.ship import RHO_SEAWATER
 from . import case_impacts, case_vbm, case_waves
 from ._common import DT
@@ -68,7 +68,7 @@ def _ship_point(case_id):
 
 
 def case_surrogate(case_id, *, second_order=True, duration=EPISODE_DURATION):
-    """The :class:`~pas.waves.design.ResponseSurrogate` of a case (module docs)."""
+    """The :class:`~pas.waves.surrogate.ResponseSurrogate` of a case (module docs)."""
     spec = get_case(case_id)
     cond, fam = spec.condition, spec.family
     heading = 180.0 if cond.heading is None else cond.heading

@@ -1,14 +1,6 @@
 """Waves and linear ship responses: spectra, realisations, second order, RAOs, design waves."""
 
-from .design import (
-    FormResult,
-    ResponseSurrogate,
-    form_rcw,
-    mler,
-    mler_amplitudes,
-    rayleigh_target,
-    response_surrogate,
-)
+from .design import FormResult, form_rcw, mler, mler_amplitudes, rayleigh_target
 from .episode import Episode, design_episode
 from .realisation import (
     ComponentSea,
@@ -29,6 +21,7 @@ from .second_order import (
     sharma_dean_kernels,
 )
 from .ship import FERRY_190M, Ship, ShipRAO, relative_elevation_rao, ship_rao, ship_responses
+from .surrogate import ResponseSurrogate, response_surrogate
 from .spectra import (
     GRAVITY,
     jonswap,

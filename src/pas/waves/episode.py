@@ -1,7 +1,7 @@
 """A design-wave episode: what an episode oracle (CFD, basin, an HF model) receives.
 
 :func:`design_episode` conditions the sea of a
-:class:`~pas.waves.design.ResponseSurrogate` on a target response at ``t0``
+:class:`~pas.waves.surrogate.ResponseSurrogate` on a target response at ``t0``
 (MLER or FORM-RCW) and returns an :class:`Episode`: the components
 (amplitudes and phases at the reference point), the surface and surrogate
 response at the structure point as time series, and CSV files of both for an
@@ -17,7 +17,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .design import FormResult, ResponseSurrogate, form_rcw, mler, synthesise_on
+from .design import FormResult, form_rcw, mler
+from .surrogate import ResponseSurrogate, synthesise_on
 
 __all__ = ["Episode", "design_episode", "METHODS"]
 
@@ -35,7 +36,7 @@ class Episode:
         Grid, structure point, transfer function and conditioning time.
     u : ndarray, shape (2N,)
         Standard-normal coordinates of the episode (module docs of
-        :mod:`pas.waves.design`); ``beta = |u|``.
+        :mod:`pas.waves.surrogate`); ``beta = |u|``.
     target : float
         Surrogate response reached at ``t0``.
     level : float or None
@@ -157,7 +158,7 @@ def design_episode(surrogate: ResponseSurrogate, target: float, *, method="form"
     Examples
     --------
     >>> from pas.waves import jonswap
-    >>> from pas.waves.design import response_surrogate
+    >>> from pas.waves import response_surrogate
     >>> s = response_surrogate(lambda w: jonswap(w, 10.0, 11.0), lambda w: 1.0 + 0 * w,
     ...                        depth=30.0, omega_max=2.0)
     >>> ep = design_episode(s, 10.0)
