@@ -77,3 +77,24 @@ __all__ += [
     "POSITIONS", "plotting_positions", "read_at_exceedance", "TAIL_MODELS", "TailModel",
     "fit_tail",
 ]
+from .impacts import (
+    OccurrenceFit,
+    clustering_test,
+    decluster,
+    exponential_test,
+    exposure_load,
+    exposure_probability,
+    fit_occurrence,
+    impact_rates,
+    inter_arrival_times,
+    occurrence_model,
+    occurrence_probability,
+)
+from .load_fits import CANDIDATES, compare_load_distributions, fit_load_distribution, qq_points
+
+__all__ += [
+    "occurrence_probability", "impact_rates", "occurrence_model", "OccurrenceFit",
+    "fit_occurrence", "inter_arrival_times", "exponential_test", "clustering_test", "decluster",
+    "exposure_probability", "exposure_load", "CANDIDATES", "fit_load_distribution",
+    "compare_load_distributions", "qq_points",
+]
