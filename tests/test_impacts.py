@@ -234,3 +234,33 @@ def test_inter_arrival_and_bad_input():
     with pytest.raises(ValueError, match="with and without"):
         fit_occurrence(pd.DataFrame({"hm0": [5.0], "freeboard": [10.0], "n_events": [0],
                                      "n_encounters": [100]}))
+
+
+def test_impact_figures_compose_and_write_png(tmp_path):
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from pas.plotting import plot_exposure, plot_inter_arrival, plot_occurrence, plot_qq
+
+    rng = np.random.default_rng(8)
+    ev = _clustered_events(rng, n_seeds=4)
+    fig, axes = plt.subplots(2, 2, figsize=(10, 8))
+    f1, a1 = plot_occurrence(fit_occurrence(_conditions(1.19, rng)), ax=axes[0, 0])
+    f2, a2 = plot_inter_arrival(inter_arrival_times(ev),
+                                declustered=inter_arrival_times(decluster(ev, 12.0)),
+                                ax=axes[0, 1])
+    table = compare_load_distributions(ev["load"], ["lognormal", "gamma"])
+    f3, a3 = plot_qq(ev["load"], table, ax=axes[1, 0])
+    f4, a4 = plot_exposure(np.linspace(300, 3000, 50), 0.03, table.iloc[0]["dist"], 500,
+                           mpm={"truth": 1500.0}, ax=axes[1, 1])
+    assert all(f is fig for f in (f1, f2, f3, f4))
+    assert a2.get_yscale() == "log" and a4.get_yscale() == "log"
+    assert len(a2.get_legend().get_texts()) == 4      # two histograms, two fits
+    assert any("truth" in t.get_text() for t in a4.get_legend().get_texts())
+    fig.savefig(tmp_path / "impacts.png", dpi=70)
+    assert (tmp_path / "impacts.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    fig_alone, _ = plot_qq(ev["load"], table.iloc[0]["dist"])
+    assert fig_alone is not fig
+    plt.close("all")
