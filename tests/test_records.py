@@ -239,3 +239,114 @@ def test_figures_write_png(tmp_path, linear_record):
         assert data[:8] == b"\x89PNG\r\n\x1a\n" and len(data) > 10_000
     assert len(ax.get_legend().get_texts()) >= 5
     plt.close("all")
+
+
+# ------------------------------------------------------------ issue 15 checks
+N_WAVES = 400   # crests per seed (one exposure duration)
+
+
+def _rayleigh_maxima(rng, shape, hs=HS, n=N_WAVES):
+    """Maxima of n Rayleigh crests, exactly: F_max = (1 - exp(-8c²/Hs²))^n = u."""
+    u = rng.random(shape)
+    return hs * np.sqrt(-np.log(-np.expm1(np.log(u) / n)) / 8.0)
+
+
+def test_seed_maxima_mpm_is_unbiased_with_k_over_n_plus_1():
+    # 20 000 replications of N seed maxima; the exact MPM is the e^-1 quantile
+    from pas.stats import read_at_exceedance
+
+    rng = np.random.default_rng(15)
+    exact = rayleigh_crest_quantile(HS, N_WAVES, np.exp(-1.0))
+    for n in (3, 10, 20):
+        m = -np.sort(-_rayleigh_maxima(rng, (20000, n)), axis=1)
+        est = read_at_exceedance(m, n, 1 - 0.368, positions="weibull", scale="linear")
+        assert mpm_seed_maxima(m[0]) == pytest.approx(est[0])     # the same read-out
+        bias, se = est.mean() - exact, est.std() / np.sqrt(est.size)
+        assert abs(bias) < 0.03 and se < 0.01
+        old = read_at_exceedance(m, n, 1 - 0.368, positions="k/n", scale="linear")
+        assert old.mean() - exact > {3: 0.3, 10: 0.08, 20: 0.03}[n]   # the defect, kept measurable
+
+
+def test_mpm_is_the_e1_quantile_not_the_mode():
+    # mode of the maximum of 1000 Rayleigh crests (density n f F^(n-1)) by a bounded search
+    n, hs = 1000, HS
+    def neg_log_density(c):
+        z = 8 * c**2 / hs**2
+        return -(np.log(16 * c / hs**2) - z + (n - 1) * np.log(-np.expm1(-z)))
+    mode = optimize.minimize_scalar(neg_log_density, bounds=(5, 15), method="bounded",
+                                    options={"xatol": 1e-10}).x
+    q = rayleigh_crest_quantile(hs, n, np.exp(-1.0))
+    assert mode / q - 1 == pytest.approx(0.0053, abs=0.0002)
+    assert rayleigh_crest_mpm(hs, n) == pytest.approx(q, rel=1e-4)
+
+
+def test_pooled_high_quantile_gringorten_less_biased_than_k_over_n():
+    # q = 0.9 of the hourly maximum from 10 one-hour seeds of Rayleigh crests
+    rng = np.random.default_rng(16)
+    n_rep, m = 600, 10
+    exact = rayleigh_crest_quantile(HS, N_WAVES, 0.9)
+    est = {"gringorten": [], "k/n": []}
+    for _ in range(n_rep):
+        crests = rng.rayleigh(HS / 4, (m, N_WAVES))
+        for pos in est:
+            est[pos].append(quantile_pooled(list(crests), m * N_WAVES, 0.9, positions=pos))
+    bias = {k: np.mean(v) - exact for k, v in est.items()}
+    se = {k: np.std(v) / np.sqrt(n_rep) for k, v in est.items()}
+    assert bias["k/n"] > 0.1 + 3 * se["k/n"]
+    assert abs(bias["gringorten"]) < abs(bias["k/n"]) / 2
+
+
+def test_target_beyond_the_record_needs_a_named_model():
+    rng = np.random.default_rng(17)
+    crests = [rng.rayleigh(HS / 4, N_WAVES) for _ in range(10)]
+    # q = 0.99 of the hourly maximum: 2.5e-5 per wave, 10x beyond 1/4000
+    with pytest.raises(ValueError, match="beyond the largest peak"):
+        quantile_pooled(crests, 10 * N_WAVES, 0.99)
+    exact = rayleigh_crest_quantile(HS, N_WAVES, 0.99)   # 11.51 m
+    for model in ("gpd", "weibull"):
+        v = quantile_pooled(crests, 10 * N_WAVES, 0.99, extrapolate=model)
+        # the spread over 8 seeded records was 10.3-11.4 (GPD), 10.9-12.1 m (Weibull)
+        assert v > max(c.max() for c in crests) and abs(v / exact - 1) < 0.12
+    with pytest.warns(UserWarning, match="beyond the largest peak"):
+        a = analyse_record(crests, 10 * N_WAVES, exposure_encounters=20 * N_WAVES, n_boot=0)
+    assert np.isnan(a.mpm_pooled)
+
+
+def test_r_n_matches_fresh_campaigns_up_to_three_quarters_of_the_record():
+    # 16 records of M = 40 seeds (100 crests per seed = one exposure); R(N) of
+    # fresh N-seed campaigns about the exact MPM from 2000 new campaigns each
+    rng = np.random.default_rng(18)
+    m, n_w, ns = 40, 100, [5, 10, 20, 30]
+    exact = HS * np.sqrt(np.log(n_w) / 8.0)
+    fresh = []
+    for n in ns:
+        est = [mpm_pooled(list(rng.rayleigh(HS / 4, (n, n_w))), n * n_w) for _ in range(2000)]
+        fresh.append(np.sqrt(np.mean((np.array(est) - exact) ** 2)))
+    r, raw, inside = [], [], []
+    for _ in range(16):
+        rec = list(rng.rayleigh(HS / 4, (m, n_w)))
+        cv = mpm_convergence(rec, m * n_w, n_values=ns, n_subsets=400, n_subsets_fit=0, seed=1)
+        r.append(cv.rms["pooled"])
+        raw.append(cv.rms_subsets["pooled"])
+        inside.append((cv.rms_low["pooled"] <= fresh) & (np.array(fresh) <= cv.rms_high["pooled"]))
+    r, raw = np.mean(r, axis=0), np.mean(raw, axis=0)
+    np.testing.assert_allclose(r, fresh, rtol=0.10)
+    assert raw[-1] < 0.7 * fresh[-1]          # the uncorrected subset RMS at N = 0.75 M
+    assert np.mean(inside) >= 0.8             # band: nominal 95 %
+
+
+def test_bootstrap_intervals_cover_the_exact_mpm():
+    from pas.stats import bootstrap_mpm
+
+    rng = np.random.default_rng(19)
+    exact = HS * np.sqrt(np.log(N_WAVES) / 8.0)
+    hits = {"pooled peaks": 0, "seed maxima": 0}
+    for _ in range(60):
+        rec = list(rng.rayleigh(HS / 4, (20, N_WAVES)))
+        for method in hits:
+            ci = bootstrap_mpm(rec, 20 * N_WAVES, method=method, n_boot=300, seed=2)
+            hits[method] += ci["low"] <= exact <= ci["high"]
+    assert hits["pooled peaks"] >= 0.8 * 60 and hits["seed maxima"] >= 0.8 * 60
+    a = analyse_record(rec, 20 * N_WAVES, n_boot=200)
+    assert set(a.ci.index) == {"pooled peaks", "seed maxima"}
+    assert a.ci.loc["pooled peaks", "low"] < a.mpm_pooled < a.ci.loc["pooled peaks", "high"]
