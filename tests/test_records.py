@@ -133,7 +133,7 @@ def test_impact_loads_fit_and_pooled_use_encounter_basis():
 def test_rms_difference_decreases_with_seeds():
     rng = np.random.default_rng(11)
     peaks = [rng.rayleigh(2.5, 400) for _ in range(30)]
-    cv = mpm_convergence(peaks, 400 * 30, n_subsets=300, n_subsets_fit=10, seed=1)
+    cv = mpm_convergence(peaks, 400 * 30, n_subsets=300, n_subsets_fit=10, n_boot=30, seed=1)
     r = cv.rms["pooled"]
     picks = np.array([1, 2, 4, 8, 16, 29]) - 1
     assert np.all(np.diff(r[picks]) < 0)
@@ -223,7 +223,7 @@ def test_figures_write_png(tmp_path, linear_record):
     fig, ax = a.plot(units="m")
     assert ax.get_yscale() == "log" and "[m]" in ax.get_xlabel()
     fig.savefig(tmp_path / "exceedance.png", dpi=80)
-    cv = mpm_convergence(crests[:20], enc[:20], n_subsets=50, n_subsets_fit=5)
+    cv = mpm_convergence(crests[:20], enc[:20], n_subsets=50, n_subsets_fit=5, n_boot=10)
     fig2, ax2 = cv.plot(criterion=0.3, units="m", variable="crest MPM")
     fig2.savefig(tmp_path / "convergence.png", dpi=80)
     # composing on given axes
@@ -325,14 +325,15 @@ def test_r_n_matches_fresh_campaigns_up_to_three_quarters_of_the_record():
     r, raw, inside = [], [], []
     for _ in range(16):
         rec = list(rng.rayleigh(HS / 4, (m, n_w)))
-        cv = mpm_convergence(rec, m * n_w, n_values=ns, n_subsets=400, n_subsets_fit=0, seed=1)
+        cv = mpm_convergence(rec, m * n_w, n_values=ns, n_subsets=400, n_subsets_fit=0,
+                             n_boot=40, n_subsets_boot=60, seed=1)
         r.append(cv.rms["pooled"])
         raw.append(cv.rms_subsets["pooled"])
         inside.append((cv.rms_low["pooled"] <= fresh) & (np.array(fresh) <= cv.rms_high["pooled"]))
     r, raw = np.mean(r, axis=0), np.mean(raw, axis=0)
     np.testing.assert_allclose(r, fresh, rtol=0.10)
     assert raw[-1] < 0.7 * fresh[-1]          # the uncorrected subset RMS at N = 0.75 M
-    assert np.mean(inside) >= 0.8             # band: nominal 95 %
+    assert np.mean(inside) >= 0.8             # bootstrap band: nominal 95 %, 93-97 % measured
 
 
 def test_bootstrap_intervals_cover_the_exact_mpm():
