@@ -135,7 +135,7 @@ def test_clusters_are_rejected_and_pass_after_declustering():
         assert z["pvalue"] < 1e-3 and z["zero_inflation"] > 0.3
         dc = decluster(ev, 12.0)
         assert dc["cluster_size"].sum() == len(ev)
-        after.append(exponential_test(inter_arrival_times(dc))["pvalue"] > 0.05)
+        after.append(exponential_test(inter_arrival_times(dc), loc=12.0)["pvalue"] > 0.05)
     assert np.mean(after) >= 0.9
     # and a Poisson record shows no zero-inflation
     assert clustering_test(inter_arrival_times(_poisson_events(rng, 1 / 120.0)), 12.0)[
@@ -225,6 +225,8 @@ def test_inter_arrival_and_bad_input():
         decluster(ev, 0.0)
     with pytest.raises(ValueError, match="at least 3"):
         exponential_test([1.0, 2.0])
+    with pytest.raises(ValueError, match="shorter than loc"):
+        exponential_test([1.0, 2.0, 30.0], loc=12.0)
     with pytest.raises(ValueError, match="too few"):
         fit_load_distribution([1.0, 2.0, 3.0], "gev")
     with pytest.raises(ValueError, match="must be one of"):
@@ -250,7 +252,7 @@ def test_impact_figures_compose_and_write_png(tmp_path):
     f1, a1 = plot_occurrence(fit_occurrence(_conditions(1.19, rng)), ax=axes[0, 0])
     f2, a2 = plot_inter_arrival(inter_arrival_times(ev),
                                 declustered=inter_arrival_times(decluster(ev, 12.0)),
-                                ax=axes[0, 1])
+                                t_min=12.0, ax=axes[0, 1])
     table = compare_load_distributions(ev["load"], ["lognormal", "gamma"])
     f3, a3 = plot_qq(ev["load"], table, ax=axes[1, 0])
     f4, a4 = plot_exposure(np.linspace(300, 3000, 50), 0.03, table.iloc[0]["dist"], 500,

@@ -94,7 +94,8 @@ def run(args) -> int:
         print(f"gaps <= {args.t_min:g} s: {z['n_short']:.0f} (Poisson: {z['expected_short']:.1f}), "
               f"zero-inflation {z['zero_inflation']:.3f}, p = {z['pvalue']:.3g}")
         print(f"declustered (t_min {args.t_min:g} s): {len(impacts)} clusters, KS p = "
-              f"{imp.exponential_test(gaps_dc)['pvalue']:.3g}")
+              f"{imp.exponential_test(gaps_dc, loc=args.t_min)['pvalue']:.3g} "
+              f"(gaps beyond t_min against the exponential)")
     loads = impacts[args.load].to_numpy(dtype=float)
     fits = compare_load_distributions(loads, loc=args.loc)
     shown = fits[["distribution", "aic", "delta_aic", "ks_statistic", "ks_pvalue"]]
@@ -116,11 +117,12 @@ def run(args) -> int:
                   f"{imp.exposure_probability(args.limit, pr, best['dist'], n_exp):.4g}")
         exposure = imp.exposure_probability(grid, pr, best["dist"], n_exp)
     if args.out:
-        _write(Path(args.out), rates, fits, exposure, gaps, gaps_dc, loads, best, pr, n_exp)
+        _write(Path(args.out), rates, fits, exposure, gaps, gaps_dc, loads, best, pr, n_exp,
+               args.t_min or 0.0)
     return 0
 
 
-def _write(out, rates, fits, exposure, gaps, gaps_dc, loads, best, pr, n_exp):
+def _write(out, rates, fits, exposure, gaps, gaps_dc, loads, best, pr, n_exp, t_min):
     import matplotlib
 
     matplotlib.use("Agg")
@@ -131,7 +133,7 @@ def _write(out, rates, fits, exposure, gaps, gaps_dc, loads, best, pr, n_exp):
     out.mkdir(parents=True, exist_ok=True)
     rates.to_csv(out / "rates.csv")
     fits.drop(columns=["dist"]).to_csv(out / "fits.csv")
-    figs = {"inter_arrival": plot_inter_arrival(gaps, declustered=gaps_dc)[0],
+    figs = {"inter_arrival": plot_inter_arrival(gaps, declustered=gaps_dc, t_min=t_min)[0],
             "qq": plot_qq(loads, fits.head(3))[0]}
     if exposure is not None:
         exposure.to_csv(out / "exposure.csv")

@@ -52,19 +52,20 @@ def plot_occurrence(fit, *, hm0=None, ax=None):
     return fig, ax
 
 
-def _gaps_with_fit(ax, gaps, bins, color, label):
+def _gaps_with_fit(ax, gaps, bins, color, label, loc=0.0):
     from ..stats.impacts import exponential_test
 
     g = np.asarray(gaps, dtype=float)
-    res = exponential_test(g)
+    res = exponential_test(g, loc=loc)
     ax.hist(g, bins=bins, density=True, histtype="step", color=color, lw=1.2,
             label=f"{label}: {g.size} gaps")
-    x = np.linspace(0.0, bins[-1], 300)
-    ax.plot(x, np.exp(-x / res["mean"]) / res["mean"], "--", color=color,
-            label=f"exponential, mean {res['mean']:.3g} s (KS p = {res['pvalue']:.2g})")
+    x = np.linspace(loc, bins[-1], 300)
+    shift = f"{loc:.3g} s + " if loc else ""
+    ax.plot(x, np.exp(-(x - loc) / res["mean"]) / res["mean"], "--", color=color,
+            label=f"{shift}exponential, mean {res['mean']:.3g} s (KS p = {res['pvalue']:.2g})")
 
 
-def plot_inter_arrival(gaps, *, declustered=None, bins=40, log=True, ax=None):
+def plot_inter_arrival(gaps, *, declustered=None, t_min=0.0, bins=40, log=True, ax=None):
     """Histogram of times between impacts with the exponential of their mean.
 
     Parameters
@@ -73,6 +74,9 @@ def plot_inter_arrival(gaps, *, declustered=None, bins=40, log=True, ax=None):
         Inter-arrival times (:func:`pas.stats.inter_arrival_times`).
     declustered : array_like, optional
         The same after :func:`pas.stats.decluster`, drawn beside them.
+    t_min : float, default 0
+        The declustering separation: the declustered gaps are compared with
+        ``t_min`` plus an exponential (:func:`pas.stats.exponential_test`).
     bins : int, default 40
     log : bool, default True
         Logarithmic density axis (the exponential is a straight line; an
@@ -89,7 +93,7 @@ def plot_inter_arrival(gaps, *, declustered=None, bins=40, log=True, ax=None):
     edges = np.linspace(0.0, top, int(bins) + 1)
     _gaps_with_fit(ax, g, edges, "C0", "all impacts")
     if declustered is not None:
-        _gaps_with_fit(ax, declustered, edges, "C1", "declustered")
+        _gaps_with_fit(ax, declustered, edges, "C1", "declustered", loc=t_min)
     if log:
         ax.set_yscale("log")
     ax.set_xlabel("time between impacts [s]")
