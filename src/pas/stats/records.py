@@ -40,9 +40,8 @@ lies 0.53 % higher for the maximum of 1000 Rayleigh crests
   (top 30 % for crests — the PAS validation truths use this — top 90 % for
   impact forces). The fit is the distribution of a *peak*; with ``n_p``
   peaks in ``n_e`` encounters the exceedance per encounter is
-  ``(n_p/n_e) · P_W(X > x)``, so the MPM is ``isf(P_t · n_e / n_p)``. Of the
-  three it is the least biased for crests in our tests; keep it beside the
-  others (it is the one that extrapolates).
+  ``(n_p/n_e) · P_W(X > x)``, so the MPM is ``isf(P_t · n_e / n_p)``. It is
+  the one of the three that can also read beyond the record.
 
 :func:`pas.stats.analyse_record` puts the three together with bootstrap
 confidence intervals (:func:`pas.stats.bootstrap_mpm`).
