@@ -11,7 +11,7 @@ import argparse
 import importlib
 import sys
 
-COMMANDS = ("reproduce", "run", "study", "plot")
+COMMANDS = ("reproduce", "run", "study", "plot", "impacts")
 
 
 def build_parser() -> argparse.ArgumentParser:

@@ -1,6 +1,7 @@
 """Figures: ``plot_*(..., ax=None) -> (fig, ax)`` so users can compose them."""
 
 from .records import plot_convergence, plot_record_exceedance
+from .impacts import plot_exposure, plot_inter_arrival, plot_occurrence, plot_qq
 from .figures import (
     conditional_quantile_curves,
     plot_aic,
