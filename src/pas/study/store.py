@@ -32,6 +32,7 @@ from contextlib import contextmanager
 
 import numpy as np
 
+from .._version import __version__
 from .replay import attach, open_study, study_settings
 from .schema import (_SCHEMA, RESUMABLE, SCHEMA_VERSION, STATES, StoreConflict, StoreError, _now,
                      _pool_hash, _pool_records, dumps)
@@ -170,7 +171,7 @@ class StudyStore:
                 raise StoreError(f"study store {self.path} already holds a study")
             c.executemany("INSERT INTO lf_peaks VALUES (?, ?, ?, ?, ?, ?)", records)
             for k, v in (("settings", settings), ("lf_sha256", _pool_hash(records)),
-                         ("created_at", _now()), ("pas_version", _pas_version())):
+                         ("created_at", _now()), ("pas_version", __version__)):
                 self._set_meta(c, k, v)
 
     def check(self, settings: dict, lfset) -> None:
@@ -341,12 +342,6 @@ class StudyStore:
         """The stored history rows, in order."""
         with self._read() as c:
             return [json.loads(r[0]) for r in c.execute("SELECT data FROM history ORDER BY row")]
-
-
-def _pas_version() -> str:
-    from .. import __version__
-
-    return __version__
 
 
 def read_settings(path) -> dict:
