@@ -111,6 +111,8 @@ class _Loop:
 
     def run(self, batch_size: int, pending: str):
         study = self.study
+        if (failure := failure_limit(study)) is not None:  # resumed past the limit
+            raise failure
         batch = self._left_over(pending)
         while True:
             if not batch:
@@ -140,8 +142,6 @@ class _Loop:
 
     def _absorb(self):
         """Tell results that other processes stored for waiting events (arrival order)."""
-        if (failure := failure_limit(self.study)) is not None:
-            raise failure
         for idx, hf, err in self.store.unconsumed() if self.store is not None else ():
             if (failure := self._tell(int(idx), hf, err)) is not None:
                 raise failure
