@@ -73,9 +73,8 @@ from sklearn.gaussian_process.kernels import ConstantKernel, Matern, WhiteKernel
 from .._validation import check_option, check_positive, check_positive_int
 from ..copulas import kendall_tau
 from ..screening import LFSet
-from ..stats.exceedance import value_at_exceedance
 from .acquisition import nearest_available
-from .base import Pairs, Prediction, Strategy
+from .base import Pairs, Prediction, Strategy, band95
 
 __all__ = [
     "AS",
@@ -86,7 +85,6 @@ __all__ = [
 ]
 
 FIDELITIES = ("single", "multi")
-Z95 = 1.959963984540054
 LENGTH_MIN = 0.5
 
 _controller = None
@@ -372,15 +370,7 @@ class AS(Strategy):
                 record["n_lf_points"] = lf_model.n_points
         record["kernel"] = str(gp.kernel_)
         record["rho"] = rho
-        low, high = mean - Z95 * sd, mean + Z95 * sd
-        p = lfset.p_exp
-        return Prediction(
-            d=grid, h_mean=mean, h_low=low, h_high=high,
-            mpm=float(value_at_exceedance(grid, mean, p)),
-            mpm_band=(float(value_at_exceedance(grid, low, p)),
-                      float(value_at_exceedance(grid, high, p))),
-            record=record,
-        )
+        return Prediction.read_at(lfset.p_exp, grid, mean, *band95(mean, sd), record)
 
     def propose(self, selected_d, lfset: LFSet, available: np.ndarray,
                 last: Prediction | None, q: int = 1) -> list[int]:

@@ -18,7 +18,15 @@ from ..screening import LFSet
 from ..stats.exceedance import value_at_exceedance
 from .acquisition import initial_targets, md_select, nearest_available
 
-__all__ = ["Pairs", "Prediction", "Strategy"]
+__all__ = ["Pairs", "Prediction", "Strategy", "Z95", "band95"]
+
+Z95 = 1.96
+"""Half-width of the U95 bands in standard deviations, as printed in the paper (Eq. 10)."""
+
+
+def band95(mean, sd):
+    """The U95 band ``(mean − Z95·sd, mean + Z95·sd)`` (Eq. 10)."""
+    return mean - Z95 * sd, mean + Z95 * sd
 
 
 @dataclass(frozen=True)
@@ -59,6 +67,15 @@ class Prediction:
     mpm: float
     mpm_band: tuple
     record: dict = field(default_factory=dict)
+
+    @classmethod
+    def read_at(cls, p_exp: float, d, h_mean, h_low, h_high, record=None) -> Prediction:
+        """The prediction of a distribution with its band, MPM and MPM band read at ``p_exp`` (Step 12)."""
+        return cls(d=d, h_mean=h_mean, h_low=h_low, h_high=h_high,
+                   mpm=float(value_at_exceedance(d, h_mean, p_exp)),
+                   mpm_band=(float(value_at_exceedance(d, h_low, p_exp)),
+                             float(value_at_exceedance(d, h_high, p_exp))),
+                   record={} if record is None else record)
 
     def at(self, p):
         """The mean distribution interpolated at probabilities ``p`` on ``ln d``."""
