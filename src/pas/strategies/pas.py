@@ -58,7 +58,7 @@ from ..copulas import (
 from ..marginals import fit_marginal
 from ..screening import LFSet
 from ..stats.exceedance import value_at_exceedance
-from .base import Pairs, Prediction, Strategy
+from .base import Pairs, Prediction, Strategy, band95
 
 __all__ = [
     "PAS",
@@ -165,7 +165,7 @@ def hf_distribution(h_draws, n_waves: int):
     d = np.arange(1, h.shape[1] + 1) / n_waves
     mean = h.mean(axis=0)
     sd = h.std(axis=0, ddof=1) if h.shape[0] > 1 else np.zeros_like(mean)
-    return d, mean, mean - 1.96 * sd, mean + 1.96 * sd
+    return d, mean, *band95(mean, sd)
 
 
 class PAS(Strategy):
@@ -252,7 +252,6 @@ class PAS(Strategy):
         fit = fits[self.family_]
         marginals = self._marginals(pairs.lf, pairs.hf, keep, lfset)
         d, mean, low, high = self._distribution(fit, marginals, lfset, rng, pairs.fp_lf)
-        p = lfset.p_exp
         lam_u, lam_l = empirical_tail_dependence(pairs.lf, pairs.hf)
         record = {
             "family": self.family_,
@@ -263,12 +262,7 @@ class PAS(Strategy):
             "lambda_u": lam_u,
             "lambda_l": lam_l,
         }
-        return Prediction(
-            d=d, h_mean=mean, h_low=low, h_high=high,
-            mpm=float(value_at_exceedance(d, mean, p)),
-            mpm_band=(float(value_at_exceedance(d, low, p)), float(value_at_exceedance(d, high, p))),
-            record=record,
-        )
+        return Prediction.read_at(lfset.p_exp, d, mean, low, high, record)
 
     def model_band(self, pairs: Pairs, lfset: LFSet, rng: np.random.Generator):
         """U95 of the MPM over a bootstrap of the LF–HF pairs (beyond the paper).
