@@ -71,8 +71,8 @@ from sklearn.gaussian_process import GaussianProcessRegressor
 from sklearn.gaussian_process.kernels import ConstantKernel, Matern, WhiteKernel
 
 from .._validation import check_option, check_positive, check_positive_int
-from ..copulas import kendall_tau
 from ..screening import LFSet
+from ..stats.dependence import kendall_tau
 from .acquisition import nearest_available
 from .base import Pairs, Prediction, Strategy, band95
 
