@@ -48,15 +48,13 @@ from ..copulas import (
     CopulaFit,
     _family_and_rotation,
     conditional_quantile,
-    empirical_tail_dependence,
     fit_candidates,
     fit_copula,
-    kendall_tau,
-    pseudo_observations,
     select_family,
 )
 from ..marginals import fit_marginal
 from ..screening import LFSet
+from ..stats.dependence import empirical_tail_dependence, kendall_tau, pseudo_observations
 from ..stats.exceedance import value_at_exceedance
 from .base import Pairs, Prediction, Strategy, band95
 
