@@ -62,6 +62,7 @@ with a handful of samples) is silenced inside the fits.
 
 from __future__ import annotations
 
+import functools
 import warnings
 from contextlib import contextmanager
 
@@ -69,6 +70,7 @@ import numpy as np
 from sklearn.exceptions import ConvergenceWarning
 from sklearn.gaussian_process import GaussianProcessRegressor
 from sklearn.gaussian_process.kernels import ConstantKernel, Matern, WhiteKernel
+from threadpoolctl import ThreadpoolController
 
 from .._validation import check_option, check_positive, check_positive_int
 from ..screening import LFSet
@@ -87,21 +89,17 @@ __all__ = [
 FIDELITIES = ("single", "multi")
 LENGTH_MIN = 0.5
 
-_controller = None
+
+@functools.cache
+def _blas_controller() -> ThreadpoolController:
+    """The loaded BLAS libraries, inspected once (≈ 4 ms a time, 0.03 ms to limit them)."""
+    return ThreadpoolController()
 
 
 @contextmanager
 def _one_blas_thread():
     """Limit BLAS to one thread for the small GP algebra (module docs)."""
-    global _controller
-    try:
-        from threadpoolctl import ThreadpoolController
-    except ImportError:  # scikit-learn depends on threadpoolctl; be safe anyway
-        yield
-        return
-    if _controller is None:
-        _controller = ThreadpoolController()
-    with _controller.limit(limits=1, user_api="blas"):
+    with _blas_controller().limit(limits=1, user_api="blas"):
         yield
 
 
