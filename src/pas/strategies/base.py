@@ -94,7 +94,6 @@ class Strategy(ABC):
     name: str = "base"
     n_initial: int = 4
     min_pairs: int = 4
-    skip_unsplittable: bool = True
     #: samples spread over the whole LF range, so Kendall's tau of the pairs
     #: measures the indicator (False for strategies that cluster samples)
     spreads_samples: bool = True
@@ -128,10 +127,10 @@ class Strategy(ABC):
 
         ``selected_d`` are the LF exceedance probabilities of the selected
         (true-positive) samples; ``available`` marks pool positions that may
-        still be chosen.
+        still be chosen.  Gaps no pool peak can split are skipped
+        (:func:`~pas.strategies.acquisition.md_select`).
         """
-        return md_select(lfset.ln_d, available, np.log(selected_d), q,
-                         skip_unsplittable=self.skip_unsplittable)
+        return md_select(lfset.ln_d, available, np.log(selected_d), q)
 
     def model_band(self, pairs: Pairs, lfset: LFSet, rng: np.random.Generator):
         """Optional U95 band of the MPM including model uncertainty, or None."""
