@@ -56,6 +56,7 @@ from ..marginals import fit_marginal
 from ..screening import LFSet
 from ..stats.dependence import empirical_tail_dependence, kendall_tau, pseudo_observations
 from ..stats.exceedance import value_at_exceedance
+from .acquisition import md_select
 from .base import Pairs, Prediction, Strategy, band95
 
 __all__ = [
@@ -222,6 +223,12 @@ class PAS(Strategy):
 
     def reset(self) -> None:
         self.family_ = None
+
+    def propose(self, selected_d, lfset: LFSet, available: np.ndarray,
+                last: Prediction | None, q: int = 1) -> list[int]:
+        """Next ``q`` positions by MD (Eq. 16–17), with the ``skip_unsplittable`` setting."""
+        return md_select(lfset.ln_d, available, np.log(selected_d), q,
+                         skip_unsplittable=self.skip_unsplittable)
 
     def _upper_tail(self, lfset: LFSet) -> bool:
         return lfset.threshold is None if self.upper_tail is None else self.upper_tail
