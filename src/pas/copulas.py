@@ -94,10 +94,10 @@ def _at_bound(bicop: pv.Bicop, name: str) -> bool:
     hi = np.asarray(bicop.parameters_upper_bounds, dtype=float).ravel()
     tol = 1e-3 * np.maximum(1.0, np.abs(hi - lo))
     if name.startswith("gaussian") or name.startswith("student"):
-        # |ρ| = 1 is degenerate; ν at either end is the boundary case of SPEC §8.
+        # |ρ| = 1 is degenerate; ν at either end is the boundary case of pas.strategies.pas.
         return bool(np.any(np.abs(p - lo) < tol) or np.any(np.abs(p - hi) < tol))
     # one-parameter families: the lower bound is independence (Clayton, Gumbel, Joe)
-    # or strong negative dependence (Frank) — neither is the boundary case of SPEC §8
+    # or strong negative dependence (Frank) — neither is the case of pas.strategies.pas
     return bool(np.any(np.abs(p - hi) < tol))
 
 
