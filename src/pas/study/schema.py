@@ -36,7 +36,7 @@ result_seq, tell_seq, attempts, asked_at, submitted_at, result_at, source)``
 Replay order is the asks (grouped by ``batch``) and the consumed tells
 (``tell_seq``) sorted by sequence number.  Results that arrived but were not
 consumed yet (``result_seq`` set, ``tell_seq`` NULL) are consumed by whoever
-drives the study next: :func:`pas.study.executor.optimize` in ask order,
+drives the study next: :func:`pas.study.loop.optimize` in ask order,
 ``pas study ask`` in arrival order.
 """
 
