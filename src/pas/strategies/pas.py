@@ -9,8 +9,9 @@ Stability remedy (beyond the paper)
 A faithful implementation of the paper's selection, tried on a problem whose
 true copula is Gumbel, saw its MPM double once ~80 HF samples were in: the
 Student-t candidate won the AIC with ν at its lower bound (2), and its
-strong symmetric tail dependence pushed conditional draws of the largest LF peaks into the far extrapolation of the Weibull HF marginal.  An
-MLE on the boundary of the parameter space is not a regular estimate — the
+strong symmetric tail dependence pushed conditional draws of the largest LF
+peaks into the far extrapolation of the Weibull HF marginal.  An MLE on the
+boundary of the parameter space is not a regular estimate — the
 asymptotics behind AIC (Akaike 1974) assume an interior optimum — so the
 default here is ``exclude_at_bound=True``: a candidate whose fitted parameter
 sits on its bound (Student-t ν = 2 or 50, |ρ| = 1, an Archimedean parameter at
