@@ -4,7 +4,7 @@
 
     pas plot RESULT_DIR [--kind mpm|distribution|scatter|aic|all] [--out FILE]
 
-Reads the files :meth:`ScreeningResult.save <pas.study.result.ScreeningResult.save>` wrote (``summary.json``,
+Reads the files :meth:`pas.study.result.ScreeningResult.save` wrote (``summary.json``,
 ``history.csv``, ``distribution.csv``, ``pairs.csv``, ``range_curves.csv``,
 ``lf_curve.csv``) and draws them with :mod:`pas.plotting.figures`.  The
 scatter shows every evaluated LF–HF pair (false positives at HF = 0) with
@@ -35,7 +35,7 @@ examples:
 
 
 def load_result(path):
-    """Read a ``pas run`` output folder (:meth:`ScreeningResult.load <pas.study.result.ScreeningResult.load>`).
+    """Read a ``pas run`` output folder (:meth:`pas.study.result.ScreeningResult.load`).
 
     Returns
     -------

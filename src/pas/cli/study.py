@@ -264,8 +264,9 @@ def _drive(args) -> int:
     if args.workers is not None and args.workers < 1:
         raise ValueError(f"--workers must be at least 1, got {args.workers}")
     study = open_study(store, consume=False)
+    progress = None if args.quiet else Progress(sys.stdout)
     res = study.optimize(oracle_from_spec(spec), batch_size=q, n_workers=args.workers,
-                         pending=args.pending, callback=None if args.quiet else Progress(sys.stdout))
+                         pending=args.pending, callback=progress)
     store.close()
     print(res.summary())
     return 0

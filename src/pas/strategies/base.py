@@ -70,7 +70,7 @@ class Prediction:
 
     @classmethod
     def read_at(cls, p_exp: float, d, h_mean, h_low, h_high, record=None) -> Prediction:
-        """The prediction of a distribution with its band, MPM and MPM band read at ``p_exp`` (Step 12)."""
+        """A distribution and its band, with the MPM and its band read at ``p_exp`` (Step 12)."""
         return cls(d=d, h_mean=h_mean, h_low=h_low, h_high=h_high,
                    mpm=float(value_at_exceedance(d, h_mean, p_exp)),
                    mpm_band=(float(value_at_exceedance(d, h_low, p_exp)),

@@ -54,10 +54,10 @@ def make_strategy(strategy, settings=None) -> Strategy:
     --------
     >>> make_strategy("pas", {"z": 20}).z
     20
-    >>> make_strategy("as", {"zz": 1})
+    >>> make_strategy("as", {"zz": 1})  # doctest: +ELLIPSIS
     Traceback (most recent call last):
     ...
-    ValueError: unknown setting 'zz' for AS; its settings are fidelity, range_factor, n_grid, n_lf_bins, n_restarts
+    ValueError: unknown setting 'zz' for AS; its settings are fidelity, range_factor, ...
     """
     settings = dict(settings or {})
     if isinstance(strategy, str):

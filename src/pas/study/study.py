@@ -30,7 +30,6 @@ from .store import StudyStore, read_settings
 
 __all__ = ["Study", "open_study"]
 
-PENDING, TRUE_POSITIVE, FALSE_POSITIVE, FAILED = EventState
 
 
 class Study:
@@ -139,26 +138,34 @@ class Study:
     def _positions(self, status) -> list[int]:
         return [p for p, s in self.state.items() if s == status]
 
+    def _told(self, *states) -> list[int]:
+        """Positions told with one of ``states``, in evaluation order."""
+        return [r["position"] for r in self.rows if r["status"] in states]
+
+    @property
+    def _n_pending(self) -> int:
+        return len(self._positions(EventState.PENDING))
+
     @property
     def n_hf(self) -> int:
         return sum(s.is_evaluated() for s in self.state.values())
 
     @property
     def n_false_positive(self) -> int:
-        return sum(s == FALSE_POSITIVE for s in self.state.values())
+        return sum(s == EventState.FALSE_POSITIVE for s in self.state.values())
 
     @property
     def n_failed(self) -> int:
-        return sum(s == FAILED for s in self.state.values())
+        return sum(s == EventState.FAILED for s in self.state.values())
 
     @property
     def pending(self) -> list[Event]:
-        return [self.lfset.event(p) for p in self._positions(PENDING)]
+        return [self.lfset.event(p) for p in self._positions(EventState.PENDING)]
 
     def pairs(self) -> Pairs:
         """True-positive pairs in evaluation order."""
-        pos = np.array([r["position"] for r in self.rows if r["status"] == TRUE_POSITIVE], dtype=int)
-        fp = np.array([r["position"] for r in self.rows if r["status"] == FALSE_POSITIVE], dtype=int)
+        pos = np.array(self._told(EventState.TRUE_POSITIVE), dtype=int)
+        fp = np.array(self._told(EventState.FALSE_POSITIVE), dtype=int)
         return Pairs(pos, self.lfset.lf[pos], np.array([self.value[p] for p in pos], dtype=float),
                      self.lfset.d[pos], self.lfset.lf[fp])
 
@@ -175,7 +182,7 @@ class Study:
         """True when the study should ask for nothing more."""
         if self.converged and self.stop_on_convergence:
             return True
-        if self.max_hf is not None and self.n_hf + len(self._positions(PENDING)) >= self.max_hf:
+        if self.max_hf is not None and self.n_hf + self._n_pending >= self.max_hf:
             return True
         return self._initial is not None and not self.available().any()
 
@@ -192,20 +199,20 @@ class Study:
         elif self.finished:
             return []
         else:
-            room = n if self.max_hf is None else min(n, self.max_hf - self.n_hf - len(self._positions(PENDING)))
+            room = n if self.max_hf is None else min(n, self.max_hf - self.n_hf - self._n_pending)
             tp = self.pairs()
             if len(tp) >= 2:
                 sel_d = tp.d
             else:
-                sel_d = self.lfset.d[[r["position"] for r in self.rows if r["status"] != FAILED] +
-                                     self._positions(PENDING)]
+                sel_d = self.lfset.d[self._told(EventState.TRUE_POSITIVE, EventState.FALSE_POSITIVE)
+                                     + self._positions(EventState.PENDING)]
             if len(sel_d) >= 2:
                 new = self.strategy.propose(sel_d, self.lfset, self.available(), self.last,
                                             q=max(room, 0))
             else:  # initial samples failed: try the next peaks nearest the initial targets
                 new = self.strategy.initial_positions(self.lfset, self.available())[:max(room, 0)]
         for p in new:
-            self.state[p] = PENDING
+            self.state[p] = EventState.PENDING
         events = [self.lfset.event(p) for p in new]
         if self.store is not None and events:
             self.store.record_ask(events)
@@ -222,7 +229,7 @@ class Study:
         """
         idx = event.index if isinstance(event, Event) else int(event)
         pos = self.lfset.position_of(idx)
-        if self.state.get(pos) != PENDING:
+        if self.state.get(pos) != EventState.PENDING:
             raise ValueError(f"event {idx} was not asked for or is already told "
                              f"(state: {self.state.get(pos, 'never asked')})")
         if error is None:
@@ -235,14 +242,14 @@ class Study:
                "lf": ev.lf, "d": ev.d, "hf": value, "error": error, "status": state.value}
         if state.is_evaluated():
             self.value[pos] = value
-        if state == TRUE_POSITIVE:
+        if state == EventState.TRUE_POSITIVE:
             self.consecutive_fp = 0
-        elif state == FALSE_POSITIVE:
+        elif state == EventState.FALSE_POSITIVE:
             self.consecutive_fp += 1
             self._maybe_raise_threshold(ev)
         row["n_hf"] = self.n_hf
         self.rows.append(row)
-        if state == TRUE_POSITIVE:
+        if state == EventState.TRUE_POSITIVE:
             self._iterate(row)
         row["threshold"] = self.l0
         if self.store is not None:
@@ -268,7 +275,7 @@ class Study:
     def _iterate(self, row: dict) -> None:
         pairs = self.pairs()
         if len(pairs) < self.strategy.min_pairs or any(
-                self.state[p] == PENDING for p in self._initial):
+                self.state[p] == EventState.PENDING for p in self._initial):
             return
         rng = np.random.default_rng([self.seed, len(self.rows)])
         try:
