@@ -5,6 +5,7 @@ long low-fidelity (LF) simulation and a few adaptively chosen HF events
 (van Essen & Seyffert 2026).  Start with :func:`run_pas`.
 """
 
+from ._version import __version__
 from .api import make_study, run_as, run_pas
 from .metrics import m1, m2, m3, metrics
 from .screening import Event, LFSet
@@ -24,8 +25,6 @@ from .study import (
     StudyStore,
     TableOracle,
 )
-
-__version__ = "0.1.0"
 
 __all__ = [
     "run_pas", "make_study", "Study", "ScreeningResult", "OracleFailureLimit", "Event", "LFSet",

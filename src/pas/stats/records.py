@@ -180,8 +180,8 @@ def pooled_peaks_distribution(peaks, n_encounters, *, positions="gringorten"):
     n_total = _total_encounters(n_encounters, len(seeds))
     pooled = np.sort(np.concatenate(seeds))[::-1]
     if pooled.size > n_total:
-        # Happens with spectral estimates such as n_w = T / Tp (paper Table 2,
-        # SPEC §8), which undercount zero up-crossings; allowed but flagged.
+        # Happens with spectral estimates such as n_w = T / Tp (van Essen &
+        # Seyffert 2026, Table 2), which undercount zero up-crossings; flagged.
         warnings.warn(f"{pooled.size} peaks in {n_total} encounters: the smallest peaks get "
                       "exceedance probabilities above 1; use counted encounters or check for "
                       "double peaks per wave", stacklevel=2)

@@ -49,7 +49,7 @@ def run_case(data, *, strategy="pas", seed=0, max_hf=None):
                          f"{', '.join(_strategies())}")
     t0 = time.perf_counter()
     with warnings.catch_warnings():
-        # Cases 1, 4: more LF peaks than the table's n_w (spectral-period convention, SPEC §8).
+        # Cases 1, 4: more LF peaks than the table's n_w = T_MCS / T_p,e (paper Table 2).
         warnings.filterwarnings("ignore", message="n_waves=.*below the number of LF peaks")
         res = runner(data.lf, data.oracle(), n_waves=data.n_waves, p_exp=data.p_exp,
                      eps1=data.eps1, threshold=data.threshold, seed=seed, max_hf=max_hf,
