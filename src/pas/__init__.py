@@ -6,6 +6,7 @@ long low-fidelity (LF) simulation and a few adaptively chosen HF events
 design-wave :func:`run_rcw` (Dermatis et al. 2025) solve the same problem.
 """
 
+from ._version import __version__
 from .api import make_study, run_as, run_pas
 from .design_waves import run_rcw
 from .metrics import m1, m2, m3, metrics
@@ -26,8 +27,6 @@ from .study import (
     StudyStore,
     TableOracle,
 )
-
-__version__ = "0.1.0"
 
 __all__ = [
     "run_pas", "make_study", "Study", "ScreeningResult", "OracleFailureLimit", "Event", "LFSet",

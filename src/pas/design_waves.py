@@ -30,7 +30,7 @@ import pandas as pd
 from .stats.exceedance import exceedance_probabilities, value_at_exceedance
 from .strategies.stopping import range_grid
 from .study.result import ScreeningResult, distribution_frame
-from .study.study import call_oracle
+from .study.oracles import call_oracle
 from .waves.design import rayleigh_target
 from .waves.surrogate import ResponseSurrogate
 from .waves.episode import METHODS, Episode, design_episode

@@ -231,7 +231,7 @@ def plot_scatter(lf, hf, *, result=None, ax=None, lf_unit=None, unit=None,
         Passed to :func:`conditional_quantile_curves`.
     q_tail : float, default 0.9
         Level of the empirical tail dependence
-        (:func:`pas.copulas.empirical_tail_dependence`).
+        (:func:`pas.stats.dependence.empirical_tail_dependence`).
     label : str, default "all events"
         Legend name of the ``lf``/``hf`` points.
 
@@ -244,7 +244,7 @@ def plot_scatter(lf, hf, *, result=None, ax=None, lf_unit=None, unit=None,
     τ, λU and λL are computed on all the given pairs and shown in the title
     and the legend.  Large samples are rasterised in vector output.
     """
-    from ..copulas import empirical_tail_dependence, kendall_tau
+    from ..stats.dependence import empirical_tail_dependence, kendall_tau
 
     x, y = np.asarray(lf, dtype=float), np.asarray(hf, dtype=float)
     if x.shape != y.shape or x.ndim != 1:

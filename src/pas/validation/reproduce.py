@@ -88,7 +88,7 @@ def run_case(data, *, strategy="pas", seed=0, max_hf=None):
 def _run_screening(data, strategy, seed, max_hf):
     runner = {"pas": pas.run_pas, "as": pas.run_as}[strategy]
     with warnings.catch_warnings():
-        # Cases 1, 4: more LF peaks than the table's n_w (spectral-period convention, SPEC §8).
+        # Cases 1, 4: more LF peaks than the table's n_w = T_MCS / T_p,e (paper Table 2).
         warnings.filterwarnings("ignore", message="n_waves=.*below the number of LF peaks")
         res = runner(data.lf, data.oracle(), n_waves=data.n_waves, p_exp=data.p_exp,
                      eps1=data.eps1, threshold=data.threshold, seed=seed, max_hf=max_hf,

@@ -1,17 +1,9 @@
 """Waves and linear ship responses: spectra, realisations, second order, RAOs, design waves."""
 
 from .design import FormResult, form_rcw, mler, mler_amplitudes, rayleigh_target
+from .encounter import encounter_frequency, mean_encounter_period, wave_frequency_from_encounter
 from .episode import Episode, design_episode
-from .realisation import (
-    ComponentSea,
-    LinearSea,
-    encounter_frequency,
-    linear_sea,
-    mean_encounter_period,
-    period_domain_sea,
-    synthesise,
-    wave_frequency_from_encounter,
-)
+from .realisation import ComponentSea, LinearSea, linear_sea, period_domain_sea, synthesise
 from .second_order import (
     SecondOrderKernel,
     direct_second_order,
