@@ -200,7 +200,7 @@ def test_rayleigh_target_is_the_closed_form():
         rayleigh_target(1.0, 0.0)
 
 
-def test_run_rcw_ladder_targets_and_result(crest):
+def test_run_rcw_ladder_targets_and_result(crest, tmp_path):
     lin = _sea_a(second_order=False)
     seen = []
 
@@ -225,6 +225,10 @@ def test_run_rcw_ladder_targets_and_result(crest):
     truth_h = 1.2 * np.sqrt(2 * lin.m0 * np.log(1 / truth_d))
     met = pas.metrics(res, truth_d, truth_h, float(np.interp(np.log(1e-3), np.log(truth_d), truth_h)))
     assert abs(met["M2"]) < 3e-3 and abs(met["M3"]) < 0.02 and met["M1"] == 4 / 20_000
+    res.save(tmp_path / "rcw")                               # same files as PAS and AS
+    back = pas.ScreeningResult.load(tmp_path / "rcw")
+    assert back.strategy == "rcw" and back.mpm == res.mpm and back.n_hf == 4
+    assert np.allclose(back.distribution["f_nl"], 0.2)
     mres = pas.run_rcw(crest, oracle, p_exp=1e-3, method="mler")
     assert mres.strategy == "mler" and mres.n_hf == 1
     with pytest.raises(ValueError, match="n_waves"):
