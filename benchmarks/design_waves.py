@@ -8,8 +8,8 @@ than ``pas reproduce`` uses -- and evaluate each on the case's episode oracle.
 Prints per case: components, build time, the worst FORM iterations, residual
 and alignment, FORM time per episode, HF-model time per episode, and the cost
 of a one-episode run (build + FORM + HF).  With ``--scipy`` it also solves the
-P_exp episode with scipy's SLSQP (same start, exact gradients) and prints the
-time ratio and the difference in ``beta``.
+P_exp episode with scipy's SLSQP (same start, exact gradients, both on one BLAS
+thread) and prints the time ratio and both ``beta``.
 
 Run: ``python benchmarks/design_waves.py [--cases 2a,3b] [--scipy]``
 """
@@ -76,13 +76,16 @@ def main(argv=None):
         worst["episode_s"] = max(worst["episode_s"], max(t_form) + max(t_hf))
         worst["single_run_s"] = max(worst["single_run_s"], single)
         if args.scipy:
+            from threadpoolctl import threadpool_limits
+
             target = float(rayleigh_target(s.m0, spec.p_exp))
-            t0 = time.perf_counter()
-            ours = form_rcw(s, target)
-            t_ours = time.perf_counter() - t0
-            t0 = time.perf_counter()
-            ref = _slsqp(s, target)
-            t_ref = time.perf_counter() - t0
+            with threadpool_limits(1):  # both single-threaded: a fair ratio on a busy machine
+                t0 = time.perf_counter()
+                ours = form_rcw(s, target)
+                t_ours = time.perf_counter() - t0
+                t0 = time.perf_counter()
+                ref = _slsqp(s, target)
+                t_ref = time.perf_counter() - t0
             print(f"    scipy SLSQP at P_exp: {t_ref:.2f} s ({ref.nit} iterations, success "
                   f"{ref.success}) vs FORM {t_ours:.3f} s: ratio {t_ref / t_ours:.0f}x; "
                   f"beta {ours.beta:.8f} vs {np.linalg.norm(ref.x):.8f}", flush=True)
