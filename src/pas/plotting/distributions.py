@@ -13,7 +13,8 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from ._common import _fmt, _new_axes, _plot_with_band, _strategy_name, _with_unit
+from ._common import (_exceedance_axes, _fmt, _new_axes, _plot_with_band, _strategy_name,
+                      _with_unit)
 
 __all__ = ["plot_distribution", "plot_scatter", "conditional_quantile_curves"]
 
@@ -140,13 +141,7 @@ def plot_distribution(result, *, lf=None, truth=None, ax=None, label=None, unit=
         lo, hi = ax.get_ylim()
         span = hi - min(seen.min(), 0.0)
         ax.set_ylim(max(lo, min(seen.min(), 0.0) - 0.05 * span), hi)
-    ax.set_xscale("log")
-    if not ax.xaxis_inverted():
-        ax.invert_xaxis()
-    ax.set_xlabel("exceedance probability per wave $d$ [-]")
-    ax.set_ylabel(_with_unit(quantity, unit))
-    ax.grid(True, which="both", lw=0.3, alpha=0.5)
-    ax.legend(fontsize=7, loc="upper left")
+    _exceedance_axes(ax, quantity, unit)
     return fig, ax
 
 

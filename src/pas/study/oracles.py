@@ -164,7 +164,11 @@ class CommandOracle:
         Argument-list template, e.g. ``["python", "cfd.py", "--event", "{id}",
         "--lf", "{lf}", "--out", "{result}"]``.  Placeholders: ``{id}``,
         ``{index}``, ``{lf}``, ``{d}``, ``{workdir}``, ``{result}`` and every
-        key of the event's ``meta`` (``{seed}``, ``{t_start}`` …).
+        key of the event's ``meta`` (``{seed}``, ``{t_start}`` …).  For a
+        design-wave :class:`~pas.waves.episode.Episode` (:func:`pas.run_rcw`)
+        also ``{episode}`` and ``{components}``: CSV files of the episode's
+        time series and wave components, written into the working directory,
+        and its ``{level}``, ``{target}`` and ``{t0}``.
     root : str or os.PathLike
         Each event runs in its own working directory ``root/<event id>``,
         with ``stdout.log`` and ``stderr.log``.
@@ -209,9 +213,10 @@ class CommandOracle:
     def __repr__(self) -> str:
         return f"CommandOracle({self.args!r}, root={self.root!r})"
 
-    def command(self, event, workdir: str) -> list[str]:
-        """The argument list for ``event``."""
+    def command(self, event, workdir: str, files: dict | None = None) -> list[str]:
+        """The argument list for ``event`` (``files``: extra placeholders, e.g. an episode's)."""
         fields = {str(k): v for k, v in event.meta.items()}
+        fields.update(files or {})
         fields.update(id=event.id, index=event.index, lf=repr(float(event.lf)),
                       d=repr(float(event.d)), workdir=workdir,
                       result=os.path.join(workdir, self.result_name))
@@ -234,7 +239,10 @@ class CommandOracle:
                     return value
             if os.path.exists(result):
                 os.remove(result)
-            self._run(self.command(event, workdir), workdir, lock)
+            # A design-wave episode (pas.waves.Episode) brings its own input files.
+            writer = getattr(event, "write_csv", None)
+            files = writer(workdir) if callable(writer) else None
+            self._run(self.command(event, workdir, files), workdir, lock)
             return self._read(result)
         finally:
             os.close(lock)
