@@ -1,4 +1,4 @@
-"""Accuracy of PAS and AS on the analogues as a distribution over replications.
+"""Accuracy of PAS, AS and design waves on the analogues over replications.
 
 Default: all twelve ids (eight paper-like, four ``-hard``); ``--cases`` takes
 any of them, e.g. ``--cases 3a,3a-hard``.
@@ -8,9 +8,12 @@ the random parts of the HF model seeded with r) and runs each strategy with
 seed r, so the spread covers Monte-Carlo variability of the data as well as
 PAS's own draws — not only the conditional-draw noise on one frozen data set
 that ``pas reproduce --replications`` shows.  Every replication is scored
-against its own data set's HF truth.
+against its own data set's HF truth.  The design waves (``rcw``, ``mler``) are
+deterministic given the data set: they vary between replications only through
+the data (their LF Monte-Carlo targets; the truth they are scored against).
 
-Run: python benchmarks/validation_spread.py [N] [--cases 1a,3a] [--out DIR]
+Run: python benchmarks/validation_spread.py [N] [--cases 1a,3a] [--strategies pas,as,rcw]
+[--out DIR]
 Writes runs.csv and summary.csv to DIR (default pas-output/spread).
 """
 
@@ -23,7 +26,7 @@ from pathlib import Path
 import pandas as pd
 
 from pas.validation import CASE_IDS, generate_case
-from pas.validation.reproduce import _strategies, run_case
+from pas.validation.reproduce import _strategies, parse_strategies, run_case
 
 
 def main(argv=None):
@@ -32,7 +35,9 @@ def main(argv=None):
     ap.add_argument("--cases", default=",".join(CASE_IDS))
     ap.add_argument("--out", default="pas-output/spread")
     ap.add_argument("--max-hf", type=int, default=None)
+    ap.add_argument("--strategies", default=",".join(_strategies()))
     args = ap.parse_args(argv)
+    strategies = parse_strategies(args.strategies)
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     rows = []
@@ -41,7 +46,7 @@ def main(argv=None):
             t0 = time.perf_counter()
             data = generate_case(case, seed=r)
             gen = time.perf_counter() - t0
-            for strategy in _strategies():
+            for strategy in strategies:
                 _, row = run_case(data, strategy=strategy, seed=r, max_hf=args.max_hf)
                 row.update(replication=r, truth=data.truth_mpm, generate_s=gen)
                 rows.append(row)

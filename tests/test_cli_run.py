@@ -16,7 +16,7 @@ import pytest  # noqa: E402
 import pas  # noqa: E402
 from pas.cli import main  # noqa: E402
 from pas.cli.plot import load_result  # noqa: E402
-from pas.cli.run import OUTPUT_FILES  # noqa: E402
+from pas.study.result import OUTPUT_FILES  # noqa: E402
 from pas.study.oracles import TableOracle  # noqa: E402
 
 N, NW, P, EPS1 = 3000, 3200, 3e-3, 0.2

@@ -7,12 +7,12 @@ from pas.copulas import (
     PAPER_FAMILIES,
     CopulaFit,
     conditional_quantile,
-    empirical_tail_dependence,
     fit_candidates,
     fit_copula,
     pseudo_observations,
     select_family,
 )
+from pas.stats.dependence import empirical_tail_dependence
 
 RNG = np.random.default_rng(11)
 U = RNG.uniform(1e-4, 1 - 1e-4, (5000, 2))

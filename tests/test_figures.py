@@ -18,6 +18,7 @@ from pas.plotting import (  # noqa: E402
     plot_mpm_convergence,
     plot_scatter,
 )
+from pas.stats.dependence import kendall_tau  # noqa: E402
 from pas.stats.exceedance import exceedance_probabilities  # noqa: E402
 
 N, NW, P = 3000, 3200, 3e-3
@@ -128,7 +129,7 @@ def test_scatter_plain_and_with_result(problem, result, tmp_path):
     fig, ax = plot_scatter(lf, hf, lf_unit="m", unit="m")
     _save(fig, tmp_path, "scatter_plain")
     assert "τ = " in ax.get_title() and "λ_U" in ax.get_title()
-    tau = pas.copulas.kendall_tau(lf, hf)
+    tau = kendall_tau(lf, hf)
     assert f"τ = {tau:.2f}" in ax.get_title()
     assert ax.get_xlabel() == "LF indicator peak [m]"
 

@@ -10,7 +10,7 @@ import pytest
 
 from pas.screening import Event
 from pas.study.oracles import CommandOracle, OracleError, TableOracle, parse_result
-from pas.study.study import call_oracle
+from pas.study.oracles import call_oracle
 
 EV = Event(index=3, id="ev3", lf=2.5, d=0.01, meta={"seed": 11, "t_start": 120.0})
 

@@ -100,12 +100,20 @@ def test_quantile_exceedance_worked_example():
 
 
 def test_pooled_distribution_and_seed_maxima_conventions():
-    d, v = pooled_peaks_distribution([[1.0, 3.0], [2.0], []], n_encounters=[5, 5, 10])
+    # the paper's Eq. 3 on request ...
+    d, v = pooled_peaks_distribution([[1.0, 3.0], [2.0], []], n_encounters=[5, 5, 10],
+                                     positions="k/n")
     np.testing.assert_allclose(d, [0.05, 0.1, 0.15])
     np.testing.assert_allclose(v, [3.0, 2.0, 1.0])
+    # ... Gringorten (k - 0.44) / (n + 0.12) by default (changed on purpose: k/n
+    # reads high quantiles near the top of a record biased high)
+    d, _ = pooled_peaks_distribution([[1.0, 3.0], [2.0], []], n_encounters=[5, 5, 10])
+    np.testing.assert_allclose(d, [0.56 / 20.12, 1.56 / 20.12, 2.56 / 20.12])
     np.testing.assert_allclose(seed_maxima([[1.0, 3.0], [], [2.0]]), [3.0, 0.0, 2.0])
-    # k/N: 0.632 * 5 = 3.16 -> 3rd largest (3) + 0.16 * (2 - 3)
-    assert mpm_seed_maxima([5.0, 1.0, 3.0, 2.0, 4.0]) == pytest.approx(2.84)
+    # k/(N+1) by default: 0.632 * 6 = 3.792 -> 3rd largest (3) + 0.792 * (2 - 3);
+    # the old k/N reading (0.632 * 5 = 3.16 -> 2.84) only on request
+    assert mpm_seed_maxima([5.0, 1.0, 3.0, 2.0, 4.0]) == pytest.approx(2.208)
+    assert mpm_seed_maxima([5.0, 1.0, 3.0, 2.0, 4.0], positions="k/n") == pytest.approx(2.84)
 
 
 def test_impact_loads_fit_and_pooled_use_encounter_basis():
@@ -125,15 +133,19 @@ def test_impact_loads_fit_and_pooled_use_encounter_basis():
 def test_rms_difference_decreases_with_seeds():
     rng = np.random.default_rng(11)
     peaks = [rng.rayleigh(2.5, 400) for _ in range(30)]
-    cv = mpm_convergence(peaks, 400 * 30, n_subsets=300, n_subsets_fit=10, seed=1)
+    cv = mpm_convergence(peaks, 400 * 30, n_subsets=300, n_subsets_fit=10, n_boot=30, seed=1)
     r = cv.rms["pooled"]
-    picks = np.array([1, 2, 4, 8, 16, 30]) - 1
+    picks = np.array([1, 2, 4, 8, 16, 29]) - 1
     assert np.all(np.diff(r[picks]) < 0)
-    assert r[-1] == 0.0 and cv.reference == pytest.approx(mpm_pooled(peaks, 12000))
-    assert np.isnan(cv.rms["seed maxima"][0]) and cv.rms["seed maxima"][-1] < r[0]
+    # the raw subset RMS vanishes at N = M by construction; the fresh-campaign
+    # R(N) (finite-population corrected) is not defined there (changed on purpose)
+    assert cv.rms_subsets["pooled"][-1] == 0.0 and np.isnan(r[-1])
+    assert cv.reference == pytest.approx(mpm_pooled(peaks, 12000))
+    assert np.all(cv.rms_low["pooled"][:-1] < r[:-1]) and np.all(r[:-1] < cv.rms_high["pooled"][:-1])
+    assert np.isnan(cv.rms["seed maxima"][0]) and cv.rms["seed maxima"][-2] < r[0]
     assert cv.rms["fit"][0] > cv.rms["fit"][15]
     assert cv.seeds_needed(r[9] + 1e-9) <= 10
-    assert cv.seeds_needed(0.0) == 30
+    assert cv.seeds_needed(0.0) is None   # a record of M seeds never shows zero error
 
 
 def test_random_subsets_and_seeds_needed():
@@ -198,8 +210,11 @@ def test_bad_input_raises():
         mpm_convergence([[1.0, 2.0], [2.0, 3.0]], 10, n_values=[3])
     with pytest.raises(ValueError, match="NaN"):
         mpm_pooled([1.0, np.nan], 10)
-    with pytest.warns(UserWarning, match="shorter than the exposure"):
+    # a target beyond the record is an error, not the largest peak (changed on purpose)
+    with pytest.raises(ValueError, match="beyond the largest peak"):
         mpm_pooled([1.0, 2.0], 10, exposure_encounters=20.0)
+    with pytest.raises(ValueError, match="named tail"):
+        mpm_pooled([1.0, 2.0], 10, exposure_encounters=20.0, extrapolate="pareto")
 
 
 def test_figures_write_png(tmp_path, linear_record):
@@ -208,7 +223,7 @@ def test_figures_write_png(tmp_path, linear_record):
     fig, ax = a.plot(units="m")
     assert ax.get_yscale() == "log" and "[m]" in ax.get_xlabel()
     fig.savefig(tmp_path / "exceedance.png", dpi=80)
-    cv = mpm_convergence(crests[:20], enc[:20], n_subsets=50, n_subsets_fit=5)
+    cv = mpm_convergence(crests[:20], enc[:20], n_subsets=50, n_subsets_fit=5, n_boot=10)
     fig2, ax2 = cv.plot(criterion=0.3, units="m", variable="crest MPM")
     fig2.savefig(tmp_path / "convergence.png", dpi=80)
     # composing on given axes
@@ -224,3 +239,115 @@ def test_figures_write_png(tmp_path, linear_record):
         assert data[:8] == b"\x89PNG\r\n\x1a\n" and len(data) > 10_000
     assert len(ax.get_legend().get_texts()) >= 5
     plt.close("all")
+
+
+# ------------------------------------------------------------ issue 15 checks
+N_WAVES = 400   # crests per seed (one exposure duration)
+
+
+def _rayleigh_maxima(rng, shape, hs=HS, n=N_WAVES):
+    """Maxima of n Rayleigh crests, exactly: F_max = (1 - exp(-8c²/Hs²))^n = u."""
+    u = rng.random(shape)
+    return hs * np.sqrt(-np.log(-np.expm1(np.log(u) / n)) / 8.0)
+
+
+def test_seed_maxima_mpm_is_unbiased_with_k_over_n_plus_1():
+    # 20 000 replications of N seed maxima; the exact MPM is the e^-1 quantile
+    from pas.stats import read_at_exceedance
+
+    rng = np.random.default_rng(15)
+    exact = rayleigh_crest_quantile(HS, N_WAVES, np.exp(-1.0))
+    for n in (3, 10, 20):
+        m = -np.sort(-_rayleigh_maxima(rng, (20000, n)), axis=1)
+        est = read_at_exceedance(m, n, 1 - 0.368, positions="weibull", scale="linear")
+        assert mpm_seed_maxima(m[0]) == pytest.approx(est[0])     # the same read-out
+        bias, se = est.mean() - exact, est.std() / np.sqrt(est.size)
+        assert abs(bias) < 0.03 and se < 0.01
+        old = read_at_exceedance(m, n, 1 - 0.368, positions="k/n", scale="linear")
+        assert old.mean() - exact > {3: 0.3, 10: 0.08, 20: 0.03}[n]   # the defect, kept measurable
+
+
+def test_mpm_is_the_e1_quantile_not_the_mode():
+    # mode of the maximum of 1000 Rayleigh crests (density n f F^(n-1)) by a bounded search
+    n, hs = 1000, HS
+    def neg_log_density(c):
+        z = 8 * c**2 / hs**2
+        return -(np.log(16 * c / hs**2) - z + (n - 1) * np.log(-np.expm1(-z)))
+    mode = optimize.minimize_scalar(neg_log_density, bounds=(5, 15), method="bounded",
+                                    options={"xatol": 1e-10}).x
+    q = rayleigh_crest_quantile(hs, n, np.exp(-1.0))
+    assert mode / q - 1 == pytest.approx(0.0053, abs=0.0002)
+    assert rayleigh_crest_mpm(hs, n) == pytest.approx(q, rel=1e-4)
+
+
+def test_pooled_high_quantile_gringorten_less_biased_than_k_over_n():
+    # q = 0.9 of the hourly maximum from 10 one-hour seeds of Rayleigh crests
+    rng = np.random.default_rng(16)
+    n_rep, m = 600, 10
+    exact = rayleigh_crest_quantile(HS, N_WAVES, 0.9)
+    est = {"gringorten": [], "k/n": []}
+    for _ in range(n_rep):
+        crests = rng.rayleigh(HS / 4, (m, N_WAVES))
+        for pos in est:
+            est[pos].append(quantile_pooled(list(crests), m * N_WAVES, 0.9, positions=pos))
+    bias = {k: np.mean(v) - exact for k, v in est.items()}
+    se = {k: np.std(v) / np.sqrt(n_rep) for k, v in est.items()}
+    assert bias["k/n"] > 0.1 + 3 * se["k/n"]
+    assert abs(bias["gringorten"]) < abs(bias["k/n"]) / 2
+
+
+def test_target_beyond_the_record_needs_a_named_model():
+    rng = np.random.default_rng(17)
+    crests = [rng.rayleigh(HS / 4, N_WAVES) for _ in range(10)]
+    # q = 0.99 of the hourly maximum: 2.5e-5 per wave, 10x beyond 1/4000
+    with pytest.raises(ValueError, match="beyond the largest peak"):
+        quantile_pooled(crests, 10 * N_WAVES, 0.99)
+    exact = rayleigh_crest_quantile(HS, N_WAVES, 0.99)   # 11.51 m
+    for model in ("gpd", "weibull"):
+        v = quantile_pooled(crests, 10 * N_WAVES, 0.99, extrapolate=model)
+        # the spread over 8 seeded records was 10.3-11.4 (GPD), 10.9-12.1 m (Weibull)
+        assert v > max(c.max() for c in crests) and abs(v / exact - 1) < 0.12
+    with pytest.warns(UserWarning, match="beyond the largest peak"):
+        a = analyse_record(crests, 10 * N_WAVES, exposure_encounters=20 * N_WAVES, n_boot=0)
+    assert np.isnan(a.mpm_pooled)
+
+
+def test_r_n_matches_fresh_campaigns_up_to_three_quarters_of_the_record():
+    # 16 records of M = 40 seeds (100 crests per seed = one exposure); R(N) of
+    # fresh N-seed campaigns about the exact MPM from 2000 new campaigns each
+    rng = np.random.default_rng(18)
+    m, n_w, ns = 40, 100, [5, 10, 20, 30]
+    exact = HS * np.sqrt(np.log(n_w) / 8.0)
+    fresh = []
+    for n in ns:
+        est = [mpm_pooled(list(rng.rayleigh(HS / 4, (n, n_w))), n * n_w) for _ in range(2000)]
+        fresh.append(np.sqrt(np.mean((np.array(est) - exact) ** 2)))
+    r, raw, inside = [], [], []
+    for _ in range(16):
+        rec = list(rng.rayleigh(HS / 4, (m, n_w)))
+        cv = mpm_convergence(rec, m * n_w, n_values=ns, n_subsets=400, n_subsets_fit=0,
+                             n_boot=40, n_subsets_boot=60, seed=1)
+        r.append(cv.rms["pooled"])
+        raw.append(cv.rms_subsets["pooled"])
+        inside.append((cv.rms_low["pooled"] <= fresh) & (np.array(fresh) <= cv.rms_high["pooled"]))
+    r, raw = np.mean(r, axis=0), np.mean(raw, axis=0)
+    np.testing.assert_allclose(r, fresh, rtol=0.10)
+    assert raw[-1] < 0.7 * fresh[-1]          # the uncorrected subset RMS at N = 0.75 M
+    assert np.mean(inside) >= 0.8             # bootstrap band: nominal 95 %, 93-97 % measured
+
+
+def test_bootstrap_intervals_cover_the_exact_mpm():
+    from pas.stats import bootstrap_mpm
+
+    rng = np.random.default_rng(19)
+    exact = HS * np.sqrt(np.log(N_WAVES) / 8.0)
+    hits = {"pooled peaks": 0, "seed maxima": 0}
+    for _ in range(60):
+        rec = list(rng.rayleigh(HS / 4, (20, N_WAVES)))
+        for method in hits:
+            ci = bootstrap_mpm(rec, 20 * N_WAVES, method=method, n_boot=300, seed=2)
+            hits[method] += ci["low"] <= exact <= ci["high"]
+    assert hits["pooled peaks"] >= 0.8 * 60 and hits["seed maxima"] >= 0.8 * 60
+    a = analyse_record(rec, 20 * N_WAVES, n_boot=200)
+    assert set(a.ci.index) == {"pooled peaks", "seed maxima"}
+    assert a.ci.loc["pooled peaks", "low"] < a.mpm_pooled < a.ci.loc["pooled peaks", "high"]

@@ -1,129 +1,50 @@
-"""The two entry points users call: :func:`run_pas` and :func:`run_as`."""
+"""The entry points users call: :func:`run_pas`, :func:`run_as` and :func:`make_study`."""
 
 from __future__ import annotations
 
-import textwrap
-
-from .screening import LFSet
 from .strategies.as_ import AS
 from .strategies.pas import PAS
+from .study.factory import split_settings
 from .study.result import ScreeningResult
 from .study.study import Study
 
 __all__ = ["run_pas", "run_as", "make_study"]
-
-_STUDY_SETTINGS = ("k1", "k2", "max_failures", "stop_on_convergence", "adaptive_threshold",
-                   "threshold_step", "fp_run")
 
 
 def make_study(strategy, lf_peaks, *, n_waves, p_exp, eps1, eps2=0.1, threshold=None,
                seed=None, max_hf=None, ids=None, meta=None, store=None, **settings) -> Study:
     """Validate the inputs and build a :class:`~pas.study.study.Study` for ``strategy``.
 
-    ``strategy`` is a class (built with the strategy settings found in
-    ``settings``) or an instance.  Unknown settings raise ``ValueError``.
-    ``store`` (a path or :class:`~pas.study.store.StudyStore`) makes the study
-    crash-safe and resumable; with ``seed=None`` an existing store's seed is used.
+    Parameters
+    ----------
+    strategy : str, Strategy subclass or instance
+        ``"pas"``/``"as"`` or :class:`~pas.strategies.pas.PAS`/
+        :class:`~pas.strategies.as_.AS` (built with the strategy settings
+        found in ``settings``), or an instance (then ``settings`` holds study
+        settings only).
+    lf_peaks, n_waves, p_exp, eps1, eps2, threshold, seed, max_hf, ids, meta
+        As for :func:`run_pas`.
+    store : str, os.PathLike or StudyStore, optional
+        Makes the study crash-safe and resumable (:mod:`pas.study.store`);
+        with ``seed=None`` an existing store's seed is used.
+    **settings
+        Strategy settings (checked against the strategy's constructor;
+        unknown names raise ``ValueError``) and study settings (``k1``,
+        ``k2``, ``max_failures``, ``stop_on_convergence``,
+        ``adaptive_threshold``, ``threshold_step``, ``fp_run``).
+
+    Returns
+    -------
+    Study
     """
-    if store is not None and seed is None:
-        from .study.store import StudyStore, read_settings
-        stored = store.settings() if isinstance(store, StudyStore) else read_settings(store)
-        seed = stored.get("seed")
-    study_kw = {k: settings.pop(k) for k in _STUDY_SETTINGS if k in settings}
-    if isinstance(strategy, type):
-        try:
-            strategy = strategy(**settings)
-        except TypeError as exc:
-            raise ValueError(f"unknown setting for {strategy.__name__}: {exc}") from None
-    elif settings:
-        raise ValueError(f"unknown settings {sorted(settings)}")
-    lfset = LFSet(lf_peaks, n_waves=n_waves, p_exp=p_exp, threshold=threshold, ids=ids,
-                  meta=meta, min_peaks=max(4, strategy.n_initial))
-    return Study(lfset, strategy, eps1=eps1, eps2=eps2, seed=seed, max_hf=max_hf, store=store,
-                 **study_kw)
+    study_settings, strategy_settings = split_settings(settings)
+    return Study.from_settings(
+        {"strategy": strategy, "strategy_settings": strategy_settings, "n_waves": n_waves,
+         "p_exp": p_exp, "threshold": threshold, "eps1": eps1, "eps2": eps2, "seed": seed,
+         "max_hf": max_hf, **study_settings},
+        lf_peaks, ids=ids, meta=meta, store=store)
 
 
-_PARAMETERS = """\
-lf_peaks : array-like, shape (n_events,)
-    LF indicator peak of every wave event in the LF Monte-Carlo run.
-oracle : callable
-    ``oracle(event) -> float``: the HF peak of ``event`` (an
-    :class:`~pas.screening.Event` with ``index``, ``id``, ``lf``, ``d``,
-    ``meta``); 0.0 means no impact (a false positive).  An exception, NaN,
-    inf or a negative value is recorded as a failure, never taken as 0.
-n_waves : int
-    Number of wave encounters ``n_w`` in the LF Monte-Carlo duration.
-p_exp : float
-    Target exceedance probability (:func:`pas.p_exp_from_duration`).
-eps1 : float
-    Stopping limit on the mean change of the predicted distribution,
-    in load units (paper: ≈ 1–2 % of the expected maximum).
-eps2 : float, default 0.1
-    Stopping limit on the COV of the last K2 MPMs.
-threshold : float, optional
-    LF threshold ``l0_input`` (Eq. 2).
-seed : int, optional
-    Seed for reproducible {seeded} (reported on the result when None).
-max_hf : int, optional
-    Budget of HF evaluations{max_hf}.
-ids, meta : sequence, optional
-    User ids / metadata per event, passed to the oracle on the event.
-batch_size : int, default 1
-    Events proposed per iteration{batch}.
-callback : callable, optional
-    ``callback(study, row)`` after every HF result.
-study : str or os.PathLike, optional
-    SQLite study store (:mod:`pas.study.store`): created when missing,
-    otherwise checked against this call and continued — no stored HF
-    result is lost or re-run, and the run makes the decisions an
-    uninterrupted one would have made (same ``batch_size``).
-pending : {{"resubmit", "wait"}}, default "resubmit"
-    Events a killed run left without a result: run them again, or leave
-    them for ``pas study tell``.
-executor : concurrent.futures.Executor, optional
-    Runs the oracle calls of a batch concurrently (e.g.
-    ``distributed.Client(...).get_executor()``); results are stored as
-    they arrive.
-n_workers : int, optional
-    Without ``executor``: a local process pool of this size (the oracle
-    must be picklable).
-**settings
-    Strategy settings ({settings}) and study settings (``k1``, ``k2``,
-    ``max_failures``, ``stop_on_convergence``, ``adaptive_threshold``,
-    ``threshold_step``, ``fp_run``).
-"""
-"""The parameters :func:`run_pas` and :func:`run_as` share, written once; :func:`_documented`
-fills in what differs."""
-
-
-def _documented(**fields):
-    """Put :data:`_PARAMETERS`, formatted with ``fields``, at ``{parameters}`` in the docstring.
-
-    A field of several lines continues at the indentation of a description.
-    """
-    fields = {k: v.replace("\n", "\n    ") for k, v in fields.items()}
-    text = textwrap.indent(_PARAMETERS.format(**fields), "    ")
-
-    def decorate(fn):
-        if fn.__doc__:  # None under python -OO
-            fn.__doc__ = fn.__doc__.replace("    {parameters}\n", text)
-        return fn
-    return decorate
-
-
-def _run(strategy, lf_peaks, oracle, *, study, batch_size, callback, pending, executor,
-         n_workers, settings, **study_kw) -> ScreeningResult:
-    """The body of :func:`run_pas` and :func:`run_as`: build the study, then optimise it."""
-    built = make_study(strategy, lf_peaks, store=study, **study_kw, **settings)
-    return built.optimize(oracle, batch_size=batch_size, callback=callback, executor=executor,
-                          n_workers=n_workers, pending=pending)
-
-
-@_documented(seeded="draws", max_hf="", batch="", settings="""\
-:class:`~pas.strategies.pas.PAS`: ``families``,
-``z``, ``delta_aic``, ``exclude_at_bound``, ``upper_tail``,
-``outlier_k``, ``n_bootstrap``, ``skip_unsplittable``, ``marginals_from``,
-``impact_model``""")
 def run_pas(lf_peaks, oracle, *, n_waves, p_exp, eps1, eps2=0.1, threshold=None, seed=None,
             max_hf=None, ids=None, meta=None, batch_size=1, callback=None, study=None,
             pending="resubmit", executor=None, n_workers=None, **settings) -> ScreeningResult:
@@ -131,11 +52,66 @@ def run_pas(lf_peaks, oracle, *, n_waves, p_exp, eps1, eps2=0.1, threshold=None,
 
     Parameters
     ----------
-    {parameters}
+    lf_peaks : array-like, shape (n_events,)
+        LF indicator peak of every wave event in the LF Monte-Carlo run.
+    oracle : callable
+        ``oracle(event) -> float``: the HF peak of ``event`` (an
+        :class:`~pas.screening.Event` with ``index``, ``id``, ``lf``, ``d``,
+        ``meta``); 0.0 means no impact (a false positive).  An exception, NaN,
+        inf or a negative value is recorded as a failure, never taken as 0.
+    n_waves : int
+        Number of wave encounters ``n_w`` in the LF Monte-Carlo duration.
+    p_exp : float
+        Target exceedance probability (:func:`pas.p_exp_from_duration`).
+    eps1 : float
+        Stopping limit on the mean change of the predicted distribution,
+        in load units (paper: ≈ 1–2 % of the expected maximum).
+    eps2 : float, default 0.1
+        Stopping limit on the COV of the last K2 MPMs.
+    threshold : float, optional
+        LF threshold ``l0_input`` (Eq. 2).
+    seed : int, optional
+        Seed for reproducible draws (reported on the result when None).
+    max_hf : int, optional
+        Budget of HF evaluations.
+    ids, meta : sequence, optional
+        User ids / metadata per event, passed to the oracle on the event.
+    batch_size : int, default 1
+        Events proposed per iteration.
+    callback : callable, optional
+        ``callback(study, row)`` after every HF result.
+    study : str or os.PathLike, optional
+        SQLite study store (:mod:`pas.study.store`): created when missing,
+        otherwise checked against this call and continued — no stored HF
+        result is lost or re-run, and the run makes the decisions an
+        uninterrupted one would have made (same ``batch_size``).
+    pending : {"resubmit", "wait"}, default "resubmit"
+        Events a killed run left without a result: run them again, or leave
+        them for ``pas study tell``.
+    executor : concurrent.futures.Executor, optional
+        Runs the oracle calls of a batch concurrently (e.g.
+        ``distributed.Client(...).get_executor()``); results are stored as
+        they arrive.
+    n_workers : int, optional
+        Without ``executor``: a local process pool of this size (the oracle
+        must be picklable).
+    **settings
+        Settings of :class:`~pas.strategies.pas.PAS` (``families``, ``z``,
+        ``delta_aic``, ``exclude_at_bound``, ``upper_tail``, ``outlier_k``,
+        ``n_bootstrap``, ``skip_unsplittable``, ``marginals_from``,
+        ``impact_model``) and study settings (``k1``, ``k2``,
+        ``max_failures``, ``stop_on_convergence``, ``adaptive_threshold``,
+        ``threshold_step``, ``fp_run``: :class:`~pas.study.study.Study`).
 
     Returns
     -------
     ScreeningResult
+
+    Raises
+    ------
+    OracleFailureLimit
+        More than ``max_failures`` oracle calls failed; ``.result`` holds the
+        result so far.
 
     Examples
     --------
@@ -147,14 +123,13 @@ def run_pas(lf_peaks, oracle, *, n_waves, p_exp, eps1, eps2=0.1, threshold=None,
     >>> bool(res.converged), res.n_hf < 60
     (True, True)
     """
-    return _run(PAS, **locals())  # locals() is exactly the parameters here
+    built = make_study(PAS, lf_peaks, n_waves=n_waves, p_exp=p_exp, eps1=eps1, eps2=eps2,
+                       threshold=threshold, seed=seed, max_hf=max_hf, ids=ids, meta=meta,
+                       store=study, **settings)
+    return built.optimize(oracle, batch_size=batch_size, callback=callback, executor=executor,
+                          n_workers=n_workers, pending=pending)
 
 
-@_documented(seeded="runs", max_hf=" (at least 2)", batch=" (the next-best MVPD targets)",
-             settings="""\
-:class:`~pas.strategies.as_.AS`: ``fidelity``
-``"multi"``/``"single"``, ``range_factor``, ``n_grid``,
-``n_lf_bins``, ``n_restarts``""")
 def run_as(lf_peaks, oracle, *, n_waves, p_exp, eps1, eps2=0.1, threshold=None, seed=None,
            max_hf=None, ids=None, meta=None, batch_size=1, callback=None, study=None,
            pending="resubmit", executor=None, n_workers=None, **settings) -> ScreeningResult:
@@ -170,11 +145,65 @@ def run_as(lf_peaks, oracle, *, n_waves, p_exp, eps1, eps2=0.1, threshold=None, 
 
     Parameters
     ----------
-    {parameters}
+    lf_peaks : array-like, shape (n_events,)
+        LF indicator peak of every wave event in the LF Monte-Carlo run.
+    oracle : callable
+        ``oracle(event) -> float``: the HF peak of ``event`` (an
+        :class:`~pas.screening.Event` with ``index``, ``id``, ``lf``, ``d``,
+        ``meta``); 0.0 means no impact (a false positive).  An exception, NaN,
+        inf or a negative value is recorded as a failure, never taken as 0.
+    n_waves : int
+        Number of wave encounters ``n_w`` in the LF Monte-Carlo duration.
+    p_exp : float
+        Target exceedance probability (:func:`pas.p_exp_from_duration`).
+    eps1 : float
+        Stopping limit on the mean change of the predicted distribution,
+        in load units (paper: ≈ 1–2 % of the expected maximum).
+    eps2 : float, default 0.1
+        Stopping limit on the COV of the last K2 MPMs.
+    threshold : float, optional
+        LF threshold ``l0_input`` (Eq. 2).
+    seed : int, optional
+        Seed for reproducible runs (reported on the result when None).
+    max_hf : int, optional
+        Budget of HF evaluations (at least 2).
+    ids, meta : sequence, optional
+        User ids / metadata per event, passed to the oracle on the event.
+    batch_size : int, default 1
+        Events proposed per iteration (the next-best MVPD targets).
+    callback : callable, optional
+        ``callback(study, row)`` after every HF result.
+    study : str or os.PathLike, optional
+        SQLite study store (:mod:`pas.study.store`): created when missing,
+        otherwise checked against this call and continued — no stored HF
+        result is lost or re-run, and the run makes the decisions an
+        uninterrupted one would have made (same ``batch_size``).
+    pending : {"resubmit", "wait"}, default "resubmit"
+        Events a killed run left without a result: run them again, or leave
+        them for ``pas study tell``.
+    executor : concurrent.futures.Executor, optional
+        Runs the oracle calls of a batch concurrently (e.g.
+        ``distributed.Client(...).get_executor()``); results are stored as
+        they arrive.
+    n_workers : int, optional
+        Without ``executor``: a local process pool of this size (the oracle
+        must be picklable).
+    **settings
+        Settings of :class:`~pas.strategies.as_.AS` (``fidelity``
+        ``"multi"``/``"single"``, ``range_factor``, ``n_grid``,
+        ``n_lf_bins``, ``n_restarts``) and study settings (``k1``, ``k2``,
+        ``max_failures``, ``stop_on_convergence``, ``adaptive_threshold``,
+        ``threshold_step``, ``fp_run``: :class:`~pas.study.study.Study`).
 
     Returns
     -------
     ScreeningResult
+
+    Raises
+    ------
+    OracleFailureLimit
+        More than ``max_failures`` oracle calls failed; ``.result`` holds the
+        result so far.
 
     Examples
     --------
@@ -186,4 +215,8 @@ def run_as(lf_peaks, oracle, *, n_waves, p_exp, eps1, eps2=0.1, threshold=None, 
     >>> res.strategy, bool(res.converged)
     ('as', True)
     """
-    return _run(AS, **locals())  # locals() is exactly the parameters here
+    built = make_study(AS, lf_peaks, n_waves=n_waves, p_exp=p_exp, eps1=eps1, eps2=eps2,
+                       threshold=threshold, seed=seed, max_hf=max_hf, ids=ids, meta=meta,
+                       store=study, **settings)
+    return built.optimize(oracle, batch_size=batch_size, callback=callback, executor=executor,
+                          n_workers=n_workers, pending=pending)

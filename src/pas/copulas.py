@@ -19,7 +19,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 import pyvinecopulib as pv
-from scipy import special, stats
+from scipy import special
+
+from .stats.dependence import pseudo_observations  # Eq. 5, the input of every fit here
 
 __all__ = [
     "PAPER_FAMILIES",
@@ -30,8 +32,6 @@ __all__ = [
     "fit_candidates",
     "select_family",
     "conditional_quantile",
-    "kendall_tau",
-    "empirical_tail_dependence",
 ]
 
 PAPER_FAMILIES = ("gaussian", "student", "clayton", "gumbel", "frank")
@@ -86,19 +86,6 @@ class CopulaFit:
         return float(self.bicop.parameters_to_tau(self.bicop.parameters))
 
 
-def pseudo_observations(x, y):
-    """Rank-based pseudo-observations ``u = rank(x)/(m+1)``, ``v = rank(y)/(m+1)`` (Eq. 5).
-
-    Ties get their average rank.
-    """
-    x = np.asarray(x, dtype=float)
-    y = np.asarray(y, dtype=float)
-    if x.shape != y.shape or x.ndim != 1:
-        raise ValueError(f"x and y must be 1-D of equal length, got {x.shape} and {y.shape}")
-    m = x.size
-    return stats.rankdata(x) / (m + 1.0), stats.rankdata(y) / (m + 1.0)
-
-
 def _at_bound(bicop: pv.Bicop, name: str) -> bool:
     if name.startswith("tll"):
         return False
@@ -107,10 +94,10 @@ def _at_bound(bicop: pv.Bicop, name: str) -> bool:
     hi = np.asarray(bicop.parameters_upper_bounds, dtype=float).ravel()
     tol = 1e-3 * np.maximum(1.0, np.abs(hi - lo))
     if name.startswith("gaussian") or name.startswith("student"):
-        # |ρ| = 1 is degenerate; ν at either end is the boundary case of SPEC §8.
+        # |ρ| = 1 is degenerate; ν at either end is the boundary case of pas.strategies.pas.
         return bool(np.any(np.abs(p - lo) < tol) or np.any(np.abs(p - hi) < tol))
     # one-parameter families: the lower bound is independence (Clayton, Gumbel, Joe)
-    # or strong negative dependence (Frank) — neither is the boundary case of SPEC §8
+    # or strong negative dependence (Frank) — neither is the case of pas.strategies.pas
     return bool(np.any(np.abs(p - hi) < tol))
 
 
@@ -212,22 +199,3 @@ def _hinv1(fam, p, bicop, u, r):
         return np.broadcast_to(r, np.broadcast_shapes(u.shape, r.shape)).copy()
     u, r = np.broadcast_arrays(u, r)
     return bicop.hinv1(np.column_stack([u.ravel(), r.ravel()])).reshape(u.shape)
-
-
-def kendall_tau(x, y) -> float:
-    """Kendall's τ-b of two samples (scipy)."""
-    return float(stats.kendalltau(x, y).statistic)
-
-
-def empirical_tail_dependence(x, y, *, q: float = 0.9):
-    """Empirical upper and lower tail dependence at level ``q``.
-
-    ``λ_U ≈ P(V > q | U > q)`` and ``λ_L ≈ P(V ≤ 1−q | U ≤ 1−q)`` on the
-    pseudo-observations: a finite-sample indicator, not the limit.  With fewer
-    than about ``1/(1−q)`` pairs they are NaN.
-    """
-    u, v = pseudo_observations(x, y)
-    upper, lower = u > q, u <= 1 - q
-    lam_u = float(np.mean(v[upper] > q)) if upper.any() else float("nan")
-    lam_l = float(np.mean(v[lower] <= 1 - q)) if lower.any() else float("nan")
-    return lam_u, lam_l

@@ -1,4 +1,5 @@
-"""Reading LF peak files: the one loader behind ``pas run LF_FILE`` and ``pas study``'s ``[lf]``."""
+"""Reading input files: LF peaks (the one loader behind ``pas run LF_FILE`` and ``pas study``'s
+``[lf]``) and the CSV/Parquet tables of HF results."""
 
 from __future__ import annotations
 
@@ -6,13 +7,34 @@ from pathlib import Path
 
 import numpy as np
 
-__all__ = ["read_lf_peaks", "FIELD_NAMES"]
+__all__ = ["read_lf_peaks", "read_table", "FIELD_NAMES"]
 
 FIELD_NAMES = {"file": "file", "column": "column", "id_column": "id_column",
                "meta_columns": "meta_columns"}
 """Default ``names`` of :func:`read_lf_peaks`: the roles called by its parameter names."""
 
 _TABLE_SUFFIXES = (".csv", ".txt", ".parquet")
+
+
+def read_table(path, *, columns=()):
+    """Read a CSV or Parquet file into a DataFrame, checking that ``columns`` exist."""
+    import pandas as pd
+
+    path = Path(path)
+    if not path.exists():
+        raise FileNotFoundError(f"{path} does not exist")
+    suffix = path.suffix.lower()
+    if suffix == ".parquet":
+        df = pd.read_parquet(path)
+    elif suffix in (".csv", ".txt"):
+        df = pd.read_csv(path)
+    else:
+        raise ValueError(f"{path}: unsupported table format {suffix!r} (use .csv or .parquet)")
+    for c in columns:
+        if c not in df.columns:
+            raise ValueError(f"column {c!r} is missing from {path.name} "
+                             f"(columns: {', '.join(map(str, df.columns))})")
+    return df
 
 
 def read_lf_peaks(path, *, column=None, id_column=None, meta_columns=(), guess_columns=False,
@@ -55,8 +77,6 @@ def read_lf_peaks(path, *, column=None, id_column=None, meta_columns=(), guess_c
         One line naming the field to fix.
     """
     import pandas as pd
-
-    from .study.oracles import read_table
 
     names = {**FIELD_NAMES, **(names or {})}
     meta_columns = list(meta_columns)

@@ -16,6 +16,9 @@ __all__ = ["m1", "m2", "m3", "metrics"]
 
 def m1(result) -> float:
     """Efficiency ``M1 = n_c / n_w``: HF samples used over wave encounters (Eq. 18)."""
+    if not result.n_waves > 0:
+        raise ValueError("result.n_waves is 0: M1 needs the wave encounters of the LF "
+                         "Monte-Carlo (pass n_waves to the run)")
     return result.n_hf / result.n_waves
 
 

@@ -11,7 +11,7 @@ import argparse
 import importlib
 import sys
 
-COMMANDS = ("reproduce", "run", "study", "plot")
+COMMANDS = ("reproduce", "run", "study", "plot", "impacts")
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -22,7 +22,8 @@ def build_parser() -> argparse.ArgumentParser:
         formatter_class=argparse.RawDescriptionHelpFormatter,
         epilog="Run 'pas <command> --help' for the options and examples of each command.",
     )
-    from .. import __version__
+    from .._version import __version__
+
     parser.add_argument("--version", action="version", version=f"pas {__version__}")
     sub = parser.add_subparsers(dest="command", metavar="<command>")
     for name in COMMANDS:

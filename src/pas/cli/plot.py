@@ -4,7 +4,7 @@
 
     pas plot RESULT_DIR [--kind mpm|distribution|scatter|aic|all] [--out FILE]
 
-Reads the files :func:`pas.cli.run.write_result` wrote (``summary.json``,
+Reads the files :meth:`pas.study.result.ScreeningResult.save` wrote (``summary.json``,
 ``history.csv``, ``distribution.csv``, ``pairs.csv``, ``range_curves.csv``,
 ``lf_curve.csv``) and draws them with :mod:`pas.plotting.figures`.  The
 scatter shows every evaluated LF–HF pair (false positives at HF = 0) with
@@ -14,7 +14,6 @@ the final copula; no oracle is called again.
 from __future__ import annotations
 
 import argparse
-import json
 import math
 import sys
 from pathlib import Path
@@ -35,17 +34,8 @@ examples:
 """
 
 
-def _float_or_none(x):
-    return float("nan") if x is None else float(x)
-
-
 def load_result(path):
-    """Rebuild a :class:`~pas.study.result.ScreeningResult` from a ``pas run`` folder.
-
-    Parameters
-    ----------
-    path : str or os.PathLike
-        The ``--out`` folder of ``pas run``.
+    """Read a ``pas run`` output folder (:meth:`pas.study.result.ScreeningResult.load`).
 
     Returns
     -------
@@ -57,47 +47,17 @@ def load_result(path):
     """
     import pandas as pd
 
-    from ..study.result import ScreeningResult
+    from ..study.result import ScreeningResult, read_summary
 
-    path = Path(path)
-    if not path.is_dir():
-        raise FileNotFoundError(f"RESULT_DIR {path} is not a folder")
-    need = ("summary.json", "history.csv", "distribution.csv", "pairs.csv")
-    missing = [f for f in need if not (path / f).exists()]
-    if missing:
-        raise FileNotFoundError(f"RESULT_DIR {path} lacks {', '.join(missing)} "
-                                "(is it the --out folder of 'pas run'?)")
     try:
-        s = json.loads((path / "summary.json").read_text(encoding="utf-8"))
-    except json.JSONDecodeError as exc:
-        raise ValueError(f"{path / 'summary.json'}: not valid JSON ({exc})") from None
-    for key in ("strategy", "mpm", "mpm_band", "n_hf", "p_exp", "n_waves"):
-        if key not in s:
-            raise ValueError(f"{path / 'summary.json'}: field {key!r} is missing")
-    history = pd.read_csv(path / "history.csv")
-    curves_file = path / "range_curves.csv"
-    if curves_file.exists():
-        curves = pd.read_csv(curves_file, index_col="row")
-        curves.columns = curves.columns.astype(float)
-    else:
-        curves = pd.DataFrame()
-    band = tuple(_float_or_none(x) for x in s["mpm_band"])
-    result = ScreeningResult(
-        strategy=s["strategy"], mpm=_float_or_none(s["mpm"]), mpm_band=band,
-        mpm_band_sampling=tuple(_float_or_none(x) for x in s.get("mpm_band_sampling") or band),
-        mpm_band_model=(None if s.get("mpm_band_model") is None
-                        else tuple(_float_or_none(x) for x in s["mpm_band_model"])),
-        n_hf=int(s["n_hf"]), n_false_positive=int(s.get("n_false_positive", 0)),
-        n_failed=int(s.get("n_failed", 0)), converged=bool(s.get("converged", False)),
-        history=history, distribution=pd.read_csv(path / "distribution.csv"),
-        pairs=pd.read_csv(path / "pairs.csv"), range_curves=curves, p_exp=float(s["p_exp"]),
-        n_waves=int(s["n_waves"]), seed=s.get("seed"), family=s.get("family"),
-    )
+        summary = read_summary(path)
+    except FileNotFoundError as exc:
+        raise FileNotFoundError(f"RESULT_DIR {exc}") from None
     lf_curve = None
-    if (path / "lf_curve.csv").exists():
-        lc = pd.read_csv(path / "lf_curve.csv")
+    if (Path(path) / "lf_curve.csv").exists():
+        lc = pd.read_csv(Path(path) / "lf_curve.csv")
         lf_curve = (lc["d"].to_numpy(dtype=float), lc["lf"].to_numpy(dtype=float))
-    return result, s, lf_curve
+    return ScreeningResult.load(path), summary, lf_curve
 
 
 def _draw(kind, result, summary, lf_curve, args):

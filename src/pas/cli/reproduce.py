@@ -2,18 +2,20 @@
 
 ::
 
-    pas reproduce [CASE ...] [--all] [--replications N] [--scale S] [--out DIR] [--properties]
+    pas reproduce [CASE ...] [--all] [--strategies pas,as,rcw] [--replications N]
+                  [--scale S] [--out DIR] [--properties]
 
 Generates (and caches under ``$PAS_CACHE`` or ``./pas-cache``) the analogue of
 each case — LF peaks and the full HF Monte-Carlo, built from seeded physics
 models because the paper's HF data are not public — prints its data
 properties (τ, λ_U/λ_L, misses, impact rate, truth against the paper), runs
-PAS (and AS) on it with the paper's settings, and prints a Table-4-style
-table: truth MPM of the analogue, the paper's truth, predicted MPM, HF
-samples, M1, M2, M3.  With ``--out`` the tables are written as
-``properties.csv``, ``table.csv`` (and ``runs.csv``, one row per run) with
-one figure per case and ``metrics.png``.  ``--properties`` stops after the
-data properties.
+PAS, AS and the design waves (RCW; MLER on request) on it with the paper's
+settings, and prints a Table-4-style table: truth MPM of the analogue, the
+paper's truth, predicted MPM, HF samples, M1, M2, M3.  With ``--out`` the
+tables are written as ``properties.csv``, ``table.csv`` (and ``runs.csv``,
+one row per run) with figures per case (``case_<id>.png``;
+``design_<id>.png`` with the RCW points) and ``metrics.png``.
+``--properties`` stops after the data properties.
 """
 
 from __future__ import annotations
@@ -27,7 +29,8 @@ __all__ = ["add_parser", "run"]
 EPILOG = """\
 examples:
   pas reproduce 1a --out pas-output          # case 1a, table + figures (< 1 min)
-  pas reproduce --all --replications 10      # all eight cases, 10 PAS/AS seeds each
+  pas reproduce --all --replications 10      # all twelve cases, 10 PAS/AS seeds each
+  pas reproduce 2a 2b --strategies rcw,mler  # design waves only (one episode per level)
   pas reproduce 3a 4a --scale 0.2 --quiet    # quick, shorter Monte-Carlo
   pas reproduce --all --properties           # data properties of all twelve analogues
 cases: 1a 1b (2nd-order crests), 2a 2b (hog/sag VBM), 3a 3b (green water), 4a 4b (slamming);
@@ -50,8 +53,8 @@ def add_parser(sub) -> None:
     p.add_argument("--scale", type=float, default=1.0, metavar="S",
                    help="fraction of the paper's Monte-Carlo duration (default 1.0)")
     p.add_argument("--seed", type=int, default=0, help="data-set seed (default 0)")
-    p.add_argument("--strategy", choices=("pas", "as", "both"), default="both",
-                   help="strategies to run (default both when AS is available)")
+    p.add_argument("--strategies", default="pas,as,rcw", metavar="LIST",
+                   help="comma-separated strategies from pas, as, rcw, mler (default pas,as,rcw)")
     p.add_argument("--out", metavar="DIR", help="write table.csv, runs.csv and figures here")
     p.add_argument("--no-figures", action="store_true", help="skip the figures")
     p.add_argument("--no-cache", action="store_true", help="regenerate, do not read/write the cache")
@@ -65,16 +68,14 @@ def add_parser(sub) -> None:
 def run(args) -> int:
     from ..validation import CASE_IDS, get_case
     from ..validation.properties import format_properties
-    from ..validation.reproduce import _strategies, format_table, reproduce
+    from ..validation.reproduce import format_table, parse_strategies, reproduce
 
     if args.all and args.cases:
         raise ValueError("give case ids or --all, not both")
     if not args.all and not args.cases:
         raise ValueError(f"name at least one case ({' '.join(CASE_IDS)}) or use --all")
     cases = list(CASE_IDS) if args.all else [get_case(c).id for c in args.cases]
-    strategies = None if args.strategy == "both" else (args.strategy,)
-    if strategies and strategies[0] not in _strategies():
-        raise ValueError(f"strategy {args.strategy!r} is not available in this installation")
+    strategies = parse_strategies(args.strategies)
     progress = None if args.quiet else (lambda msg: print(msg, file=sys.stderr, flush=True))
     res = reproduce(cases, replications=args.replications, scale=args.scale, out=args.out,
                     seed=args.seed, strategies=strategies, figures=not args.no_figures,

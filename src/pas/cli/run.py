@@ -2,12 +2,12 @@
 
 ::
 
-    pas run LF_FILE --oracle SPEC --n-waves N --p-exp P --eps1 E [options]
+    pas run LF_FILE --oracle KIND:ARGS --n-waves N --p-exp P --eps1 E [options]
 
 ``LF_FILE`` is a CSV or Parquet table (one row per wave event; ``--lf-column``
 names the LF peak column, ``--id-column`` the event ids) or a NumPy ``.npy``
-file (a 1-D array, or a structured array with named columns).  The oracle ``SPEC`` is one
-of
+file (a 1-D array, or a structured array with named columns).  The oracle
+(:func:`pas.study.oracles.oracle_from_spec`) is one of
 
 ``table:FILE[:ID_COLUMN:VALUE_COLUMN]``
     HF results looked up by event id in a CSV/Parquet table (basin tests, a
@@ -35,22 +35,12 @@ command again after a crash and no HF result is lost or re-run.
 from __future__ import annotations
 
 import argparse
-import importlib
-import importlib.util
 import json
 import math
-import shlex
 import sys
-import warnings
 from pathlib import Path
 
-import numpy as np
-
-__all__ = ["add_parser", "run", "load_lf_file", "make_oracle", "write_result", "OUTPUT_FILES"]
-
-OUTPUT_FILES = ("history.csv", "distribution.csv", "pairs.csv", "range_curves.csv",
-                "lf_curve.csv", "summary.json")
-"""Files :func:`write_result` writes (and :func:`pas.cli.plot.load_result` reads)."""
+__all__ = ["add_parser", "run"]
 
 EPILOG = """\
 examples:
@@ -76,188 +66,14 @@ examples:
 """
 
 
-# -- inputs -------------------------------------------------------------------
+_INPUTS = ("lf_file", "lf_column", "id_column", "oracle", "n_waves", "p_exp", "eps1", "eps2",
+           "threshold", "strategy", "max_hf", "batch_size", "unit", "lf_unit")
+"""The options written to ``summary.json`` as the run's ``inputs``."""
+
 _LF_FILE_NAMES = {"file": "LF_FILE", "column": "--lf-column", "id_column": "--id-column",
                   "meta_columns": "--meta-columns"}
 
 
-def load_lf_file(path, *, column=None, id_column=None, meta_columns=()):
-    """Read LF peaks (and optional ids and metadata) for ``pas run``.
-
-    :func:`pas.io.read_lf_peaks` with the defaults of ``pas run`` (column
-    ``lf`` if present, else the only column; ids from ``id`` if present) and
-    errors naming its options.
-
-    Returns
-    -------
-    lf : ndarray
-    ids : list or None
-    meta : list of dict or None
-    """
-    from ..io import read_lf_peaks
-
-    return read_lf_peaks(path, column=column, id_column=id_column, meta_columns=meta_columns,
-                         guess_columns=True, names=_LF_FILE_NAMES)
-
-
-def _load_python_function(target: str, func: str):
-    if target.endswith(".py"):
-        file = Path(target)
-        if not file.exists():
-            raise FileNotFoundError(f"--oracle: python file {file} does not exist")
-        spec = importlib.util.spec_from_file_location(f"_pas_oracle_{file.stem}", file)
-        module = importlib.util.module_from_spec(spec)
-        sys.modules[spec.name] = module  # so a process pool can unpickle its functions
-        try:
-            spec.loader.exec_module(module)
-        except Exception as exc:
-            raise ValueError(f"--oracle: importing {file} failed: {type(exc).__name__}: {exc}") from None
-    else:
-        try:
-            module = importlib.import_module(target)
-        except ImportError as exc:
-            raise ValueError(f"--oracle: cannot import module {target!r} ({exc})") from None
-    fn = getattr(module, func, None)
-    if not callable(fn):
-        raise ValueError(f"--oracle: {target} has no function {func!r}")
-    return fn
-
-
-def make_oracle(spec: str, *, workdir=None, timeout=None):
-    """Build the HF oracle from an ``--oracle`` specification (see the module docs).
-
-    Parameters
-    ----------
-    spec : str
-        ``table:FILE[:ID_COLUMN:VALUE_COLUMN]``, ``python:MODULE:FUNCTION`` or
-        ``command:ARGS``.
-    workdir : path, optional
-        Root of the per-event working directories of a command oracle.
-    timeout : float, optional
-        Seconds per event for a command oracle.
-
-    Returns
-    -------
-    callable
-        ``oracle(event) -> float``.
-    """
-    kind, sep, rest = spec.partition(":")
-    if not sep or not rest:
-        raise ValueError(f"--oracle: {spec!r} is not table:FILE[:ID:VALUE], "
-                         "python:MODULE:FUNCTION or command:ARGS")
-    if kind == "table":
-        from ..study.oracles import TableOracle
-
-        parts = rest.split(":")
-        if len(parts) == 1:
-            path, id_col, val_col = parts[0], "id", "hf"
-        elif len(parts) == 3 and all(parts):
-            path, id_col, val_col = parts
-        else:
-            raise ValueError(f"--oracle: {spec!r}: expected table:FILE or "
-                             "table:FILE:ID_COLUMN:VALUE_COLUMN")
-        try:
-            return TableOracle(path, id_column=id_col, value_column=val_col)
-        except ValueError as exc:
-            raise ValueError(f"--oracle: {exc}") from None
-    if kind == "python":
-        target, sep, func = rest.rpartition(":")
-        if not sep or not target or not func:
-            raise ValueError(f"--oracle: {spec!r}: expected python:MODULE:FUNCTION")
-        return _load_python_function(target, func)
-    if kind == "command":
-        from ..study.oracles import CommandOracle
-
-        try:
-            args = shlex.split(rest)
-        except ValueError as exc:
-            raise ValueError(f"--oracle: cannot split the command {rest!r}: {exc}") from None
-        if not args:
-            raise ValueError("--oracle: command: is empty")
-        return CommandOracle(args, root=workdir or "hf-runs", timeout=timeout)
-    raise ValueError(f"--oracle: unknown kind {kind!r} (use table:, python: or command:)")
-
-
-# -- outputs ------------------------------------------------------------------
-def _json_safe(x):
-    if isinstance(x, dict):
-        return {str(k): _json_safe(v) for k, v in x.items()}
-    if isinstance(x, (list, tuple)):
-        return [_json_safe(v) for v in x]
-    if isinstance(x, (np.floating, float)):
-        return float(x) if math.isfinite(x) else None
-    if isinstance(x, np.integer):
-        return int(x)
-    if isinstance(x, np.bool_):
-        return bool(x)
-    return x
-
-
-def write_result(result, out, *, inputs=None, lfset=None) -> dict:
-    """Write a :class:`~pas.study.result.ScreeningResult` to folder ``out``.
-
-    Writes :data:`OUTPUT_FILES`: the history, the final distribution, the
-    true-positive pairs, the per-iteration curves on the stopping range, the
-    LF exceedance curve (when ``lfset`` is given) and ``summary.json``
-    (``result.to_dict()`` plus ``inputs``).  :func:`pas.cli.plot.load_result`
-    reads them back.
-
-    Returns
-    -------
-    dict
-        The summary written to ``summary.json``.
-    """
-    import pandas as pd
-
-    out = Path(out)
-    out.mkdir(parents=True, exist_ok=True)
-    result.history.to_csv(out / "history.csv", index=False)
-    result.distribution.to_csv(out / "distribution.csv", index=False)
-    result.pairs.to_csv(out / "pairs.csv", index=False)
-    result.range_curves.to_csv(out / "range_curves.csv", index_label="row")
-    if lfset is not None:
-        pd.DataFrame({"d": lfset.d, "lf": lfset.lf}).to_csv(out / "lf_curve.csv", index=False)
-    summary = _json_safe({**result.to_dict(), "summary": result.summary(),
-                          "inputs": dict(inputs or {})})
-    (out / "summary.json").write_text(json.dumps(summary, indent=2) + "\n", encoding="utf-8")
-    return summary
-
-
-class _Progress:
-    """``callback(study, row)`` printing one line per HF result on stderr."""
-
-    def __init__(self, stream=None):
-        self.stream = stream or sys.stderr
-
-    def __call__(self, study, row) -> None:
-        status = row.get("status")
-        hf = row.get("hf")
-        if status == "failed":
-            what = f"FAILED ({row.get('error')})"
-        elif status == "false_positive":
-            what = "HF 0 (false positive)"
-        else:
-            what = f"HF {hf:.4g}"
-        mpm = row.get("mpm")
-        model = "no fit yet"
-        if mpm is not None and np.isfinite(mpm):
-            e_bar, cov = row.get("E_bar"), row.get("COV")
-            fam = f" {row['family']}" if row.get("family") else ""
-            model = (f"MPM {mpm:.4g} [{row.get('mpm_low', np.nan):.4g}, "
-                     f"{row.get('mpm_high', np.nan):.4g}]{fam}  "
-                     f"E_bar {_num(e_bar)} (eps1 {study.stopping.eps1:g})  "
-                     f"COV {_num(cov)} (eps2 {study.stopping.eps2:g})")
-            if row.get("stop"):
-                model += "  converged"
-        print(f"[pas] it {row['row'] + 1:>4}  n_HF {study.n_hf:>4}  event {row['event_id']}  "
-              f"LF {row['lf']:.4g}  {what}  {model}", file=self.stream, flush=True)
-
-
-def _num(x) -> str:
-    return "-" if x is None or not np.isfinite(x) else f"{x:.3g}"
-
-
-# -- command ----------------------------------------------------------------
 def _positive_int(text):
     try:
         v = int(text)
@@ -270,6 +86,8 @@ def _positive_int(text):
 
 def add_parser(sub) -> None:
     """Register ``pas run`` on the sub-command parser ``sub``."""
+    from ..study.factory import STRATEGIES
+
     p = sub.add_parser(
         "run", help="run PAS (or AS) on an LF peak file with an HF oracle",
         description=__doc__.split("\n\n")[0].replace("``", ""),
@@ -281,7 +99,7 @@ def add_parser(sub) -> None:
                    help="column with event ids (default: 'id' if present, else the row number)")
     p.add_argument("--meta-columns", metavar="A,B", type=lambda s: [c for c in s.split(",") if c],
                    default=[], help="columns handed to the oracle as event.meta (comma separated)")
-    p.add_argument("--oracle", required=True, metavar="SPEC",
+    p.add_argument("--oracle", required=True, metavar="KIND:ARGS",
                    help="table:FILE[:ID_COL:VALUE_COL] | python:MODULE:FUNCTION | command:ARGS")
     p.add_argument("--n-waves", required=True, type=_positive_int, metavar="N",
                    help="wave encounters in the LF Monte-Carlo run (n_w)")
@@ -294,7 +112,7 @@ def add_parser(sub) -> None:
     p.add_argument("--threshold", type=float, metavar="L0", help="LF threshold l0_input")
     p.add_argument("--seed", type=int, help="random seed (default: drawn and reported)")
     p.add_argument("--max-hf", type=_positive_int, metavar="N", help="budget of HF evaluations")
-    p.add_argument("--strategy", choices=("pas", "as"), default="pas",
+    p.add_argument("--strategy", choices=tuple(STRATEGIES), default="pas",
                    help="PAS (copula, default) or AS (GPR on order statistics)")
     p.add_argument("--batch-size", type=_positive_int, default=1, metavar="Q",
                    help="events per iteration (default 1)")
@@ -314,50 +132,42 @@ def add_parser(sub) -> None:
 
 def run(args) -> int:
     """Execute ``pas run``; returns the exit code (0 done, 1 oracle failure limit)."""
-    from ..api import run_as, run_pas
-    from ..screening import LFSet
-    from ..study.store import StoreError
-    from ..study.study import OracleFailureLimit
+    from ..api import make_study
+    from ..io import read_lf_peaks
+    from ..study.oracles import OracleFailureLimit, oracle_from_spec
+    from ..study.replay import attach
+    from ..study.store import StoreError, read_settings
+    from ._progress import Progress
 
-    if not (0.0 < args.p_exp < 1.0):
-        raise ValueError(f"--p-exp must lie in (0, 1), got {args.p_exp:g}")
-    for name in ("eps1", "eps2"):
-        v = getattr(args, name)
-        if not (math.isfinite(v) and v > 0):
-            raise ValueError(f"--{name} must be a positive number, got {v:g}")
-    if args.timeout is not None and not args.timeout > 0:
-        raise ValueError(f"--timeout must be a positive number of seconds, got {args.timeout:g}")
-    lf, ids, meta = load_lf_file(args.lf_file, column=args.lf_column, id_column=args.id_column,
-                                 meta_columns=args.meta_columns)
-    with warnings.catch_warnings():  # the run itself repeats any warning about the inputs
-        warnings.simplefilter("ignore")
-        lfset = LFSet(lf, n_waves=args.n_waves, p_exp=args.p_exp, threshold=args.threshold)
+    _check_numbers(args)
+    lf, ids, meta = read_lf_peaks(args.lf_file, column=args.lf_column, id_column=args.id_column,
+                                  meta_columns=args.meta_columns, guess_columns=True,
+                                  names=_LF_FILE_NAMES)
     out = Path(args.out)
-    oracle = make_oracle(args.oracle, workdir=out / "hf-runs", timeout=args.timeout)
-    out.mkdir(parents=True, exist_ok=True)
-    inputs = {
-        "lf_file": str(args.lf_file), "lf_column": args.lf_column, "id_column": args.id_column,
-        "oracle": args.oracle, "n_waves": args.n_waves, "p_exp": args.p_exp, "eps1": args.eps1,
-        "eps2": args.eps2, "threshold": args.threshold, "strategy": args.strategy,
-        "max_hf": args.max_hf, "batch_size": args.batch_size, "unit": args.unit,
-        "lf_unit": args.lf_unit,
-    }
-    fn = run_pas if args.strategy == "pas" else run_as
-    store = None if args.no_store else str(out / "study.sqlite")
-    kw = dict(n_waves=args.n_waves, p_exp=args.p_exp, eps1=args.eps1, eps2=args.eps2,
-              threshold=args.threshold, seed=args.seed, max_hf=args.max_hf, ids=ids, meta=meta,
-              batch_size=args.batch_size, n_workers=args.workers, study=store,
-              callback=None if args.quiet else _Progress())
+    try:
+        oracle = oracle_from_spec(args.oracle, root=out / "hf-runs", timeout=args.timeout)
+    except (ValueError, FileNotFoundError) as exc:
+        raise type(exc)(f"--oracle: {exc}") from None
+    store = None if args.no_store else out / "study.sqlite"
     failed = None
     try:
-        result = fn(lf, oracle, **kw)
+        seed = args.seed if args.seed is not None or store is None else \
+            read_settings(store).get("seed")
+        study = make_study(args.strategy, lf, n_waves=args.n_waves, p_exp=args.p_exp,
+                           eps1=args.eps1, eps2=args.eps2, threshold=args.threshold, seed=seed,
+                           max_hf=args.max_hf, ids=ids, meta=meta)
+        if store is not None:  # only now: bad inputs leave no output folder behind
+            out.mkdir(parents=True, exist_ok=True)
+            attach(study, store)
+        result = study.optimize(oracle, batch_size=args.batch_size, n_workers=args.workers,
+                                callback=None if args.quiet else Progress())
     except StoreError as exc:
         raise ValueError(f"{exc} (to start a new study use another --out or --no-store)") from None
     except OracleFailureLimit as exc:
-        if exc.result is None:
-            raise ValueError(str(exc)) from None
         result, failed = exc.result, str(exc)
-    summary = write_result(result, out, inputs={**inputs, "seed": result.seed}, lfset=lfset)
+    inputs = {name: getattr(args, name) for name in _INPUTS}
+    summary = result.save(out, inputs={**inputs, "lf_file": str(args.lf_file), "seed": result.seed},
+                          lfset=study.lfset)
     if args.json:
         print(json.dumps(summary, indent=2))
     else:
@@ -367,3 +177,15 @@ def run(args) -> int:
         print(f"pas run: error: {failed} (partial result written to {out}/)", file=sys.stderr)
         return 1
     return 0
+
+
+def _check_numbers(args) -> None:
+    """Errors naming the option for numbers the study would reject under another name."""
+    if not (0.0 < args.p_exp < 1.0):
+        raise ValueError(f"--p-exp must lie in (0, 1), got {args.p_exp:g}")
+    for name in ("eps1", "eps2"):
+        v = getattr(args, name)
+        if not (math.isfinite(v) and v > 0):
+            raise ValueError(f"--{name} must be a positive number, got {v:g}")
+    if args.timeout is not None and not args.timeout > 0:
+        raise ValueError(f"--timeout must be a positive number of seconds, got {args.timeout:g}")

@@ -52,7 +52,7 @@ import os
 import sys
 from pathlib import Path
 
-from .study_config import load_config, load_peaks, make_oracle
+from .study_config import load_config, load_peaks
 
 __all__ = ["add_parser", "run", "load_config", "load_peaks"]
 
@@ -113,7 +113,6 @@ def run(args) -> int:
 # -- actions ----------------------------------------------------------------
 def _create(args) -> int:
     from ..api import make_study
-    from ..strategies import AS, PAS
 
     cfg = load_config(args.config)
     if os.path.exists(args.study):
@@ -121,7 +120,7 @@ def _create(args) -> int:
     lf, ids, meta = load_peaks(cfg["lf"])
     kw = {k: cfg[k] for k in ("eps2", "threshold", "seed", "max_hf") if k in cfg}
     try:
-        study = make_study({"pas": PAS, "as": AS}[cfg["strategy"]], lf, n_waves=cfg["n_waves"],
+        study = make_study(cfg["strategy"], lf, n_waves=cfg["n_waves"],
                            p_exp=cfg["p_exp"], eps1=cfg["eps1"], ids=ids, meta=meta,
                            store=args.study, **kw, **cfg.get("settings", {}))
     except BaseException:
@@ -146,7 +145,8 @@ def _event_row(ev) -> dict:
 
 
 def _ask(args) -> int:
-    from ..study.store import StudyStore, open_study
+    from ..study.store import StudyStore
+    from ..study.study import open_study
 
     if args.n < 1:
         raise ValueError(f"-n must be at least 1, got {args.n}")
@@ -203,7 +203,7 @@ def _check_value(text, field, where):
 
 
 def _tell(args) -> int:
-    from ..study.oracles import read_table
+    from ..io import read_table
     from ..study.store import StudyStore
 
     if args.csv:
@@ -248,7 +248,10 @@ def _key(x) -> str:
 
 
 def _drive(args) -> int:
-    from ..study.store import StudyStore, open_study
+    from ..study.oracles import oracle_from_spec
+    from ..study.store import StudyStore
+    from ..study.study import open_study
+    from ._progress import Progress
 
     store = StudyStore(args.study, create=False)
     spec = store.get("oracle")
@@ -261,14 +264,8 @@ def _drive(args) -> int:
     if args.workers is not None and args.workers < 1:
         raise ValueError(f"--workers must be at least 1, got {args.workers}")
     study = open_study(store, consume=False)
-
-    def progress(study, row):
-        if not args.quiet:
-            mpm = row.get("mpm")
-            print(f"{row['n_hf']:4d}  {row['event_id']}  {row['status']:<14}  hf={row['hf']}"
-                  + (f"  MPM {mpm:.5g}" if mpm is not None else ""), flush=True)
-
-    res = study.optimize(make_oracle(spec), batch_size=q, n_workers=args.workers,
+    progress = None if args.quiet else Progress(sys.stdout)
+    res = study.optimize(oracle_from_spec(spec), batch_size=q, n_workers=args.workers,
                          pending=args.pending, callback=progress)
     store.close()
     print(res.summary())
@@ -276,18 +273,15 @@ def _drive(args) -> int:
 
 
 def _status(args) -> int:
-    from ..study.store import StudyStore, open_study
-    from ..study.study import OracleFailureLimit
+    from ..study.store import StudyStore
+    from ..study.study import open_study
 
     with StudyStore(args.study, create=False) as store:
         study = open_study(store, consume=False)
         study.store = None
         waiting = store.unconsumed()
         for idx, hf, err in waiting:
-            try:
-                study.tell(int(idx), hf, error=err)
-            except OracleFailureLimit:
-                pass
+            study.tell(int(idx), hf, error=err)
         events = store.events()
     pend = events[events["state"] == "pending"]
     fitted = [r for r in study.rows if r.get("mpm") is not None]
@@ -305,7 +299,7 @@ def _status(args) -> int:
                      "asked_at": r.asked_at} for r in pend.itertuples()],
     }
     if args.json:
-        from ..study.store import dumps
+        from .._json import dumps
         print(dumps(info))
         return 0
     print(f"{args.study}: {info['strategy'].upper()}, seed {info['seed']}")

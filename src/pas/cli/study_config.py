@@ -9,7 +9,7 @@ from __future__ import annotations
 import tomllib
 from pathlib import Path
 
-__all__ = ["load_config", "load_peaks", "make_oracle"]
+__all__ = ["load_config", "load_peaks"]
 
 _TOP = {"n_waves": int, "p_exp": float, "eps1": float, "eps2": float, "threshold": float,
         "strategy": str, "seed": int, "max_hf": int, "batch_size": int, "lf": dict,
@@ -34,6 +34,8 @@ def _typed(value, kind, field, where):
 
 def load_config(path) -> dict:
     """Read and check a study TOML file; returns the checked keys plus ``lf`` data."""
+    from ..study.factory import STRATEGIES
+
     path = Path(path)
     if not path.exists():
         raise FileNotFoundError(f"config file {path} does not exist")
@@ -57,8 +59,9 @@ def load_config(path) -> dict:
         raise ValueError(f"{where}: lf.file is missing")
     cfg["lf"] = {k: _typed(v, _LF[k], f"lf.{k}", where) for k, v in lf.items()}
     strategy = cfg.setdefault("strategy", "pas")
-    if strategy not in ("pas", "as"):
-        raise ValueError(f"{where}: strategy must be 'pas' or 'as', got {strategy!r}")
+    if strategy not in STRATEGIES:
+        raise ValueError(f"{where}: strategy must be {' or '.join(map(repr, STRATEGIES))}, "
+                         f"got {strategy!r}")
     cfg["lf"]["file"] = str((path.parent / cfg["lf"]["file"]))
     if "oracle" in cfg:
         cfg["oracle"] = _oracle_config(cfg["oracle"], path.parent, where)
@@ -68,6 +71,8 @@ def load_config(path) -> dict:
 
 
 def _oracle_config(o: dict, base: Path, where: str) -> dict:
+    from ..study.oracles import oracle_from_spec
+
     for key in o:
         if key not in _ORACLE:
             raise ValueError(f"{where}: unknown key oracle.{key} (known: {', '.join(_ORACLE)})")
@@ -83,21 +88,10 @@ def _oracle_config(o: dict, base: Path, where: str) -> dict:
     else:
         o["table"] = str((base / o["table"]).resolve())
     try:
-        make_oracle(o)
+        oracle_from_spec(o)
     except (ValueError, FileNotFoundError) as exc:
         raise ValueError(f"{where}: oracle: {exc}") from None
     return o
-
-
-def make_oracle(o: dict):
-    """The :mod:`pas.study.oracles` oracle described by a checked ``[oracle]`` table."""
-    from ..study.oracles import CommandOracle, TableOracle
-
-    if "command" in o:
-        return CommandOracle(o["command"], root=o["root"], timeout=o.get("timeout"),
-                             result_name=o.get("result_name", "result.txt"))
-    return TableOracle(o["table"], id_column=o.get("id_column", "id"),
-                       value_column=o.get("value_column", "hf"))
 
 
 _LF_NAMES = {"file": "lf.file", "column": "lf.column", "id_column": "lf.id_column",

@@ -58,3 +58,14 @@ def _plot_with_band(ax, x, table, mean, low, high, fmt, *, name, label, color, *
         ax.fill_between(x, table[low].to_numpy(dtype=float), table[high].to_numpy(dtype=float),
                         color=c, alpha=0.2, lw=0, label=f"{name}: U95 band")
     return c
+
+
+def _exceedance_axes(ax, quantity, unit):
+    """Log exceedance axis, reversed so rarer events lie to the right; labels, grid, legend."""
+    ax.set_xscale("log")
+    if not ax.xaxis_inverted():
+        ax.invert_xaxis()
+    ax.set_xlabel("exceedance probability per wave $d$ [-]")
+    ax.set_ylabel(_with_unit(quantity, unit))
+    ax.grid(True, which="both", lw=0.3, alpha=0.5)
+    ax.legend(fontsize=7, loc="upper left")

@@ -13,7 +13,8 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from ._common import _fmt, _new_axes, _plot_with_band, _strategy_name, _with_unit
+from ._common import (_exceedance_axes, _fmt, _new_axes, _plot_with_band, _strategy_name,
+                      _with_unit)
 
 __all__ = ["plot_distribution", "plot_scatter", "conditional_quantile_curves"]
 
@@ -140,13 +141,7 @@ def plot_distribution(result, *, lf=None, truth=None, ax=None, label=None, unit=
         lo, hi = ax.get_ylim()
         span = hi - min(seen.min(), 0.0)
         ax.set_ylim(max(lo, min(seen.min(), 0.0) - 0.05 * span), hi)
-    ax.set_xscale("log")
-    if not ax.xaxis_inverted():
-        ax.invert_xaxis()
-    ax.set_xlabel("exceedance probability per wave $d$ [-]")
-    ax.set_ylabel(_with_unit(quantity, unit))
-    ax.grid(True, which="both", lw=0.3, alpha=0.5)
-    ax.legend(fontsize=7, loc="upper left")
+    _exceedance_axes(ax, quantity, unit)
     return fig, ax
 
 
@@ -236,7 +231,7 @@ def plot_scatter(lf, hf, *, result=None, ax=None, lf_unit=None, unit=None,
         Passed to :func:`conditional_quantile_curves`.
     q_tail : float, default 0.9
         Level of the empirical tail dependence
-        (:func:`pas.copulas.empirical_tail_dependence`).
+        (:func:`pas.stats.dependence.empirical_tail_dependence`).
     label : str, default "all events"
         Legend name of the ``lf``/``hf`` points.
 
@@ -249,7 +244,7 @@ def plot_scatter(lf, hf, *, result=None, ax=None, lf_unit=None, unit=None,
     τ, λU and λL are computed on all the given pairs and shown in the title
     and the legend.  Large samples are rasterised in vector output.
     """
-    from ..copulas import empirical_tail_dependence, kendall_tau
+    from ..stats.dependence import empirical_tail_dependence, kendall_tau
 
     x, y = np.asarray(lf, dtype=float), np.asarray(hf, dtype=float)
     if x.shape != y.shape or x.ndim != 1:

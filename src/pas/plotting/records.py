@@ -93,7 +93,8 @@ def plot_record_exceedance(d, values, *, maxima=None, fit=None, fit_scale=1.0, f
     return fig, ax
 
 
-def plot_convergence(n, rms, *, criterion=None, bias=None, units="m", variable="MPM", ax=None):
+def plot_convergence(n, rms, *, criterion=None, bias=None, band=None, units="m", variable="MPM",
+                     ax=None):
     """R(N), the RMS difference of N-seed MPMs from the all-seed MPM, against N.
 
     Parameters
@@ -106,6 +107,8 @@ def plot_convergence(n, rms, *, criterion=None, bias=None, units="m", variable="
         Tolerance drawn as a horizontal line (same unit as ``rms``).
     bias : dict of str -> array_like, optional
         bias(N) per variant, drawn dashed in the variant's colour.
+    band : tuple (low, high) of dict of str -> array_like, optional
+        Confidence band of R(N) per variant, shaded in the variant's colour.
     units : str, default "m"
     variable : str, default "MPM"
     ax : matplotlib Axes, optional
@@ -122,6 +125,10 @@ def plot_convergence(n, rms, *, criterion=None, bias=None, units="m", variable="
         if r.shape != n.shape:
             raise ValueError(f"rms[{label!r}] has shape {r.shape}, n has {n.shape}")
         ax.plot(n, r, "-o", ms=3, color=f"C{i}", label=f"R(N) {label}" if isinstance(rms, dict) else label)
+        if band is not None and label in band[0]:
+            ax.fill_between(n, np.asarray(band[0][label], dtype=float),
+                            np.asarray(band[1][label], dtype=float), color=f"C{i}", alpha=0.15,
+                            lw=0)
         if bias is not None and label in bias:
             ax.plot(n, np.asarray(bias[label], dtype=float), "--", lw=0.9, color=f"C{i}",
                     label=f"bias {label}")

@@ -35,11 +35,18 @@ __all__ += [
     "wave_troughs", "matched_peaks", "rise_times", "rise_velocities", "peaks_over_threshold",
     "mask_near_joins",
 ]
-from .convergence import MPMConvergence, mpm_convergence, random_subsets, rms_difference, seeds_needed
+from .convergence import (
+    MPMConvergence,
+    fresh_campaign_rms,
+    mpm_convergence,
+    random_subsets,
+    rms_difference,
+    seeds_needed,
+)
+from .positions import POSITIONS, plotting_positions, read_at_exceedance
+from .record_analysis import RecordAnalysis, analyse_record, bootstrap_mpm
 from .records import (
     MPM_QUANTILE,
-    RecordAnalysis,
-    analyse_record,
     mpm_pooled,
     mpm_seed_maxima,
     mpm_weibull,
@@ -49,6 +56,7 @@ from .records import (
     seed_maxima_distribution,
     seed_peaks,
 )
+from .tails import TAIL_MODELS, TailModel, fit_tail
 from .theory import (
     forristall_crest_exceedance,
     forristall_crest_mpm,
@@ -65,5 +73,28 @@ __all__ += [
     "RecordAnalysis", "analyse_record", "random_subsets", "rms_difference", "seeds_needed",
     "MPMConvergence", "mpm_convergence", "rayleigh_crest_exceedance", "rayleigh_crest_quantile",
     "rayleigh_crest_mpm", "forristall_parameters", "forristall_crest_exceedance",
-    "forristall_crest_quantile", "forristall_crest_mpm",
+    "forristall_crest_quantile", "forristall_crest_mpm", "fresh_campaign_rms", "bootstrap_mpm",
+    "POSITIONS", "plotting_positions", "read_at_exceedance", "TAIL_MODELS", "TailModel",
+    "fit_tail",
+]
+from .impacts import (
+    OccurrenceFit,
+    clustering_test,
+    decluster,
+    exponential_test,
+    exposure_load,
+    exposure_probability,
+    fit_occurrence,
+    impact_rates,
+    inter_arrival_times,
+    occurrence_model,
+    occurrence_probability,
+)
+from .load_fits import CANDIDATES, compare_load_distributions, fit_load_distribution, qq_points
+
+__all__ += [
+    "occurrence_probability", "impact_rates", "occurrence_model", "OccurrenceFit",
+    "fit_occurrence", "inter_arrival_times", "exponential_test", "clustering_test", "decluster",
+    "exposure_probability", "exposure_load", "CANDIDATES", "fit_load_distribution",
+    "compare_load_distributions", "qq_points",
 ]

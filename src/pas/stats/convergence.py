@@ -13,10 +13,25 @@ for crests, or an absolute load tolerance). ``bias(N) = mean_w (MPM_w − ref)``
 shows systematic errors, notably of fitted MPMs.
 
 The reference is always the pooled-peaks MPM of all seeds, for every variant,
-so ``R`` of the fitted variant at ``N = M`` is the fit's own bias. Because the
-subsets are drawn from the record itself, ``R(M) = 0`` for the pooled variant
-by construction: R(N) is informative for ``N ≪ M`` and a record of M seeds can
-only show that N < M seeds suffice, never that M does.
+so ``bias`` of the fitted variant is the fit's own bias.
+
+Subsets drawn without replacement from the record share seeds with the
+reference, so their spread around it is smaller than that of a fresh N-seed
+campaign around the truth: by the finite-population factor ``(1 − N/M)`` in
+variance (at M = 40, N = 30 the raw RMS is half the fresh one). :class:`MPMConvergence`
+therefore reports
+
+``R(N) = sqrt(var_w(MPM_w) / (1 − N/M) + bias(N)²)``
+
+for N < M (NaN at N = M, which the record cannot judge) and keeps the raw RMS
+as ``rms_subsets``. Its band is a bootstrap over seeds: R(N) recomputed on
+``n_boot`` records drawn from the M seeds with replacement (percentile band).
+A normal-theory band (chi-square, M − 1 degrees of freedom) was tried first
+and rejected: R(N) varies between records far more than that (coefficient of
+variation 15 % at N = 0.12 M, 30 % at N = 0.75 M for Rayleigh crests, against
+11 %), because near N = M the subsets differ by a few seeds only.
+``benchmarks/records_bias.py`` measures R(N) against fresh campaigns and the
+band's coverage.
 
 Each seed is one exposure duration unless ``exposure_encounters`` says
 otherwise; the target exceedance ``P_t = 1/n_e,t`` is the same for every
@@ -31,21 +46,20 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .exceedance import exceedance_probabilities
+from .positions import read_at_exceedance
 from .records import (
     MPM_QUANTILE,
     _exposure,
-    _read_pooled,
-    _seed_maxima_quantile_rows,
     _total_encounters,
-    _weibull_mpm,
     seed_maxima,
     seed_peaks,
+    top_peaks,
+    weibull_mpm,
 )
 from .weibull import fit_weibull3_ls
 
-__all__ = ["random_subsets", "rms_difference", "seeds_needed", "MPMConvergence",
-           "mpm_convergence"]
+__all__ = ["random_subsets", "rms_difference", "fresh_campaign_rms", "seeds_needed",
+           "MPMConvergence", "mpm_convergence"]
 
 
 def random_subsets(n_seeds, n_subset, n_draws, rng):
@@ -81,6 +95,30 @@ def rms_difference(estimates, reference):
     return rms, bias
 
 
+def fresh_campaign_rms(estimates, reference, n, m):
+    """R(N) of a fresh N-seed campaign from subsets of an M-seed record.
+
+    ``R² = var / (1 − N/M) + bias²`` with ``var`` and ``bias`` of the subset
+    estimates about ``reference`` along the last axis (module docs). NaN for
+    ``N = M``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> e = np.random.default_rng(0).normal(0.0, 1.0, (1, 20000))
+    >>> round(float(fresh_campaign_rms(e, 0.0, [30], 40)[0]), 1)   # 1 / sqrt(1 - 30/40)
+    2.0
+    """
+    e = np.asarray(estimates, dtype=float) - reference
+    n = np.asarray(n, dtype=float)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)
+        bias = np.nanmean(e, axis=-1)
+        var = np.nanvar(e, axis=-1)
+        fpc = np.where(n < m, 1.0 - n / m, np.nan)
+        return np.sqrt(var / fpc + bias**2)
+
+
 def seeds_needed(n, rms, tolerance):
     """Smallest N from which ``rms`` stays at or below ``tolerance`` for all larger N.
 
@@ -89,22 +127,30 @@ def seeds_needed(n, rms, tolerance):
     n : array_like of int
         Numbers of seeds, ascending.
     rms : array_like
-        R(N) for each N (NaN entries count as not satisfying).
+        R(N) for each N. NaN entries inside count as not satisfying; trailing
+        NaN (N = M, which a record of M seeds cannot judge) are ignored.
     tolerance : float
         Criterion in the unit of the variable (e.g. ``0.03 * Hs``).
 
     Returns
     -------
     int or None
-        None if even the largest N fails.
+        None if even the largest judged N fails.
 
     Examples
     --------
     >>> seeds_needed([1, 2, 3, 4], [0.5, 0.2, 0.3, 0.1], 0.25)
     4
+    >>> seeds_needed([1, 2, 3, 4], [0.5, 0.2, 0.1, float("nan")], 0.25)
+    2
     """
     n = np.asarray(n)
-    ok = np.asarray(rms, dtype=float) <= tolerance
+    r = np.asarray(rms, dtype=float)
+    judged = np.flatnonzero(np.isfinite(r))
+    if judged.size == 0:
+        return None
+    n, r = n[: judged[-1] + 1], r[: judged[-1] + 1]
+    ok = r <= tolerance
     if not ok[-1]:
         return None
     bad = np.flatnonzero(~ok)
@@ -119,44 +165,79 @@ class MPMConvergence:
     ----------
     n : ndarray of int
         Subset sizes N.
+    n_seeds : int
+        Seeds M in the record.
     reference : float
         Pooled-peaks MPM of all seeds.
-    rms, bias : dict of str -> ndarray
-        Per variant (``"pooled"``, ``"seed maxima"``, ``"fit"``), R(N) and bias(N).
+    rms : dict of str -> ndarray
+        Per variant (``"pooled"``, ``"seed maxima"``, ``"fit"``), R(N) of a
+        fresh N-seed campaign (finite-population corrected; NaN at N = M).
+    rms_low, rms_high : dict of str -> ndarray
+        Its bootstrap-over-seeds band (NaN for "fit" and without ``n_boot``).
+    rms_subsets : dict of str -> ndarray
+        Raw RMS of the subsets about the reference (0 at N = M for "pooled").
+    bias : dict of str -> ndarray
+        Mean subset MPM minus the reference.
     n_subsets : dict of str -> int
         Subsets drawn per N for each variant.
     """
 
     n: np.ndarray
+    n_seeds: int
     reference: float
     rms: dict
+    rms_low: dict
+    rms_high: dict
+    rms_subsets: dict
     bias: dict
     n_subsets: dict
 
-    def seeds_needed(self, tolerance, variant="pooled"):
-        """Seeds needed for ``R(N) ≤ tolerance`` (see :func:`seeds_needed`)."""
-        return seeds_needed(self.n, self.rms[variant], tolerance)
+    def seeds_needed(self, tolerance, variant="pooled", *, conservative=False):
+        """Seeds needed for ``R(N) ≤ tolerance`` (see :func:`seeds_needed`).
+
+        ``conservative=True`` uses the upper end of the band instead of R(N).
+        """
+        r = self.rms_high[variant] if conservative else self.rms[variant]
+        return seeds_needed(self.n, r, tolerance)
 
     def plot(self, ax=None, *, criterion=None, units="m", variable="MPM"):
-        """R(N) plot; see :func:`pas.plotting.records.plot_convergence`."""
+        """R(N) plot with its band; see :func:`pas.plotting.records.plot_convergence`."""
         from ..plotting.records import plot_convergence
 
         return plot_convergence(self.n, self.rms, criterion=criterion, bias=self.bias,
-                                units=units, variable=variable, ax=ax)
+                                band=(self.rms_low, self.rms_high), units=units,
+                                variable=variable, ax=ax)
 
 
-def _top_matrix(seeds, k):
-    """(M, k) matrix of each seed's k largest peaks, descending, NaN-padded."""
-    out = np.full((len(seeds), k), np.nan)
-    for i, s in enumerate(seeds):  # loop over seeds (M ≤ a few hundred), not samples
-        top = np.sort(s)[::-1][:k]
-        out[i, :top.size] = top
-    return out
+def _subset_estimates(top, maxima, enc, n_values, n_subsets, rng, *, p_t, q, positions,
+                      empty, k_max):
+    """Pooled-peaks and seed-maxima MPMs of ``n_subsets`` random subsets per N."""
+    m = top.shape[0]
+    est = {"pooled": np.full((n_values.size, n_subsets), np.nan),
+           "seed maxima": np.full((n_values.size, n_subsets), np.nan)}
+    subsets = []
+    for i, n in enumerate(n_values):  # loop over subset sizes only
+        idx = random_subsets(m, n, n_subsets, rng)
+        n_e = enc[idx].sum(axis=1)
+        k_need = min(int(np.ceil(p_t * n_e.max() + 1.0)) + 2, n * k_max)
+        pooled = -np.sort(-top[idx].reshape(n_subsets, -1), axis=1)[:, :k_need]  # NaN last
+        est["pooled"][i] = read_at_exceedance(pooled, n_e, p_t, positions=positions,
+                                              below=empty)
+        est["seed maxima"][i] = read_at_exceedance(
+            -np.sort(-maxima[idx], axis=1), n, 1.0 - q, positions="weibull", scale="linear")
+        subsets.append(idx)
+    return est, subsets
+
+
+def _reference(top, n_total, p_t, positions, empty):
+    return float(read_at_exceedance(-np.sort(-top.ravel()), n_total, p_t, positions=positions,
+                                    below=empty))
 
 
 def mpm_convergence(peaks, n_encounters, *, exposure_encounters=None, n_values=None,
                     n_subsets=500, n_subsets_fit=100, top_fraction=0.3, q=MPM_QUANTILE,
-                    empty=0.0, seed=0):
+                    empty=0.0, positions="gringorten", n_boot=100, n_subsets_boot=100,
+                    confidence=0.95, seed=0):
     """R(N) of pooled-peaks, seed-maxima and Weibull-fit MPMs over random N-seed subsets.
 
     Parameters
@@ -177,9 +258,18 @@ def mpm_convergence(peaks, n_encounters, *, exposure_encounters=None, n_values=N
     top_fraction : float, default 0.3
         Fraction of the peaks in each Weibull fit.
     q : float, default 0.368
-        Quantile of the seed maxima used as their MPM.
+        Quantile of the seed maxima used as their MPM (read with ``k/(N+1)``).
     empty : float, default 0.0
         Seed maximum of a seed without peaks.
+    positions : {"gringorten", "weibull", "k/n"}, default "gringorten"
+        Plotting positions of the pooled peaks.
+    n_boot : int, default 100
+        Records resampled from the seeds (with replacement) for the R(N) band
+        of the pooled-peaks and seed-maxima variants; 0 skips the band (NaN).
+    n_subsets_boot : int, default 100
+        Subsets per N inside each resampled record.
+    confidence : float, default 0.95
+        Of the R(N) band.
     seed : int, default 0
         Seed of the subset draws.
 
@@ -199,49 +289,51 @@ def mpm_convergence(peaks, n_encounters, *, exposure_encounters=None, n_values=N
     n_values = np.asarray(n_values, dtype=int)
     if n_values.ndim != 1 or n_values.size == 0 or n_values.min() < 1 or n_values.max() > m:
         raise ValueError(f"n_values must be subset sizes in 1..{m}")
-    if n_subsets < 1 or n_subsets_fit < 0:
-        raise ValueError("n_subsets must be >= 1 and n_subsets_fit >= 0")
+    if n_subsets < 2 or n_subsets_fit < 0:
+        raise ValueError("n_subsets must be >= 2 and n_subsets_fit >= 0")
     rng = np.random.default_rng(seed)
 
-    pooled_all = np.concatenate(seeds)
-    d_all, v_all = exceedance_probabilities(pooled_all, n_total)
-    reference = _read_pooled(d_all, v_all, p_t)
-
-    # Each subset's MPM needs its top ceil(P_t n_e)+1 pooled peaks; no seed can
+    # A subset's MPM needs its top ~P_t n_e + 2 pooled peaks; no seed can
     # contribute more than that many, so keep that many per seed.
-    k_max = int(np.ceil(p_t * n_total)) + 2
-    top = _top_matrix(seeds, k_max)
+    k_max = int(np.ceil(p_t * n_total + 1.0)) + 2
+    top = top_peaks(seeds, k_max)
+    reference = _reference(top, n_total, p_t, positions, empty)
+    if np.isnan(reference):
+        raise ValueError("the MPM target lies beyond the largest peak of the whole record; "
+                         "R(N) needs a record longer than the exposure duration")
     maxima = seed_maxima(seeds, empty=empty)
+    opts = {"p_t": p_t, "q": q, "positions": positions, "empty": empty, "k_max": k_max}
 
-    rms, bias, drawn = {}, {}, {"pooled": n_subsets, "seed maxima": n_subsets}
-    est_pooled = np.full((n_values.size, n_subsets), np.nan)
-    est_max = np.full((n_values.size, n_subsets), np.nan)
-    est_fit = np.full((n_values.size, n_subsets_fit), np.nan)
-    for i, n in enumerate(n_values):  # loop over subset sizes only
-        idx = random_subsets(m, n, n_subsets, rng)
-        n_e = enc[idx].sum(axis=1)
-        k_need = min(int(np.ceil(p_t * n_e.max())) + 2, n * k_max)
-        pooled = -np.sort(-top[idx].reshape(n_subsets, -1), axis=1)[:, :k_need]  # NaN last
-        for w in range(n_subsets):
-            row = pooled[w][np.isfinite(pooled[w])]
-            if row.size == 0:
-                est_pooled[i, w] = empty
-                continue
-            d = np.arange(1, row.size + 1) / n_e[w]
-            est_pooled[i, w] = _read_pooled(d, row, p_t, below=empty, warn=False)
-        est_max[i] = _seed_maxima_quantile_rows(-np.sort(-maxima[idx], axis=1), q)
-        for w in range(n_subsets_fit):
+    est, subsets = _subset_estimates(top, maxima, enc, n_values, n_subsets, rng, **opts)
+    fits = np.full((n_values.size, n_subsets_fit), np.nan)
+    for i, (n, idx) in enumerate(zip(n_values, subsets)):
+        for w in range(n_subsets_fit):  # one least-squares fit per subset
             sub = idx[w] if w < n_subsets else random_subsets(m, n, 1, rng)[0]
             vals = np.concatenate([seeds[j] for j in sub])
             if vals.size < 3 or np.ptp(vals) == 0:
                 continue
             fit = fit_weibull3_ls(vals, top_fraction=top_fraction)
-            est_fit[i, w] = _weibull_mpm(fit, vals.size, enc[sub].sum(), p_t)
-
-    rms["pooled"], bias["pooled"] = rms_difference(est_pooled, reference)
-    rms["seed maxima"], bias["seed maxima"] = rms_difference(est_max, reference)
+            fits[i, w] = weibull_mpm(fit, vals.size, enc[sub].sum(), p_t)
     if n_subsets_fit:
-        rms["fit"], bias["fit"] = rms_difference(est_fit, reference)
-        drawn["fit"] = n_subsets_fit
-    return MPMConvergence(n=n_values, reference=float(reference), rms=rms, bias=bias,
-                          n_subsets=drawn)
+        est["fit"] = fits
+
+    rms, raw, bias = {}, {}, {}
+    for name, e in est.items():
+        raw[name], bias[name] = rms_difference(e, reference)
+        rms[name] = fresh_campaign_rms(e, reference, n_values, m)
+    boot = {name: np.full((max(n_boot, 1), n_values.size), np.nan) for name in est}  # fit: NaN
+    for b in range(n_boot):  # loop over resampled records
+        r = rng.integers(0, m, m)
+        ref_b = _reference(top[r], enc[r].sum(), p_t, positions, empty)
+        est_b, _ = _subset_estimates(top[r], maxima[r], enc[r], n_values, n_subsets_boot, rng,
+                                     **opts)
+        for name, e in est_b.items():
+            boot[name][b] = fresh_campaign_rms(e, ref_b, n_values, m)
+    a = (1.0 - confidence) / 2.0
+    with warnings.catch_warnings():  # all-NaN columns (N = M)
+        warnings.simplefilter("ignore", RuntimeWarning)
+        low = {name: np.nanquantile(v, a, axis=0) for name, v in boot.items()}
+        high = {name: np.nanquantile(v, 1 - a, axis=0) for name, v in boot.items()}
+    drawn = {name: e.shape[1] for name, e in est.items()}
+    return MPMConvergence(n=n_values, n_seeds=m, reference=reference, rms=rms, rms_low=low,
+                          rms_high=high, rms_subsets=raw, bias=bias, n_subsets=drawn)

@@ -96,8 +96,9 @@ def mean_period_from_peak_period(tp: float, gamma: float = 3.3) -> float:
 
     Uses the DNV-RP-C205 relation ``T1/Tp = 0.7303 + 0.04936γ − 0.006556γ²
     + 0.0003610γ³``, which gives ``T1 = Tp / 1.198`` for γ = 3.3: the factor the
-    paper's Table 2 implies (its text prints 1.98, which contradicts the table;
-    SPEC §8).
+    paper's Table 2 implies (van Essen & Seyffert (2026) §2.1 Step 2 prints
+    ``T_p/1.98``, which contradicts their Table 2: 11.0 s / 1.198 = 9.18 s and
+    9.18 s / 3600 s = 2.55e-3).
     """
     tp = check_positive(tp, "tp")
     g = check_positive(gamma, "gamma")

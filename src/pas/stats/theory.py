@@ -12,7 +12,7 @@ the q-quantile of the maximum solves ``(1 − P(C > c))^n = q``.
   Weibull fitted to second-order (Sharma & Dean) simulations,
   ``P(C > c) = exp(−(c / (α Hs))^β)`` with steepness
   ``S1 = 2π Hs / (g T1²)`` and Ursell number ``Ur = Hs / (k1² d³)``, where
-  ``T1 = m0/m1`` is the mean period and ``k1`` the wave number of ``T1`` in
+  ``T1 = 2π m0/m1`` is the mean period and ``k1`` the wave number of ``T1`` in
   depth ``d``. Coefficients (Forristall 2000, Eqs. 4–5 and 7–8; also
   reproduced in DNV-RP-C205 (2019) §3.5.9.3):
 

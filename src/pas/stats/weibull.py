@@ -15,7 +15,8 @@ analysis) is the classic Weibull-paper least squares:
 * θ is bounded to ``[x_min − theta_span · (x_max − x_min), x_min)``: the
   location may not reach the smallest fitted value (the log would diverge)
   and may not run off to −∞, where the Weibull degenerates into a Gumbel
-  shape with β → ∞ (SPEC §8 saw β ≈ 10–18 on tail-heavy samples).
+  shape with β → ∞ (fits to adaptively selected, tail-heavy samples gave
+  β ≈ 10–18 there).
 
 A fit to the upper part of a sample (``top_fraction < 1``) keeps the plotting
 positions of the full sample, so it is a tail fit, not a refit of a

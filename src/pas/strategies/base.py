@@ -18,7 +18,15 @@ from ..screening import LFSet
 from ..stats.exceedance import value_at_exceedance
 from .acquisition import initial_targets, md_select, nearest_available
 
-__all__ = ["Pairs", "Prediction", "Strategy"]
+__all__ = ["Pairs", "Prediction", "Strategy", "Z95", "band95"]
+
+Z95 = 1.96
+"""Half-width of the U95 bands in standard deviations, as printed in the paper (Eq. 10)."""
+
+
+def band95(mean, sd):
+    """The U95 band ``(mean − Z95·sd, mean + Z95·sd)`` (Eq. 10)."""
+    return mean - Z95 * sd, mean + Z95 * sd
 
 
 @dataclass(frozen=True)
@@ -60,6 +68,15 @@ class Prediction:
     mpm_band: tuple
     record: dict = field(default_factory=dict)
 
+    @classmethod
+    def read_at(cls, p_exp: float, d, h_mean, h_low, h_high, record=None) -> Prediction:
+        """A distribution and its band, with the MPM and its band read at ``p_exp`` (Step 12)."""
+        return cls(d=d, h_mean=h_mean, h_low=h_low, h_high=h_high,
+                   mpm=float(value_at_exceedance(d, h_mean, p_exp)),
+                   mpm_band=(float(value_at_exceedance(d, h_low, p_exp)),
+                             float(value_at_exceedance(d, h_high, p_exp))),
+                   record={} if record is None else record)
+
     def at(self, p):
         """The mean distribution interpolated at probabilities ``p`` on ``ln d``."""
         return value_at_exceedance(self.d, self.h_mean, p)
@@ -77,7 +94,6 @@ class Strategy(ABC):
     name: str = "base"
     n_initial: int = 4
     min_pairs: int = 4
-    skip_unsplittable: bool = True
     #: samples spread over the whole LF range, so Kendall's tau of the pairs
     #: measures the indicator (False for strategies that cluster samples)
     spreads_samples: bool = True
@@ -111,10 +127,10 @@ class Strategy(ABC):
 
         ``selected_d`` are the LF exceedance probabilities of the selected
         (true-positive) samples; ``available`` marks pool positions that may
-        still be chosen.
+        still be chosen.  Gaps no pool peak can split are skipped
+        (:func:`~pas.strategies.acquisition.md_select`).
         """
-        return md_select(lfset.ln_d, available, np.log(selected_d), q,
-                         skip_unsplittable=self.skip_unsplittable)
+        return md_select(lfset.ln_d, available, np.log(selected_d), q)
 
     def model_band(self, pairs: Pairs, lfset: LFSet, rng: np.random.Generator):
         """Optional U95 band of the MPM including model uncertainty, or None."""

@@ -6,7 +6,7 @@ iterations; ``Ē`` its mean over the last ``K1`` iterations; ``C`` the
 coefficient of variation (population standard deviation over mean) of the last
 ``K2`` MPMs.  Stop when ``Ē < ε1`` and ``C < ε2``, never before ``K1/3``
 iterations.  App. C's Eq. 30 prints the windows as 50 while its text says 20;
-the defaults follow the text (SPEC §2 step 12).
+the defaults follow the text.
 """
 
 from __future__ import annotations

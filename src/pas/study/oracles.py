@@ -1,51 +1,79 @@
-"""Built-in HF oracles: a results table and an external command per event.
+"""HF oracles: calling one safely, the built-in ones, and building one from a text spec.
 
 An oracle is any callable ``oracle(event) -> float`` (0 = no impact, a false
 positive).  A failure is an exception with a message; the study records it as
-a failed event and never takes it as 0.  Both oracles here hold only plain
+a failed event and never takes it as 0 (:func:`call_oracle`).  The built-in
+oracles, a results table and an external command per event, hold only plain
 data, so they pickle for process pools and Dask workers.
+:func:`oracle_from_spec` builds one from ``pas run --oracle`` text or a
+``pas study`` ``[oracle]`` table.
 """
 
 from __future__ import annotations
 
 import fcntl
+import importlib
+import importlib.util
 import json
 import math
 import os
 import re
+import shlex
 import signal
 import subprocess
+import sys
 import time
 from pathlib import Path
 
 import numpy as np
 
-__all__ = ["OracleError", "TableOracle", "CommandOracle", "read_table"]
+from ..io import read_table
+
+__all__ = ["OracleError", "OracleFailureLimit", "check_hf_value", "call_oracle", "TableOracle",
+           "CommandOracle", "oracle_from_spec", "parse_oracle_spec"]
 
 
 class OracleError(RuntimeError):
     """An HF evaluation failed; the message is stored with the event."""
 
 
-def read_table(path, *, columns=()):
-    """Read a CSV or Parquet file into a DataFrame, checking that ``columns`` exist."""
-    import pandas as pd
+class OracleFailureLimit(RuntimeError):
+    """Raised when the oracle failed more often than ``max_failures``.
 
-    path = Path(path)
-    if not path.exists():
-        raise FileNotFoundError(f"{path} does not exist")
-    suffix = path.suffix.lower()
-    if suffix == ".parquet":
-        df = pd.read_parquet(path)
-    elif suffix in (".csv", ".txt"):
-        df = pd.read_csv(path)
-    else:
-        raise ValueError(f"{path}: unsupported table format {suffix!r} (use .csv or .parquet)")
-    for c in columns:
-        if c not in df.columns:
-            raise ValueError(f"column {c!r} is missing from {path.name} "
-                             f"(columns: {', '.join(map(str, df.columns))})")
-    return df
+    ``result`` holds the study's result so far (nothing evaluated is lost).
+    """
+
+    def __init__(self, message, result=None):
+        super().__init__(message)
+        self.result = result
+
+
+def check_hf_value(value):
+    """Validate an oracle's answer: ``(float, None)`` or ``(None, error message)``.
+
+    0 is a valid answer (no impact, a false positive); NaN, inf, negative and
+    non-numeric answers are failures, never taken as 0.
+    """
+    if isinstance(value, bool):
+        return None, f"oracle returned a bool ({value!r}), expected a load"
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        return None, f"oracle returned {value!r}, not a number"
+    if not math.isfinite(v):
+        return None, f"oracle returned {v!r}"
+    if v < 0:
+        return None, f"oracle returned a negative load {v!r}"
+    return v, None
+
+
+def call_oracle(oracle, event):
+    """Call ``oracle(event)`` and validate the answer: ``(value, error)``."""
+    try:
+        raw = oracle(event)
+    except Exception as exc:  # the oracle is user code: any failure is recorded
+        return None, f"{type(exc).__name__}: {exc}"
+    return check_hf_value(raw)
 
 
 class TableOracle:
@@ -136,7 +164,11 @@ class CommandOracle:
         Argument-list template, e.g. ``["python", "cfd.py", "--event", "{id}",
         "--lf", "{lf}", "--out", "{result}"]``.  Placeholders: ``{id}``,
         ``{index}``, ``{lf}``, ``{d}``, ``{workdir}``, ``{result}`` and every
-        key of the event's ``meta`` (``{seed}``, ``{t_start}`` …).
+        key of the event's ``meta`` (``{seed}``, ``{t_start}`` …).  For a
+        design-wave :class:`~pas.waves.episode.Episode` (:func:`pas.run_rcw`)
+        also ``{episode}`` and ``{components}``: CSV files of the episode's
+        time series and wave components, written into the working directory,
+        and its ``{level}``, ``{target}`` and ``{t0}``.
     root : str or os.PathLike
         Each event runs in its own working directory ``root/<event id>``,
         with ``stdout.log`` and ``stderr.log``.
@@ -181,9 +213,10 @@ class CommandOracle:
     def __repr__(self) -> str:
         return f"CommandOracle({self.args!r}, root={self.root!r})"
 
-    def command(self, event, workdir: str) -> list[str]:
-        """The argument list for ``event``."""
+    def command(self, event, workdir: str, files: dict | None = None) -> list[str]:
+        """The argument list for ``event`` (``files``: extra placeholders, e.g. an episode's)."""
         fields = {str(k): v for k, v in event.meta.items()}
+        fields.update(files or {})
         fields.update(id=event.id, index=event.index, lf=repr(float(event.lf)),
                       d=repr(float(event.d)), workdir=workdir,
                       result=os.path.join(workdir, self.result_name))
@@ -206,7 +239,10 @@ class CommandOracle:
                     return value
             if os.path.exists(result):
                 os.remove(result)
-            self._run(self.command(event, workdir), workdir, lock)
+            # A design-wave episode (pas.waves.Episode) brings its own input files.
+            writer = getattr(event, "write_csv", None)
+            files = writer(workdir) if callable(writer) else None
+            self._run(self.command(event, workdir, files), workdir, lock)
             return self._read(result)
         finally:
             os.close(lock)
@@ -266,3 +302,104 @@ def _last_line(path: str) -> str:
     except OSError:
         return ""
     return lines[-1][:200] if lines else ""
+
+
+def parse_oracle_spec(spec: str) -> dict:
+    """The ``[oracle]`` table equivalent to an oracle text spec (``pas run --oracle``).
+
+    ``table:FILE[:ID_COLUMN:VALUE_COLUMN]`` gives ``{"table", "id_column",
+    "value_column"}``; ``python:MODULE:FUNCTION`` gives ``{"python"}``;
+    ``command:ARGS`` gives ``{"command": [...]}``, the arguments split like a
+    shell would split them (never run through one).
+
+    Examples
+    --------
+    >>> parse_oracle_spec("table:basin.csv:event:force")
+    {'table': 'basin.csv', 'id_column': 'event', 'value_column': 'force'}
+    >>> parse_oracle_spec("command:python cfd.py --out {result}")
+    {'command': ['python', 'cfd.py', '--out', '{result}']}
+    """
+    kind, sep, rest = spec.partition(":")
+    if not sep or not rest:
+        raise ValueError(f"{spec!r} is not table:FILE[:ID:VALUE], python:MODULE:FUNCTION or "
+                         "command:ARGS")
+    if kind == "table":
+        parts = rest.split(":")
+        if len(parts) == 1:
+            return {"table": parts[0]}
+        if len(parts) == 3 and all(parts):
+            return dict(zip(("table", "id_column", "value_column"), parts))
+        raise ValueError(f"{spec!r}: expected table:FILE or table:FILE:ID_COLUMN:VALUE_COLUMN")
+    if kind == "python":
+        target, sep, func = rest.rpartition(":")
+        if not sep or not target or not func:
+            raise ValueError(f"{spec!r}: expected python:MODULE:FUNCTION")
+        return {"python": rest}
+    if kind == "command":
+        try:
+            args = shlex.split(rest)
+        except ValueError as exc:
+            raise ValueError(f"cannot split the command {rest!r}: {exc}") from None
+        if not args:
+            raise ValueError("command: is empty")
+        return {"command": args}
+    raise ValueError(f"unknown kind {kind!r} (use table:, python: or command:)")
+
+
+def oracle_from_spec(spec, *, root=None, timeout=None):
+    """Build an HF oracle from a text spec or an ``[oracle]`` table.
+
+    Parameters
+    ----------
+    spec : str or dict
+        Text as for :func:`parse_oracle_spec`, or a table with exactly one of
+        ``command`` (with ``root``, ``timeout``, ``result_name``: see
+        :class:`CommandOracle`), ``table`` (with ``id_column``,
+        ``value_column``: see :class:`TableOracle`) or ``python``
+        (``"MODULE:FUNCTION"``, ``MODULE`` an importable name or a ``.py`` file).
+    root : path, optional
+        Root of a command oracle's per-event working directories when ``spec``
+        names none (default ``hf-runs``).
+    timeout : float, optional
+        Seconds per event of a command oracle when ``spec`` names none.
+
+    Returns
+    -------
+    callable
+        ``oracle(event) -> float``.
+    """
+    o = parse_oracle_spec(spec) if isinstance(spec, str) else dict(spec)
+    if "command" in o:
+        return CommandOracle(o["command"], root=o.get("root", root or "hf-runs"),
+                             timeout=o.get("timeout", timeout),
+                             result_name=o.get("result_name", "result.txt"))
+    if "table" in o:
+        return TableOracle(o["table"], id_column=o.get("id_column", "id"),
+                           value_column=o.get("value_column", "hf"))
+    if "python" in o:
+        target, _, func = o["python"].rpartition(":")
+        return _python_function(target, func)
+    raise ValueError(f"an oracle needs one of command, table or python, got {sorted(o)}")
+
+
+def _python_function(target: str, func: str):
+    if target.endswith(".py"):
+        file = Path(target)
+        if not file.exists():
+            raise FileNotFoundError(f"python file {file} does not exist")
+        spec = importlib.util.spec_from_file_location(f"_pas_oracle_{file.stem}", file)
+        module = importlib.util.module_from_spec(spec)
+        sys.modules[spec.name] = module  # so a process pool can unpickle its functions
+        try:
+            spec.loader.exec_module(module)
+        except Exception as exc:
+            raise ValueError(f"importing {file} failed: {type(exc).__name__}: {exc}") from None
+    else:
+        try:
+            module = importlib.import_module(target)
+        except ImportError as exc:
+            raise ValueError(f"cannot import module {target!r} ({exc})") from None
+    fn = getattr(module, func, None)
+    if not callable(fn):
+        raise ValueError(f"{target} has no function {func!r}")
+    return fn

@@ -2,14 +2,22 @@
 
 from __future__ import annotations
 
+import json
+import warnings
 from dataclasses import dataclass, field
+from pathlib import Path
 
 import numpy as np
 import pandas as pd
 
+from .._json import json_data
 from ..stats.exceedance import quantile_exceedance, value_at_exceedance
 
-__all__ = ["ScreeningResult"]
+__all__ = ["ScreeningResult", "OUTPUT_FILES"]
+
+OUTPUT_FILES = ("history.csv", "distribution.csv", "pairs.csv", "range_curves.csv",
+                "lf_curve.csv", "summary.json")
+"""Files :meth:`ScreeningResult.save` writes and :meth:`ScreeningResult.load` reads."""
 
 
 @dataclass
@@ -65,6 +73,43 @@ class ScreeningResult:
     family: str | None = None
     settings: dict = field(default_factory=dict)
 
+    @classmethod
+    def from_study(cls, study, *, model_band: bool = True) -> ScreeningResult:
+        """The result of ``study`` so far (:meth:`pas.study.study.Study.result`)."""
+        pairs, pred = study.pairs(), study.last
+        nan = float("nan")
+        mpm, band, sampling, model, family = nan, (nan, nan), (nan, nan), None, None
+        distribution = distribution_frame([], [], [], [])
+        pair_frame = pd.DataFrame({"lf": pairs.lf, "hf": pairs.hf})
+        if pred is not None:
+            if study._range_short(pred):
+                warnings.warn(
+                    f"the predicted distribution ends at d = {pred.d[-1]:.3g}, short of "
+                    f"2·P_exp = {study.grid[-1]:.3g}: the lowest true positive lies above the LF "
+                    "level of P_exp, so the MPM is read off the end of the distribution and the "
+                    "study cannot converge; lower the threshold or check the false positives",
+                    stacklevel=2)
+            mpm, band = pred.mpm, pred.mpm_band
+            sampling, family = pred.mpm_band, pred.record.get("family")
+            if model_band:
+                rng = np.random.default_rng([study.seed, len(study.rows), 1])
+                mb = study.strategy.model_band(pairs, study.lfset, rng)
+                if mb is not None:
+                    model = (mb[0], mb[1])
+                    band = (min(band[0], mb[0]), max(band[1], mb[1]))
+            distribution = distribution_frame(pred.d, pred.h_mean, pred.h_low, pred.h_high)
+            ids = [study.lfset.event(p).id for p in pairs.position]
+            pair_frame = pd.DataFrame({"event_id": ids, "lf": pairs.lf, "hf": pairs.hf,
+                                       "d": pairs.d})
+        return cls(
+            strategy=study.strategy.name, mpm=mpm, mpm_band=band, mpm_band_sampling=sampling,
+            mpm_band_model=model, n_hf=study.n_hf, n_false_positive=study.n_false_positive,
+            n_failed=study.n_failed, converged=study.converged,
+            history=study.history(), distribution=distribution, pairs=pair_frame,
+            range_curves=pd.DataFrame.from_dict(study.curves, orient="index", columns=study.grid),
+            p_exp=study.lfset.p_exp, n_waves=study.lfset.n_waves, seed=study.seed, family=family,
+            settings=study.settings())
+
     @property
     def fitted(self) -> pd.DataFrame:
         """History rows where a model was fitted (true-positive iterations)."""
@@ -109,6 +154,83 @@ class ScreeningResult:
             "n_failed": self.n_failed, "converged": self.converged, "family": self.family,
             "p_exp": self.p_exp, "n_waves": self.n_waves, "seed": self.seed,
         }
+
+    def save(self, out, *, inputs=None, lfset=None) -> dict:
+        """Write the result to folder ``out`` (created when missing).
+
+        Writes :data:`OUTPUT_FILES`: the history, the final distribution, the
+        true-positive pairs, the per-iteration curves on the stopping range, the
+        LF exceedance curve (when ``lfset`` is given) and ``summary.json``
+        (:meth:`to_dict` plus the one-line summary and ``inputs``), everything
+        ``pas plot`` draws from.
+
+        Returns
+        -------
+        dict
+            The summary written to ``summary.json``.
+        """
+        out = Path(out)
+        out.mkdir(parents=True, exist_ok=True)
+        self.history.to_csv(out / "history.csv", index=False)
+        self.distribution.to_csv(out / "distribution.csv", index=False)
+        self.pairs.to_csv(out / "pairs.csv", index=False)
+        self.range_curves.to_csv(out / "range_curves.csv", index_label="row")
+        if lfset is not None:
+            pd.DataFrame({"d": lfset.d, "lf": lfset.lf}).to_csv(out / "lf_curve.csv", index=False)
+        summary = json_data({**self.to_dict(), "summary": self.summary(),
+                             "inputs": dict(inputs or {})})
+        (out / "summary.json").write_text(json.dumps(summary, indent=2) + "\n", encoding="utf-8")
+        return summary
+
+    @classmethod
+    def load(cls, path) -> ScreeningResult:
+        """Read back a result written by :meth:`save` (the ``--out`` folder of ``pas run``)."""
+        path = Path(path)
+        summary = read_summary(path)
+        curves_file = path / "range_curves.csv"
+        if curves_file.exists():
+            curves = pd.read_csv(curves_file, index_col="row")
+            curves.columns = curves.columns.astype(float)
+        else:
+            curves = pd.DataFrame()
+        s = summary
+        band = tuple(_float_or_nan(x) for x in s["mpm_band"])
+        return cls(
+            strategy=s["strategy"], mpm=_float_or_nan(s["mpm"]), mpm_band=band,
+            mpm_band_sampling=tuple(_float_or_nan(x) for x in s.get("mpm_band_sampling") or band),
+            mpm_band_model=(None if s.get("mpm_band_model") is None
+                            else tuple(_float_or_nan(x) for x in s["mpm_band_model"])),
+            n_hf=int(s["n_hf"]), n_false_positive=int(s.get("n_false_positive", 0)),
+            n_failed=int(s.get("n_failed", 0)), converged=bool(s.get("converged", False)),
+            history=pd.read_csv(path / "history.csv"),
+            distribution=pd.read_csv(path / "distribution.csv"),
+            pairs=pd.read_csv(path / "pairs.csv"), range_curves=curves, p_exp=float(s["p_exp"]),
+            n_waves=int(s["n_waves"]), seed=s.get("seed"), family=s.get("family"),
+        )
+
+
+def read_summary(path) -> dict:
+    """``summary.json`` of a folder written by :meth:`ScreeningResult.save`, checked."""
+    path = Path(path)
+    if not path.is_dir():
+        raise FileNotFoundError(f"{path} is not a folder")
+    need = ("summary.json", "history.csv", "distribution.csv", "pairs.csv")
+    missing = [f for f in need if not (path / f).exists()]
+    if missing:
+        raise FileNotFoundError(f"{path} lacks {', '.join(missing)} "
+                                "(is it the --out folder of 'pas run'?)")
+    try:
+        s = json.loads((path / "summary.json").read_text(encoding="utf-8"))
+    except json.JSONDecodeError as exc:
+        raise ValueError(f"{path / 'summary.json'}: not valid JSON ({exc})") from None
+    for key in ("strategy", "mpm", "mpm_band", "n_hf", "p_exp", "n_waves"):
+        if key not in s:
+            raise ValueError(f"{path / 'summary.json'}: field {key!r} is missing")
+    return s
+
+
+def _float_or_nan(x):
+    return float("nan") if x is None else float(x)
 
 
 def distribution_frame(d, mean, low, high) -> pd.DataFrame:

@@ -22,7 +22,8 @@ Schema (version 1)
 ``events(idx, key, event_id, lf, d, state, hf, error, batch, batch_pos,
 result_seq, tell_seq, attempts, asked_at, submitted_at, result_at, source)``
     Every event sent to the HF tool.  ``state`` is ``pending``, ``done``
-    (HF > 0), ``false_positive`` (HF = 0) or ``failed`` (``error`` says why).
+    (HF > 0), ``false_positive`` (HF = 0) or ``failed`` (``error`` says why):
+    the :class:`~pas.study.state.EventState` written as in :data:`STORED`.
     ``batch`` is the sequence number of the ask that sent it (``batch_pos``
     its place in that ask); ``result_seq`` the sequence number at which its
     result arrived; ``tell_seq`` the one at which a study consumed it.
@@ -35,23 +36,28 @@ result_seq, tell_seq, attempts, asked_at, submitted_at, result_at, source)``
 Replay order is the asks (grouped by ``batch``) and the consumed tells
 (``tell_seq``) sorted by sequence number.  Results that arrived but were not
 consumed yet (``result_seq`` set, ``tell_seq`` NULL) are consumed by whoever
-drives the study next: :func:`pas.study.executor.optimize` in ask order,
+drives the study next: :func:`pas.study.loop.optimize` in ask order,
 ``pas study ask`` in arrival order.
 """
 
 from __future__ import annotations
 
 import hashlib
-import json
-import math
 from datetime import datetime, timezone
 
 import numpy as np
 
-__all__ = ["SCHEMA_VERSION", "STATES", "RESUMABLE", "StoreError", "StoreConflict", "dumps"]
+from .._json import dumps
+from .state import EventState
+
+__all__ = ["SCHEMA_VERSION", "STATES", "STORED", "RESUMABLE", "StoreError", "StoreConflict",
+           "dumps"]
 
 SCHEMA_VERSION = 1
-STATES = ("pending", "done", "false_positive", "failed")
+#: How each :class:`~pas.study.state.EventState` is written in ``events.state`` (schema 1).
+STORED = {EventState.PENDING: "pending", EventState.TRUE_POSITIVE: "done",
+          EventState.FALSE_POSITIVE: "false_positive", EventState.FAILED: "failed"}
+STATES = tuple(STORED.values())
 #: Settings that may change when a study is resumed (budgets); all others must match.
 RESUMABLE = ("max_hf", "max_failures")
 
@@ -83,31 +89,6 @@ class StoreConflict(StoreError):
 
 def _now() -> str:
     return datetime.now(timezone.utc).isoformat(timespec="milliseconds")
-
-
-def _default(x):
-    if isinstance(x, np.generic):
-        return x.item()
-    if isinstance(x, np.ndarray):
-        return x.tolist()
-    raise TypeError(f"{type(x).__name__} is not JSON-serialisable")
-
-
-def _clean(x):
-    """Non-finite floats become None so the stored text is strict JSON."""
-    if isinstance(x, float) and not math.isfinite(x):
-        return None
-    if isinstance(x, dict):
-        return {str(k): _clean(v) for k, v in x.items()}
-    if isinstance(x, (list, tuple)):
-        return [_clean(v) for v in x]
-    return x
-
-
-def dumps(x) -> str:
-    """Strict JSON text of ``x`` (numpy scalars converted, NaN/inf as null)."""
-    return json.dumps(_clean(json.loads(json.dumps(x, default=_default))), allow_nan=False,
-                      sort_keys=True)
 
 
 def _pool_records(lfset) -> list[tuple]:

@@ -7,8 +7,8 @@ processes can write at the same time without losing a result.  Everything is
 stored as JSON or plain columns; nothing is pickled.
 
 The tables are described in :mod:`pas.study.schema`; rebuilding a study from
-them (:func:`attach`, :func:`open_study`) is :mod:`pas.study.replay`.  Both
-are re-exported here.
+them is :mod:`pas.study.replay` (:func:`~pas.study.replay.attach`) and
+:func:`~pas.study.study.open_study`.
 
 Examples
 --------
@@ -32,12 +32,12 @@ from contextlib import contextmanager
 
 import numpy as np
 
-from .replay import attach, open_study, study_settings
-from .schema import (_SCHEMA, RESUMABLE, SCHEMA_VERSION, STATES, StoreConflict, StoreError, _now,
-                     _pool_hash, _pool_records, dumps)
+from .._version import __version__
+from .schema import (_SCHEMA, RESUMABLE, SCHEMA_VERSION, STATES, STORED, StoreConflict, StoreError,
+                     _now, _pool_hash, _pool_records, dumps)
+from .state import EventState
 
-__all__ = ["StudyStore", "StoreError", "StoreConflict", "SCHEMA_VERSION", "attach", "open_study",
-           "study_settings", "read_settings", "STATES"]
+__all__ = ["StudyStore", "StoreError", "StoreConflict", "SCHEMA_VERSION", "read_settings", "STATES"]
 
 
 class StudyStore:
@@ -170,7 +170,7 @@ class StudyStore:
                 raise StoreError(f"study store {self.path} already holds a study")
             c.executemany("INSERT INTO lf_peaks VALUES (?, ?, ?, ?, ?, ?)", records)
             for k, v in (("settings", settings), ("lf_sha256", _pool_hash(records)),
-                         ("created_at", _now()), ("pas_version", _pas_version())):
+                         ("created_at", _now()), ("pas_version", __version__)):
                 self._set_meta(c, k, v)
 
     def check(self, settings: dict, lfset) -> None:
@@ -220,6 +220,31 @@ class StudyStore:
         return (np.array([r[0] for r in rows], dtype=int), [json.loads(r[1]) for r in rows],
                 np.array([r[2] for r in rows], dtype=float), [json.loads(r[3]) for r in rows])
 
+    def lf_inputs(self):
+        """``(lf_peaks, ids, meta)`` as given when the study was created, as far as stored.
+
+        Peaks below the threshold were not stored: they come back as the
+        threshold value (never sampled), with placeholder ids.  ``ids`` and
+        ``meta`` are None when the study had none.
+        """
+        idx, ids, lf, meta = self.pool()
+        threshold = self.settings()["threshold"]
+        n = int(idx[-1]) + 1
+        if threshold is None and idx.size != n:
+            raise StoreError(f"study store {self.path}: LF pool has gaps but no threshold")
+        lf_all = np.full(n, np.nan if threshold is None else threshold)
+        lf_all[idx] = lf
+        all_ids = all_meta = None
+        if any(i != j for i, j in zip(ids, idx.tolist())):
+            all_ids = [f"\x00below-threshold-{i}" for i in range(n)]
+            for i, e in zip(idx, ids):
+                all_ids[i] = e
+        if any(meta):
+            all_meta = [{} for _ in range(n)]
+            for i, m in zip(idx, meta):
+                all_meta[i] = m
+        return lf_all, all_ids, all_meta
+
     # -- the log -----------------------------------------------------------
     def record_ask(self, events) -> int:
         """Store a study's ask: ``events`` become pending, in this order."""
@@ -228,8 +253,9 @@ class StudyStore:
             now = _now()
             c.executemany(
                 "INSERT INTO events (idx, key, event_id, lf, d, state, batch, batch_pos, asked_at) "
-                "VALUES (?, ?, ?, ?, ?, 'pending', ?, ?, ?)",
-                [(ev.index, str(ev.id), dumps(ev.id), ev.lf, ev.d, seq, i, now)
+                "VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?)",
+                [(ev.index, str(ev.id), dumps(ev.id), ev.lf, ev.d, STORED[EventState.PENDING],
+                  seq, i, now)
                  for i, ev in enumerate(events)])
         return seq
 
@@ -260,7 +286,7 @@ class StudyStore:
                 return
             raise StoreError(f"event {key} already has a result in {self.path} ({state}, "
                              f"hf={hf}, error={err!r}); refusing to overwrite it")
-        state = "failed" if error is not None else ("done" if value > 0 else "false_positive")
+        state = STORED[EventState.of_result(value, error)]
         c.execute("UPDATE events SET state = ?, hf = ?, error = ?, result_seq = ?, result_at = ?, "
                   "source = ? WHERE idx = ?",
                   (state, value, error, self._next_seq(c), _now(), source, idx))
@@ -325,7 +351,10 @@ class StudyStore:
                 "ORDER BY batch, batch_pos")]
 
     def events(self):
-        """All events sent to the HF tool as a :class:`pandas.DataFrame`, in ask order."""
+        """All events sent to the HF tool as a :class:`pandas.DataFrame`, in ask order.
+
+        Columns as in the ``events`` table; ``state`` as stored (:data:`~pas.study.schema.STORED`).
+        """
         import pandas as pd
 
         with self._read() as c:
@@ -341,12 +370,6 @@ class StudyStore:
         """The stored history rows, in order."""
         with self._read() as c:
             return [json.loads(r[0]) for r in c.execute("SELECT data FROM history ORDER BY row")]
-
-
-def _pas_version() -> str:
-    from .. import __version__
-
-    return __version__
 
 
 def read_settings(path) -> dict:

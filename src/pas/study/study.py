@@ -1,8 +1,8 @@
 """The screening study: an ask/tell loop that runs any strategy against an HF oracle.
 
-The in-process loop (:meth:`Study.optimize`) is a client of :meth:`Study.ask`
-and :meth:`Study.tell`, so slow external campaigns (CLI, basin results that
-arrive days later) and a Python oracle run the same code.  The study owns
+The loop (:meth:`Study.optimize`, :mod:`pas.study.loop`) is a client of
+:meth:`Study.ask` and :meth:`Study.tell`, so slow external campaigns (CLI,
+basin results that arrive days later) and a Python oracle run the same code.  The study owns
 everything that is about *running* a campaign: the pool of events, false
 positives (paper Step 6), failed oracle calls, the adaptive threshold
 (§2.4), the stopping criterion (App. C) and the iteration history.
@@ -10,8 +10,6 @@ positives (paper Step 6), failed oracle calls, the adaptive threshold
 
 from __future__ import annotations
 
-import inspect
-import math
 import warnings
 
 import numpy as np
@@ -21,50 +19,17 @@ from .._validation import check_positive
 from ..screening import Event, LFSet
 from ..strategies.base import Pairs, Prediction, Strategy
 from ..strategies.stopping import StoppingRule, range_grid
-from .result import ScreeningResult, distribution_frame
+from . import loop
+from .factory import LF_SETTINGS, STRATEGIES, STUDY_SETTINGS, make_strategy, strategy_parameters
+from .oracles import check_hf_value
+from .replay import attach
+from .result import ScreeningResult
+from .schema import StoreError
+from .state import EventState
+from .store import StudyStore, read_settings
 
-__all__ = ["Study", "OracleFailureLimit", "check_hf_value"]
+__all__ = ["Study", "open_study"]
 
-PENDING, TRUE_POSITIVE, FALSE_POSITIVE, FAILED = "pending", "true_positive", "false_positive", "failed"
-
-
-class OracleFailureLimit(RuntimeError):
-    """Raised when the oracle failed more often than ``max_failures``.
-
-    ``result`` holds the study's result so far (nothing evaluated is lost).
-    """
-
-    def __init__(self, message, result=None):
-        super().__init__(message)
-        self.result = result
-
-
-def check_hf_value(value):
-    """Validate an oracle's answer: ``(float, None)`` or ``(None, error message)``.
-
-    0 is a valid answer (no impact, a false positive); NaN, inf, negative and
-    non-numeric answers are failures, never taken as 0.
-    """
-    if isinstance(value, bool):
-        return None, f"oracle returned a bool ({value!r}), expected a load"
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        return None, f"oracle returned {value!r}, not a number"
-    if not math.isfinite(v):
-        return None, f"oracle returned {v!r}"
-    if v < 0:
-        return None, f"oracle returned a negative load {v!r}"
-    return v, None
-
-
-def call_oracle(oracle, event: Event):
-    """Call ``oracle(event)`` and validate the answer: ``(value, error)``."""
-    try:
-        raw = oracle(event)
-    except Exception as exc:  # the oracle is user code: any failure is recorded
-        return None, f"{type(exc).__name__}: {exc}"
-    return check_hf_value(raw)
 
 
 class Study:
@@ -122,7 +87,7 @@ class Study:
         self.threshold_step = float(threshold_step)
         self.fp_run = int(fp_run)
         self.grid = range_grid(lfset.p_exp)
-        self.state: dict[int, str] = {}
+        self.state: dict[int, EventState] = {}
         self.value: dict[int, float] = {}
         self.rows: list[dict] = []
         self.curves: dict[int, np.ndarray] = {}
@@ -134,33 +99,73 @@ class Study:
         self._warned_tau = False
         self.store = None
         if store is not None:
-            from .store import attach
             attach(self, store)
+
+    @classmethod
+    def from_settings(cls, settings: dict, lf_peaks, *, ids=None, meta=None,
+                      store=None) -> Study:
+        """Build a study from its settings, the dict :meth:`settings` returns.
+
+        Parameters
+        ----------
+        settings : dict
+            ``strategy`` (a name, class or instance), ``strategy_settings``,
+            ``n_waves``, ``p_exp``, ``threshold`` and the keyword settings of
+            this class (:mod:`pas.study.factory`); unknown keys raise ``ValueError``.
+        lf_peaks : array-like
+            LF peak of every wave event.
+        ids, meta : sequence, optional
+            User ids / metadata per event.
+        store : str, os.PathLike or StudyStore, optional
+            As for the constructor; with no ``seed`` in ``settings`` an
+            existing store's seed is used.
+        """
+        known = {"strategy", "strategy_settings", *LF_SETTINGS, *STUDY_SETTINGS}
+        unknown = sorted(set(settings) - known)
+        if unknown:
+            raise ValueError(f"unknown study settings {unknown}; known: {', '.join(sorted(known))}")
+        strategy = make_strategy(settings["strategy"], settings.get("strategy_settings"))
+        lfset = LFSet(lf_peaks, n_waves=settings["n_waves"], p_exp=settings["p_exp"],
+                      threshold=settings.get("threshold"), ids=ids, meta=meta,
+                      min_peaks=max(4, strategy.n_initial))
+        study_kw = {k: settings[k] for k in STUDY_SETTINGS if k in settings}
+        if store is not None and study_kw.get("seed") is None:
+            stored = store.settings() if isinstance(store, StudyStore) else read_settings(store)
+            study_kw["seed"] = stored.get("seed")
+        return cls(lfset, strategy, store=store, **study_kw)
 
     # -- bookkeeping -------------------------------------------------------
     def _positions(self, status) -> list[int]:
         return [p for p, s in self.state.items() if s == status]
 
+    def _told(self, *states) -> list[int]:
+        """Positions told with one of ``states``, in evaluation order."""
+        return [r["position"] for r in self.rows if r["status"] in states]
+
+    @property
+    def _n_pending(self) -> int:
+        return len(self._positions(EventState.PENDING))
+
     @property
     def n_hf(self) -> int:
-        return sum(s in (TRUE_POSITIVE, FALSE_POSITIVE) for s in self.state.values())
+        return sum(s.is_evaluated() for s in self.state.values())
 
     @property
     def n_false_positive(self) -> int:
-        return sum(s == FALSE_POSITIVE for s in self.state.values())
+        return sum(s == EventState.FALSE_POSITIVE for s in self.state.values())
 
     @property
     def n_failed(self) -> int:
-        return sum(s == FAILED for s in self.state.values())
+        return sum(s == EventState.FAILED for s in self.state.values())
 
     @property
     def pending(self) -> list[Event]:
-        return [self.lfset.event(p) for p in self._positions(PENDING)]
+        return [self.lfset.event(p) for p in self._positions(EventState.PENDING)]
 
     def pairs(self) -> Pairs:
         """True-positive pairs in evaluation order."""
-        pos = np.array([r["position"] for r in self.rows if r["status"] == TRUE_POSITIVE], dtype=int)
-        fp = np.array([r["position"] for r in self.rows if r["status"] == FALSE_POSITIVE], dtype=int)
+        pos = np.array(self._told(EventState.TRUE_POSITIVE), dtype=int)
+        fp = np.array(self._told(EventState.FALSE_POSITIVE), dtype=int)
         return Pairs(pos, self.lfset.lf[pos], np.array([self.value[p] for p in pos], dtype=float),
                      self.lfset.d[pos], self.lfset.lf[fp])
 
@@ -177,7 +182,7 @@ class Study:
         """True when the study should ask for nothing more."""
         if self.converged and self.stop_on_convergence:
             return True
-        if self.max_hf is not None and self.n_hf + len(self._positions(PENDING)) >= self.max_hf:
+        if self.max_hf is not None and self.n_hf + self._n_pending >= self.max_hf:
             return True
         return self._initial is not None and not self.available().any()
 
@@ -194,20 +199,20 @@ class Study:
         elif self.finished:
             return []
         else:
-            room = n if self.max_hf is None else min(n, self.max_hf - self.n_hf - len(self._positions(PENDING)))
+            room = n if self.max_hf is None else min(n, self.max_hf - self.n_hf - self._n_pending)
             tp = self.pairs()
             if len(tp) >= 2:
                 sel_d = tp.d
             else:
-                sel_d = self.lfset.d[[r["position"] for r in self.rows if r["status"] != FAILED] +
-                                     self._positions(PENDING)]
+                sel_d = self.lfset.d[self._told(EventState.TRUE_POSITIVE, EventState.FALSE_POSITIVE)
+                                     + self._positions(EventState.PENDING)]
             if len(sel_d) >= 2:
                 new = self.strategy.propose(sel_d, self.lfset, self.available(), self.last,
                                             q=max(room, 0))
             else:  # initial samples failed: try the next peaks nearest the initial targets
                 new = self.strategy.initial_positions(self.lfset, self.available())[:max(room, 0)]
         for p in new:
-            self.state[p] = PENDING
+            self.state[p] = EventState.PENDING
         events = [self.lfset.event(p) for p in new]
         if self.store is not None and events:
             self.store.record_ask(events)
@@ -218,11 +223,13 @@ class Study:
 
         ``event`` is the :class:`Event` (or its index in ``lf_peaks``);
         ``value`` the HF peak (0 = no impact) or ``error`` a failure message.
-        Returns the history row written.
+        Returns the history row written.  ``tell`` only records: the limit
+        on failed calls (``max_failures``) is the loop's to enforce
+        (:mod:`pas.study.loop`).
         """
         idx = event.index if isinstance(event, Event) else int(event)
         pos = self.lfset.position_of(idx)
-        if self.state.get(pos) != PENDING:
+        if self.state.get(pos) != EventState.PENDING:
             raise ValueError(f"event {idx} was not asked for or is already told "
                              f"(state: {self.state.get(pos, 'never asked')})")
         if error is None:
@@ -230,30 +237,23 @@ class Study:
         ev = self.lfset.event(pos)
         if self.store is not None:
             self.store.record_result(ev, value, error)
+        state = self.state[pos] = EventState.of_result(value, error)
         row = {"row": len(self.rows), "position": pos, "event_index": ev.index, "event_id": ev.id,
-               "lf": ev.lf, "d": ev.d, "hf": value, "error": error}
-        if error is not None:
-            self.state[pos] = row["status"] = FAILED
-        elif value > 0:
-            self.state[pos] = row["status"] = TRUE_POSITIVE
+               "lf": ev.lf, "d": ev.d, "hf": value, "error": error, "status": state.value}
+        if state.is_evaluated():
             self.value[pos] = value
+        if state == EventState.TRUE_POSITIVE:
             self.consecutive_fp = 0
-        else:
-            self.state[pos] = row["status"] = FALSE_POSITIVE
-            self.value[pos] = 0.0
+        elif state == EventState.FALSE_POSITIVE:
             self.consecutive_fp += 1
             self._maybe_raise_threshold(ev)
         row["n_hf"] = self.n_hf
         self.rows.append(row)
-        if row["status"] == TRUE_POSITIVE:
+        if state == EventState.TRUE_POSITIVE:
             self._iterate(row)
         row["threshold"] = self.l0
         if self.store is not None:
             self.store.record_tell(ev, row)
-        if self.n_failed > self.max_failures:
-            raise OracleFailureLimit(
-                f"the HF oracle failed {self.n_failed} times (max_failures={self.max_failures}); "
-                f"last error on event {ev.id}: {error}", result=self.result())
         return row
 
     def _maybe_raise_threshold(self, ev: Event) -> None:
@@ -275,7 +275,7 @@ class Study:
     def _iterate(self, row: dict) -> None:
         pairs = self.pairs()
         if len(pairs) < self.strategy.min_pairs or any(
-                self.state[p] == PENDING for p in self._initial):
+                self.state[p] == EventState.PENDING for p in self._initial):
             return
         rng = np.random.default_rng([self.seed, len(self.rows)])
         try:
@@ -289,9 +289,7 @@ class Study:
         self.last = pred
         h_range = pred.at(self.grid)
         e, e_bar, cov, stop = self.stopping.update(h_range, pred.mpm)
-        if pred.d[-1] < self.grid[-1]:
-            # the conditioning set does not reach 2·P_exp: the MPM and the stopping
-            # range would be read off a clamped end of the distribution
+        if self._range_short(pred):
             stop = False
             row["range_short"] = True
         self.curves[row["row"]] = h_range
@@ -308,41 +306,37 @@ class Study:
                 "indicator does not rank the HF loads, so the screening assumption fails; "
                 "check the indicator, its threshold and the event matching", stacklevel=2)
 
+    def _range_short(self, pred: Prediction) -> bool:
+        """True when the predicted distribution ends short of 2·P_exp.
+
+        The MPM and the stopping range are then read off a clamped end of the
+        distribution, so the study must not converge on them.
+        """
+        return pred.d[-1] < self.grid[-1]
+
     # -- running -----------------------------------------------------------
     def optimize(self, oracle, *, batch_size: int = 1, callback=None, executor=None,
                  n_workers=None, pending="resubmit") -> ScreeningResult:
         """Run the loop with a Python oracle until the study is finished.
 
+        The loop is :func:`pas.study.loop.optimize` (its parameters):
         ``callback(study, row)`` is called after every told result (progress
-        output, checkpoints).  With a store, an ``executor`` (any
-        :class:`concurrent.futures.Executor`, e.g. a Dask client's
-        ``get_executor()``) or ``n_workers`` (a local process pool) the loop
-        is :func:`pas.study.executor.optimize`, which stores each result as it
-        arrives and handles events left pending by a killed run
-        (``pending="resubmit"`` or ``"wait"``).
+        output, checkpoints); oracle calls run in this process, on an
+        ``executor`` (any :class:`concurrent.futures.Executor`, e.g. a Dask
+        client's ``get_executor()``) or in ``n_workers`` local processes; with
+        a store each result is stored as it arrives and events left pending by
+        a killed run are resubmitted (``pending="resubmit"``) or waited for
+        (``"wait"``).  Raises :class:`~pas.study.oracles.OracleFailureLimit`
+        after more than ``max_failures`` failed calls.
         """
-        if self.store is not None or executor is not None or n_workers is not None:
-            from .executor import optimize
-            return optimize(self, oracle, batch_size=batch_size, callback=callback,
-                            executor=executor, n_workers=n_workers, pending=pending)
-        while True:
-            events = self.ask(batch_size)
-            if not events:
-                break
-            for ev in events:
-                value, error = call_oracle(oracle, ev)
-                row = self.tell(ev, value, error=error)
-                if callback is not None:
-                    callback(self, row)
-        return self.result()
+        return loop.optimize(self, oracle, batch_size=batch_size, callback=callback,
+                             executor=executor, n_workers=n_workers, pending=pending)
 
     def settings(self) -> dict:
         """Everything that defines this study: strategy settings and study settings."""
         strategy = self.strategy
         params = {}
-        for name, p in inspect.signature(type(strategy).__init__).parameters.items():
-            if name == "self" or p.kind in (p.VAR_POSITIONAL, p.VAR_KEYWORD):
-                continue
+        for name in strategy_parameters(type(strategy)):
             if not hasattr(strategy, name):
                 raise AttributeError(f"strategy setting {name} is not kept on "
                                      f"{type(strategy).__name__} as an attribute")
@@ -369,45 +363,33 @@ class Study:
         return df[cols + extra]
 
     def result(self, *, model_band: bool = True) -> ScreeningResult:
-        """The current result (final after :meth:`optimize`)."""
-        hist = self.history()
-        pairs = self.pairs()
-        curves = pd.DataFrame.from_dict(self.curves, orient="index", columns=self.grid)
-        if self.last is None:
-            nan = float("nan")
-            return ScreeningResult(
-                strategy=self.strategy.name, mpm=nan, mpm_band=(nan, nan),
-                mpm_band_sampling=(nan, nan), mpm_band_model=None, n_hf=self.n_hf,
-                n_false_positive=self.n_false_positive, n_failed=self.n_failed,
-                converged=False, history=hist,
-                distribution=distribution_frame([], [], [], []),
-                pairs=pd.DataFrame({"lf": pairs.lf, "hf": pairs.hf}), range_curves=curves,
-                p_exp=self.lfset.p_exp, n_waves=self.lfset.n_waves, seed=self.seed,
-                settings=self.settings())
-        pred = self.last
-        if pred.d[-1] < self.grid[-1]:
-            warnings.warn(
-                f"the predicted distribution ends at d = {pred.d[-1]:.3g}, short of "
-                f"2·P_exp = {self.grid[-1]:.3g}: the lowest true positive lies above the LF "
-                "level of P_exp, so the MPM is read off the end of the distribution and the "
-                "study cannot converge; lower the threshold or check the false positives",
-                stacklevel=2)
-        band = pred.mpm_band
-        model = None
-        if model_band:
-            rng = np.random.default_rng([self.seed, len(self.rows), 1])
-            mb = self.strategy.model_band(pairs, self.lfset, rng)
-            if mb is not None:
-                model = (mb[0], mb[1])
-                band = (min(band[0], mb[0]), max(band[1], mb[1]))
-        ids = [self.lfset.event(p).id for p in pairs.position]
-        return ScreeningResult(
-            strategy=self.strategy.name, mpm=pred.mpm, mpm_band=band,
-            mpm_band_sampling=pred.mpm_band, mpm_band_model=model, n_hf=self.n_hf,
-            n_false_positive=self.n_false_positive, n_failed=self.n_failed,
-            converged=self.converged, history=hist,
-            distribution=distribution_frame(pred.d, pred.h_mean, pred.h_low, pred.h_high),
-            pairs=pd.DataFrame({"event_id": ids, "lf": pairs.lf, "hf": pairs.hf, "d": pairs.d}),
-            range_curves=curves, p_exp=self.lfset.p_exp, n_waves=self.lfset.n_waves,
-            seed=self.seed, family=pred.record.get("family"), settings=self.settings(),
-        )
+        """The current result (final after :meth:`optimize`).
+
+        ``model_band`` adds the strategy's model-uncertainty band
+        (:meth:`~pas.strategies.base.Strategy.model_band`) to the MPM's band.
+        """
+        return ScreeningResult.from_study(self, model_band=model_band)
+
+
+def open_study(store, *, consume: bool = True) -> Study:
+    """Rebuild the :class:`Study` held by ``store`` (a path or a :class:`StudyStore`).
+
+    The stored settings and LF pool build the study (:meth:`Study.from_settings`),
+    which then replays the stored asks and tells (:func:`pas.study.replay.attach`).
+    With ``consume`` the results told by other processes and not used yet are
+    told to the study in arrival order (written to the store only when the
+    caller holds its write transaction; see ``pas study ask``).
+    """
+    if not isinstance(store, StudyStore):
+        store = StudyStore(store, create=False)
+    s = store.settings()
+    if not s:
+        raise StoreError(f"study store {store.path} holds no study")
+    if not isinstance(s["strategy"], str) or s["strategy"] not in STRATEGIES:
+        raise StoreError(f"strategy {s['strategy']!r} in {store.path} is unknown to this pas")
+    lf_all, all_ids, all_meta = store.lf_inputs()
+    study = Study.from_settings(s, lf_all, ids=all_ids, meta=all_meta, store=store)
+    if consume:
+        for i, hf, err in store.unconsumed():
+            study.tell(int(i), hf, error=err)
+    return study

@@ -78,15 +78,20 @@ wave (issue 12), from the non-linear relative wave elevation at the
 structure; :func:`relative_elevation_coefficients` gives it for a
 :class:`~pas.waves.LinearSea` and a second-order kernel.
 
-``green_water_load(r_bow, *, speed, rng=None, coefficients=None) -> float``
+``green_water_load(r_bow, *, speed, window=None, rng=None, coefficients=None) -> float``
     ``r_bow``: ``R''`` at the bow over the episode (m, without the steady bow
     wave, which is added here from ``speed`` in m/s).  Returns the HF
     green-water force (kN, 0 = no green water on the accommodation).
 
-``slamming_load(r_19, dt, *, rng=None, coefficients=None) -> float``
+``slamming_load(r_19, dt, *, window=None, rng=None, coefficients=None) -> float``
     ``r_19``: ``R''`` at station 19, weather side (m), sampled at ``dt`` (s),
     starting before the zero up-crossing that precedes the impact.  Returns
     the HF slamming force (kN, 0 below the noise threshold).
+
+``window=(i0, i1)`` picks the wave event inside a longer record (the
+generator's events are the zero-up-crossing waves of the LF ``R'``); the
+generator and :func:`pas.validation.episodes.episode_oracle` evaluate events
+through these two functions' rules.
 
 ``rng``: a :class:`numpy.random.Generator` draws the random parts (deflection,
 impulsive part, scatter) like the generator does; ``None`` sets every random
@@ -132,7 +137,7 @@ from ..stats.peaks import rise_velocities, segment_max, upcrossing_times, zero_u
 from ..waves import FERRY_190M, GRAVITY
 from ..waves.ship import RHO_SEAWATER
 from ._common import DT, model_rng, windows
-from ._impact_signals import impact_sea, rwe_coefficients
+from ._impact_signals import OMEGA_MAX, OMEGA_MAX_2, impact_sea, rwe_coefficients  # noqa: F401
 
 __all__ = ["generate_green_water", "generate_slamming", "green_water_load", "slamming_load",
            "relative_elevation_coefficients", "COEFFICIENTS", "VERSION"]
@@ -220,7 +225,7 @@ def _slamming_force(v, d, c):
     return np.where((v > 0) & (force >= c["noise_kN"]), force, 0.0)
 
 
-def green_water_load(r_bow, *, speed, rng=None, coefficients=None) -> float:
+def green_water_load(r_bow, *, speed, window=None, rng=None, coefficients=None) -> float:
     """HF green-water force (kN) of one episode; see the module docs.
 
     Parameters
@@ -230,6 +235,9 @@ def green_water_load(r_bow, *, speed, rng=None, coefficients=None) -> float:
         (m), without the steady bow wave.
     speed : float
         Ship speed (m/s); the steady bow wave ``bow_wave · V²/2g`` is added.
+    window : (int, int), optional
+        Sample slice ``[i0, i1)`` of the wave event (the generator's events are
+        the zero-up-crossing waves of the LF ``R'``); default the whole record.
     rng : numpy.random.Generator or dict, optional
         Draws the random parts; ``None``: every random input at its median;
         a dict: explicit inputs (module docs).
@@ -243,18 +251,27 @@ def green_water_load(r_bow, *, speed, rng=None, coefficients=None) -> float:
     >>> crest = 14.0 * np.sin(np.pi * t / 8)          # 14 m relative elevation at the bow
     >>> round(green_water_load(crest, speed=2.4))      # median realisation, kN
     272
-    >>> green_water_load(0.7 * crest, speed=2.4)       # below freeboard + margin
+    >>> green_water_load(0.7 * crest, speed=2.4)       # below the freeboard
     0.0
     """
     c = _coeffs(coefficients)
     r = np.asarray(r_bow, float)
     if r.ndim != 1 or r.size == 0 or not np.all(np.isfinite(r)):
         raise ValueError("r_bow must be a non-empty 1-D array of finite elevations (m)")
-    peak = r.max() + c["bow_wave"] * float(speed) ** 2 / (2.0 * GRAVITY)
+    i0, i1 = _event_window(window, r.size)
+    peak = r[i0:i1].max() + c["bow_wave"] * float(speed) ** 2 / (2.0 * GRAVITY)
     return float(_green_water_force(np.array([peak]), _draws(rng, 1, _GW_DRAWS), c)[0])
 
 
-def slamming_load(r_19, dt, *, rng=None, coefficients=None) -> float:
+def _event_window(window, n):
+    i0, i1 = (0, n) if window is None else (int(window[0]), int(window[1]))
+    if not 0 <= i0 < i1 <= n:
+        raise ValueError(f"window must be a sample slice (i0, i1) with 0 <= i0 < i1 <= {n}, "
+                         f"got {window!r}")
+    return i0, i1
+
+
+def slamming_load(r_19, dt, *, window=None, rng=None, coefficients=None) -> float:
     """HF bow-flare slamming force (kN) of one episode; see the module docs.
 
     Parameters
@@ -265,6 +282,11 @@ def slamming_load(r_19, dt, *, rng=None, coefficients=None) -> float:
         the impact (else no impact is counted).
     dt : float
         Time step (s).
+    window : (int, int), optional
+        Sample slice ``[i0, i1)`` of the wave event: its peak is the largest
+        ``R''`` inside, its rise time runs from the last zero up-crossing of
+        ``R''`` before that peak (anywhere in the record); default the whole
+        record.
     rng, coefficients : see :func:`green_water_load`.
 
     Examples
@@ -283,11 +305,9 @@ def slamming_load(r_19, dt, *, rng=None, coefficients=None) -> float:
         raise ValueError("r_19 must be a 1-D array of at least two finite elevations (m)")
     if not (np.isfinite(dt) and dt > 0):
         raise ValueError(f"dt must be a positive time step in s, got {dt!r}")
-    t = np.arange(r.size) * float(dt)
-    i = int(np.argmax(r))
-    up = zero_upcrossings(r[:i + 1]) if i > 0 else np.empty(0, int)
-    rise = t[i] - upcrossing_times(t, r, up[-1:])[0] if up.size else 0.0
-    v = _impact_velocity(np.array([r[i]]), np.array([rise]), c)
+    i0, i1 = _event_window(window, r.size)
+    peak, rise = _nonlinear_rise(np.arange(r.size) * float(dt), r, np.array([i0, i1]))
+    v = _impact_velocity(peak, rise, c)
     return float(_slamming_force(v, _draws(rng, 1, _SLAM_DRAWS), c)[0])
 
 
@@ -337,6 +357,8 @@ def _nonlinear_rise(t, r_hf, u):
     """Peak of ``r_hf`` in each window ``u`` and the time since its preceding zero up-crossing."""
     peak, ip = segment_max(r_hf, u)
     uh = zero_upcrossings(r_hf)
+    if uh.size == 0:  # never crosses zero upwards: no rise, no contact
+        return peak, np.zeros(peak.size)
     t_up = upcrossing_times(t, r_hf, uh)
     j = np.searchsorted(uh, ip, side="right") - 1
     rise = np.where(j >= 0, t[ip] - t_up[np.maximum(j, 0)], 0.0)

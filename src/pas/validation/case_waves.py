@@ -1,7 +1,7 @@
 """Case 1: linear versus second-order wave crests (condition A, no ship).
 
-Model (paper App. D.1, E.3; SPEC §4)
-------------------------------------
+Model (paper App. D.1, E.3)
+---------------------------
 Per realisation: a random-phase linear JONSWAP surface ``eta1`` at one point
 (``df = 1/3600`` Hz, components up to 5 rad/s, depth 30 m) and its Sharma–Dean
 second-order correction ``eta2`` (sum and difference frequencies, interactions

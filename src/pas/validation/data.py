@@ -23,7 +23,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..copulas import empirical_tail_dependence, kendall_tau
+from ..stats.dependence import empirical_tail_dependence, kendall_tau
 from ..stats.exceedance import exceedance_probabilities, value_at_exceedance
 from ..stats.weibull import fit_weibull3_ls
 

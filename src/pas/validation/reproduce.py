@@ -5,10 +5,14 @@ properties (:mod:`pas.validation.properties`: dependence, misses, impact
 rate, truth against the paper), run PAS — and
 AS — with the paper's settings (ε1 per case, ε2 = 0.1, K1 = K2 = 20, the
 case's LF threshold) exactly as a user would (LF peaks in, table oracle out),
-score each run with M1, M2, M3 against the truth of the *full* HF set, and
-write a Table-4-style CSV and figures.  With ``replications > 1`` PAS and AS
-are rerun with seeds ``0 … N−1`` on the same frozen data set and the table
-reports the median, min and max of M2 and the medians of the other columns.
+and the design waves of Dermatis et al. (2025) — ``"rcw"`` (FORM-RCW on the
+second-order surrogate) and ``"mler"`` — with the case's episode oracle
+(:mod:`.episodes`); score each run with M1, M2, M3 against the truth of the
+*full* HF set, and write a Table-4-style CSV and figures.  With
+``replications > 1`` PAS and AS are rerun with seeds ``0 … N−1`` on the same
+frozen data set and the table reports the median, min and max of M2 and the
+medians of the other columns; the design waves are deterministic on a frozen
+data set and run once.
 """
 
 from __future__ import annotations
@@ -23,21 +27,41 @@ import pandas as pd
 import pas
 
 from ..metrics import metrics
+from .episodes import run_rcw_case
 from .generate import generate_case
 from .registry import get_case
 
-__all__ = ["reproduce", "run_case", "summarise", "PAPER_SETTINGS"]
+__all__ = ["reproduce", "run_case", "summarise", "PAPER_SETTINGS", "STRATEGIES"]
 
 PAPER_SETTINGS = {"eps2": 0.1, "k1": 20, "k2": 20}
 """Stopping settings of the paper (§5); ε1 and the threshold come from the case."""
 
 
+STRATEGIES = ("pas", "as", "rcw", "mler")
+"""Strategies :func:`run_case` knows; the design waves ``rcw`` and ``mler`` are deterministic."""
+DETERMINISTIC = ("rcw", "mler")
+
+
 def _strategies():
-    return ("pas", "as") if hasattr(pas, "run_as") else ("pas",)
+    """The default strategies: PAS, AS and FORM-RCW."""
+    return ("pas", "as", "rcw")
+
+
+def parse_strategies(text):
+    """``"pas,as,rcw"`` -> ``("pas", "as", "rcw")``, checked against :data:`STRATEGIES`."""
+    names = tuple(s.strip().lower() for s in str(text).split(",") if s.strip())
+    bad = [s for s in names if s not in STRATEGIES]
+    if bad or not names:
+        raise ValueError(f"strategies: unknown {', '.join(bad) or 'empty list'}; choose from "
+                         f"{', '.join(STRATEGIES)} (comma-separated)")
+    return names
 
 
 def run_case(data, *, strategy="pas", seed=0, max_hf=None):
     """Run one strategy on a :class:`CaseData` with the paper's settings.
+
+    ``"rcw"``/``"mler"`` run :func:`.episodes.run_rcw_case` (``seed`` and
+    ``max_hf`` do not apply: one HF episode per level).
 
     Returns
     -------
@@ -45,17 +69,13 @@ def run_case(data, *, strategy="pas", seed=0, max_hf=None):
     row : dict
         MPM, HF counts, M1–M3 and the run time.
     """
-    runner = {"pas": pas.run_pas, "as": getattr(pas, "run_as", None)}.get(strategy)
-    if runner is None:
-        raise ValueError(f"unknown or unavailable strategy {strategy!r}; choose from "
-                         f"{', '.join(_strategies())}")
+    if strategy not in STRATEGIES:
+        raise ValueError(f"unknown strategy {strategy!r}; choose from {', '.join(STRATEGIES)}")
     t0 = time.perf_counter()
-    with warnings.catch_warnings():
-        # Cases 1, 4: more LF peaks than the table's n_w (spectral-period convention, SPEC §8).
-        warnings.filterwarnings("ignore", message="n_waves=.*below the number of LF peaks")
-        res = runner(data.lf, data.oracle(), n_waves=data.n_waves, p_exp=data.p_exp,
-                     eps1=data.eps1, threshold=data.threshold, seed=seed, max_hf=max_hf,
-                     ids=list(data.ids), **PAPER_SETTINGS)
+    if strategy in DETERMINISTIC:
+        res = run_rcw_case(data, method="form" if strategy == "rcw" else "mler")
+    else:
+        res = _run_screening(data, strategy, seed, max_hf)
     row = {"case": data.case, "strategy": strategy, "seed": seed, "mpm": res.mpm,
            "n_hf": res.n_hf, "n_false_positive": res.n_false_positive,
            "converged": bool(res.converged), "family": res.family,
@@ -65,6 +85,17 @@ def run_case(data, *, strategy="pas", seed=0, max_hf=None):
     except ValueError:
         row.update({"M1": res.n_hf / res.n_waves, "M2": np.nan, "M3": np.nan})
     return res, row
+
+
+def _run_screening(data, strategy, seed, max_hf):
+    runner = {"pas": pas.run_pas, "as": pas.run_as}[strategy]
+    with warnings.catch_warnings():
+        # Cases 1, 4: more LF peaks than the table's n_w = T_MCS / T_p,e (paper Table 2).
+        warnings.filterwarnings("ignore", message="n_waves=.*below the number of LF peaks")
+        res = runner(data.lf, data.oracle(), n_waves=data.n_waves, p_exp=data.p_exp,
+                     eps1=data.eps1, threshold=data.threshold, seed=seed, max_hf=max_hf,
+                     ids=list(data.ids), **PAPER_SETTINGS)
+    return res
 
 
 def summarise(runs: pd.DataFrame, datasets: dict) -> pd.DataFrame:
@@ -83,8 +114,8 @@ def summarise(runs: pd.DataFrame, datasets: dict) -> pd.DataFrame:
             "M2_max": g["M2"].max(), "abs_M2_median": a.median(), "abs_M2_worst": a.max(),
             "M3": g["M3"].median(), "converged": f"{int(g['converged'].sum())}/{len(g)}",
             "replications": len(g), "tau": data.tau,
-            "paper_mpm": spec.paper_pas if strat == "pas" else spec.paper_as,
-            "paper_hf_samples": spec.paper_pas_n if strat == "pas" else spec.paper_as_n,
+            "paper_mpm": {"pas": spec.paper_pas, "as": spec.paper_as}.get(strat, np.nan),
+            "paper_hf_samples": {"pas": spec.paper_pas_n, "as": spec.paper_as_n}.get(strat, np.nan),
         })
     return pd.DataFrame(rows)
 
@@ -121,7 +152,7 @@ def reproduce(cases=None, *, replications=1, scale=1.0, out=None, seed=0, strate
     seed : int, default 0
         Data-set seed (waves and random parts of the HF models).
     strategies : sequence of str, optional
-        ``"pas"`` and/or ``"as"`` (default both when AS is available).
+        Any of :data:`STRATEGIES` (default ``("pas", "as", "rcw")``).
     figures : bool, default True
     cache : bool, default True
         Use the ``.npz`` data cache (:func:`pas.validation.generate_case`).
@@ -141,7 +172,7 @@ def reproduce(cases=None, *, replications=1, scale=1.0, out=None, seed=0, strate
     from .properties import properties_table
 
     ids = [get_case(c).id for c in (cases or [c for c in _all_ids()])]
-    strategies = tuple(s.lower() for s in (strategies or _strategies()))
+    strategies = parse_strategies(",".join(strategies or _strategies()))
     replications = int(replications)
     if replications < 1:
         raise ValueError("replications must be >= 1")
@@ -149,7 +180,7 @@ def reproduce(cases=None, *, replications=1, scale=1.0, out=None, seed=0, strate
     for cid in ids:
         data = datasets[cid] = generate_case(cid, seed=seed, scale=scale, cache=cache)
         for strat in () if properties_only else strategies:
-            for r in range(replications):
+            for r in range(1 if strat in DETERMINISTIC else replications):
                 res, row = run_case(data, strategy=strat, seed=r)
                 runs.append(row)
                 first.setdefault((cid, strat), res)

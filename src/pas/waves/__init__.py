@@ -1,15 +1,9 @@
-"""Waves and linear ship responses: spectra, realisations, second order, RAOs."""
+"""Waves and linear ship responses: spectra, realisations, second order, RAOs, design waves."""
 
-from .realisation import (
-    ComponentSea,
-    LinearSea,
-    encounter_frequency,
-    linear_sea,
-    mean_encounter_period,
-    period_domain_sea,
-    synthesise,
-    wave_frequency_from_encounter,
-)
+from .design import FormResult, form_rcw, mler, mler_amplitudes, rayleigh_target
+from .encounter import encounter_frequency, mean_encounter_period, wave_frequency_from_encounter
+from .episode import Episode, design_episode
+from .realisation import ComponentSea, LinearSea, linear_sea, period_domain_sea, synthesise
 from .second_order import (
     SecondOrderKernel,
     direct_second_order,
@@ -19,6 +13,7 @@ from .second_order import (
     sharma_dean_kernels,
 )
 from .ship import FERRY_190M, Ship, ShipRAO, relative_elevation_rao, ship_rao, ship_responses
+from .surrogate import ResponseSurrogate, response_surrogate
 from .spectra import (
     GRAVITY,
     jonswap,
@@ -37,4 +32,6 @@ __all__ = [
     "SecondOrderKernel", "sharma_dean_kernels", "second_order_kernel",
     "second_order_coefficients", "second_order_elevation", "direct_second_order",
     "Ship", "FERRY_190M", "ShipRAO", "ship_rao", "relative_elevation_rao", "ship_responses",
+    "ResponseSurrogate", "response_surrogate", "mler_amplitudes", "mler", "FormResult",
+    "form_rcw", "rayleigh_target", "Episode", "design_episode",
 ]

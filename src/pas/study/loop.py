@@ -1,14 +1,23 @@
-"""Running HF batches through any :class:`concurrent.futures.Executor`, result by result.
+"""The study loop: every campaign runs here, in this process or on any executor.
 
-:func:`optimize` is the study loop for real campaigns.  It asks the study for a
-batch of ``batch_size`` events (MD batch by sequential fill), hands them to the
-oracle — in this process, in a local :class:`~concurrent.futures.ProcessPoolExecutor`
+:func:`optimize` is the one loop behind :meth:`Study.optimize
+<pas.study.study.Study.optimize>`, :func:`pas.run_pas`, ``pas run`` and
+``pas study run``; like Optuna's ``_optimize_sequential`` it is a client of
+:meth:`~pas.study.study.Study.ask` and :meth:`~pas.study.study.Study.tell`.
+It asks the study for a batch of ``batch_size`` events (MD batch by
+sequential fill) and hands them to the oracle — in this process one at a
+time, in a local :class:`~concurrent.futures.ProcessPoolExecutor`
 (``n_workers``) or on a cluster (a Dask ``distributed.Client(...).get_executor()``,
-see ``docs/cluster.md``) — and writes each result to the study store the
+see ``docs/cluster.md``).  With a study store each result is written the
 moment it arrives (``as_completed``).  The study is *told* the results in ask
 order, each as soon as all earlier events of its batch are in, so the
 decisions do not depend on which worker finished first and a resumed run
 repeats them exactly.
+
+``tell`` only records; the loop alone enforces ``max_failures``: after each
+told result it raises :class:`~pas.study.oracles.OracleFailureLimit` once more
+calls failed.  In this process no further oracle call is made; calls already
+running on an executor are waited for and their results stored first.
 
 Resume: events a killed run left pending are the first batch of the next
 run.  Those whose result reached the store are told without calling the
@@ -23,7 +32,8 @@ import pickle
 from concurrent.futures import Executor, ProcessPoolExecutor, as_completed
 
 from .._validation import check_option, check_positive_int
-from .study import OracleFailureLimit, call_oracle
+from .oracles import OracleFailureLimit, call_oracle
+from .state import EventState
 
 __all__ = ["optimize", "PENDING_POLICIES"]
 
@@ -59,7 +69,8 @@ def optimize(study, oracle, *, batch_size: int = 1, executor: Executor | None = 
     Raises
     ------
     OracleFailureLimit
-        After storing the results of every call still running.
+        When more than ``study.max_failures`` oracle calls failed, with the
+        result so far.
     """
     check_option(pending, "pending", PENDING_POLICIES)
     batch_size = check_positive_int(batch_size, "batch_size")
@@ -73,6 +84,16 @@ def optimize(study, oracle, *, batch_size: int = 1, executor: Executor | None = 
     finally:
         if own is not None:
             own.shutdown()
+
+
+def failure_limit(study) -> OracleFailureLimit | None:
+    """The error to raise when ``study`` saw more failed oracle calls than it allows, else None."""
+    if study.n_failed <= study.max_failures:
+        return None
+    last = next(r for r in reversed(study.rows) if r["status"] == EventState.FAILED)
+    return OracleFailureLimit(
+        f"the HF oracle failed {study.n_failed} times (max_failures={study.max_failures}); "
+        f"last error on event {last['event_id']}: {last['error']}", result=study.result())
 
 
 def _check_picklable(oracle) -> None:
@@ -90,17 +111,25 @@ class _Loop:
 
     def run(self, batch_size: int, pending: str):
         study = self.study
+        if (failure := failure_limit(study)) is not None:  # resumed past the limit
+            raise failure
         batch = self._left_over(pending)
         while True:
             if not batch:
                 self._absorb()
-                self._check_failures()
                 batch = study.ask(batch_size)
                 if not batch:
                     break
             self._run_batch(batch)
             batch = []
         return study.result()
+
+    def _tell(self, event, value, error):
+        """Tell one result; the failure limit's error when it is now exceeded."""
+        row = self.study.tell(event, value, error=error)
+        if self.callback is not None:
+            self.callback(self.study, row)
+        return failure_limit(self.study)
 
     def _left_over(self, pending):
         """Events asked but not told when the loop starts, in ask order."""
@@ -113,51 +142,36 @@ class _Loop:
 
     def _absorb(self):
         """Tell results that other processes stored for waiting events (arrival order)."""
-        if self.store is None:
-            return
-        for idx, hf, err in self.store.unconsumed():
-            row = self.study.tell(int(idx), hf, error=err)
-            if self.callback is not None:
-                self.callback(self.study, row)
-
-    def _check_failures(self):
-        s = self.study
-        if s.n_failed > s.max_failures:
-            raise OracleFailureLimit(f"the HF oracle failed {s.n_failed} times "
-                                     f"(max_failures={s.max_failures})", result=s.result())
+        for idx, hf, err in self.store.unconsumed() if self.store is not None else ():
+            if (failure := self._tell(int(idx), hf, err)) is not None:
+                raise failure
 
     def _run_batch(self, batch):
-        study, store = self.study, self.store
+        store = self.store
         results = {}
         if store is not None:
             results = {r[0]: (r[1], r[2]) for r in store.outstanding() if r[3]}
-        todo = [ev for ev in batch if ev.index not in results]
-        if store is not None and todo:
-            store.mark_submitted(todo)
         told, failure = 0, None
 
         def tell_ready():
             nonlocal told, failure
-            while told < len(batch) and batch[told].index in results:
+            while failure is None and told < len(batch) and batch[told].index in results:
                 ev = batch[told]
                 told += 1
-                if failure is not None:
-                    continue
-                value, error = results[ev.index]
-                try:
-                    row = study.tell(ev, value, error=error)
-                except OracleFailureLimit as exc:
-                    failure = exc
-                    continue
-                if self.callback is not None:
-                    self.callback(study, row)
+                failure = self._tell(ev, *results[ev.index])
 
         tell_ready()
-        for ev, (value, error) in self._execute(todo):
+        todo = [ev for ev in batch if ev.index not in results]
+        if failure is None and todo:
             if store is not None:
-                store.record_result(ev, value, error)
-            results[ev.index] = (value, error)
-            tell_ready()
+                store.mark_submitted(todo)
+            for ev, (value, error) in self._execute(todo):
+                if store is not None:
+                    store.record_result(ev, value, error)
+                results[ev.index] = (value, error)
+                tell_ready()
+                if failure is not None and self.executor is None:
+                    break  # in this process: no oracle call after the limit
         if failure is not None:
             raise failure
 
