@@ -35,7 +35,8 @@ def test_registry_matches_paper_table2():
 
 
 def test_registry_has_both_impact_sets():
-    assert len(CASE_IDS) == 12 and PAPER_CASE_IDS == ("1a", "1b", "2a", "2b", "3a", "3b", "4a", "4b")
+    assert len(CASE_IDS) == 12
+    assert PAPER_CASE_IDS == ("1a", "1b", "2a", "2b", "3a", "3b", "4a", "4b")
     for c in ("3a", "3b", "4a", "4b"):
         hard, paper = get_case(f"{c}-HARD"), get_case(c)
         assert (hard.variant, paper.variant) == ("hard", "paper-like")

@@ -205,7 +205,7 @@ def _green_water_force(peak, d, c):
 
 
 def _impact_velocity(peak, rise, c):
-    """Panel-level crossing speed of a quarter-sine rise to ``peak`` in ``rise`` s (0: no contact)."""
+    """Panel-level speed of a quarter-sine rise to ``peak`` in ``rise`` s (0: no contact)."""
     peak, rise = np.asarray(peak, float), np.asarray(rise, float)
     zp = c["panel_height"]
     ok = (peak > zp) & (rise > 0)
