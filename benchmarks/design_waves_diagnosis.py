@@ -36,6 +36,7 @@ from pas.stats.peaks import segment_max
 from pas.validation import CASE_IDS, generate_case, get_case
 from pas.validation import case_impacts
 from pas.validation._common import DT, condition_sea, seed_plan, windows
+from pas.validation._impact_signals import OMEGA_MAX, OMEGA_MAX_2, rwe_coefficients
 from pas.validation.episodes import _window, case_surrogate, run_rcw_case
 from pas.waves.episode import design_episode
 from pas.waves import FERRY_190M, second_order_kernel
@@ -47,10 +48,10 @@ def _rwe19_crests(spec, seed):
     n_seeds, duration = seed_plan(spec.t_mcs, 1.0)
     out = []
     for k in range(n_seeds):
-        sea = condition_sea(spec.condition, duration, seed, k, omega_max=case_impacts.OMEGA_MAX)
-        kern = second_order_kernel(sea, omega_max=case_impacts.OMEGA_MAX_2)
-        lin, _, _ = case_impacts._rwe(sea, kern, FERRY_190M.station_x(19), c["y_station19"],
-                                      c["c_sw"])
+        sea = condition_sea(spec.condition, duration, seed, k, omega_max=OMEGA_MAX)
+        kern = second_order_kernel(sea, omega_max=OMEGA_MAX_2)
+        lin, _, _ = rwe_coefficients(sea, kern, FERRY_190M.station_x(19), c["y_station19"],
+                                     c["c_sw"])
         r_lf = sea.synthesise(lin, DT)[1]
         out.append(segment_max(r_lf, windows(r_lf)[0])[0])
     return np.concatenate(out)
@@ -64,8 +65,8 @@ def _bow_rwe_peaks(case, target):
         ep = design_episode(case_surrogate(case, second_order=method == "form"), target,
                             method=method)
         sea = ep.sea
-        kern = second_order_kernel(sea, omega_max=case_impacts.OMEGA_MAX_2)
-        lin, nl, _ = case_impacts._rwe(sea, kern, FERRY_190M.length / 2.0, 0.0, c["c_sw"])
+        kern = second_order_kernel(sea, omega_max=OMEGA_MAX_2)
+        lin, nl, _ = rwe_coefficients(sea, kern, FERRY_190M.length / 2.0, 0.0, c["c_sw"])
         win = _window(sea.synthesise(lin, DT)[1], ep.t0)
         out.append(float(segment_max(sea.synthesise(nl, DT)[1], win)[0][0]))
     return out

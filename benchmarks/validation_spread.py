@@ -1,4 +1,7 @@
-"""Accuracy of PAS, AS and design waves on the eight analogues over replications.
+"""Accuracy of PAS, AS and design waves on the analogues over replications.
+
+Default: all twelve ids (eight paper-like, four ``-hard``); ``--cases`` takes
+any of them, e.g. ``--cases 3a,3a-hard``.
 
 Each replication r = 0 … N−1 draws a *new* analogue data set (wave phases and
 the random parts of the HF model seeded with r) and runs each strategy with

@@ -11,14 +11,18 @@ import numpy as np
 import pytest
 
 from pas.validation import CASE_IDS, generate_case, get_case
-from pas.validation import case_impacts, case_vbm, case_waves
+from pas.validation import case_impacts, case_impacts_hard, case_vbm, case_waves
 from pas.validation._common import DT, condition_sea
+from pas.validation._impact_signals import OMEGA_MAX as IMPACT_OMEGA_MAX
 from pas.validation.episodes import case_surrogate, episode_oracle, run_rcw_case
 from pas.waves.episode import design_episode
 
 DURATION = 900.0
-# Random parts off: no deflection margin (mean 1e-9 m), no log-normal scatter.
-NO_SCATTER = {"delta_mean": 1e-9, "gw_scatter": 0.0, "slam_scatter": 0.0}
+# Random parts off.  Hard variants: no deflection margin (mean 1e-9 m), no log-normal
+# scatter; paper-like: never deflected, no impulsive part, no scatter.
+NO_SCATTER = {"hard": {"delta_mean": 1e-9, "gw_scatter": 0.0, "slam_scatter": 0.0},
+              "paper-like": {"gw_deflected": 0.0, "gw_impulse": 0.0, "gw_scatter": 0.0,
+                             "slam_impulse": 0.0, "slam_scatter": 0.0}}
 
 
 def _generated(case):
@@ -30,12 +34,13 @@ def _generated(case):
     if fam == "2":
         ev, _ = case_vbm.generate_case2(spec, 4, 1, DURATION, mode="hog" if case == "2a" else "sag")
         return ev, case_vbm.OMEGA_MAX, None
-    gen = case_impacts.generate_green_water if fam == "3" else case_impacts.generate_slamming
-    ev, _ = gen(spec, 4, 1, DURATION, coeffs=NO_SCATTER)
-    return ev, case_impacts.OMEGA_MAX, NO_SCATTER
+    mod = case_impacts_hard if spec.variant == "hard" else case_impacts
+    gen = mod.generate_green_water if fam == "3" else mod.generate_slamming
+    ev, _ = gen(spec, 4, 1, DURATION, coeffs=NO_SCATTER[spec.variant])
+    return ev, IMPACT_OMEGA_MAX, NO_SCATTER[spec.variant]
 
 
-@pytest.mark.parametrize("case", ["1a", "2a", "2b", "3b", "4b"])
+@pytest.mark.parametrize("case", ["1a", "2a", "2b", "3b", "4b", "3b-hard", "4b-hard"])
 def test_episode_oracle_is_the_generator_model(case):
     ev, omega_max, coeffs = _generated(case)
     sea = condition_sea(get_case(case).condition, DURATION, 4, 0, omega_max=omega_max)

@@ -3,16 +3,19 @@
 :func:`case_surrogate` builds the response an RCW episode is conditioned on,
 :func:`episode_oracle` evaluates the case's HF model -- the same physics and
 frozen coefficients as its generator (:mod:`.case_waves`, :mod:`.case_vbm`,
-:mod:`.case_impacts`) -- on an arbitrary :class:`~pas.waves.episode.Episode`,
+:mod:`.case_impacts` for the paper-like 3a–4b, :mod:`.case_impacts_hard` for
+3a-hard–4b-hard) -- on an arbitrary :class:`~pas.waves.episode.Episode`,
 and :func:`run_rcw_case` runs :func:`pas.run_rcw` on a generated case as a
 user would.
 
 The HF value of an episode is that of its *wave event at t0*: the generator's
 zero-up-crossing window of the LF signal that holds ``t0``, with the
 generator's peak rule inside it.  The random parts of the HF models are set to
-their medians (a design wave is one deterministic run): case 3's
+their medians (a design wave is one deterministic run): for 3a-hard/3b-hard the
 flare-deflection margin ``δ ~ Exponential(delta_mean)`` to ``delta_mean ln 2``,
-the log-normal scatter of cases 3–4 to 1.
+the log-normal scatter of the hard cases 3–4 to 1; for the paper-like 3a–4b
+every random input at its median (:func:`.case_impacts.green_water_load`:
+not deflected, no impulsive part, no scatter).
 
 Conditioned response and target per case
 ----------------------------------------
@@ -46,8 +49,11 @@ from ..waves import (FERRY_190M, jonswap, second_order_elevation, second_order_k
                      ship_rao, wave_number)
 from ..waves.surrogate import response_surrogate
 from ..waves.ship import RHO_SEAWATER
-from . import case_impacts, case_vbm, case_waves
+from . import case_impacts, case_impacts_hard, case_vbm, case_waves
 from ._common import DT
+from ._impact_signals import OMEGA_MAX as IMPACT_OMEGA_MAX
+from ._impact_signals import OMEGA_MAX_2 as IMPACT_OMEGA_MAX_2
+from ._impact_signals import crossing_values, rwe_coefficients, time_derivative
 from .registry import get_case
 
 __all__ = ["case_surrogate", "episode_oracle", "EpisodeOracle", "run_rcw_case", "RCW_LADDER", "EPISODE_DURATION"]
@@ -97,8 +103,8 @@ def case_surrogate(case_id, *, second_order=True, duration=EPISODE_DURATION):
         e = np.exp(-1j * wave_number(w, cond.depth) * xe * np.cos(mu))
         return c_sw - (r.heave - x * r.pitch) / e
 
-    return response_surrogate(spectrum, rwe, omega_max=case_impacts.OMEGA_MAX, x=xe,
-                              omega_max_2=case_impacts.OMEGA_MAX_2, **common)
+    return response_surrogate(spectrum, rwe, omega_max=IMPACT_OMEGA_MAX, x=xe,
+                              omega_max_2=IMPACT_OMEGA_MAX_2, **common)
 
 
 def _window(signal, t0):
@@ -128,31 +134,34 @@ def _vbm(episode, coeffs=None, *, mode):
     return max(float(v), 0.0)
 
 
-def _green_water(episode, coeffs=None):
-    """Case 3 at the medians: deflection margin ``delta_mean ln 2``, scatter 1."""
-    c, sea = dict(case_impacts.COEFFICIENTS, **(coeffs or {})), episode.sea
-    kern = second_order_kernel(sea, omega_max=case_impacts.OMEGA_MAX_2)  # cached per grid
-    lin, nl, _ = case_impacts._rwe(sea, kern, FERRY_190M.length / 2.0, 0.0, c["c_sw"])
-    r_lf = sea.synthesise(lin, DT)[1]
-    r_hf = sea.synthesise(nl, DT)[1] + c["bow_wave"] * sea.speed**2 / (2.0 * 9.81)
+def _relative_elevations(sea, c, *, bow):
+    """LF and HF relative wave elevation records at the bow or at station 19."""
+    kern = second_order_kernel(sea, omega_max=IMPACT_OMEGA_MAX_2)  # cached per grid
+    x, y = (FERRY_190M.length / 2.0, 0.0) if bow else (FERRY_190M.station_x(19),
+                                                       c["y_station19"])
+    lin, nl, slope = rwe_coefficients(sea, kern, x, y, c["c_sw"])
+    return lin, nl, slope, sea.synthesise(lin, DT)[1], sea.synthesise(nl, DT)[1]
+
+
+def _green_water_hard(episode, coeffs=None):
+    """Case 3-hard at the medians: deflection margin ``delta_mean ln 2``, scatter 1."""
+    c, sea = dict(case_impacts_hard.COEFFICIENTS, **(coeffs or {})), episode.sea
+    _, _, _, r_lf, r_hf = _relative_elevations(sea, c, bow=True)
+    r_hf = r_hf + c["bow_wave"] * sea.speed**2 / (2.0 * 9.81)
     peak = float(segment_max(r_hf, _window(r_lf, episode.t0))[0][0])
     h = max(peak - c["freeboard"] - c["delta_mean"] * np.log(2.0), 0.0)
     force = c["C_gw"] * RHO_SEAWATER * 9.81 * c["accommodation_width"] / 1000.0 * h**2
     return force if force >= c["noise_kN"] else 0.0
 
 
-def _slamming(episode, coeffs=None):
-    """Case 4 at the median scatter: largest Wagner impact in the wave at t0."""
-    c, sea = dict(case_impacts.COEFFICIENTS, **(coeffs or {})), episode.sea
-    kern = second_order_kernel(sea, omega_max=case_impacts.OMEGA_MAX_2)  # cached per grid
-    lin, nl, slope = case_impacts._rwe(sea, kern, FERRY_190M.station_x(19), c["y_station19"],
-                                       c["c_sw"])
-    r_lf = sea.synthesise(lin, DT)[1]
-    r_hf = sea.synthesise(nl, DT)[1]
-    v_hf = sea.synthesise(2j * np.pi * sea.df * np.arange(nl.size) * nl, DT)[1]
+def _slamming_hard(episode, coeffs=None):
+    """Case 4-hard at the median scatter: largest Wagner impact in the wave at t0."""
+    c, sea = dict(case_impacts_hard.COEFFICIENTS, **(coeffs or {})), episode.sea
+    _, nl, slope, r_lf, r_hf = _relative_elevations(sea, c, bow=False)
+    v_hf = sea.synthesise(time_derivative(sea, nl), DT)[1]
     s_hf = sea.synthesise(slope, DT)[1]
     win = _window(r_lf, episode.t0)
-    idx, (v, s) = case_impacts._crossing_values(r_hf, c["panel_height"], v_hf, s_hf)
+    idx, (v, s) = crossing_values(r_hf, c["panel_height"], v_hf, s_hf)
     inside = (idx >= win[0]) & (idx < win[1])
     if not inside.any():
         return 0.0
@@ -161,6 +170,21 @@ def _slamming(episode, coeffs=None):
     k_force = 0.5 * RHO_SEAWATER * c["C0"] * np.pi * c["panel_area"] / 1000.0
     force = float(np.max(k_force / np.tan(beta) * np.maximum(v[inside], 0.0) ** 2))
     return force if force >= c["noise_kN"] else 0.0
+
+
+def _green_water(episode, coeffs=None):
+    """Case 3 (paper-like) at the medians: :func:`.case_impacts.green_water_load`."""
+    c, sea = dict(case_impacts.COEFFICIENTS, **(coeffs or {})), episode.sea
+    _, _, _, r_lf, r_hf = _relative_elevations(sea, c, bow=True)
+    return case_impacts.green_water_load(r_hf, speed=sea.speed, window=_window(r_lf, episode.t0),
+                                         coefficients=c)
+
+
+def _slamming(episode, coeffs=None):
+    """Case 4 (paper-like) at the medians: the generator's rise rule in the wave at t0."""
+    c, sea = dict(case_impacts.COEFFICIENTS, **(coeffs or {})), episode.sea
+    _, _, _, r_lf, r_hf = _relative_elevations(sea, c, bow=False)
+    return case_impacts.slamming_load(r_hf, DT, window=_window(r_lf, episode.t0), coefficients=c)
 
 
 class EpisodeOracle:
@@ -182,6 +206,8 @@ class EpisodeOracle:
             return _crest(episode, self.coeffs)
         if fam == "2":
             return _vbm(episode, self.coeffs, mode="hog" if self.case == "2a" else "sag")
+        if get_case(self.case).variant == "hard":
+            return (_green_water_hard if fam == "3" else _slamming_hard)(episode, self.coeffs)
         return (_green_water if fam == "3" else _slamming)(episode, self.coeffs)
 
     def __repr__(self) -> str:

@@ -18,7 +18,7 @@ from pathlib import Path
 import numpy as np
 
 from .. import __version__
-from . import case_impacts, case_vbm, case_waves
+from . import case_impacts, case_impacts_hard, case_vbm, case_waves
 from ._common import seed_plan
 from .data import CaseData, dependence, ground_truth
 from .registry import get_case
@@ -31,12 +31,19 @@ def cache_dir(path=None) -> Path:
     return Path(path or os.environ.get("PAS_CACHE") or "pas-cache")
 
 
+def _impact_module(spec):
+    return case_impacts_hard if spec.variant == "hard" else case_impacts
+
+
 def _model_key(case_id):
-    fam = case_id[0]
-    model = {"1": (case_waves.VERSION, case_waves.NOISE),
-             "2": (case_vbm.VERSION, case_vbm.COEFFICIENTS),
-             "3": (case_impacts.VERSION, case_impacts.COEFFICIENTS),
-             "4": (case_impacts.VERSION, case_impacts.COEFFICIENTS)}[fam]
+    spec = get_case(case_id)
+    fam = spec.family
+    if fam in "34":
+        mod = _impact_module(spec)
+        model = (mod.VERSION, mod.COEFFICIENTS)
+    else:
+        model = {"1": (case_waves.VERSION, case_waves.NOISE),
+                 "2": (case_vbm.VERSION, case_vbm.COEFFICIENTS)}[fam]
     blob = json.dumps([__version__, model], sort_keys=True, default=str)
     return hashlib.sha1(blob.encode()).hexdigest()[:10]
 
@@ -56,8 +63,8 @@ def _events(spec, seed, n_seeds, duration, n_waves):
         return case_vbm.generate_case2(spec, seed, n_seeds, duration,
                                        mode="hog" if spec.id == "2a" else "sag")
     if fam == "3":
-        return case_impacts.generate_green_water(spec, seed, n_seeds, duration)
-    return case_impacts.generate_slamming(spec, seed, n_seeds, duration)
+        return _impact_module(spec).generate_green_water(spec, seed, n_seeds, duration)
+    return _impact_module(spec).generate_slamming(spec, seed, n_seeds, duration)
 
 
 def build_case(case_id, *, seed=0, scale=1.0) -> CaseData:
@@ -103,7 +110,7 @@ def generate_case(case_id, *, seed=0, scale=1.0, cache=True, path=None) -> CaseD
     Parameters
     ----------
     case_id : str
-        ``"1a"`` … ``"4b"``.
+        ``"1a"`` … ``"4b"``, ``"3a-hard"`` … ``"4b-hard"``.
     seed : int, default 0
         Seed of the wave phases and of the random parts of the HF model.
     scale : float, default 1.0

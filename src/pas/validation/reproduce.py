@@ -1,6 +1,8 @@
 """Reproduce the paper's validation (Table 4, Fig. 6–8, 16) on the synthetic analogues.
 
-For each case: generate (or load from the cache) the analogue, run PAS — and
+For each case: generate (or load from the cache) the analogue, report its data
+properties (:mod:`pas.validation.properties`: dependence, misses, impact
+rate, truth against the paper), run PAS — and
 AS — with the paper's settings (ε1 per case, ε2 = 0.1, K1 = K2 = 20, the
 case's LF threshold) exactly as a user would (LF peaks in, table oracle out),
 and the design waves of Dermatis et al. (2025) — ``"rcw"`` (FORM-RCW on the
@@ -133,13 +135,14 @@ def format_table(table: pd.DataFrame) -> str:
 
 
 def reproduce(cases=None, *, replications=1, scale=1.0, out=None, seed=0, strategies=None,
-              figures=True, cache=True, progress=None):
+              figures=True, cache=True, progress=None, properties_only=False):
     """Generate the analogues, run the strategies, score them, write table and figures.
 
     Parameters
     ----------
     cases : sequence of str, optional
-        Case ids (default all eight).
+        Case ids (default all twelve: the eight paper-like, then the four
+        ``-hard`` impact variants).
     replications : int, default 1
         Strategy seeds ``0 … N−1`` per case, on the same frozen data set.
     scale : float, default 1.0
@@ -155,14 +158,19 @@ def reproduce(cases=None, *, replications=1, scale=1.0, out=None, seed=0, strate
         Use the ``.npz`` data cache (:func:`pas.validation.generate_case`).
     progress : callable, optional
         ``progress(str)`` for one line per finished run.
+    properties_only : bool, default False
+        Generate the data sets and compute their properties, run no strategy.
 
     Returns
     -------
     dict
         ``table`` (summary DataFrame), ``runs`` (one row per run), ``data``
-        (CaseData per case), ``results`` (ScreeningResult of the first
-        replication per case and strategy), ``files`` (written paths).
+        (CaseData per case), ``properties`` (data properties, one row per
+        case), ``results`` (ScreeningResult of the first replication per case
+        and strategy), ``files`` (written paths).
     """
+    from .properties import properties_table
+
     ids = [get_case(c).id for c in (cases or [c for c in _all_ids()])]
     strategies = parse_strategies(",".join(strategies or _strategies()))
     replications = int(replications)
@@ -171,7 +179,7 @@ def reproduce(cases=None, *, replications=1, scale=1.0, out=None, seed=0, strate
     datasets, runs, first = {}, [], {}
     for cid in ids:
         data = datasets[cid] = generate_case(cid, seed=seed, scale=scale, cache=cache)
-        for strat in strategies:
+        for strat in () if properties_only else strategies:
             for r in range(1 if strat in DETERMINISTIC else replications):
                 res, row = run_case(data, strategy=strat, seed=r)
                 runs.append(row)
@@ -180,19 +188,24 @@ def reproduce(cases=None, *, replications=1, scale=1.0, out=None, seed=0, strate
                     progress(f"{cid} {strat.upper()} seed {r}: MPM {row['mpm']:.4g} "
                              f"(truth {data.truth_mpm:.4g}), {row['n_hf']} HF, "
                              f"M2 {100 * row['M2']:+.1f}%, {row['seconds']:.1f} s")
+    props = properties_table(datasets)
     runs_df = pd.DataFrame(runs)
-    table = summarise(runs_df, datasets)
+    table = summarise(runs_df, datasets) if runs else pd.DataFrame()
     files = []
     if out is not None:
         out = Path(out)
         out.mkdir(parents=True, exist_ok=True)
-        table.to_csv(out / "table.csv", index=False)
-        runs_df.to_csv(out / "runs.csv", index=False)
-        files += [out / "table.csv", out / "runs.csv"]
-        if figures:
+        props.to_csv(out / "properties.csv", index=False)
+        files.append(out / "properties.csv")
+        if runs:
+            table.to_csv(out / "table.csv", index=False)
+            runs_df.to_csv(out / "runs.csv", index=False)
+            files += [out / "table.csv", out / "runs.csv"]
+        if figures and runs:
             from .figures import write_figures
             files += write_figures(out, datasets, first, table)
-    return {"table": table, "runs": runs_df, "data": datasets, "results": first, "files": files}
+    return {"table": table, "runs": runs_df, "data": datasets, "properties": props,
+            "results": first, "files": files}
 
 
 def _all_ids():
