@@ -317,7 +317,7 @@ class AS(Strategy):
         self.n_restarts = int(n_restarts)
         self.lf_model_ = None
 
-    def reset(self) -> None:
+    def reset(self, seed: int | None = None) -> None:
         self.lf_model_ = None
 
     def _lf_model(self, lfset: LFSet, grid, rng) -> _LFModel:

@@ -43,12 +43,17 @@ class Pairs:
     d: np.ndarray
     #: LF values of the evaluated false positives (HF = 0), for impact models
     fp_lf: np.ndarray = field(default_factory=lambda: np.empty(0))
+    #: their positions in the LFSet order (for their exceedance probabilities)
+    fp_position: np.ndarray = field(default_factory=lambda: np.empty(0, dtype=int))
 
     def __len__(self) -> int:
         return int(self.position.size)
 
-    def take(self, idx) -> "Pairs":
-        return Pairs(self.position[idx], self.lf[idx], self.hf[idx], self.d[idx], self.fp_lf)
+    def take(self, idx, fp_idx=None) -> "Pairs":
+        """The pairs at ``idx`` (and the false positives at ``fp_idx``; all when None)."""
+        fp = slice(None) if fp_idx is None else fp_idx
+        return Pairs(self.position[idx], self.lf[idx], self.hf[idx], self.d[idx],
+                     np.asarray(self.fp_lf)[fp], np.asarray(self.fp_position, dtype=int)[fp])
 
 
 @dataclass
@@ -98,8 +103,12 @@ class Strategy(ABC):
     #: measures the indicator (False for strategies that cluster samples)
     spreads_samples: bool = True
 
-    def reset(self) -> None:
-        """Forget state carried between iterations (e.g. the selected copula)."""
+    def reset(self, seed: int | None = None) -> None:
+        """Start a study: forget state carried between iterations (e.g. the selected copula).
+
+        ``seed`` is the study's seed, for random numbers a strategy keeps for the
+        whole study (PAS's common random numbers).
+        """
 
     @abstractmethod
     def predict(self, pairs: Pairs, lfset: LFSet, rng: np.random.Generator) -> Prediction:

@@ -40,8 +40,9 @@ zeroes each draw with probability ``1 − P``.  Off by default.
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
-from sklearn.linear_model import LogisticRegression
 
 from .._validation import check_option
 from ..copulas import (
@@ -53,15 +54,25 @@ from ..copulas import (
     fit_copula,
     select_family,
 )
+from ..joint import fit_joint_candidates
 from ..marginals import fit_marginal
 from ..screening import LFSet
-from ..stats.dependence import empirical_tail_dependence, kendall_tau, pseudo_observations
+from ..stats.dependence import (
+    effective_sample_size,
+    empirical_tail_dependence,
+    kendall_tau,
+    pseudo_observations,
+    weighted_ranks,
+)
 from ..stats.exceedance import value_at_exceedance
+from ..stats.weibull import fit_weibull3_ls, upper_tail_fraction
 from .acquisition import md_select
 from .base import Pairs, Prediction, Strategy, band95
+from .selection import impact_probability, population_lf_ranks, representation_weights
 
 __all__ = [
     "PAS",
+    "FittedModel",
     "remove_outliers",
     "conditioning_set",
     "draw_conditional_hf",
@@ -97,34 +108,16 @@ def conditioning_set(lf_sorted, l0: float) -> np.ndarray:
     return lf_sorted[lf_sorted >= l0]
 
 
-def draw_conditional_hf(fit: CopulaFit, lf_marginal, hf_marginal, lf_cond, z: int,
-                        rng: np.random.Generator, *, eps: float = EPS) -> np.ndarray:
-    """Step 9: ``z`` realisations of HF values given each conditioning LF peak (Eq. 6–7).
+def draw_conditional_hf(fit: CopulaFit, u_cond, hf_marginal, r, *, eps: float = EPS):
+    """Step 9: HF values given each conditioning peak's LF rank ``u`` (Eq. 7).
 
-    Returns an array of shape ``(z, n0)``.
+    ``r`` holds the uniforms, shape ``(z, n0)``; returns HF draws of that shape.
     """
-    u = np.clip(lf_marginal.cdf(lf_cond), eps, 1 - eps)
-    r = rng.uniform(eps, 1 - eps, size=(z, u.size))
+    u = np.clip(np.asarray(u_cond, float), eps, 1 - eps)
     v = np.clip(conditional_quantile(fit, u[None, :], r), eps, 1 - eps)
     # HF loads are non-negative by the oracle's contract; a Weibull location
     # below zero must not produce negative loads in the bulk
     return np.maximum(hf_marginal.ppf(v), 0.0)
-
-
-def impact_probability(lf_true, lf_false):
-    """P(impact | LF) from evaluated events: logistic regression of TP (1) vs FP (0) on LF.
-
-    Returns a callable; ``None`` when no false positive has been seen.  An
-    extension of the paper (module docs).
-    """
-    lf_false = np.asarray(lf_false, float)
-    if lf_false.size == 0:
-        return None
-    x = np.r_[lf_true, lf_false]
-    y = np.r_[np.ones(len(lf_true)), np.zeros(lf_false.size)]
-    mu, sd = x.mean(), x.std() or 1.0
-    model = LogisticRegression(C=1.0).fit(((x - mu) / sd)[:, None], y)
-    return lambda l: model.predict_proba(((np.asarray(l, float) - mu) / sd)[:, None])[:, 1]
 
 
 def fit_marginals(lf, hf, keep, *, upper_tail: bool, marginals_from: str = "all"):
@@ -168,8 +161,48 @@ def hf_distribution(h_draws, n_waves: int):
     return d, mean, *band95(mean, sd)
 
 
+@dataclass
+class FittedModel:
+    """What one PAS iteration fitted (Steps 7–9), enough to draw from it again.
+
+    ``u_cond`` are the LF ranks of the conditioning peaks (the top ``n0`` of the
+    pool, LF descending), ``impact`` the probability of an impact at each of
+    them (None: every draw is an impact, as in the paper).
+    """
+
+    copula: CopulaFit
+    hf_marginal: object
+    lf_to_u: object
+    u_cond: np.ndarray
+    impact: np.ndarray | None
+    fits: dict
+    n_outliers: int
+    ess: float
+
+    @property
+    def n0(self) -> int:
+        return int(self.u_cond.size)
+
+    def draws(self, r, q=None) -> np.ndarray:
+        """HF draws for uniforms ``r`` (and impact uniforms ``q``), shape ``(z, n0)``."""
+        h = draw_conditional_hf(self.copula, self.u_cond, self.hf_marginal, r)
+        if self.impact is not None:
+            h = np.where(q < self.impact[None, :], h, 0.0)
+        return h
+
+    def conditional_quantiles(self, lf, q) -> np.ndarray:
+        """HF quantile ``q`` given LF ``lf`` (given an impact), in real space."""
+        u = np.clip(self.lf_to_u(np.asarray(lf, float)), EPS, 1 - EPS)
+        v = np.clip(conditional_quantile(self.copula, u, np.full_like(u, q)), EPS, 1 - EPS)
+        return self.hf_marginal.ppf(v)
+
+
 class PAS(Strategy):
     """The PAS copula model (Steps 7–12) with MD acquisition.
+
+    Defaults are the package's (module docs; each departure from the paper is
+    listed in ``docs/departures.md``); ``pas.run_pas(..., preset="paper")``
+    reproduces the paper's scripts.
 
     Parameters
     ----------
@@ -194,8 +227,20 @@ class PAS(Strategy):
         (:mod:`pas.strategies.acquisition`); False is Eq. 16–17 verbatim.
     marginals_from : {"all", "kept"}, default "all"
         Pairs the Weibull marginals are fitted to (module docs, Step 7).
-    impact_model : bool, default False
-        Zero draws by the estimated impact probability (module docs).
+    impact_model : bool, default True
+        Zero draws by the estimated impact probability once false positives
+        have been seen (:mod:`pas.strategies.selection`); False is the paper.
+    estimator : {"population", "selected"}, default "population"
+        Fit the copula and the HF marginal to the LF population the pairs
+        stand for (:mod:`pas.strategies.selection`), or to the selected
+        sample as it is (the paper, §5.4).
+    copula_fit : {"mle", "itau"}, default "mle"
+        Maximum likelihood for all families, or the paper's inversion of
+        Kendall's τ for Clayton, Gumbel and Frank (§2.8).
+    common_random_numbers : bool, default True
+        Each LF peak keeps its own ``z`` uniforms for the whole study, so the
+        stopping measures see model change, not redrawn noise (module docs);
+        False redraws them every iteration, as the paper.
     """
 
     name = "pas"
@@ -205,7 +250,9 @@ class PAS(Strategy):
     def __init__(self, *, families=PAPER_FAMILIES, z: int = 10, delta_aic: float = 4.0,
                  exclude_at_bound: bool = True, upper_tail: bool | None = None,
                  outlier_k: float = 3.0, n_bootstrap: int = 50, skip_unsplittable: bool = True,
-                 marginals_from: str = "all", impact_model: bool = False):
+                 marginals_from: str = "all", impact_model: bool = True,
+                 estimator: str = "population", copula_fit: str = "mle",
+                 common_random_numbers: bool = True):
         for f in families:
             _family_and_rotation(f)
         if z < 2:
@@ -215,15 +262,25 @@ class PAS(Strategy):
         self.delta_aic = float(delta_aic)
         self.exclude_at_bound = bool(exclude_at_bound)
         self.upper_tail = upper_tail
-        self.outlier_k = float(outlier_k)
+        self.outlier_k = None if outlier_k is None else float(outlier_k)
         self.n_bootstrap = int(n_bootstrap)
         self.skip_unsplittable = bool(skip_unsplittable)
         self.marginals_from = check_option(marginals_from, "marginals_from", {"all", "kept"})
         self.impact_model = bool(impact_model)
+        self.estimator = check_option(estimator, "estimator",
+                                      {"conditional", "population", "selected"})
+        self.copula_fit = check_option(copula_fit, "copula_fit", {"mle", "itau"})
+        self.common_random_numbers = bool(common_random_numbers)
         self.family_ = None
+        self._seed = None
+        self._uniforms = None
+        self._joint = {}
 
-    def reset(self) -> None:
+    def reset(self, seed: int | None = None) -> None:
         self.family_ = None
+        self._seed = seed
+        self._uniforms = None
+        self._joint = {}
 
     def propose(self, selected_d, lfset: LFSet, available: np.ndarray,
                 last: Prediction | None, q: int = 1) -> list[int]:
@@ -234,65 +291,127 @@ class PAS(Strategy):
     def _upper_tail(self, lfset: LFSet) -> bool:
         return lfset.threshold is None if self.upper_tail is None else self.upper_tail
 
-    def _marginals(self, lf, hf, keep, lfset):
-        return fit_marginals(lf, hf, keep, upper_tail=self._upper_tail(lfset),
-                             marginals_from=self.marginals_from)
+    # -- Steps 7–9: the model ------------------------------------------------
+    def fit(self, pairs: Pairs, lfset: LFSet, family: str | None = None) -> FittedModel:
+        """Fit the copula, the marginals and the impact model to ``pairs``.
 
-    def _distribution(self, fit, marginals, lfset, rng, fp_lf=()):
-        f_l, f_h, lf = marginals
-        cond = conditioning_set(lfset.lf, lf.min())
-        draws = draw_conditional_hf(fit, f_l, f_h, cond, self.z, rng)
-        p_imp = impact_probability(lf, fp_lf) if self.impact_model else None
-        if p_imp is not None:
-            hit = rng.uniform(size=draws.shape) < p_imp(cond)[None, :]
-            draws = np.where(hit, draws, 0.0)
-        return hf_distribution(draws, lfset.n_waves)
+        With ``family`` only that family is fitted (bootstrap replicates);
+        otherwise all candidates, and the selection with hysteresis updates
+        :attr:`family_`.
+        """
+        keep = (np.ones(len(pairs), dtype=bool) if self.outlier_k is None
+                else remove_outliers(pairs.lf, pairs.hf, k=self.outlier_k))
+        families = self.families if family is None else (family,)
+        upper = self._upper_tail(lfset)
+        impact_fn = (impact_probability(pairs.lf, pairs.fp_lf)
+                     if self.impact_model else None)
+        if self.estimator == "conditional":
+            n0 = conditioning_set(lfset.lf, pairs.lf.min()).size
+            cond_lf = lfset.lf[:n0]
+            u_cond = population_lf_ranks(cond_lf, impact_fn)
+            starts = self._joint if family is None else {family: self._joint[family]}
+            joint = fit_joint_candidates(u_cond[pairs.position][keep], pairs.hf[keep], families,
+                                         starts=starts)
+            if family is None:
+                self._joint = joint
+            fits = {k: j.copula for k, j in joint.items()}
+            ascending = cond_lf[::-1], u_cond[::-1]
+            lf_to_u = lambda x, a=ascending: np.interp(x, *a)  # noqa: E731
+            ess = float(keep.sum())
+        elif self.estimator == "selected":
+            lf, hf = pairs.lf[keep], pairs.hf[keep]
+            fits = fit_candidates(*pseudo_observations(lf, hf), families, method=self.copula_fit)
+            f_l, f_h, lf_sample = fit_marginals(pairs.lf, pairs.hf, keep, upper_tail=upper,
+                                                marginals_from=self.marginals_from)
+            n0 = conditioning_set(lfset.lf, lf_sample.min()).size
+            lf_to_u, u_cond, ess = f_l.cdf, f_l.cdf(lfset.lf[:n0]), float(keep.sum())
+        else:
+            n0 = conditioning_set(lfset.lf, pairs.lf.min()).size
+            cond_lf = lfset.lf[:n0]
+            u_cond = population_lf_ranks(cond_lf, impact_fn)
+            ln_d = lfset.ln_d
+            evaluated = np.r_[pairs.position, np.asarray(pairs.fp_position, dtype=int)]
+            w = representation_weights(ln_d[pairs.position], ln_d[evaluated], ln_d[:n0])
+            v = weighted_ranks(pairs.hf, w)
+            fits = fit_candidates(u_cond[pairs.position][keep], v[keep], families,
+                                  weights=w[keep], method=self.copula_fit)
+            frac = upper_tail_fraction(len(pairs)) if upper else 1.0
+            f_h = fit_weibull3_ls(pairs.hf, probabilities=v, top_fraction=frac)
+            ascending = cond_lf[::-1], u_cond[::-1]
+            lf_to_u = lambda x, a=ascending: np.interp(x, *a)  # noqa: E731
+            ess = effective_sample_size(w[keep])
+        if family is None:
+            self.family_ = select_family(fits, self.family_, delta_aic=self.delta_aic,
+                                         exclude_at_bound=self.exclude_at_bound)
+            family = self.family_
+        if self.estimator == "conditional":
+            f_h = joint[family].hf_marginal
+        impact = None if impact_fn is None else impact_fn(lfset.lf[:n0])
+        return FittedModel(fits[family], f_h, lf_to_u, np.asarray(u_cond, float), impact, fits,
+                           int((~keep).sum()), ess)
+
+    def _random_numbers(self, n0: int, rng: np.random.Generator):
+        """Uniforms ``r`` (copula) and ``q`` (impact), shape ``(z, n0)`` each (Eq. 7).
+
+        With common random numbers they belong to the LF peaks (pool
+        positions) for the whole study, drawn once from the study seed.
+        """
+        if not self.common_random_numbers:
+            return (rng.uniform(EPS, 1 - EPS, size=(self.z, n0)),
+                    rng.uniform(size=(self.z, n0)))
+        if self._uniforms is None or self._uniforms.shape[2] < n0:
+            crn = np.random.default_rng([0 if self._seed is None else self._seed, 0x43524E])
+            n = max(n0, 1024 if self._uniforms is None else 2 * self._uniforms.shape[2])
+            self._uniforms = np.stack([crn.uniform(EPS, 1 - EPS, size=(self.z, n)),
+                                       crn.uniform(size=(self.z, n))])
+        return self._uniforms[0, :, :n0], self._uniforms[1, :, :n0]
+
+    def _predict_model(self, model: FittedModel, lfset: LFSet, rng):
+        r, q = self._random_numbers(model.n0, rng)
+        return hf_distribution(model.draws(r, q), lfset.n_waves)
 
     def predict(self, pairs: Pairs, lfset: LFSet, rng: np.random.Generator) -> Prediction:
-        keep = remove_outliers(pairs.lf, pairs.hf, k=self.outlier_k)
-        lf, hf = pairs.lf[keep], pairs.hf[keep]
-        u, v = pseudo_observations(lf, hf)
-        fits = fit_candidates(u, v, self.families)
-        self.family_ = select_family(fits, self.family_, delta_aic=self.delta_aic,
-                                     exclude_at_bound=self.exclude_at_bound)
-        fit = fits[self.family_]
-        marginals = self._marginals(pairs.lf, pairs.hf, keep, lfset)
-        d, mean, low, high = self._distribution(fit, marginals, lfset, rng, pairs.fp_lf)
+        model = self.fit(pairs, lfset)
+        self.model_ = model
+        d, mean, low, high = self._predict_model(model, lfset, rng)
         lam_u, lam_l = empirical_tail_dependence(pairs.lf, pairs.hf)
         record = {
             "family": self.family_,
-            **{f"aic_{k}": f.aic for k, f in fits.items()},
-            "copula_params": " ".join(f"{x:.4g}" for x in fit.parameters),
-            "n_outliers": int((~keep).sum()),
+            **{f"aic_{k}": model.fits[k].aic if k in model.fits else np.nan
+               for k in self.families},
+            "copula_params": " ".join(f"{x:.4g}" for x in model.copula.parameters),
+            "n_outliers": model.n_outliers,
             "tau": kendall_tau(pairs.lf, pairs.hf),
             "lambda_u": lam_u,
             "lambda_l": lam_l,
+            "ess": model.ess,
+            "p_impact": np.nan if model.impact is None else float(model.impact.mean()),
         }
         return Prediction.read_at(lfset.p_exp, d, mean, low, high, record)
 
     def model_band(self, pairs: Pairs, lfset: LFSet, rng: np.random.Generator):
-        """U95 of the MPM over a bootstrap of the LF–HF pairs (beyond the paper).
+        """U95 of the MPM over a bootstrap of the evaluated events (beyond the paper).
 
-        Each replicate resamples the pairs with replacement, repeats outlier
-        removal, refits the selected family and both marginals, and predicts
-        with ``z`` realisations; the band is the 2.5–97.5 % range of the
-        replicate MPMs.  Returns ``(low, high, mpms)`` or None when off.
+        Each replicate resamples the true and false positives with
+        replacement, repeats outlier removal, refits the selected family, the
+        marginals and the impact model, and predicts with the same random
+        numbers; the band is the 2.5–97.5 % range of the replicate MPMs.
+        Returns ``(low, high, mpms)`` or None when off.
         """
         if self.n_bootstrap <= 0 or self.family_ is None:
             return None
         mpms = []
-        m = len(pairs)
+        m, n_fp = len(pairs), len(pairs.fp_position)
         for _ in range(self.n_bootstrap):
-            b = pairs.take(rng.integers(0, m, m))
-            keep = remove_outliers(b.lf, b.hf, k=self.outlier_k)
-            lf, hf = b.lf[keep], b.hf[keep]
-            if np.ptp(lf) == 0 or np.ptp(hf) == 0 or lf.size < 3:
+            idx = rng.integers(0, m + n_fp, m + n_fp)
+            tp, fp = idx[idx < m], idx[idx >= m] - m
+            b = pairs.take(tp, fp)
+            if tp.size < 4 or np.ptp(b.lf) == 0 or np.ptp(b.hf) == 0:
                 continue
             try:
-                fit = fit_copula(self.family_, *pseudo_observations(lf, hf))
-                marginals = self._marginals(b.lf, b.hf, keep, lfset)
-                d, mean, _, _ = self._distribution(fit, marginals, lfset, rng, b.fp_lf)
-            except ValueError:
+                model = self.fit(b, lfset, family=self.family_)
+                d, mean, _, _ = self._predict_model(model, lfset, rng)
+            except (ValueError, np.linalg.LinAlgError):
                 continue
             mpms.append(float(value_at_exceedance(d, mean, lfset.p_exp)))
         if len(mpms) < 10:

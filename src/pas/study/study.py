@@ -72,12 +72,12 @@ class Study:
                  adaptive_threshold=True, threshold_step=0.02, fp_run=5, store=None):
         self.lfset = lfset
         self.strategy = strategy
-        strategy.reset()
         self.stopping = StoppingRule(eps1=check_positive(eps1, "eps1"),
                                      eps2=check_positive(eps2, "eps2"), k1=int(k1), k2=int(k2))
         if seed is None:
             seed = int(np.random.SeedSequence().entropy % (2**63))
         self.seed = int(seed)
+        strategy.reset(self.seed)
         if max_hf is not None and (int(max_hf) != max_hf or max_hf < strategy.n_initial):
             raise ValueError(f"max_hf must be an integer ≥ {strategy.n_initial}, got {max_hf!r}")
         self.max_hf = None if max_hf is None else int(max_hf)
@@ -167,7 +167,7 @@ class Study:
         pos = np.array(self._told(EventState.TRUE_POSITIVE), dtype=int)
         fp = np.array(self._told(EventState.FALSE_POSITIVE), dtype=int)
         return Pairs(pos, self.lfset.lf[pos], np.array([self.value[p] for p in pos], dtype=float),
-                     self.lfset.d[pos], self.lfset.lf[fp])
+                     self.lfset.d[pos], self.lfset.lf[fp], fp)
 
     def available(self) -> np.ndarray:
         mask = np.ones(self.lfset.n, dtype=bool)
@@ -200,12 +200,11 @@ class Study:
             return []
         else:
             room = n if self.max_hf is None else min(n, self.max_hf - self.n_hf - self._n_pending)
-            tp = self.pairs()
-            if len(tp) >= 2:
-                sel_d = tp.d
-            else:
-                sel_d = self.lfset.d[self._told(EventState.TRUE_POSITIVE, EventState.FALSE_POSITIVE)
-                                     + self._positions(EventState.PENDING)]
+            # MD's gaps run over every evaluated event, false positives included, and the
+            # pending ones: only then can MD sample below the lowest true positive and
+            # "oversample zero HF values" as §2.4 describes
+            sel_d = self.lfset.d[self._told(EventState.TRUE_POSITIVE, EventState.FALSE_POSITIVE)
+                                 + self._positions(EventState.PENDING)]
             if len(sel_d) >= 2:
                 new = self.strategy.propose(sel_d, self.lfset, self.available(), self.last,
                                             q=max(room, 0))
@@ -259,18 +258,21 @@ class Study:
     def _maybe_raise_threshold(self, ev: Event) -> None:
         """§2.4: after ``fp_run`` consecutive false positives, raise ``l0``.
 
-        The paper adds "and the exceedance probability of a new sample
-        exceeds that of any existing sample".  Read as *every* selected
-        sample, the rule can never fire under MD, whose proposals lie inside
-        gaps between selected samples, and false positives could then eat the
-        whole budget; it is read as *some* selected sample (the new sample is
-        not the rarest one).  With no true positive yet the condition is void.
+        As the paper writes it: the ``fp_run``-th consecutive false positive
+        raises the acquisition threshold by ``threshold_step`` × the largest LF
+        peak "when the exceedance probability of [the] new sample exceeds that
+        of any existing sample" of the selected (true-positive) set — the new
+        false positive lies below every true positive.  MD reaches there
+        because its gaps include the false positives (:meth:`ask`).  With no
+        true positive yet the condition is void.  The count starts again after
+        a raise.
         """
         tp = self.pairs()
         if (self.adaptive_threshold and self.consecutive_fp >= self.fp_run
-                and (len(tp) == 0 or ev.d > tp.d.min())):
+                and (len(tp) == 0 or ev.d > tp.d.max())):
             base = self.lfset.lf.min() if self.l0 is None else self.l0
             self.l0 = float(base + self.threshold_step * self.lfset.lf.max())
+            self.consecutive_fp = 0
 
     def _iterate(self, row: dict) -> None:
         pairs = self.pairs()

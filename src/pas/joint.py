@@ -1,0 +1,147 @@
+"""Copula and HF marginal fitted together by the likelihood of HF given LF.
+
+Beyond the paper (its §5.4 names the problem).  PAS's samples are chosen by
+their LF value alone — MD spreads them uniformly over ``ln d``, so they are
+tail-heavy and not i.i.d.  The law of HF *given* LF is the same in the sample
+as in the population; the marginal laws are not.  Fitting rank
+pseudo-observations of the sample (Eq. 5) therefore describes the sample, not
+the population the predicted distribution (Eq. 8–12) is about.  Here:
+
+* the LF ranks ``u`` are those of the LF *population* (every conditioning
+  peak is known; :func:`pas.strategies.selection.population_lf_ranks`), so
+  no LF marginal is fitted at all;
+* the copula parameters and a two-parameter Weibull HF marginal
+  ``F_H(h) = 1 − exp(−(h/α)^β)`` are fitted together by maximising the
+  conditional log-likelihood of the HF values given their LF ranks,
+  ``ℓ = Σ_i [log c(u_i, F_H(h_i)) + log f_H(h_i)]``, which the selection by LF
+  leaves valid (the likelihood of a regression does not depend on how its
+  covariate was sampled);
+* the location of the Weibull is 0 (loads are non-negative): a free location
+  makes this likelihood unbounded as it approaches the smallest load with
+  β < 1 (a known property of the three-parameter Weibull).
+
+AIC (Eq. 13) counts the two marginal parameters with the copula's, so the
+families are compared on the same likelihood.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import pyvinecopulib as pv
+from scipy import optimize
+
+from .copulas import CopulaFit, _at_bound, _family_and_rotation, kendall_tau
+from .stats.weibull import Weibull3
+
+__all__ = ["JointFit", "fit_joint", "fit_joint_candidates"]
+
+_TINY = 1e-12
+
+
+@dataclass(frozen=True)
+class JointFit:
+    """A copula and its HF Weibull marginal fitted together (module docs)."""
+
+    copula: CopulaFit
+    hf_marginal: Weibull3
+    x: np.ndarray  # the optimiser's unconstrained parameters, for warm starts
+
+
+def _copula_parameters(base: str, c):
+    """Unconstrained optimiser values → the family's parameter matrix (inside its bounds)."""
+    if base == "gaussian":
+        return np.array([[0.999 * np.tanh(c[0])]])
+    if base == "student":
+        return np.array([[0.999 * np.tanh(c[0])], [2.0 + 48.0 / (1.0 + np.exp(-c[1]))]])
+    if base == "clayton":
+        return np.array([[np.clip(np.exp(c[0]), 1e-6, 28.0)]])
+    if base == "gumbel":
+        return np.array([[min(1.0 + np.exp(c[0]), 50.0)]])
+    if base == "frank":
+        return np.array([[35.0 * np.tanh(c[0] / 35.0)]])
+    raise ValueError(f"no joint fit for the copula family {base!r}")
+
+
+def _copula_start(base: str, tau: float):
+    tau = float(np.clip(tau, 0.05, 0.85))
+    if base in ("gaussian", "student"):
+        rho = np.sin(np.pi * tau / 2.0)
+        return [np.arctanh(rho / 0.999)] + ([0.0] if base == "student" else [])
+    if base == "clayton":
+        return [np.log(2 * tau / (1 - tau))]
+    if base == "gumbel":
+        return [np.log(tau / (1 - tau))]  # θ − 1 = τ/(1−τ)
+    p = pv.Bicop(family=pv.BicopFamily.frank).tau_to_parameters(tau).ravel()[0]
+    return [35.0 * np.arctanh(min(p, 34.9) / 35.0)]
+
+
+def _weibull2_start(h):
+    """Least-squares line on Weibull paper with location 0 (ranks i/(n+1))."""
+    x = np.log(np.sort(h))
+    y = np.log(-np.log1p(-np.arange(1, h.size + 1) / (h.size + 1.0)))
+    beta, c = np.polyfit(x, y, 1)
+    beta = max(beta, 0.2)
+    return [np.log(np.exp(-c / beta)), np.log(beta)]
+
+
+def fit_joint(name: str, u, h, *, start=None) -> JointFit:
+    """Fit one copula family and the Weibull HF marginal by conditional likelihood.
+
+    Parameters
+    ----------
+    name : str
+        Copula family (``"gaussian"``, ``"student"``, ``"clayton"``,
+        ``"gumbel"``, ``"frank"`` or their ``_180`` rotations).
+    u : array-like, shape (m,)
+        LF population ranks of the pairs, in (0, 1).
+    h : array-like, shape (m,)
+        Their HF loads, > 0.
+    start : ndarray, optional
+        Optimiser values of an earlier fit (``JointFit.x``) to start from.
+    """
+    family, rotation = _family_and_rotation(name)
+    base = name.partition("_")[0]
+    u = np.clip(np.asarray(u, float), _TINY, 1 - _TINY)
+    h = np.asarray(h, float)
+    if np.any(h <= 0):
+        raise ValueError("the joint fit needs positive HF loads (false positives are not pairs)")
+    ln_h = np.log(h)
+
+    def unpack(x):
+        return np.exp(x[0]), np.exp(x[1]), x[2:]
+
+    def negloglik(x):
+        alpha, beta, c = unpack(x)
+        zb = np.exp(beta * (ln_h - np.log(alpha)))
+        v = np.clip(-np.expm1(-zb), _TINY, 1 - _TINY)
+        log_f = np.log(beta / alpha) + (beta - 1.0) * (ln_h - np.log(alpha)) - zb
+        cop = pv.Bicop(family=family, rotation=rotation, parameters=_copula_parameters(base, c))
+        log_c = np.log(np.maximum(cop.pdf(np.column_stack([u, v])), 1e-300))
+        val = -float(np.sum(log_f + log_c))
+        return val if np.isfinite(val) else 1e300
+
+    if start is None:
+        tau = kendall_tau(u, h) if u.size > 2 else 0.3
+        start = np.r_[_weibull2_start(h), _copula_start(base, tau if rotation == 0 else tau)]
+    res = optimize.minimize(negloglik, np.asarray(start, float), method="L-BFGS-B")
+    if not np.isfinite(res.fun) or res.fun >= 1e299:
+        raise ValueError(f"joint fit of the {name} copula failed: {res.message}")
+    alpha, beta, c = unpack(res.x)
+    cop = pv.Bicop(family=family, rotation=rotation, parameters=_copula_parameters(base, c))
+    k = 2.0 + float(cop.npars)
+    loglik = -float(res.fun)
+    fit = CopulaFit(name=name, bicop=cop, loglik=loglik, aic=2.0 * k - 2.0 * loglik,
+                    npars=k, at_bound=_at_bound(cop, name))
+    return JointFit(fit, Weibull3(0.0, float(alpha), float(beta)), np.asarray(res.x))
+
+
+def fit_joint_candidates(u, h, families, *, starts=None) -> dict[str, JointFit]:
+    """:func:`fit_joint` for every family (``starts``: earlier fits by name, to warm-start)."""
+    starts = starts or {}
+    out = {}
+    for name in families:
+        prev = starts.get(name)
+        out[name] = fit_joint(name, u, h, start=None if prev is None else prev.x)
+    return out
