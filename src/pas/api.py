@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from .strategies.as_ import AS
 from .strategies.pas import PAS
-from .study.factory import split_settings
+from .study.factory import DEFAULT_MAX_HF, apply_preset, split_settings
 from .study.result import ScreeningResult
 from .study.study import Study
 
@@ -12,7 +12,8 @@ __all__ = ["run_pas", "run_as", "make_study"]
 
 
 def make_study(strategy, lf_peaks, *, n_waves, p_exp, eps1, eps2=0.1, threshold=None,
-               seed=None, max_hf=None, ids=None, meta=None, store=None, **settings) -> Study:
+               seed=None, max_hf=DEFAULT_MAX_HF, ids=None, meta=None, store=None, preset=None,
+               **settings) -> Study:
     """Validate the inputs and build a :class:`~pas.study.study.Study` for ``strategy``.
 
     Parameters
@@ -27,6 +28,9 @@ def make_study(strategy, lf_peaks, *, n_waves, p_exp, eps1, eps2=0.1, threshold=
     store : str, os.PathLike or StudyStore, optional
         Makes the study crash-safe and resumable (:mod:`pas.study.store`);
         with ``seed=None`` an existing store's seed is used.
+    preset : {None, "default", "paper"}, optional
+        A named bundle of PAS settings (:data:`pas.study.factory.PRESETS`);
+        settings given explicitly win.
     **settings
         Strategy settings (checked against the strategy's constructor;
         unknown names raise ``ValueError``) and study settings (``k1``,
@@ -38,6 +42,7 @@ def make_study(strategy, lf_peaks, *, n_waves, p_exp, eps1, eps2=0.1, threshold=
     Study
     """
     study_settings, strategy_settings = split_settings(settings)
+    strategy_settings = apply_preset(preset, strategy, strategy_settings)
     return Study.from_settings(
         {"strategy": strategy, "strategy_settings": strategy_settings, "n_waves": n_waves,
          "p_exp": p_exp, "threshold": threshold, "eps1": eps1, "eps2": eps2, "seed": seed,
@@ -46,8 +51,9 @@ def make_study(strategy, lf_peaks, *, n_waves, p_exp, eps1, eps2=0.1, threshold=
 
 
 def run_pas(lf_peaks, oracle, *, n_waves, p_exp, eps1, eps2=0.1, threshold=None, seed=None,
-            max_hf=None, ids=None, meta=None, batch_size=1, callback=None, study=None,
-            pending="resubmit", executor=None, n_workers=None, **settings) -> ScreeningResult:
+            max_hf=DEFAULT_MAX_HF, ids=None, meta=None, batch_size=1, callback=None, study=None,
+            pending="resubmit", executor=None, n_workers=None, preset=None,
+            **settings) -> ScreeningResult:
     """Predict the MPM of an HF load with Probabilistic Adaptive Screening.
 
     Parameters
@@ -72,8 +78,10 @@ def run_pas(lf_peaks, oracle, *, n_waves, p_exp, eps1, eps2=0.1, threshold=None,
         LF threshold ``l0_input`` (Eq. 2).
     seed : int, optional
         Seed for reproducible draws (reported on the result when None).
-    max_hf : int, optional
-        Budget of HF evaluations.
+    max_hf : int or None, default 160
+        Budget of HF evaluations (:data:`pas.study.factory.DEFAULT_MAX_HF`,
+        the most the paper needed): the study stops there, converged or not.
+        None: no budget.
     ids, meta : sequence, optional
         User ids / metadata per event, passed to the oracle on the event.
     batch_size : int, default 1
@@ -95,11 +103,17 @@ def run_pas(lf_peaks, oracle, *, n_waves, p_exp, eps1, eps2=0.1, threshold=None,
     n_workers : int, optional
         Without ``executor``: a local process pool of this size (the oracle
         must be picklable).
+    preset : {None, "default", "paper"}, optional
+        ``"paper"`` reproduces the paper's scripts (τ inversion for the
+        Archimedean copulas, selected-sample space, redrawn uniforms, the
+        sampling band; :data:`pas.study.factory.PRESETS`,
+        ``docs/departures.md``); settings given explicitly win.
     **settings
         Settings of :class:`~pas.strategies.pas.PAS` (``families``, ``z``,
         ``delta_aic``, ``exclude_at_bound``, ``upper_tail``, ``outlier_k``,
         ``n_bootstrap``, ``skip_unsplittable``, ``marginals_from``,
-        ``impact_model``) and study settings (``k1``, ``k2``,
+        ``impact_model``, ``estimator``, ``copula_fit``,
+        ``common_random_numbers``) and study settings (``k1``, ``k2``,
         ``max_failures``, ``stop_on_convergence``, ``adaptive_threshold``,
         ``threshold_step``, ``fp_run``: :class:`~pas.study.study.Study`).
 
@@ -125,13 +139,13 @@ def run_pas(lf_peaks, oracle, *, n_waves, p_exp, eps1, eps2=0.1, threshold=None,
     """
     built = make_study(PAS, lf_peaks, n_waves=n_waves, p_exp=p_exp, eps1=eps1, eps2=eps2,
                        threshold=threshold, seed=seed, max_hf=max_hf, ids=ids, meta=meta,
-                       store=study, **settings)
+                       store=study, preset=preset, **settings)
     return built.optimize(oracle, batch_size=batch_size, callback=callback, executor=executor,
                           n_workers=n_workers, pending=pending)
 
 
 def run_as(lf_peaks, oracle, *, n_waves, p_exp, eps1, eps2=0.1, threshold=None, seed=None,
-           max_hf=None, ids=None, meta=None, batch_size=1, callback=None, study=None,
+           max_hf=DEFAULT_MAX_HF, ids=None, meta=None, batch_size=1, callback=None, study=None,
            pending="resubmit", executor=None, n_workers=None, **settings) -> ScreeningResult:
     """Predict the MPM of an HF load with Adaptive Screening (paper App. A), the GPR reference.
 
@@ -165,8 +179,8 @@ def run_as(lf_peaks, oracle, *, n_waves, p_exp, eps1, eps2=0.1, threshold=None, 
         LF threshold ``l0_input`` (Eq. 2).
     seed : int, optional
         Seed for reproducible runs (reported on the result when None).
-    max_hf : int, optional
-        Budget of HF evaluations (at least 2).
+    max_hf : int or None, default 160
+        Budget of HF evaluations (at least 2; None: no budget).
     ids, meta : sequence, optional
         User ids / metadata per event, passed to the oracle on the event.
     batch_size : int, default 1

@@ -89,7 +89,7 @@ def population_lf_ranks(lf_pool, impact=None) -> np.ndarray:
     ``P(impact | l_j)`` (all 1 without an impact model): the LF marginal of the
     population the copula describes, known without fitting.
     """
-    from ..copulas import weighted_ranks
+    from ..stats.dependence import weighted_ranks
 
     lf_pool = np.asarray(lf_pool, float)
     w = np.ones(lf_pool.size) if impact is None else np.maximum(impact(lf_pool), 1e-6)
