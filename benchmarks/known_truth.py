@@ -7,16 +7,21 @@ A problem is one LF Monte-Carlo "run" of ``n_w`` wave events with one LF
 indicator peak each (Rayleigh, like linear crests), and for every event an HF
 load drawn from a known model:
 
-* **dependence**: ``V | U ~ C_{V|U}(· | u)`` for a copula family and Kendall's
-  τ, ``U = F_L(l)`` the LF population CDF over the pool (over the threshold
-  when one is set);
-* **HF tail**: ``h = F_H⁻¹(V)``, a Weibull with shape ``hf_shape`` (smaller =
-  heavier tail);
+* **dependence**, either a copula — ``V | U ~ C_{V|U}(· | u)`` for a family
+  and Kendall's τ, ``U = F_L(l)`` the LF population CDF over the pool (over
+  the threshold when one is set), ``h = F_H⁻¹(V)`` with a Weibull HF marginal
+  of shape ``hf_shape`` (smaller = heavier tail) — or a regression that no
+  candidate copula contains: ``"power"``, ``ln h = ln 1000 + 1.5 ln l + σ ε``,
+  and ``"crest"``, ``h = 1000 (l + 0.15 l²) + 1000 σ ε`` (a second-order-crest-like
+  HF, ε standard normal);
 * **misses** (false positives, HF = 0): impact with probability ``p(u)`` —
   ``"none"``, ``"low"`` (clustered just above the threshold) or ``"spread"``
   (about 40 % everywhere, as the paper's green water);
 * **outliers**: with probability ``outlier_p`` the load is ``outlier_k`` times
-  larger, whatever the LF (timing-driven slams).
+  larger, whatever the LF (timing-driven slams);
+* **noise floor**: loads below ``floor`` are recorded as 0 (a sensor's noise
+  threshold, as the basin's 100 kN): misses that cluster where loads are
+  small.  It leaves the truth unchanged while the MPM is above the floor.
 
 Truth, exact given the LF peaks of the data set: the MPM ``H`` solves
 ``Σ_j P(H_j > H | l_j) = P_exp · n_w`` (the mixture PAS estimates, Eq. 8–12),
@@ -61,6 +66,9 @@ class ProblemType:
     outlier_p: float = 0.0
     outlier_k: float = 3.0
     threshold: bool = False
+    model: str = "copula"  # or "power", "crest" (module docs)
+    sigma: float = 0.3
+    floor: float = 0.0
 
 
 def _types():
@@ -81,11 +89,18 @@ def _types():
         out.append(ProblemType(f"outlier-gumbel-t{tau:g}", "gumbel", tau, outlier_p=0.02))
     out.append(ProblemType("outlier-miss-gaussian-t0.6", "gaussian", 0.6, misses="spread",
                            outlier_p=0.02, threshold=True))
+    for fam, tau in (("gaussian", 0.6), ("clayton", 0.45)):
+        out.append(ProblemType(f"floor-{fam}-t{tau:g}", fam, tau, threshold=True, floor=300.0))
+    for sigma in (0.05, 0.3, 0.6):
+        out.append(ProblemType(f"reg-power-s{sigma:g}", model="power", sigma=sigma))
+    out.append(ProblemType("reg-crest-s0.1", model="crest", sigma=0.1))
+    out.append(ProblemType("reg-power-miss-s0.3", model="power", sigma=0.3, misses="spread",
+                           threshold=True))
     return {t.name: t for t in out}
 
 
 TYPES = _types()
-GROUPS = ("core", "tail", "miss", "outlier")
+GROUPS = ("core", "tail", "miss", "outlier", "floor", "reg")
 
 
 def impact_probability(u, misses: str):
@@ -134,27 +149,32 @@ def _pool_u(lf, threshold):
     return 1.0 - sf / sf0
 
 
-def exceedance_count(h, u, ptype: ProblemType, bicop: pv.Bicop) -> float:
-    """``Σ_j P(H_j > h | u_j)``: expected number of events above ``h`` (module docs)."""
-    hf = stats.weibull_min(ptype.hf_shape, scale=HF_SCALE)
+def conditional_sf(x, lf, u, ptype: ProblemType, bicop) -> np.ndarray:
+    """``P(H > x | l)`` given an impact, before outliers, for every pool peak."""
+    if ptype.model == "power":
+        return stats.norm.sf((np.log(x / HF_SCALE) - 1.5 * np.log(lf)) / ptype.sigma)
+    if ptype.model == "crest":
+        return stats.norm.sf((x / HF_SCALE - lf - 0.15 * lf**2) / ptype.sigma)
+    v = np.clip(stats.weibull_min(ptype.hf_shape, scale=HF_SCALE).cdf(x), 1e-12, 1 - 1e-12)
+    return 1.0 - bicop.hfunc1(np.column_stack([u, np.full(u.size, v)]))
 
-    def sf(x):
-        v = np.clip(hf.cdf(x), 1e-12, 1 - 1e-12)
-        return 1.0 - bicop.hfunc1(np.column_stack([u, np.full(u.size, v)]))
 
-    s = sf(h)
+def exceedance_count(h, lf, u, ptype: ProblemType, bicop) -> float:
+    """``Σ_j P(H_j > h | l_j)``: expected number of events above ``h`` (module docs)."""
+    s = conditional_sf(h, lf, u, ptype, bicop)
     if ptype.outlier_p > 0:
-        s = (1 - ptype.outlier_p) * s + ptype.outlier_p * sf(h / ptype.outlier_k)
+        s = ((1 - ptype.outlier_p) * s
+             + ptype.outlier_p * conditional_sf(h / ptype.outlier_k, lf, u, ptype, bicop))
     return float(np.sum(impact_probability(u, ptype.misses) * s))
 
 
-def truth_mpm(u, n_waves, p_exp, ptype, bicop) -> float:
+def truth_mpm(lf, u, n_waves, p_exp, ptype, bicop) -> float:
     """The ``h`` with ``Σ_j P(H_j > h) = P_exp · n_w`` (bisection on ``ln h``)."""
     target = p_exp * n_waves
     lo, hi = np.log(1e-3 * HF_SCALE), np.log(1e3 * HF_SCALE)
     for _ in range(80):
         mid = 0.5 * (lo + hi)
-        if exceedance_count(np.exp(mid), u, ptype, bicop) > target:
+        if exceedance_count(np.exp(mid), lf, u, ptype, bicop) > target:
             lo = mid
         else:
             hi = mid
@@ -174,13 +194,20 @@ def make_problem(ptype: ProblemType, replication: int, *, n_waves=N_WAVES, p_exp
     u = _pool_u(lf, threshold)
     bicop = _bicop(ptype.family, ptype.tau)
     r = rng.uniform(1e-9, 1 - 1e-9, lf.size)
-    v = bicop.hinv1(np.column_stack([u, r]))
-    h = stats.weibull_min(ptype.hf_shape, scale=HF_SCALE).ppf(np.clip(v, 1e-12, 1 - 1e-12))
+    if ptype.model == "power":
+        h = HF_SCALE * lf**1.5 * np.exp(ptype.sigma * stats.norm.ppf(r))
+    elif ptype.model == "crest":
+        h = HF_SCALE * np.maximum(lf + 0.15 * lf**2 + ptype.sigma * stats.norm.ppf(r), 1e-3)
+    else:
+        v = bicop.hinv1(np.column_stack([u, r]))
+        h = stats.weibull_min(ptype.hf_shape, scale=HF_SCALE).ppf(np.clip(v, 1e-12, 1 - 1e-12))
     if ptype.outlier_p > 0:
         h = np.where(rng.uniform(size=lf.size) < ptype.outlier_p, h * ptype.outlier_k, h)
     hit = rng.uniform(size=lf.size) < impact_probability(u, ptype.misses)
-    h = np.where(hit, h, 0.0)
-    truth = truth_mpm(u, n_waves, p_exp, ptype, bicop)
+    h = np.where(hit & (h >= ptype.floor), h, 0.0)
+    truth = truth_mpm(lf, u, n_waves, p_exp, ptype, bicop)
+    if truth <= ptype.floor:
+        raise ValueError(f"{ptype.name}: the MPM {truth:.4g} is below the noise floor")
     return Problem(ptype, replication, lf, h, n_waves, p_exp, threshold, truth,
                    eps1_fraction * truth)
 

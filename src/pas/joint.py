@@ -139,7 +139,10 @@ def fit_joint(name: str, u, h, *, start=None) -> JointFit:
     h : array-like, shape (m,)
         Their HF loads, > 0.
     start : ndarray, optional
-        Optimiser values of an earlier fit (``JointFit.x``) to start from.
+        Optimiser values of an earlier fit (``JointFit.x``): the optimiser
+        starts there as well as from the least-squares Weibull and the
+        copula with the pairs' Kendall τ, and keeps the better optimum (a
+        warm start alone can stay in the basin of a fit to fewer pairs).
     """
     family, rotation = _family_and_rotation(name)
     base = name.partition("_")[0]
@@ -164,10 +167,12 @@ def fit_joint(name: str, u, h, *, start=None) -> JointFit:
         val = -float(np.sum(log_f + log_c))
         return val if np.isfinite(val) else 1e300
 
-    if start is None:
-        tau = kendall_tau(u, h) if u.size > 2 else 0.3
-        start = np.r_[_weibull2_start(h), _copula_start(base, tau if rotation == 0 else tau)]
-    res = optimize.minimize(negloglik, np.asarray(start, float), method="L-BFGS-B")
+    tau = kendall_tau(u, h) if u.size > 2 else 0.3
+    starts = [np.r_[_weibull2_start(h), _copula_start(base, tau)]]
+    if start is not None:  # an earlier fit: also start there, keep the better optimum
+        starts.append(np.asarray(start, float))
+    res = min((optimize.minimize(negloglik, x0, method="L-BFGS-B") for x0 in starts),
+              key=lambda r: r.fun)
     if not np.isfinite(res.fun) or res.fun >= 1e299:
         raise ValueError(f"joint fit of the {name} copula failed: {res.message}")
     alpha, beta, c = unpack(res.x)
