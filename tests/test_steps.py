@@ -125,13 +125,15 @@ def test_impact_probability_rises_with_lf():
     assert low < 0.15 and 0.3 < mid < 0.7 and high > 0.9
 
 
-def test_outliers_leave_the_marginals_by_default():
+def test_outliers_leave_the_selected_space_marginals_by_default():
     s = LFSet(np.linspace(10, 0.1, 500), n_waves=600, p_exp=0.01)
     pos = np.arange(0, 500, 25)
     hf = 2 * s.lf[pos] + 1
     hf[1] += 60.0  # one genuine heavy load far off the trend
     pairs = Pairs(pos, s.lf[pos], hf, s.d[pos])
-    all_ = PAS(marginals_from="all").predict(pairs, s, np.random.default_rng(0))
-    kept = PAS(marginals_from="kept").predict(pairs, s, np.random.default_rng(0))
+    all_ = PAS(estimator="selected", marginals_from="all").predict(pairs, s,
+                                                                  np.random.default_rng(0))
+    kept = PAS(estimator="selected", marginals_from="kept").predict(pairs, s,
+                                                                   np.random.default_rng(0))
     assert all_.record["n_outliers"] == kept.record["n_outliers"] == 1
     assert all_.h_mean[0] > kept.h_mean[0]  # the HF tail keeps the heavy load

@@ -21,12 +21,7 @@ import numpy as np
 import pyvinecopulib as pv
 from scipy import special
 
-from .stats.dependence import (  # Eq. 5, the input of every fit here
-    check_weights,
-    effective_sample_size,
-    kendall_tau,
-    pseudo_observations,
-)
+from .stats.dependence import kendall_tau, pseudo_observations  # Eq. 5: the input of every fit
 
 __all__ = [
     "PAPER_FAMILIES",
@@ -136,20 +131,16 @@ def tau_inversion_parameter(name: str, tau: float) -> float:
     raise ValueError(f"tau inversion is defined here for {ARCHIMEDEAN}, not {name!r}")
 
 
-def fit_copula(name: str, u, v, *, weights=None, method: str = "mle") -> CopulaFit:
+def fit_copula(name: str, u, v, *, method: str = "mle") -> CopulaFit:
     """Fit one family to pseudo-observations ``(u, v)``.
 
-    ``method="mle"``: maximum likelihood (pyvinecopulib), weighted when
-    ``weights`` are given — the log-likelihood behind AIC is then
-    ``Σ w_i log c(u_i, v_i)`` with the weights scaled to sum to their
-    effective sample size, so the AIC penalty stays comparable.
+    ``method="mle"``: maximum likelihood (pyvinecopulib).
     ``method="itau"``: the inversion of Kendall's τ for Clayton, Gumbel and
     Frank (:func:`tau_inversion_parameter`, the paper's estimator for these
     three); other families are fitted by maximum likelihood.
     """
     family, rotation = _family_and_rotation(name)
     data = np.column_stack([np.asarray(u, float), np.asarray(v, float)])
-    w = None if weights is None else check_weights(weights, data.shape[0])
     if method not in ("mle", "itau"):
         raise ValueError(f"method must be 'mle' or 'itau', got {method!r}")
     if method == "itau" and name.partition("_")[0] in ARCHIMEDEAN:
@@ -162,21 +153,15 @@ def fit_copula(name: str, u, v, *, weights=None, method: str = "mle") -> CopulaF
                          parameters=np.array([[min(max(theta, lo), hi)]]))
     else:
         bicop = pv.Bicop(family=family, rotation=rotation)
-        controls = pv.FitControlsBicop(family_set=[family], parametric_method="mle",
-                                       **({} if w is None else {"weights": w}))
+        controls = pv.FitControlsBicop(family_set=[family], parametric_method="mle")
         bicop.fit(data, controls=controls)
-    if w is None:
-        loglik = float(bicop.loglik(data))
-    else:
-        scale = effective_sample_size(w) / w.sum()
-        loglik = float(np.sum(scale * w * np.log(np.maximum(bicop.pdf(data), 1e-300))))
+    loglik = float(bicop.loglik(data))
     npars = float(bicop.npars)
     return CopulaFit(name=name, bicop=bicop, loglik=loglik, aic=2.0 * npars - 2.0 * loglik,
                      npars=npars, at_bound=_at_bound(bicop, name))
 
 
-def fit_candidates(u, v, families=PAPER_FAMILIES, *, weights=None,
-                   method: str = "mle") -> dict[str, CopulaFit]:
+def fit_candidates(u, v, families=PAPER_FAMILIES, *, method: str = "mle") -> dict[str, CopulaFit]:
     """Fit every candidate family; returns ``{name: CopulaFit}`` in the given order.
 
     A family that cannot be fitted to these data (a τ-inversion Clayton or
@@ -185,7 +170,7 @@ def fit_candidates(u, v, families=PAPER_FAMILIES, *, weights=None,
     fits = {}
     for name in families:
         try:
-            fits[name] = fit_copula(name, u, v, weights=weights, method=method)
+            fits[name] = fit_copula(name, u, v, method=method)
         except ValueError:
             if method != "itau":
                 raise

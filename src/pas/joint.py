@@ -34,9 +34,9 @@ from scipy import optimize, special
 
 from ._threads import one_blas_thread
 from .copulas import CopulaFit, _at_bound, _family_and_rotation, kendall_tau
-from .stats.weibull import Weibull3
+from .stats.weibull import Weibull3, fit_weibull3_ls
 
-__all__ = ["JointFit", "copula_logpdf", "fit_joint", "fit_joint_candidates"]
+__all__ = ["JointFit", "copula_logpdf", "copula_loghfunc", "fit_joint", "fit_joint_candidates"]
 
 _TINY = 1e-12
 
@@ -104,6 +104,35 @@ def copula_logpdf(base: str, p, u, v) -> np.ndarray:
     raise ValueError(f"no closed-form density for the copula family {base!r}")
 
 
+def copula_loghfunc(base: str, p, u, v) -> np.ndarray:
+    """``log C_{V|U}(v | u)`` (the h-function, ``∂C/∂u``) of an unrotated family, vectorised."""
+    if base == "gaussian":
+        rho = p[0]
+        return special.log_ndtr((special.ndtri(v) - rho * special.ndtri(u))
+                                / np.sqrt(1.0 - rho * rho))
+    if base == "student":
+        rho, nu = p
+        x, y = special.stdtrit(nu, u), special.stdtrit(nu, v)
+        z = (y - rho * x) / np.sqrt((nu + x * x) * (1.0 - rho * rho) / (nu + 1.0))
+        return np.log(special.stdtr(nu + 1.0, z))
+    lu, lv = np.log(u), np.log(v)
+    if base == "clayton":
+        th = p[0]
+        return (-(th + 1.0) * lu
+                - (1.0 / th + 1.0) * np.log(np.expm1(-th * lu) + np.expm1(-th * lv) + 1.0))
+    if base == "gumbel":
+        th = p[0]
+        a, b = -lu, -lv
+        ls = np.logaddexp(th * np.log(a), th * np.log(b))
+        return -np.exp(ls / th) - lu + (th - 1.0) * np.log(a) + (1.0 / th - 1.0) * ls
+    if base == "frank":
+        th = p[0]
+        num = -th * u + np.log(np.abs(np.expm1(-th * v)))
+        den = np.log(np.abs(np.expm1(-th) + np.expm1(-th * u) * np.expm1(-th * v)))
+        return num - den
+    raise ValueError(f"no closed-form h-function for the copula family {base!r}")
+
+
 def _copula_start(base: str, tau: float):
     tau = float(np.clip(tau, 0.05, 0.85))
     if base in ("gaussian", "student"):
@@ -117,8 +146,13 @@ def _copula_start(base: str, tau: float):
     return [35.0 * np.arctanh(min(p, 34.9) / 35.0)]
 
 
-def _weibull2_start(h):
-    """Least-squares line on Weibull paper with location 0 (ranks i/(n+1))."""
+def _weibull_start(h, location: bool):
+    """Least-squares Weibull on Weibull paper (ranks i/(n+1)) as optimiser values."""
+    if location and h.size >= 3 and np.ptp(h) > 0:
+        w = fit_weibull3_ls(h)
+        h_min, span = h.min(), np.ptp(h)
+        gap = max(h_min - w.theta, 1e-3 * span)
+        return [np.log(gap / span), np.log(w.alpha), np.log(max(w.beta, 0.2))]
     x = np.log(np.sort(h))
     y = np.log(-np.log1p(-np.arange(1, h.size + 1) / (h.size + 1.0)))
     beta, c = np.polyfit(x, y, 1)
@@ -126,7 +160,7 @@ def _weibull2_start(h):
     return [np.log(np.exp(-c / beta)), np.log(beta)]
 
 
-def fit_joint(name: str, u, h, *, start=None) -> JointFit:
+def fit_joint(name: str, u, h, *, start=None, location: bool = True) -> JointFit:
     """Fit one copula family and the Weibull HF marginal by conditional likelihood.
 
     Parameters
@@ -138,6 +172,11 @@ def fit_joint(name: str, u, h, *, start=None) -> JointFit:
         LF population ranks of the pairs, in (0, 1).
     h : array-like, shape (m,)
         Their HF loads, > 0.
+    location : bool, default True
+        A three-parameter Weibull marginal (location below the smallest
+        load, which enters the likelihood left-censored — "a load of at most
+        ``min(h)``" — so the likelihood stays bounded; module docs), or the
+        two-parameter Weibull with location 0.
     start : ndarray, optional
         Optimiser values of an earlier fit (``JointFit.x``): the optimiser
         starts there as well as from the least-squares Weibull and the
@@ -150,46 +189,59 @@ def fit_joint(name: str, u, h, *, start=None) -> JointFit:
     h = np.asarray(h, float)
     if np.any(h <= 0):
         raise ValueError("the joint fit needs positive HF loads (false positives are not pairs)")
-    ln_h = np.log(h)
+    i_min = int(np.argmin(h))
+    h_min, span = float(h[i_min]), float(np.ptp(h)) or float(h[i_min])
+    n_marg = 3 if location else 2
 
     def unpack(x):
-        return np.exp(x[0]), np.exp(x[1]), x[2:]
+        theta = h_min - np.exp(x[0]) * span if location else 0.0
+        return theta, np.exp(x[n_marg - 2]), np.exp(x[n_marg - 1]), x[n_marg:]
 
     uu = 1.0 - u if rotation == 180 else u
+    density = np.ones(h.size, dtype=bool)
+    if location:
+        density[i_min] = False
 
+    @np.errstate(all="ignore")  # the optimiser's trial steps may overflow: scored as +inf
     def negloglik(x):
-        alpha, beta, c = unpack(x)
-        zb = np.exp(beta * (ln_h - np.log(alpha)))
+        theta, alpha, beta, c = unpack(x)
+        ln_z = np.log(h - theta) - np.log(alpha)
+        zb = np.exp(beta * ln_z)
         v = np.clip(-np.expm1(-zb), _TINY, 1 - _TINY)
-        log_f = np.log(beta / alpha) + (beta - 1.0) * (ln_h - np.log(alpha)) - zb
-        log_c = copula_logpdf(base, _copula_parameters(base, c).ravel(), uu,
-                              1.0 - v if rotation == 180 else v)
-        val = -float(np.sum(log_f + log_c))
-        return val if np.isfinite(val) else 1e300
+        vv = 1.0 - v if rotation == 180 else v
+        p = _copula_parameters(base, c).ravel()
+        log_f = np.log(beta / alpha) + (beta - 1.0) * ln_z - zb
+        val = np.sum((log_f + copula_logpdf(base, p, uu, vv))[density])
+        if location:  # the smallest load, left-censored: P(H ≤ h_min | u)
+            lh = copula_loghfunc(base, p, uu[~density], vv[~density])
+            val += np.sum(np.log(-np.expm1(lh)) if rotation == 180 else lh)
+        return -float(val) if np.isfinite(val) else 1e300
 
     tau = kendall_tau(u, h) if u.size > 2 else 0.3
-    starts = [np.r_[_weibull2_start(h), _copula_start(base, tau)]]
-    if start is not None:  # an earlier fit: also start there, keep the better optimum
-        starts.append(np.asarray(start, float))
+    starts = [np.r_[_weibull_start(h, location), _copula_start(base, tau)]]
+    if start is not None and len(start) == len(starts[0]):
+        starts.append(np.asarray(start, float))  # an earlier fit: keep the better optimum
     res = min((optimize.minimize(negloglik, x0, method="L-BFGS-B") for x0 in starts),
               key=lambda r: r.fun)
     if not np.isfinite(res.fun) or res.fun >= 1e299:
         raise ValueError(f"joint fit of the {name} copula failed: {res.message}")
-    alpha, beta, c = unpack(res.x)
+    theta, alpha, beta, c = unpack(res.x)
     cop = pv.Bicop(family=family, rotation=rotation, parameters=_copula_parameters(base, c))
-    k = 2.0 + float(cop.npars)
+    k = n_marg + float(cop.npars)
     loglik = -float(res.fun)
     fit = CopulaFit(name=name, bicop=cop, loglik=loglik, aic=2.0 * k - 2.0 * loglik,
                     npars=k, at_bound=_at_bound(cop, name))
-    return JointFit(fit, Weibull3(0.0, float(alpha), float(beta)), np.asarray(res.x))
+    return JointFit(fit, Weibull3(float(theta), float(alpha), float(beta)), np.asarray(res.x))
 
 
-def fit_joint_candidates(u, h, families, *, starts=None) -> dict[str, JointFit]:
+def fit_joint_candidates(u, h, families, *, starts=None,
+                         location: bool = True) -> dict[str, JointFit]:
     """:func:`fit_joint` for every family (``starts``: earlier fits by name, to warm-start)."""
     starts = starts or {}
     out = {}
     with one_blas_thread():
         for name in families:
             prev = starts.get(name)
-            out[name] = fit_joint(name, u, h, start=None if prev is None else prev.x)
+            out[name] = fit_joint(name, u, h, start=None if prev is None else prev.x,
+                                  location=location)
     return out

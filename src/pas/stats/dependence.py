@@ -9,43 +9,29 @@ from __future__ import annotations
 import numpy as np
 from scipy import stats
 
-__all__ = ["pseudo_observations", "weighted_ranks", "effective_sample_size", "kendall_tau",
-           "empirical_tail_dependence"]
+__all__ = ["pseudo_observations", "weighted_ranks", "kendall_tau", "empirical_tail_dependence"]
 
 
-def pseudo_observations(x, y, weights=None):
+def pseudo_observations(x, y):
     """Rank-based pseudo-observations ``u = rank(x)/(m+1)``, ``v = rank(y)/(m+1)`` (Eq. 5).
 
-    Ties get their average rank.  With ``weights`` (how many events each
-    pair stands for) the ranks are the weighted mid-points of
-    :func:`weighted_ranks`.
+    Ties get their average rank.
     """
     x = np.asarray(x, dtype=float)
     y = np.asarray(y, dtype=float)
     if x.shape != y.shape or x.ndim != 1:
         raise ValueError(f"x and y must be 1-D of equal length, got {x.shape} and {y.shape}")
-    if weights is None:
-        m = x.size
-        return stats.rankdata(x) / (m + 1.0), stats.rankdata(y) / (m + 1.0)
-    w = check_weights(weights, x.size)
-    return weighted_ranks(x, w), weighted_ranks(y, w)
-
-
-def check_weights(weights, n: int) -> np.ndarray:
-    """``weights`` as ``n`` positive finite floats, or a ValueError saying so."""
-    w = np.asarray(weights, dtype=float)
-    if w.shape != (n,) or not np.all(np.isfinite(w)) or np.any(w <= 0):
-        raise ValueError(f"weights must be {n} positive finite numbers")
-    return w
+    m = x.size
+    return stats.rankdata(x) / (m + 1.0), stats.rankdata(y) / (m + 1.0)
 
 
 def weighted_ranks(x, w) -> np.ndarray:
     """Weighted mid-point plotting positions ``(W_{<i} + w_i/2) / W`` in (0, 1).
 
     The weighted empirical CDF halfway up each value's own step (Hazen's
-    ``(i − ½)/m`` for equal weights): a value that stands for one event in a
-    population of ``W`` sits ``1/(2W)`` from the end, whatever the other
-    weights.  Tied values share the mean of their positions.
+    ``(i − ½)/m`` for equal weights); tied values share the mean of their
+    positions.  PAS ranks the LF population with each peak weighted by its
+    impact probability (:func:`pas.strategies.selection.population_lf_ranks`).
 
     Examples
     --------
@@ -61,12 +47,6 @@ def weighted_ranks(x, w) -> np.ndarray:
     out = np.empty_like(mid)
     out[order] = mid / cum[-1]
     return out
-
-
-def effective_sample_size(weights) -> float:
-    """Kish's effective sample size ``(Σw)² / Σw²``."""
-    w = np.asarray(weights, float)
-    return float(w.sum() ** 2 / np.sum(w**2))
 
 
 def kendall_tau(x, y) -> float:

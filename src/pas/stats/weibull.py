@@ -94,7 +94,7 @@ def _profile_sse(theta, ln_y, x):
 
 
 def fit_weibull3_ls(values, *, top_fraction: float = 1.0, theta_span: float = 3.0,
-                    n_grid: int = 64, probabilities=None) -> Weibull3:
+                    n_grid: int = 64) -> Weibull3:
     """Fit a 3-parameter Weibull by least squares on Weibull paper (module docs).
 
     Parameters
@@ -108,11 +108,6 @@ def fit_weibull3_ls(values, *, top_fraction: float = 1.0, theta_span: float = 3.
         Lower bound of θ in units of the fitted range below its minimum.
     n_grid : int, default 64
         Grid points for the initial θ scan.
-    probabilities : array-like, shape (n,), optional
-        Plotting positions ``F_i`` of ``values`` (aligned with them, in
-        (0, 1), non-decreasing with the value) in place of ``i / (n + 1)``:
-        weighted ranks of a sample that stands for a population unevenly
-        (:func:`pas.copulas.weighted_ranks`).
 
     Returns
     -------
@@ -126,9 +121,7 @@ def fit_weibull3_ls(values, *, top_fraction: float = 1.0, theta_span: float = 3.
     >>> round(w.beta, 1), round(w.alpha, 1)
     (2.0, 3.0)
     """
-    raw = check_peaks(values, "values")
-    order = np.argsort(raw, kind="stable")
-    x_all = raw[order]
+    x_all = np.sort(check_peaks(values, "values"))
     n = x_all.size
     if not 0.0 < top_fraction <= 1.0:
         raise ValueError(f"top_fraction must be in (0, 1], got {top_fraction!r}")
@@ -136,14 +129,7 @@ def fit_weibull3_ls(values, *, top_fraction: float = 1.0, theta_span: float = 3.
     if n < 3:
         raise ValueError(f"a 3-parameter Weibull fit needs at least 3 values, got {n}")
     x = x_all[n - k:]
-    if probabilities is None:
-        f = np.arange(n - k + 1, n + 1) / (n + 1.0)
-    else:
-        f = np.asarray(probabilities, float)
-        if f.shape != raw.shape or not np.all((f > 0) & (f < 1)):
-            raise ValueError("probabilities must be aligned with values and lie in (0, 1)")
-        f = f[order][n - k:]
-    ln_y = np.log(-np.log1p(-f))
+    ln_y = np.log(-np.log1p(-np.arange(n - k + 1, n + 1) / (n + 1.0)))
     x_min, span = x[0], x[-1] - x[0]
     if span <= 0:
         raise ValueError("values to fit are all equal; a Weibull fit needs spread")

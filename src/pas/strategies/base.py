@@ -62,7 +62,10 @@ class Prediction:
 
     ``d`` ascending; ``h_mean`` the mean distribution, ``h_low``/``h_high`` its
     U95 band; ``mpm_band`` the band read at ``P_exp``; ``record`` holds the
-    strategy-specific diagnostics written to the iteration history.
+    strategy-specific diagnostics written to the iteration history;
+    ``columns`` optional per-rank arrays aligned with ``d`` (PAS: the LF peak
+    conditioned on at each rank and its impact probability), written beside
+    the distribution.
     """
 
     d: np.ndarray
@@ -72,15 +75,18 @@ class Prediction:
     mpm: float
     mpm_band: tuple
     record: dict = field(default_factory=dict)
+    columns: dict = field(default_factory=dict)
 
     @classmethod
-    def read_at(cls, p_exp: float, d, h_mean, h_low, h_high, record=None) -> Prediction:
+    def read_at(cls, p_exp: float, d, h_mean, h_low, h_high, record=None,
+                columns=None) -> Prediction:
         """A distribution and its band, with the MPM and its band read at ``p_exp`` (Step 12)."""
         return cls(d=d, h_mean=h_mean, h_low=h_low, h_high=h_high,
                    mpm=float(value_at_exceedance(d, h_mean, p_exp)),
                    mpm_band=(float(value_at_exceedance(d, h_low, p_exp)),
                              float(value_at_exceedance(d, h_high, p_exp))),
-                   record={} if record is None else record)
+                   record={} if record is None else record,
+                   columns={} if columns is None else columns)
 
     def at(self, p):
         """The mean distribution interpolated at probabilities ``p`` on ``ln d``."""

@@ -58,21 +58,19 @@ from ..joint import fit_joint_candidates
 from ..marginals import fit_marginal
 from ..screening import LFSet
 from ..stats.dependence import (
-    effective_sample_size,
     empirical_tail_dependence,
     kendall_tau,
     pseudo_observations,
-    weighted_ranks,
 )
 from ..stats.exceedance import value_at_exceedance
-from ..stats.weibull import fit_weibull3_ls, upper_tail_fraction
 from .acquisition import md_select
 from .base import Pairs, Prediction, Strategy, band95
-from .selection import impact_probability, population_lf_ranks, representation_weights
+from .selection import impact_probability, population_lf_ranks
 
 __all__ = [
     "PAS",
     "FittedModel",
+    "refit",
     "remove_outliers",
     "conditioning_set",
     "draw_conditional_hf",
@@ -161,6 +159,32 @@ def hf_distribution(h_draws, n_waves: int):
     return d, mean, *band95(mean, sd)
 
 
+def refit(result) -> "FittedModel":
+    """The final model of a PAS result, fitted again from what the result holds.
+
+    Uses the result's settings, pairs, false positives (history), selected
+    family and the LF peaks it conditioned on (``distribution["lf"]``), so a
+    saved result can be redrawn (:func:`pas.plotting.conditional_quantile_curves`)
+    without the LF Monte-Carlo run.
+    """
+    dist = result.distribution
+    if "lf" not in dist or not result.family:
+        raise ValueError("the result holds no fitted PAS model (no 'lf' column in its "
+                         "distribution, or no copula family)")
+    settings = dict((result.settings or {}).get("strategy_settings", {}))
+    strategy = PAS(**settings)
+    strategy.reset(result.seed)
+    lfset = LFSet(dist["lf"].to_numpy(float), n_waves=result.n_waves, p_exp=result.p_exp,
+                  threshold=(result.settings or {}).get("threshold"))
+    lf = result.pairs["lf"].to_numpy(float)
+    pos = np.clip(lfset.n - np.searchsorted(lfset.lf[::-1], lf, side="right"), 0, lfset.n - 1)
+    hist = result.history
+    fp_lf = hist.loc[hist["status"] == "false_positive", "lf"].to_numpy(float)
+    pairs = Pairs(pos, lf, result.pairs["hf"].to_numpy(float), lfset.d[pos], fp_lf,
+                  np.zeros(fp_lf.size, dtype=int))
+    return strategy.fit(pairs, lfset, family=result.family)
+
+
 @dataclass
 class FittedModel:
     """What one PAS iteration fitted (Steps 7–9), enough to draw from it again.
@@ -177,7 +201,6 @@ class FittedModel:
     impact: np.ndarray | None
     fits: dict
     n_outliers: int
-    ess: float
 
     @property
     def n0(self) -> int:
@@ -230,10 +253,11 @@ class PAS(Strategy):
     impact_model : bool, default True
         Zero draws by the estimated impact probability once false positives
         have been seen (:mod:`pas.strategies.selection`); False is the paper.
-    estimator : {"population", "selected"}, default "population"
-        Fit the copula and the HF marginal to the LF population the pairs
-        stand for (:mod:`pas.strategies.selection`), or to the selected
-        sample as it is (the paper, §5.4).
+    estimator : {"conditional", "selected"}, default "conditional"
+        Fit the copula and the HF marginal by the likelihood of HF given the
+        LF population ranks (:mod:`pas.joint`), or to rank pseudo-observations
+        of the selected sample with least-squares Weibull marginals (the
+        paper, Eq. 5, 15; §5.4).
     copula_fit : {"mle", "itau"}, default "mle"
         Maximum likelihood for all families, or the paper's inversion of
         Kendall's τ for Clayton, Gumbel and Frank (§2.8).
@@ -251,8 +275,9 @@ class PAS(Strategy):
                  exclude_at_bound: bool = True, upper_tail: bool | None = None,
                  outlier_k: float = 3.0, n_bootstrap: int = 50, skip_unsplittable: bool = True,
                  marginals_from: str = "all", impact_model: bool = True,
-                 estimator: str = "population", copula_fit: str = "mle",
-                 common_random_numbers: bool = True):
+                 estimator: str = "conditional", copula_fit: str = "mle",
+                 common_random_numbers: bool = True, hf_location: bool = True,
+                 fit_fraction: float = 1.0):
         for f in families:
             _family_and_rotation(f)
         if z < 2:
@@ -268,9 +293,11 @@ class PAS(Strategy):
         self.marginals_from = check_option(marginals_from, "marginals_from", {"all", "kept"})
         self.impact_model = bool(impact_model)
         self.estimator = check_option(estimator, "estimator",
-                                      {"conditional", "population", "selected"})
+                                      {"conditional", "selected"})
         self.copula_fit = check_option(copula_fit, "copula_fit", {"mle", "itau"})
         self.common_random_numbers = bool(common_random_numbers)
+        self.hf_location = bool(hf_location)
+        self.fit_fraction = float(fit_fraction)
         self.family_ = None
         self._seed = None
         self._uniforms = None
@@ -293,62 +320,56 @@ class PAS(Strategy):
 
     # -- Steps 7–9: the model ------------------------------------------------
     def fit(self, pairs: Pairs, lfset: LFSet, family: str | None = None) -> FittedModel:
-        """Fit the copula, the marginals and the impact model to ``pairs``.
+        """Steps 7–9: fit the copula, the HF marginal and the impact model to ``pairs``.
 
         With ``family`` only that family is fitted (bootstrap replicates);
-        otherwise all candidates, and the selection with hysteresis updates
-        :attr:`family_`.
+        otherwise all candidates, and the selection with hysteresis (§2.2)
+        updates :attr:`family_`.
         """
         keep = (np.ones(len(pairs), dtype=bool) if self.outlier_k is None
                 else remove_outliers(pairs.lf, pairs.hf, k=self.outlier_k))
         families = self.families if family is None else (family,)
-        upper = self._upper_tail(lfset)
-        impact_fn = (impact_probability(pairs.lf, pairs.fp_lf)
-                     if self.impact_model else None)
-        if self.estimator == "conditional":
-            n0 = conditioning_set(lfset.lf, pairs.lf.min()).size
-            cond_lf = lfset.lf[:n0]
-            u_cond = population_lf_ranks(cond_lf, impact_fn)
-            starts = self._joint if family is None else {family: self._joint[family]}
-            joint = fit_joint_candidates(u_cond[pairs.position][keep], pairs.hf[keep], families,
-                                         starts=starts)
-            if family is None:
-                self._joint = joint
-            fits = {k: j.copula for k, j in joint.items()}
-            ascending = cond_lf[::-1], u_cond[::-1]
-            lf_to_u = lambda x, a=ascending: np.interp(x, *a)  # noqa: E731
-            ess = float(keep.sum())
-        elif self.estimator == "selected":
-            lf, hf = pairs.lf[keep], pairs.hf[keep]
-            fits = fit_candidates(*pseudo_observations(lf, hf), families, method=self.copula_fit)
-            f_l, f_h, lf_sample = fit_marginals(pairs.lf, pairs.hf, keep, upper_tail=upper,
-                                                marginals_from=self.marginals_from)
-            n0 = conditioning_set(lfset.lf, lf_sample.min()).size
-            lf_to_u, u_cond, ess = f_l.cdf, f_l.cdf(lfset.lf[:n0]), float(keep.sum())
-        else:
-            n0 = conditioning_set(lfset.lf, pairs.lf.min()).size
-            cond_lf = lfset.lf[:n0]
-            u_cond = population_lf_ranks(cond_lf, impact_fn)
-            ln_d = lfset.ln_d
-            evaluated = np.r_[pairs.position, np.asarray(pairs.fp_position, dtype=int)]
-            w = representation_weights(ln_d[pairs.position], ln_d[evaluated], ln_d[:n0])
-            v = weighted_ranks(pairs.hf, w)
-            fits = fit_candidates(u_cond[pairs.position][keep], v[keep], families,
-                                  weights=w[keep], method=self.copula_fit)
-            frac = upper_tail_fraction(len(pairs)) if upper else 1.0
-            f_h = fit_weibull3_ls(pairs.hf, probabilities=v, top_fraction=frac)
-            ascending = cond_lf[::-1], u_cond[::-1]
-            lf_to_u = lambda x, a=ascending: np.interp(x, *a)  # noqa: E731
-            ess = effective_sample_size(w[keep])
+        impact = impact_probability(pairs.lf, pairs.fp_lf) if self.impact_model else None
+        fit = self._fit_conditional if self.estimator == "conditional" else self._fit_selected
+        fits, hf_marginals, lf_to_u, n0 = fit(pairs, lfset, keep, families, impact, family)
         if family is None:
             self.family_ = select_family(fits, self.family_, delta_aic=self.delta_aic,
                                          exclude_at_bound=self.exclude_at_bound)
             family = self.family_
-        if self.estimator == "conditional":
-            f_h = joint[family].hf_marginal
-        impact = None if impact_fn is None else impact_fn(lfset.lf[:n0])
-        return FittedModel(fits[family], f_h, lf_to_u, np.asarray(u_cond, float), impact, fits,
-                           int((~keep).sum()), ess)
+        cond = lfset.lf[:n0]
+        return FittedModel(fits[family], hf_marginals[family], lf_to_u,
+                           np.asarray(lf_to_u(cond), float),
+                           None if impact is None else impact(cond), fits, int((~keep).sum()))
+
+    def _fit_selected(self, pairs, lfset, keep, families, impact, family):
+        """The paper's fit in selected-sample space (§2.2–2.3, Eq. 5, 15)."""
+        lf, hf = pairs.lf[keep], pairs.hf[keep]
+        fits = fit_candidates(*pseudo_observations(lf, hf), families, method=self.copula_fit)
+        f_l, f_h, lf_sample = fit_marginals(pairs.lf, pairs.hf, keep,
+                                            upper_tail=self._upper_tail(lfset),
+                                            marginals_from=self.marginals_from)
+        n0 = conditioning_set(lfset.lf, lf_sample.min()).size
+        return fits, dict.fromkeys(fits, f_h), f_l.cdf, n0
+
+    def _fit_conditional(self, pairs, lfset, keep, families, impact, family):
+        """Population LF ranks and the joint conditional likelihood (:mod:`pas.joint`)."""
+        n0 = conditioning_set(lfset.lf, pairs.lf.min()).size
+        cond_lf = lfset.lf[:n0]
+        u_cond = population_lf_ranks(cond_lf, impact)
+        starts = self._joint if family is None else {
+            k: v for k, v in self._joint.items() if k == family}
+        u_pairs = u_cond[pairs.position]
+        use = keep & (u_pairs >= 1.0 - self.fit_fraction)
+        if use.sum() < 8:
+            use = keep & (u_pairs >= np.sort(u_pairs[keep])[-min(8, keep.sum())])
+        joint = fit_joint_candidates(u_pairs[use], pairs.hf[use], families,
+                                     starts=starts, location=self.hf_location)
+        if family is None:
+            self._joint = joint
+        ascending = cond_lf[::-1], u_cond[::-1]
+        return ({k: j.copula for k, j in joint.items()},
+                {k: j.hf_marginal for k, j in joint.items()},
+                lambda x: np.interp(x, *ascending), n0)
 
     def _random_numbers(self, n0: int, rng: np.random.Generator):
         """Uniforms ``r`` (copula) and ``q`` (impact), shape ``(z, n0)`` each (Eq. 7).
@@ -384,10 +405,12 @@ class PAS(Strategy):
             "tau": kendall_tau(pairs.lf, pairs.hf),
             "lambda_u": lam_u,
             "lambda_l": lam_l,
-            "ess": model.ess,
             "p_impact": np.nan if model.impact is None else float(model.impact.mean()),
         }
-        return Prediction.read_at(lfset.p_exp, d, mean, low, high, record)
+        columns = {"lf": lfset.lf[:model.n0]}
+        if model.impact is not None:
+            columns["p_impact"] = model.impact
+        return Prediction.read_at(lfset.p_exp, d, mean, low, high, record, columns)
 
     def model_band(self, pairs: Pairs, lfset: LFSet, rng: np.random.Generator):
         """U95 of the MPM over a bootstrap of the evaluated events (beyond the paper).

@@ -1,67 +1,27 @@
-"""Selection-aware estimation: fit PAS's model for the LF population, not for the MD sample.
+"""The LF side of the selection-aware estimator: impacts and population ranks.
 
 Beyond the paper.  MD (Eq. 16–17) spreads the HF samples uniformly over
 ``ln d``, so the selected pairs are tail-heavy: the ten largest of 15 000 LF
-peaks are as likely to be sampled as the lowest 5 000.  The paper fits the
-copula and both marginals in this "selected-sample space" (§5.4), which is
-self-consistent only as far as a one-parameter copula and a Weibull marginal
-can describe such a sample.  Because MD chooses events by their LF value
-alone, the HF law *given* LF is the same in the sample and in the
-population; what differs is how many LF peaks each pair stands for.  Here
-each pair is weighted by that number and the model is fitted to the
-population it represents:
+peaks are as likely to be sampled as the lowest 5 000.  Because MD chooses
+events by their LF value alone, the law of HF *given* LF — and of an impact
+given LF — is the same in the sample as in the population.  Two pieces of
+PAS's default estimator (:mod:`pas.joint` has the third) use that:
 
-* :func:`representation_weights` — the LF peaks of the conditioning set
-  nearest (on ``ln d``) to each evaluated event, false positives included, so
-  a true positive stands for the *impacting* part of its stratum;
 * :func:`impact_probability` — ``P(impact | LF)`` from the true and false
-  positives, so a draw can be "no impact" (the paper draws a positive load
-  for every conditioning peak);
+  positives, so a conditional draw can be "no impact" (the paper draws a
+  positive load for every conditioning peak although the false positives
+  show that some give none);
 * :func:`population_lf_ranks` — the LF pseudo-observations from the known
-  LF population itself (every conditioning peak, each counted with its impact
-  probability), used both for the pairs and for the conditional draws of
-  Eq. 6, so no LF marginal needs fitting;
-* the HF pseudo-observations and the Weibull HF marginal use the weighted
-  ranks (:func:`pas.copulas.weighted_ranks`), the copula likelihood the
-  weights (pyvinecopulib's weighted MLE).
+  LF population itself (every conditioning peak, counted with its impact
+  probability), used for the pairs and for the draws of Eq. 6 alike, so no LF
+  marginal is fitted.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["representation_weights", "impact_probability", "population_lf_ranks"]
-
-
-def representation_weights(ln_d_pairs, ln_d_evaluated, ln_d_pool) -> np.ndarray:
-    """How many pool peaks each pair stands for: nearest-neighbour cells on ``ln d``.
-
-    Parameters
-    ----------
-    ln_d_pairs : array-like, shape (m,)
-        ``ln d`` of the true-positive pairs (a subset of ``ln_d_evaluated``).
-    ln_d_evaluated : array-like
-        ``ln d`` of every evaluated event, true and false positives.
-    ln_d_pool : array-like
-        ``ln d`` of the LF peaks the model stands for (the conditioning set).
-
-    Returns
-    -------
-    ndarray, shape (m,)
-        Counts ≥ 1 when every pair is in the pool.
-
-    Examples
-    --------
-    >>> import numpy as np
-    >>> pool = np.log(np.arange(1, 11) / 10)
-    >>> representation_weights(pool[[0, 9]], pool[[0, 5, 9]], pool).tolist()
-    [5, 2]
-    """
-    ev = np.unique(np.asarray(ln_d_evaluated, float))
-    mids = 0.5 * (ev[1:] + ev[:-1])
-    counts = np.bincount(np.searchsorted(mids, np.asarray(ln_d_pool, float)),
-                         minlength=ev.size)
-    return counts[np.searchsorted(ev, np.asarray(ln_d_pairs, float))]
+__all__ = ["impact_probability", "population_lf_ranks"]
 
 
 def impact_probability(lf_true, lf_false):

@@ -97,7 +97,8 @@ class ScreeningResult:
                 if mb is not None:
                     model = (mb[0], mb[1])
                     band = (min(band[0], mb[0]), max(band[1], mb[1]))
-            distribution = distribution_frame(pred.d, pred.h_mean, pred.h_low, pred.h_high)
+            distribution = distribution_frame(pred.d, pred.h_mean, pred.h_low, pred.h_high,
+                                              **pred.columns)
             ids = [study.lfset.event(p).id for p in pairs.position]
             pair_frame = pd.DataFrame({"event_id": ids, "lf": pairs.lf, "hf": pairs.hf,
                                        "d": pairs.d})
@@ -233,6 +234,7 @@ def _float_or_nan(x):
     return float("nan") if x is None else float(x)
 
 
-def distribution_frame(d, mean, low, high) -> pd.DataFrame:
+def distribution_frame(d, mean, low, high, **columns) -> pd.DataFrame:
+    """The predicted distribution as a table (``columns``: more per-rank arrays)."""
     return pd.DataFrame({"exceedance_probability": np.asarray(d), "h_mean": mean,
-                         "h_low": low, "h_high": high})
+                         "h_low": low, "h_high": high, **columns})
