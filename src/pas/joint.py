@@ -160,7 +160,8 @@ def _weibull_start(h, location: bool):
     return [np.log(np.exp(-c / beta)), np.log(beta)]
 
 
-def fit_joint(name: str, u, h, *, start=None, location: bool = True) -> JointFit:
+def fit_joint(name: str, u, h, *, start=None, location: bool = True,
+              cold: bool = True) -> JointFit:
     """Fit one copula family and the Weibull HF marginal by conditional likelihood.
 
     Parameters
@@ -182,6 +183,9 @@ def fit_joint(name: str, u, h, *, start=None, location: bool = True) -> JointFit
         starts there as well as from the least-squares Weibull and the
         copula with the pairs' Kendall τ, and keeps the better optimum (a
         warm start alone can stay in the basin of a fit to fewer pairs).
+    cold : bool, default True
+        With ``start``: also start from the data (slower, safer); False
+        starts from ``start`` only.
     """
     family, rotation = _family_and_rotation(name)
     base = name.partition("_")[0]
@@ -217,10 +221,13 @@ def fit_joint(name: str, u, h, *, start=None, location: bool = True) -> JointFit
             val += np.sum(np.log(-np.expm1(lh)) if rotation == 180 else lh)
         return -float(val) if np.isfinite(val) else 1e300
 
-    tau = kendall_tau(u, h) if u.size > 2 else 0.3
-    starts = [np.r_[_weibull_start(h, location), _copula_start(base, tau)]]
-    if start is not None and len(start) == len(starts[0]):
-        starts.append(np.asarray(start, float))  # an earlier fit: keep the better optimum
+    n_par = n_marg + (2 if base == "student" else 1)
+    starts = []
+    if start is not None and len(start) == n_par:
+        starts.append(np.asarray(start, float))  # an earlier fit
+    if cold or not starts:
+        tau = kendall_tau(u, h) if u.size > 2 else 0.3
+        starts.append(np.r_[_weibull_start(h, location), _copula_start(base, tau)])
     res = min((optimize.minimize(negloglik, x0, method="L-BFGS-B") for x0 in starts),
               key=lambda r: r.fun)
     if not np.isfinite(res.fun) or res.fun >= 1e299:
@@ -234,8 +241,8 @@ def fit_joint(name: str, u, h, *, start=None, location: bool = True) -> JointFit
     return JointFit(fit, Weibull3(float(theta), float(alpha), float(beta)), np.asarray(res.x))
 
 
-def fit_joint_candidates(u, h, families, *, starts=None,
-                         location: bool = True) -> dict[str, JointFit]:
+def fit_joint_candidates(u, h, families, *, starts=None, location: bool = True,
+                         cold: bool = True) -> dict[str, JointFit]:
     """:func:`fit_joint` for every family (``starts``: earlier fits by name, to warm-start)."""
     starts = starts or {}
     out = {}
@@ -243,5 +250,5 @@ def fit_joint_candidates(u, h, families, *, starts=None,
         for name in families:
             prev = starts.get(name)
             out[name] = fit_joint(name, u, h, start=None if prev is None else prev.x,
-                                  location=location)
+                                  location=location, cold=cold)
     return out

@@ -81,6 +81,7 @@ __all__ = [
 ]
 
 EPS = 1e-6
+COLD_EVERY = 10
 
 
 def remove_outliers(lf, hf, *, k: float = 3.0) -> np.ndarray:
@@ -302,12 +303,14 @@ class PAS(Strategy):
         self._seed = None
         self._uniforms = None
         self._joint = {}
+        self._n_fits = 0
 
     def reset(self, seed: int | None = None) -> None:
         self.family_ = None
         self._seed = seed
         self._uniforms = None
         self._joint = {}
+        self._n_fits = 0
 
     def propose(self, selected_d, lfset: LFSet, available: np.ndarray,
                 last: Prediction | None, q: int = 1) -> list[int]:
@@ -362,10 +365,16 @@ class PAS(Strategy):
         use = keep & (u_pairs >= 1.0 - self.fit_fraction)
         if use.sum() < 8:
             use = keep & (u_pairs >= np.sort(u_pairs[keep])[-min(8, keep.sum())])
+        # a warm start from the previous iteration converges in a few steps; every
+        # COLD_EVERY-th fit also starts from the data, so no family stays trapped
+        # in the basin of an earlier, smaller sample
+        cold = family is None and self._n_fits % COLD_EVERY == 0
         joint = fit_joint_candidates(u_pairs[use], pairs.hf[use], families,
-                                     starts=starts, location=self.hf_location)
+                                     starts=starts, location=self.hf_location,
+                                     cold=cold or not starts)
         if family is None:
             self._joint = joint
+            self._n_fits += 1
         ascending = cond_lf[::-1], u_cond[::-1]
         return ({k: j.copula for k, j in joint.items()},
                 {k: j.hf_marginal for k, j in joint.items()},
