@@ -30,13 +30,14 @@ from dataclasses import dataclass
 
 import numpy as np
 import pyvinecopulib as pv
-from scipy import optimize, special
+from scipy import optimize
 
 from ._threads import one_blas_thread
+from .copula_densities import GRADIENT_FAMILIES, copula_loghfunc, copula_logpdf, logc_grad, logh_grad
 from .copulas import CopulaFit, _at_bound, _family_and_rotation, kendall_tau
 from .stats.weibull import Weibull3, fit_weibull3_ls
 
-__all__ = ["JointFit", "copula_logpdf", "copula_loghfunc", "fit_joint", "fit_joint_candidates"]
+__all__ = ["JointFit", "fit_joint", "fit_joint_candidates"]
 
 _TINY = 1e-12
 
@@ -65,72 +66,15 @@ def _copula_parameters(base: str, c):
     raise ValueError(f"no joint fit for the copula family {base!r}")
 
 
-def copula_logpdf(base: str, p, u, v) -> np.ndarray:
-    """``log c(u, v)`` of an unrotated family with parameters ``p`` (App. B.2), vectorised.
-
-    Closed forms, so the joint fit's inner loop does not build a
-    pyvinecopulib object per evaluation; tested against ``Bicop.pdf``.
-    """
+def _parameter_slope(base: str, c) -> float:
+    """``dθ/dc`` of :func:`_copula_parameters` for the one-parameter families."""
     if base == "gaussian":
-        rho = p[0]
-        x, y = special.ndtri(u), special.ndtri(v)
-        r2 = 1.0 - rho * rho
-        return -0.5 * np.log(r2) - (rho * rho * (x * x + y * y) - 2.0 * rho * x * y) / (2.0 * r2)
-    if base == "student":
-        rho, nu = p
-        x, y = special.stdtrit(nu, u), special.stdtrit(nu, v)
-        r2 = 1.0 - rho * rho
-        const = (special.gammaln((nu + 2) / 2) + special.gammaln(nu / 2)
-                 - 2.0 * special.gammaln((nu + 1) / 2) - 0.5 * np.log(r2))
-        return (const - (nu + 2) / 2 * np.log1p((x * x + y * y - 2 * rho * x * y) / (nu * r2))
-                + (nu + 1) / 2 * (np.log1p(x * x / nu) + np.log1p(y * y / nu)))
-    lu, lv = np.log(u), np.log(v)
+        return 0.999 * (1.0 - np.tanh(c[0]) ** 2)
     if base == "clayton":
-        th = p[0]
-        return (np.log1p(th) - (1.0 + th) * (lu + lv)
-                - (2.0 + 1.0 / th) * np.log(np.expm1(-th * lu) + np.expm1(-th * lv) + 1.0))
+        return float(np.exp(c[0])) if 1e-6 < np.exp(c[0]) < 28.0 else 0.0
     if base == "gumbel":
-        th = p[0]
-        a, b = -lu, -lv
-        ls = np.logaddexp(th * np.log(a), th * np.log(b))
-        big_a = np.exp(ls / th)
-        return (-big_a - lu - lv + (th - 1.0) * (np.log(a) + np.log(b)) + (1.0 / th - 2.0) * ls
-                + np.log(big_a + th - 1.0))
-    if base == "frank":
-        th = p[0]
-        em = -np.expm1(-th)  # 1 − e^{−θ}
-        den = em - np.expm1(-th * u) * np.expm1(-th * v)
-        return np.log(th * em) - th * (u + v) - 2.0 * np.log(np.abs(den))
-    raise ValueError(f"no closed-form density for the copula family {base!r}")
-
-
-def copula_loghfunc(base: str, p, u, v) -> np.ndarray:
-    """``log C_{V|U}(v | u)`` (the h-function, ``∂C/∂u``) of an unrotated family, vectorised."""
-    if base == "gaussian":
-        rho = p[0]
-        return special.log_ndtr((special.ndtri(v) - rho * special.ndtri(u))
-                                / np.sqrt(1.0 - rho * rho))
-    if base == "student":
-        rho, nu = p
-        x, y = special.stdtrit(nu, u), special.stdtrit(nu, v)
-        z = (y - rho * x) / np.sqrt((nu + x * x) * (1.0 - rho * rho) / (nu + 1.0))
-        return np.log(special.stdtr(nu + 1.0, z))
-    lu, lv = np.log(u), np.log(v)
-    if base == "clayton":
-        th = p[0]
-        return (-(th + 1.0) * lu
-                - (1.0 / th + 1.0) * np.log(np.expm1(-th * lu) + np.expm1(-th * lv) + 1.0))
-    if base == "gumbel":
-        th = p[0]
-        a, b = -lu, -lv
-        ls = np.logaddexp(th * np.log(a), th * np.log(b))
-        return -np.exp(ls / th) - lu + (th - 1.0) * np.log(a) + (1.0 / th - 1.0) * ls
-    if base == "frank":
-        th = p[0]
-        num = -th * u + np.log(np.abs(np.expm1(-th * v)))
-        den = np.log(np.abs(np.expm1(-th) + np.expm1(-th * u) * np.expm1(-th * v)))
-        return num - den
-    raise ValueError(f"no closed-form h-function for the copula family {base!r}")
+        return float(np.exp(c[0])) if 1.0 + np.exp(c[0]) < 50.0 else 0.0
+    return 1.0 - np.tanh(c[0] / 35.0) ** 2  # frank
 
 
 def _copula_start(base: str, tau: float):
@@ -160,32 +104,12 @@ def _weibull_start(h, location: bool):
     return [np.log(np.exp(-c / beta)), np.log(beta)]
 
 
-def fit_joint(name: str, u, h, *, start=None, location: bool = True,
-              cold: bool = True) -> JointFit:
-    """Fit one copula family and the Weibull HF marginal by conditional likelihood.
+def joint_objective(name: str, u, h, *, location: bool = True):
+    """The negative log-likelihood of :func:`fit_joint` and how to read its parameters.
 
-    Parameters
-    ----------
-    name : str
-        Copula family (``"gaussian"``, ``"student"``, ``"clayton"``,
-        ``"gumbel"``, ``"frank"`` or their ``_180`` rotations).
-    u : array-like, shape (m,)
-        LF population ranks of the pairs, in (0, 1).
-    h : array-like, shape (m,)
-        Their HF loads, > 0.
-    location : bool, default True
-        A three-parameter Weibull marginal (location below the smallest
-        load, which enters the likelihood left-censored — "a load of at most
-        ``min(h)``" — so the likelihood stays bounded; module docs), or the
-        two-parameter Weibull with location 0.
-    start : ndarray, optional
-        Optimiser values of an earlier fit (``JointFit.x``): the optimiser
-        starts there as well as from the least-squares Weibull and the
-        copula with the pairs' Kendall τ, and keeps the better optimum (a
-        warm start alone can stay in the basin of a fit to fewer pairs).
-    cold : bool, default True
-        With ``start``: also start from the data (slower, safer); False
-        starts from ``start`` only.
+    Returns ``(negloglik, negloglik_grad, unpack)``: the objective of the
+    optimiser values ``x``; the objective with its exact gradient (None for
+    Student-t and rotated families); and ``x → (θ, α, β, copula values)``.
     """
     family, rotation = _family_and_rotation(name)
     base = name.partition("_")[0]
@@ -221,15 +145,98 @@ def fit_joint(name: str, u, h, *, start=None, location: bool = True,
             val += np.sum(np.log(-np.expm1(lh)) if rotation == 180 else lh)
         return -float(val) if np.isfinite(val) else 1e300
 
+    @np.errstate(all="ignore")
+    def negloglik_grad(x):
+        """The same with its exact gradient (one-parameter families, no rotation)."""
+        theta, alpha, beta, c = unpack(x)
+        w = h - theta
+        ln_z = np.log(w) - np.log(alpha)
+        zb = np.exp(beta * ln_z)
+        v = np.clip(-np.expm1(-zb), _TINY, 1 - _TINY)
+        p = _copula_parameters(base, c).ravel()
+        log_f = np.log(beta / alpha) + (beta - 1.0) * ln_z - zb
+        lc, dc_dv, dc_dp = logc_grad(base, p, u, v)
+        d_v = np.where(density, dc_dv, 0.0)
+        d_p = np.where(density, dc_dp, 0.0)
+        total = np.where(density, log_f + lc, 0.0)
+        if location:
+            lh, dh_dv, dh_dp = logh_grad(base, p, u[~density], v[~density])
+            total[~density], d_v[~density], d_p[~density] = lh, dh_dv, dh_dp
+        val = float(np.sum(total))
+        if not np.isfinite(val):
+            return 1e300, np.zeros_like(x)
+        one_v = 1.0 - v  # dv/dzb
+        dens = density.astype(float)
+        g_a = np.sum(dens * beta * (zb - 1.0) + d_v * one_v * (-beta * zb))
+        g_b = np.sum(dens * (1.0 + beta * ln_z * (1.0 - zb)) + d_v * one_v * beta * zb * ln_z)
+        g_c = np.sum(d_p) * _parameter_slope(base, c)
+        grad = [g_a, g_b, g_c]
+        if location:
+            dtheta = -np.exp(x[0]) * span
+            g_t = np.sum(dens * (beta * zb - beta + 1.0) / w + d_v * one_v * (-beta * zb / w))
+            grad.insert(0, g_t * dtheta)
+        g = -np.asarray(grad, float)
+        return (-val, g) if np.all(np.isfinite(g)) else (1e300, np.zeros_like(x))
+
+    grad = negloglik_grad if base in GRADIENT_FAMILIES and rotation == 0 else None
+    return negloglik, grad, unpack
+
+
+def fit_joint(name: str, u, h, *, start=None, location: bool = True,
+              cold: bool = True) -> JointFit:
+    """Fit one copula family and the Weibull HF marginal by conditional likelihood.
+
+    Parameters
+    ----------
+    name : str
+        Copula family (``"gaussian"``, ``"student"``, ``"clayton"``,
+        ``"gumbel"``, ``"frank"`` or their ``_180`` rotations).
+    u : array-like, shape (m,)
+        LF population ranks of the pairs, in (0, 1).
+    h : array-like, shape (m,)
+        Their HF loads, > 0.
+    location : bool, default True
+        A three-parameter Weibull marginal (location below the smallest
+        load, which enters the likelihood left-censored — "a load of at most
+        ``min(h)``" — so the likelihood stays bounded; module docs), or the
+        two-parameter Weibull with location 0.
+    start : ndarray, optional
+        Optimiser values of an earlier fit (``JointFit.x``): the optimiser
+        starts there as well as from the least-squares Weibull and the
+        copula with the pairs' Kendall τ, and keeps the better optimum (a
+        warm start alone can stay in the basin of a fit to fewer pairs).
+    cold : bool, default True
+        With ``start``: also start from the data (slower, safer); False
+        starts from ``start`` only.
+    """
+    family, rotation = _family_and_rotation(name)
+    base = name.partition("_")[0]
+    u = np.clip(np.asarray(u, float), _TINY, 1 - _TINY)
+    h = np.asarray(h, float)
+    negloglik, negloglik_grad, unpack = joint_objective(name, u, h, location=location)
+    n_marg = 3 if location else 2
     n_par = n_marg + (2 if base == "student" else 1)
-    starts = []
+    # the Weibull may not run off to its Gumbel limit (location → −∞, β → ∞): the
+    # location stays within three load ranges below the smallest load, as in
+    # :func:`pas.stats.weibull.fit_weibull3_ls`, and β in [0.05, 50]
+    bounds = ([(np.log(1e-6), np.log(3.0))] if location else []) + [
+        (None, None), (np.log(0.05), np.log(50.0))] + [(None, None)] * (n_par - n_marg)
+
+    def minimise(x0):
+        x0 = np.array([np.clip(x, lo if lo is not None else -np.inf, hi if hi is not None else np.inf)
+                       for x, (lo, hi) in zip(x0, bounds)])
+        if negloglik_grad is not None:
+            return optimize.minimize(negloglik_grad, x0, jac=True, method="L-BFGS-B",
+                                     bounds=bounds)
+        return optimize.minimize(negloglik, x0, method="L-BFGS-B", bounds=bounds)
+
+    res = None
     if start is not None and len(start) == n_par:
-        starts.append(np.asarray(start, float))  # an earlier fit
-    if cold or not starts:
+        res = minimise(np.asarray(start, float))  # an earlier fit
+    if cold or res is None or res.fun >= 1e299:
         tau = kendall_tau(u, h) if u.size > 2 else 0.3
-        starts.append(np.r_[_weibull_start(h, location), _copula_start(base, tau)])
-    res = min((optimize.minimize(negloglik, x0, method="L-BFGS-B") for x0 in starts),
-              key=lambda r: r.fun)
+        fresh = minimise(np.r_[_weibull_start(h, location), _copula_start(base, tau)])
+        res = fresh if res is None or fresh.fun < res.fun else res
     if not np.isfinite(res.fun) or res.fun >= 1e299:
         raise ValueError(f"joint fit of the {name} copula failed: {res.message}")
     theta, alpha, beta, c = unpack(res.x)
