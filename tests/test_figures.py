@@ -78,9 +78,13 @@ def test_mpm_convergence(result, tmp_path):
     line = ax.get_lines()[0]
     np.testing.assert_allclose(line.get_xdata(), fitted["n_hf"])
     np.testing.assert_allclose(line.get_ydata(), fitted["mpm"])
-    assert len(ax.collections) == 1  # the U95 band
+    # one shaded band, the sampling part per iteration; the reported U95 as an error bar
+    bands = [c for c in ax.collections if isinstance(c, matplotlib.collections.PolyCollection)]
+    assert len(bands) == 1
     texts = _legend_texts(ax)
-    assert any("U95" in t for t in texts)
+    assert any("sampling band" in t for t in texts)
+    lo, hi = result.mpm_band
+    assert any(f"final U95 {lo:.4g}–{hi:.4g}" in t for t in texts)
     assert any("false positive" in t and f"×{result.n_false_positive}" in t for t in texts)
     assert any("converged at" in t for t in texts)
     assert any("true MPM 11 m" in t for t in texts)
@@ -94,7 +98,8 @@ def test_mpm_convergence_composes_on_one_axes(result, tmp_path):
     texts = _legend_texts(ax)
     assert any(t.startswith("run A") for t in texts) and any(t.startswith("run B") for t in texts)
     assert ax.get_lines()[0].get_color() != [ln for ln in ax.get_lines()
-                                             if ln.get_label() == "run B: MPM"][0].get_color()
+                                             if ln.get_label().startswith("run B: MPM")
+                                             ][0].get_color()
     _save(fig, tmp_path, "mpm2")
 
 

@@ -29,12 +29,17 @@ class ScreeningResult:
     mpm : float
         Most probable maximum at ``p_exp`` from the mean distribution (Eq. 12).
     mpm_band : tuple of float
-        U95 of the MPM including model uncertainty: the union of the paper's
-        z-draw band and the bootstrap band over the LF–HF pairs.
+        The U95 of the MPM, the one band pas reports (summary, ``summary.json``,
+        ``pas study status``, the MPM error bar of the distribution figure):
+        the union of its two parts below.
     mpm_band_sampling : tuple of float
-        The paper's band, ``h* ± 1.96 σ_b`` read at ``p_exp`` (Eq. 10).
+        Sampling part: the paper's band from the z conditional draws,
+        ``h* ± 1.96 σ_b`` read at ``p_exp`` (Eq. 10).  The progress lines and
+        the history's ``mpm_low``/``mpm_high`` give this part per iteration.
     mpm_band_model : tuple of float or None
-        2.5–97.5 % of bootstrap MPMs (pairs resampled, model refitted).
+        Model part: the strategy's model-uncertainty band (PAS: refits on
+        resampled pairs, :meth:`pas.strategies.base.Strategy.model_band`);
+        None when the strategy has none (then U95 is the sampling part).
     n_hf : int
         HF evaluations made, false positives included, failures excluded.
     n_false_positive, n_failed : int
@@ -132,14 +137,37 @@ class ScreeningResult:
         """
         return float(self.value_at(quantile_exceedance(q, self.p_exp, 1.0)))
 
-    def summary(self) -> str:
-        """A few human-readable lines."""
+    def band_text(self, unit: str | None = None) -> str:
+        """The U95 of the MPM with its parts labelled.
+
+        Examples
+        --------
+        >>> r = ScreeningResult("pas", 600.0, (561.0, 668.0), (582.0, 612.0), (561.0, 668.0),
+        ...                     20, 0, 0, True, *[pd.DataFrame()] * 4, 1e-3, 1000, 1)
+        >>> r.band_text("kN")
+        'U95 561–668 kN (sampling part 582–612, model part 561–668)'
+        """
+        u = f" {unit}" if unit else ""
         lo, hi = self.mpm_band
+        parts = f"sampling part {_range(self.mpm_band_sampling)}"
+        parts += (", no model part" if self.mpm_band_model is None
+                  else f", model part {_range(self.mpm_band_model)}")
+        return f"U95 {lo:.4g}–{hi:.4g}{u} ({parts})"
+
+    def summary(self, unit: str | None = None) -> str:
+        """One human-readable line: MPM with its U95 and parts, counts, convergence.
+
+        ``unit`` (e.g. ``"kN"``) is appended to the MPM and its band.
+        """
         fam = f", copula {self.family}" if self.family else ""
         state = "converged" if self.converged else "NOT converged"
-        return (f"{self.strategy.upper()}: MPM {self.mpm:.4g} (U95 {lo:.4g} – {hi:.4g}){fam}; "
-                f"{self.n_hf} HF evaluations ({self.n_false_positive} false positive, "
-                f"{self.n_failed} failed); {state}")
+        counts = (f"{self.n_hf} HF evaluations ({self.n_false_positive} false positive, "
+                  f"{self.n_failed} failed); {state}")
+        if not np.isfinite(self.mpm):
+            return f"{self.strategy.upper()}: no model fitted yet; {counts}"
+        u = f" {unit}" if unit else ""
+        return (f"{self.strategy.upper()}: MPM {self.mpm:.4g}{u}, {self.band_text(unit)}{fam}; "
+                f"{counts}")
 
     def __repr__(self) -> str:
         return f"<ScreeningResult {self.summary()}>"
@@ -177,8 +205,9 @@ class ScreeningResult:
         self.range_curves.to_csv(out / "range_curves.csv", index_label="row")
         if lfset is not None:
             pd.DataFrame({"d": lfset.d, "lf": lfset.lf}).to_csv(out / "lf_curve.csv", index=False)
-        summary = json_data({**self.to_dict(), "summary": self.summary(),
-                             "inputs": dict(inputs or {})})
+        inputs = dict(inputs or {})
+        summary = json_data({**self.to_dict(), "summary": self.summary(unit=inputs.get("unit")),
+                             "inputs": inputs})
         (out / "summary.json").write_text(json.dumps(summary, indent=2) + "\n", encoding="utf-8")
         return summary
 
@@ -227,6 +256,10 @@ def read_summary(path) -> dict:
         if key not in s:
             raise ValueError(f"{path / 'summary.json'}: field {key!r} is missing")
     return s
+
+
+def _range(band) -> str:
+    return f"{band[0]:.4g}–{band[1]:.4g}"
 
 
 def _float_or_nan(x):
