@@ -165,11 +165,8 @@ def plot_distribution(result, *, lf=None, truth=None, ax=None, label=None, unit=
 
 
 def _clipped(result, h) -> np.ndarray:
-    """Rows where the mean distribution is exactly 0 although no evaluated event gave 0.
-
-    Every one of the z draws was then clipped at 0 (a Weibull location below
-    zero): not a prediction.  With false positives, 0 can be a real value.
-    """
+    """Rows where the mean distribution is exactly 0 although no evaluated event gave 0
+    (:attr:`ScreeningResult.clipped_from <pas.study.result.ScreeningResult.clipped_from>`)."""
     if getattr(result, "n_false_positive", 0) or not np.any(h == 0.0):
         return np.zeros(h.shape, dtype=bool)
     return h == 0.0
@@ -316,7 +313,7 @@ def plot_scatter(lf, hf, *, result=None, ax=None, lf_unit=None, unit=None,
         raise ValueError(f"lf, hf: need at least 3 finite pairs, got {x.size}")
     fig, ax = _new_axes(ax, figsize=(6.0, 5.0))
     tau = kendall_tau(x, y)
-    n_tail = int(np.floor(x.size * (1.0 - q_tail)))  # pairs with u > q_tail
+    n_tail = int(np.sum(np.arange(1, x.size + 1) / (x.size + 1) > q_tail))  # pairs with u > q
     if n_tail >= _MIN_TAIL_POINTS:
         lam_u, lam_l = empirical_tail_dependence(x, y, q=q_tail)
         stats_txt = f"τ = {tau:.2f}, $λ_U$ = {lam_u:.2f}, $λ_L$ = {lam_l:.2f} (q = {q_tail:g})"

@@ -103,6 +103,14 @@ class ScreeningResult:
                     model = (mb[0], mb[1])
                     band = (min(band[0], mb[0]), max(band[1], mb[1]))
             distribution = distribution_frame(pred.d, pred.h_mean, pred.h_low, pred.h_high)
+            clip = clipped_from(distribution, study.n_false_positive)
+            if clip is not None and clip <= study.grid[-1]:
+                warnings.warn(
+                    f"the predicted distribution is exactly 0 from d = {clip:.3g} on, inside the "
+                    f"stopping range [P_exp/2, 2·P_exp]: every conditional draw there fell below "
+                    "the fitted HF marginal's lower bound and was clipped at 0, although no "
+                    "evaluated event gave 0; the MPM and the stopping rule read clipped values",
+                    stacklevel=2)
             ids = [study.lfset.event(p).id for p in pairs.position]
             pair_frame = pd.DataFrame({"event_id": ids, "lf": pairs.lf, "hf": pairs.hf,
                                        "d": pairs.d})
@@ -114,6 +122,18 @@ class ScreeningResult:
             range_curves=pd.DataFrame.from_dict(study.curves, orient="index", columns=study.grid),
             p_exp=study.lfset.p_exp, n_waves=study.lfset.n_waves, seed=study.seed, family=family,
             settings=study.settings())
+
+    @property
+    def clipped_from(self) -> float | None:
+        """Smallest ``d`` from which the mean distribution is 0 by clipping, else None.
+
+        The conditional draws are clipped at 0 (loads are not negative); where
+        the fitted HF marginal's lower bound lies below 0, the draws of the
+        smallest LF peaks can all land there.  With no evaluated false
+        positive a mean of exactly 0 is then an artefact of the model, not a
+        prediction: :func:`pas.plotting.plot_distribution` does not draw it.
+        """
+        return clipped_from(self.distribution, self.n_false_positive)
 
     @property
     def fitted(self) -> pd.DataFrame:
@@ -181,6 +201,7 @@ class ScreeningResult:
             "n_hf": self.n_hf, "n_false_positive": self.n_false_positive,
             "n_failed": self.n_failed, "converged": self.converged, "family": self.family,
             "p_exp": self.p_exp, "n_waves": self.n_waves, "seed": self.seed,
+            "clipped_from": self.clipped_from,
         }
 
     def save(self, out, *, inputs=None, lfset=None) -> dict:
@@ -264,6 +285,14 @@ def _range(band) -> str:
 
 def _float_or_nan(x):
     return float("nan") if x is None else float(x)
+
+
+def clipped_from(distribution: pd.DataFrame, n_false_positive: int):
+    """:attr:`ScreeningResult.clipped_from` of a distribution table."""
+    h = distribution["h_mean"].to_numpy(dtype=float)
+    if n_false_positive or not np.any(h == 0.0):
+        return None
+    return float(distribution["exceedance_probability"].to_numpy(dtype=float)[h == 0.0].min())
 
 
 def distribution_frame(d, mean, low, high) -> pd.DataFrame:
