@@ -279,3 +279,25 @@ def test_set_tightens_eps1_and_grows_the_budget_of_a_converged_study(tmp_path, c
     for argv, needle in ((["--eps1", "-1"], "--eps1"), (["--max-hf", "2"], "--max-hf"), ([], "--eps1")):
         assert cli("study", "set", db, *argv) == 2
         assert needle in capsys.readouterr().err
+
+
+def test_the_documented_study_file_creates_a_study(tmp_path, capsys):
+    """The complete example of docs/study-file.md is a valid study file."""
+    from pathlib import Path
+
+    doc = (Path(__file__).parents[1] / "docs" / "study-file.md").read_text(encoding="utf-8")
+    toml = doc.split("```toml\n", 1)[1].split("```", 1)[0]
+    rng = np.random.default_rng(0)
+    n = 16000
+    pd.DataFrame({"event": [f"s{i % 50:02d}-w{i}" for i in range(n)],
+                  "rwe": rng.rayleigh(6.0, n), "seed": np.arange(n) % 50,
+                  "t_start": np.arange(n) * 6.0, "t_end": np.arange(n) * 6.0 + 20.0}
+                 ).to_csv(tmp_path / "peaks.csv", index=False)
+    (tmp_path / "study.toml").write_text(toml)
+    db = str(tmp_path / "campaign.db")
+    assert cli("study", "create", db, "--config", str(tmp_path / "study.toml")) == 0
+    with StudyStore(db, create=False) as store:
+        s = store.settings()
+        assert store.get("oracle")["command"][:2] == ["python", "cfd_event.py"]
+        assert store.get("batch_size") == 2
+    assert (s["eps1"], s["threshold"], s["max_hf"], s["strategy_settings"]["z"]) == (20.0, 12.0, 60, 10)

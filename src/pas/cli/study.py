@@ -16,6 +16,7 @@ results told since the last ask and marks the next events pending.
 The TOML file (paths relative to it)::
 
     n_waves = 16364          # required: wave encounters in the LF run
+    n_waves_convention = "count"   # or "spectral": n_w = T_MCS/T_p,e, may be below the peaks
     p_exp = 2.55e-3          # required: target exceedance probability
     eps1 = 0.1               # required: stopping limit, load units
     eps2 = 0.1
@@ -131,7 +132,8 @@ def _create(args) -> int:
     if os.path.exists(args.study):
         raise ValueError(f"{args.study} already exists (continue it with 'pas study ask')")
     lf, ids, meta = load_peaks(cfg["lf"])
-    kw = {k: cfg[k] for k in ("eps2", "threshold", "seed", "max_hf") if k in cfg}
+    kw = {k: cfg[k] for k in ("eps2", "threshold", "seed", "max_hf", "n_waves_convention")
+          if k in cfg}
     try:
         study = make_study(cfg["strategy"], lf, n_waves=cfg["n_waves"],
                            p_exp=cfg["p_exp"], eps1=cfg["eps1"], ids=ids, meta=meta,
