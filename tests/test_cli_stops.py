@@ -139,7 +139,9 @@ def test_closed_stdout_pipe_of_study_run_says_how_to_resume(inputs, tmp_path):
         column = "rwe"
         id_column = "id"
         [oracle]
-        command = ["{sys.executable}", "-c", "import sys, time; time.sleep(0.1); open(sys.argv[1], 'w').write(str(1.2 * float(sys.argv[2]) ** 1.1))", "{{result}}", "{{lf}}"]
+        command = ["{sys.executable}", "-c",
+                   "import sys, time; time.sleep(0.1); open(sys.argv[1], 'w').write(sys.argv[2])",
+                   "{{result}}", "{{lf}}"]
         root = "runs"
         """))
     db = tmp_path / "s.db"

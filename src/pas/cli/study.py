@@ -13,39 +13,22 @@ The study file is a :mod:`pas.study.store` (SQLite): ``tell`` only records the
 result (any number of processes at once), ``ask`` replays the study, uses the
 results told since the last ask and marks the next events pending.
 
-The TOML file (paths relative to it)::
+The TOML file (paths relative to it; every key in ``docs/study-file.md``)::
 
     n_waves = 16364          # required: wave encounters in the LF run
-    n_waves_convention = "count"   # or "spectral": n_w = T_MCS/T_p,e, may be below the peaks
     p_exp = 2.55e-3          # required: target exceedance probability
     eps1 = 0.1               # required: stopping limit, load units
-    eps2 = 0.1
-    threshold = 2.0          # LF threshold (optional)
-    strategy = "pas"         # or "as"
-    seed = 1
-    max_hf = 60
-
     [lf]
     file = "peaks.csv"       # .csv, .parquet or .npy
     column = "lf"            # required for .csv/.parquet
-    id_column = "event"      # optional: event ids (default: row index)
-    meta_columns = ["seed", "t_start", "t_end"]   # optional: handed to the HF tool
-
-    [settings]               # strategy and study settings
-    n_bootstrap = 0
-
-    [oracle]                 # optional, for 'pas study run': a command per event ...
+    [oracle]                 # optional, for 'pas study run': a command per event
     command = ["python", "cfd.py", "--event", "{id}", "--lf", "{lf}", "--out", "{result}"]
-    root = "runs"            # per-event working directories root/<id>
-    timeout = 36000          # seconds
-    # ... or a table of results:  table = "basin.csv", id_column = "id", value_column = "hf"
 
 ``pas study run`` drives the study with that oracle, storing each result as it
 arrives; kill it at any time and run it again to continue (same ``-q``; the
 batch size of the first run is the default).  ``pas study set`` changes the
 stopping limits or the budget of a study, converged or not (recorded in the
-store; no decision taken so far depends on them).  The TOML format is also
-described in ``docs/study-file.md``.
+store; no decision taken so far depends on them).
 """
 
 from __future__ import annotations
