@@ -71,11 +71,11 @@ def _exceedance_axes(ax, quantity, unit):
     ax.set_xlabel("exceedance probability per wave $d$ [-]")
     ax.set_ylabel(_with_unit(quantity, unit))
     ax.grid(True, which="both", lw=0.3, alpha=0.5)
-    # rarer events lie to the right and higher: the lower right is free of data; one
-    # legend also for the LF curve on its own axis (plot_distribution)
+    # one legend, also for the LF curve on its own axis (plot_distribution), where it
+    # covers the fewest points; see-through, as a long truth curve leaves no empty corner
     handles, labels = ax.get_legend_handles_labels()
     twin = getattr(ax, "_pas_lf_axes", None)
     if twin is not None:
         more = twin.get_legend_handles_labels()
         handles, labels = handles + more[0], labels + more[1]
-    ax.legend(handles, labels, fontsize=7, loc="lower right")
+    ax.legend(handles, labels, fontsize=7, loc="best", framealpha=0.6)
