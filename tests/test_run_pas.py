@@ -1,5 +1,7 @@
 """End-to-end PAS on problems with a known answer, and the public API contract."""
 
+import warnings
+
 import numpy as np
 import pandas as pd
 import pytest
@@ -138,9 +140,37 @@ def test_unknown_setting_rejected():
                     zz=3)
 
 
-def test_fewer_waves_than_peaks_warns_with_both_numbers():
-    with pytest.warns(UserWarning, match=r"n_waves=40.*\(50\)"):
+def test_fewer_waves_than_peaks_over_threshold_is_an_error_naming_both_numbers():
+    # 50 peaks, all over the threshold, 40 waves: d would run to 50/40 = 1.25
+    with pytest.raises(ValueError, match=r"n_waves=40 is below the 50 LF peaks over the "
+                                         r"threshold.*1\.25.*n_waves_convention='spectral'"):
         pas.make_study(pas.PAS, np.linspace(1, 5, 50), n_waves=40, p_exp=0.05, eps1=0.1)
+    with pytest.raises(ValueError, match="n_waves=40"):
+        pas.run_pas(np.linspace(1, 5, 50), lambda ev: 1.0, n_waves=40, p_exp=0.05, eps1=0.1)
+
+
+def test_fewer_waves_than_all_peaks_warns_in_one_line():
+    # 30 of 50 peaks over the threshold: d stays below 1, but 40 waves for 50 peaks is odd
+    lf = np.linspace(1, 5, 50)
+    with pytest.warns(UserWarning, match=r"n_waves=40 is below the 50 LF peaks given \(30 over") \
+            as caught:
+        pas.make_study(pas.PAS, lf, n_waves=40, p_exp=0.05, eps1=0.1, threshold=lf[19])
+    assert "\n" not in str(caught[0].message)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        pas.make_study(pas.PAS, lf, n_waves=50, p_exp=0.05, eps1=0.1, threshold=lf[19])
+
+
+def test_spectral_n_waves_convention_allows_exceedance_above_one():
+    # the paper's Table 2 (and pas.validation): n_w = T_MCS / T_p,e, stated on purpose
+    lf = np.linspace(1, 5, 50)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        study = pas.make_study(pas.PAS, lf, n_waves=40, p_exp=0.05, eps1=0.1,
+                               n_waves_convention="spectral")
+    assert study.lfset.d[-1] == pytest.approx(50 / 40)
+    with pytest.raises(ValueError, match="n_waves_convention"):
+        pas.make_study(pas.PAS, lf, n_waves=60, p_exp=0.05, eps1=0.1, n_waves_convention="guess")
 
 
 def test_unusable_indicator_warns():

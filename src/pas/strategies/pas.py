@@ -262,6 +262,9 @@ class PAS(Strategy):
         record = {
             "family": self.family_,
             **{f"aic_{k}": f.aic for k, f in fits.items()},
+            # families select_family passed over for a fit on a parameter bound
+            "ineligible": " ".join(k for k, f in fits.items() if f.at_bound)
+            if self.exclude_at_bound and not all(f.at_bound for f in fits.values()) else "",
             "copula_params": " ".join(f"{x:.4g}" for x in fit.parameters),
             "n_outliers": int((~keep).sum()),
             "tau": kendall_tau(pairs.lf, pairs.hf),

@@ -24,7 +24,7 @@ from .factory import LF_SETTINGS, STRATEGIES, STUDY_SETTINGS, make_strategy, str
 from .oracles import check_hf_value
 from .replay import attach
 from .result import ScreeningResult
-from .schema import StoreError
+from .schema import RESUMABLE, StoreError
 from .state import EventState
 from .store import StudyStore, read_settings
 
@@ -97,6 +97,7 @@ class Study:
         self.converged = False
         self._initial = None
         self._warned_tau = False
+        self._replaying = False  # set by pas.study.replay.attach
         self.store = None
         if store is not None:
             attach(self, store)
@@ -196,10 +197,13 @@ class Study:
         if self._initial is None:
             self._initial = self.strategy.initial_positions(self.lfset)
             new = list(self._initial)
-        elif self.finished:
+        elif self.finished and not self._replaying:
             return []
         else:
-            room = n if self.max_hf is None else min(n, self.max_hf - self.n_hf - self._n_pending)
+            # a replay repeats the stored asks whatever the (possibly changed) stopping
+            # settings and budget say now: they decided when to stop, not what to ask
+            room = n if self.max_hf is None or self._replaying else \
+                min(n, self.max_hf - self.n_hf - self._n_pending)
             tp = self.pairs()
             if len(tp) >= 2:
                 sel_d = tp.d
@@ -371,20 +375,27 @@ class Study:
         return ScreeningResult.from_study(self, model_band=model_band)
 
 
-def open_study(store, *, consume: bool = True) -> Study:
+def open_study(store, *, consume: bool = True, changes: dict | None = None) -> Study:
     """Rebuild the :class:`Study` held by ``store`` (a path or a :class:`StudyStore`).
 
     The stored settings and LF pool build the study (:meth:`Study.from_settings`),
     which then replays the stored asks and tells (:func:`pas.study.replay.attach`).
     With ``consume`` the results told by other processes and not used yet are
     told to the study in arrival order (written to the store only when the
-    caller holds its write transaction; see ``pas study ask``).
+    caller holds its write transaction; see ``pas study ask``).  ``changes``
+    sets new stopping settings or budgets (:data:`~pas.study.schema.RESUMABLE`,
+    e.g. ``{"eps1": 10.0}``), recorded in the store (``pas study set``).
     """
     if not isinstance(store, StudyStore):
         store = StudyStore(store, create=False)
     s = store.settings()
     if not s:
         raise StoreError(f"study store {store.path} holds no study")
+    for key in changes or {}:
+        if key not in RESUMABLE:
+            raise ValueError(f"{key} cannot change on a resumed study; these can: "
+                             f"{', '.join(RESUMABLE)}")
+    s = {**s, **(changes or {})}
     if not isinstance(s["strategy"], str) or s["strategy"] not in STRATEGIES:
         raise StoreError(f"strategy {s['strategy']!r} in {store.path} is unknown to this pas")
     lf_all, all_ids, all_meta = store.lf_inputs()
