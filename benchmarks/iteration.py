@@ -8,7 +8,8 @@ package (`percent_point`, a brentq root per sample); it is timed on a slice
 and scaled to the full 150 000 draws.
 
 Run: python benchmarks/iteration.py
-Targets (SPEC §7): median ≤ 50 ms per iteration, ≥ 100× the paper's stack.
+Targets (SPEC §7): median ≤ 50 ms per iteration for every family (Student-t
+included, issue 14), ≥ 100× the paper's stack.
 """
 
 from __future__ import annotations
@@ -71,6 +72,31 @@ def pas_draws(family, theta, u, n_total):
     return time.perf_counter() - t
 
 
+def student_draws(u, n_total, rho=0.6, nu=4.3):
+    """Seconds for ``n_total`` Student-t conditional draws: pas (interpolated t quantile and
+    CDF) and the same closed form with scipy's ``stdtrit``/``stdtr`` (the previous code)."""
+    from scipy import special
+
+    from pas.copulas import conditional_quantile
+
+    b = pv.Bicop(family=pv.BicopFamily.student, parameters=np.array([[rho], [nu]]))
+    uu, rr = np.tile(u, n_total // u.size), np.random.default_rng(0).uniform(1e-6, 1 - 1e-6, n_total)
+
+    def scipy_inverse():
+        x1 = special.stdtrit(nu, uu)
+        scale = np.sqrt((nu + x1**2) * (1 - rho**2) / (nu + 1.0))
+        return special.stdtr(nu, rho * x1 + scale * special.stdtrit(nu + 1.0, rr))
+
+    times = []
+    for f in (lambda: conditional_quantile(b, uu, rr), scipy_inverse):
+        t = time.perf_counter()
+        out = f()
+        times.append(time.perf_counter() - t)
+        times.append(out)
+    (t_pas, v_pas, t_sp, v_sp) = times
+    return t_pas, t_sp, float(np.max(np.abs(v_pas - v_sp)))
+
+
 def main():
     rng = np.random.default_rng(1)
     lfset = LFSet(rng.rayleigh(2.5, N), n_waves=N_W, p_exp=P_EXP)
@@ -95,6 +121,9 @@ def main():
         draws[family] = (ours, paper)
         print(f"  {family:>8}: pas {1e3 * ours:8.1f} ms   copulas package {paper:8.2f} s   "
               f"ratio {paper / ours:8.0f}x")
+    t_pas, t_sp, err = student_draws(u, n_total)
+    print(f"   student: pas {1e3 * t_pas:8.1f} ms   scipy stdtrit/stdtr {1e3 * t_sp:6.1f} ms   "
+          f"ratio {t_sp / t_pas:6.1f}x   max |dv| {err:.1e}")
     print("\nWhole iteration, m = 160 pairs, selected family drawn by each stack:")
     for family in ("gumbel", "frank"):
         t_iter, _ = time_iteration(lfset, pairs, 7, families=(family,))

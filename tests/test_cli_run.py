@@ -79,7 +79,7 @@ def test_run_with_table_oracle_writes_everything_and_matches_the_api(files, tmp_
     assert len(lines) == len(hist)
     assert "MPM" in lines[-1] and "E_bar" in lines[-1] and "COV" in lines[-1]
     assert any("false positive" in ln for ln in lines) == bool(ref.n_false_positive)
-    assert ref.summary() in stdout
+    assert ref.summary(unit="kN") in stdout  # --unit reaches the summary
     # the files rebuild the result
     res, s, lf_curve = load_result(out)
     assert res.mpm == pytest.approx(ref.mpm) and res.family == ref.family
@@ -106,10 +106,11 @@ def test_run_json_quiet_npy_python_oracle(files, tmp_path, capsys, monkeypatch):
     assert code == 0
     assert json.loads(stdout2)["mpm"] == pytest.approx(summary["mpm"], rel=1e-12)
     assert len(log.read_text().splitlines()) == n_calls
-    # a different setting into the same folder is refused, naming the setting
-    argv[argv.index("--eps1") + 1] = "0.3"
+    # a different setting into the same folder is refused, naming the setting (the
+    # stopping limits and the budget may change: tests/test_store.py)
+    argv[argv.index("--p-exp") + 1] = "4e-3"
     code, _, err = _run(capsys, *argv)
-    assert code == 2 and "eps1" in err and "--out" in err and err.count("\n") == 1
+    assert code == 2 and "p_exp" in err and "--out" in err and err.count("\n") == 1
 
 
 def test_python_oracle_by_module_name(files, tmp_path, capsys, monkeypatch):
@@ -226,3 +227,83 @@ def test_plot_redraws_from_the_output_folder(files, tmp_path, capsys):
     assert code == 2 and "summary.json" in err and err.count("\n") == 1
     code, _, err = _run(capsys, "plot", out, "--out", tmp_path / "fig.txt")
     assert code == 2 and "--out" in err
+
+
+def test_one_u95_in_summary_json_status_and_figure(files, tmp_path, capsys):
+    d, *_ = files
+    out = tmp_path / "u95"
+    code, stdout, stderr = _run(capsys, "run", d / "lf.csv", "--lf-column", "rwe", "--oracle",
+                                f"table:{d / 'hf.csv'}:event:force", *COMMON, "--out", out,
+                                "--unit", "kN", "--max-hf", "14")
+    assert code == 0, stderr
+    summary = json.loads((out / "summary.json").read_text())
+    (lo, hi), (s_lo, s_hi) = summary["mpm_band"], summary["mpm_band_sampling"]
+    m_lo, m_hi = summary["mpm_band_model"]
+    assert (lo, hi) == (min(s_lo, m_lo), max(s_hi, m_hi))  # the union of the two parts
+    text = (f"U95 {lo:.4g}–{hi:.4g} kN (sampling part {s_lo:.4g}–{s_hi:.4g}, "
+            f"model part {m_lo:.4g}–{m_hi:.4g})")
+    assert text in stdout and text in summary["summary"]
+    # the progress lines show the sampling part per iteration and call it that
+    progress = [ln for ln in stderr.splitlines() if ln.startswith("[pas]")]
+    assert "U95" not in stderr
+    assert f"(sampling band {s_lo:.4g}–{s_hi:.4g})" in [ln for ln in progress if "MPM" in ln][-1]
+    # pas study status reports the same band, rebuilt from the store
+    assert main(["study", "status", str(out / "study.sqlite"), "--json"]) == 0
+    status = json.loads(capsys.readouterr().out)
+    for key in ("mpm", "mpm_band", "mpm_band_sampling", "mpm_band_model"):
+        assert status[key] == summary[key], key
+    assert main(["study", "status", str(out / "study.sqlite")]) == 0
+    assert text.replace(" kN", "") in capsys.readouterr().out
+    # the distribution figure puts that U95 on the MPM marker
+    assert main(["plot", str(out), "--kind", "distribution"]) == 0
+    capsys.readouterr()
+    import matplotlib.pyplot as plt
+    from pas.plotting import plot_distribution
+
+    fig, ax = plot_distribution(load_result(out)[0], unit="kN")
+    assert any(f"U95 {lo:.4g}–{hi:.4g}" in t.get_text() for t in ax.get_legend().get_texts())
+    plt.close(fig)
+
+
+def test_failed_evaluations_give_one_stderr_line_each_even_quiet(files, tmp_path, capsys):
+    d, lf, hf, ids = files
+    top = int(np.argmax(lf))
+    table = pd.read_csv(d / "hf.csv")
+    table[table["event"] != ids[top]].to_csv(tmp_path / "hf.csv", index=False)  # row missing
+    argv = ["run", d / "lf.csv", "--lf-column", "rwe", "--oracle",
+            f"table:{tmp_path / 'hf.csv'}:event:force", *COMMON, "--max-hf", "10"]
+    code, stdout, stderr = _run(capsys, *argv, "--out", tmp_path / "q", "--quiet")
+    assert code == 0
+    n_failed = json.loads((tmp_path / "q" / "summary.json").read_text())["n_failed"]
+    assert n_failed == 1 and "1 failed" in stdout
+    (line,) = stderr.splitlines()
+    assert line.startswith(f"pas run: HF evaluation failed for event {ids[top]}, LF rank 1 of ")
+    assert "the largest LF peak" in line and "not in" in line
+    # with progress on, the failure is in its progress line, still once
+    code, _, stderr = _run(capsys, *argv, "--out", tmp_path / "p")
+    assert [ln for ln in stderr.splitlines() if "fail" in ln.lower()] == \
+        [ln for ln in stderr.splitlines() if "FAILED (LF rank 1 of" in ln]
+    assert sum("FAILED" in ln for ln in stderr.splitlines()) == 1
+
+
+def test_n_waves_below_the_peaks_is_an_error_and_spectral_says_so(files, tmp_path, capsys):
+    d, *_ = files
+    argv = ["run", d / "lf.csv", "--lf-column", "rwe", "--oracle",
+            f"table:{d / 'hf.csv'}:event:force", "--p-exp", "3e-3", "--eps1", "0.2", "--seed", "1",
+            "--max-hf", "6", "--quiet"]
+    code, stdout, err = _run(capsys, *argv, "--n-waves", "1000", "--out", tmp_path / "a")
+    assert code == 2 and stdout == "" and err.count("\n") == 1
+    assert "--n-waves=1000 is below the 3000 LF peaks over the threshold" in err
+    assert "--n-waves-convention spectral" in err and not (tmp_path / "a").exists()
+    # over a threshold fewer peaks count: a one-line warning, and the run goes on
+    code, _, err = _run(capsys, *argv, "--n-waves", "2900", "--threshold", "1.0",
+                        "--out", tmp_path / "b")
+    lines = err.splitlines()
+    assert code == 0 and lines[0].startswith("pas run: warning: --n-waves=2900 is below the 3000 "
+                                             "LF peaks given")
+    assert all(ln.startswith("pas run: warning: ") for ln in lines)  # warnings are one line
+    code, _, err = _run(capsys, *argv, "--n-waves", "1000", "--n-waves-convention", "spectral",
+                        "--out", tmp_path / "c")
+    assert code == 0 and "n-waves" not in err
+    assert json.loads((tmp_path / "c" / "summary.json").read_text())["inputs"][
+        "n_waves_convention"] == "spectral"

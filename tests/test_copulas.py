@@ -3,6 +3,8 @@ import numpy as np
 import pytest
 import pyvinecopulib as pv
 
+from scipy import special
+
 from pas.copulas import (
     PAPER_FAMILIES,
     CopulaFit,
@@ -11,6 +13,8 @@ from pas.copulas import (
     fit_copula,
     pseudo_observations,
     select_family,
+    t_cdf,
+    t_quantile,
 )
 from pas.stats.dependence import empirical_tail_dependence
 
@@ -27,6 +31,8 @@ def test_pseudo_observations_eq5():
 @pytest.mark.parametrize("family, rotation, params", [
     (pv.BicopFamily.gaussian, 0, [[0.7]]),
     (pv.BicopFamily.student, 0, [[0.6], [3.5]]),
+    (pv.BicopFamily.student, 0, [[0.92], [2.0]]),
+    (pv.BicopFamily.student, 0, [[-0.4], [37.0]]),
     (pv.BicopFamily.clayton, 0, [[2.5]]),
     (pv.BicopFamily.frank, 0, [[7.0]]),
     (pv.BicopFamily.gumbel, 0, [[2.2]]),
@@ -130,3 +136,22 @@ def test_frank_inverse_accurate_at_strong_dependence():
         a, bb = (-T * Decimal(ui)).exp(), (-T * Decimal(vi)).exp()
         h = a * (bb - 1) / ((-T).exp() - 1 + (a - 1) * (bb - 1))
         assert abs(float(h) - ri) < 1e-8
+
+
+@pytest.mark.parametrize("nu", [2.0, 2.7, 5.0, 13.3, 50.0, 51.0])
+def test_student_t_quantile_and_cdf_match_scipy(nu):
+    # the interpolated t quantile and CDF behind the Student-t draws, against scipy over
+    # the draws' range (1e-6 ... 1 - 1e-6), deep into the tails and beyond the grid
+    rng = np.random.default_rng(3)
+    tails = np.geomspace(1e-12, 0.5, 500)
+    p = np.r_[rng.uniform(1e-6, 1 - 1e-6, 20000), tails, 1 - tails, 0.0, 1.0]
+    ref = special.stdtrit(nu, p)
+    np.testing.assert_allclose(t_quantile(nu, p), ref, rtol=1e-8, atol=1e-12)
+    x = np.r_[ref[1:-1], rng.standard_t(nu, 20000) * 3, np.linspace(-5, 5, 1001),
+              -1e6, 1e6, -np.inf, np.inf]
+    ref = special.stdtr(nu, x)
+    tail = np.minimum(ref, 1 - ref)
+    err = np.abs(t_cdf(nu, x) - ref)
+    assert np.all(err <= 1e-8 * tail + 1e-15), float(np.max(err / np.maximum(tail, 1e-300)))
+    # shapes broadcast through, as the conditional draws use them
+    assert t_quantile(nu, p[:6].reshape(2, 3)).shape == (2, 3)

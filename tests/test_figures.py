@@ -1,5 +1,7 @@
 """Result figures: each type is drawn into a file and checked for real content."""
 
+import dataclasses
+
 import matplotlib
 
 matplotlib.use("Agg")
@@ -78,9 +80,13 @@ def test_mpm_convergence(result, tmp_path):
     line = ax.get_lines()[0]
     np.testing.assert_allclose(line.get_xdata(), fitted["n_hf"])
     np.testing.assert_allclose(line.get_ydata(), fitted["mpm"])
-    assert len(ax.collections) == 1  # the U95 band
+    # one shaded band, the sampling part per iteration; the reported U95 as an error bar
+    bands = [c for c in ax.collections if isinstance(c, matplotlib.collections.PolyCollection)]
+    assert len(bands) == 1
     texts = _legend_texts(ax)
-    assert any("U95" in t for t in texts)
+    assert any("sampling band" in t for t in texts)
+    lo, hi = result.mpm_band
+    assert any(f"final U95 {lo:.4g}–{hi:.4g}" in t for t in texts)
     assert any("false positive" in t and f"×{result.n_false_positive}" in t for t in texts)
     assert any("converged at" in t for t in texts)
     assert any("true MPM 11 m" in t for t in texts)
@@ -94,7 +100,8 @@ def test_mpm_convergence_composes_on_one_axes(result, tmp_path):
     texts = _legend_texts(ax)
     assert any(t.startswith("run A") for t in texts) and any(t.startswith("run B") for t in texts)
     assert ax.get_lines()[0].get_color() != [ln for ln in ax.get_lines()
-                                             if ln.get_label() == "run B: MPM"][0].get_color()
+                                             if ln.get_label().startswith("run B: MPM")
+                                             ][0].get_color()
     _save(fig, tmp_path, "mpm2")
 
 
@@ -216,3 +223,77 @@ def test_metrics(tmp_path):
 
     with pytest.raises(ValueError, match="M3"):
         plot_metrics(table.drop(columns="M3"))
+
+
+def test_distribution_draws_the_lf_curve_on_its_own_axis(problem, result):
+    lf, _ = problem
+    lfset = pas.LFSet(lf, n_waves=NW, p_exp=P)
+    fig, ax = plot_distribution(result, lf=lfset, unit="kN", lf_unit="m")
+    assert not any(ln.get_label() == "LF indicator" for ln in ax.get_lines())
+    twin = [a for a in fig.axes if a is not ax and a.bbox.bounds == ax.bbox.bounds]
+    assert len(twin) == 1 and twin[0].get_ylabel() == "LF indicator [m]"
+    np.testing.assert_allclose(twin[0].get_lines()[0].get_ydata(), lfset.lf)
+    assert "LF indicator" in _legend_texts(ax)  # one legend for both axes
+    # the same unit shares the value axis
+    fig, ax = plot_distribution(result, lf=lfset, unit="m", lf_unit="m")
+    assert any(ln.get_label() == "LF indicator" for ln in ax.get_lines()) and len(fig.axes) == 1
+
+
+def test_distribution_leaves_out_clipped_zeros(result):
+    # a mean of exactly 0 where no evaluated event gave 0: draws clipped at the HF
+    # marginal's lower bound, not a prediction
+    dist = result.distribution.copy()
+    dist = dist[dist["h_mean"] > 0].reset_index(drop=True)  # no draw of "no impact" here
+    dist.loc[dist.index[-25:], ["h_mean", "h_low", "h_high"]] = 0.0
+    clipped = dataclasses.replace(result, distribution=dist, n_false_positive=0)
+    d0 = dist["exceedance_probability"].iloc[-25]
+    assert clipped.clipped_from == d0 and result.clipped_from is None
+    assert clipped.to_dict()["clipped_from"] == d0
+    fig, ax = plot_distribution(clipped)
+    y = ax.get_lines()[0].get_ydata()
+    assert np.isnan(y[-25:]).all() and np.isfinite(y[:-25]).all()
+    assert any(f"not drawn for d ≥ {d0:.2g}" in t for t in _legend_texts(ax))
+    # with evaluated false positives a zero is a value and is drawn
+    fig, ax = plot_distribution(dataclasses.replace(clipped, n_false_positive=1))
+    assert np.isfinite(ax.get_lines()[0].get_ydata()).all()
+
+
+def test_scatter_reports_tail_dependence_only_from_enough_points(problem):
+    lf, hf = problem
+    fig, ax = plot_scatter(lf[:26], hf[:26])
+    title = ax.get_title()
+    assert "λ_U" in title and "not estimated: 2 of 26 pairs beyond q = 0.9" in title
+    assert "= 1.00" not in title and "= 0.00" not in title
+    fig, ax = plot_scatter(lf[:100], hf[:100])
+    assert "$λ_U$ = " in ax.get_title()
+
+
+def test_aic_says_why_the_lowest_aic_was_not_selected(result):
+    hist = result.history.copy()
+    fitted = hist["mpm"].notna()
+    hist["ineligible"] = ""  # this test decides alone which fits were at a bound
+    rows = hist.index[fitted][2:6]
+    # rows 2-3: the lowest AIC is a family at its bound; rows 4-5: within the hysteresis
+    for k, r in enumerate(rows):
+        other = "student" if hist.at[r, "family"] != "student" else "gaussian"
+        hist.at[r, f"aic_{other}"] = hist.loc[r, [c for c in hist if c.startswith("aic_")]].min() - 1
+        hist.at[r, "ineligible"] = other if k < 2 else ""
+    fig, (top, _) = plot_aic(dataclasses.replace(result, history=hist))
+    texts = _legend_texts(top)
+    assert "lowest AIC, not selected: parameter at its bound (not eligible) ×2" in texts
+    hysteresis = [t for t in texts if "less than ΔAIC below the current family" in t]
+    assert len(hysteresis) == 1 and int(hysteresis[0].rsplit("×", 1)[1]) >= 2
+    marks = [ln for ln in top.get_lines() if ln.get_label().startswith("lowest AIC, not selected: "
+                                                                       "parameter")][0]
+    np.testing.assert_allclose(marks.get_xdata(), hist.loc[rows[:2], "n_hf"])
+
+
+def test_metrics_of_one_case_are_labelled_bars(tmp_path):
+    table = pd.DataFrame({"case": ["1a", "1a"], "strategy": ["pas", "as"], "M1": [6e-4, 5e-4],
+                          "M2": [0.0264, -0.0085], "M3": [0.0294, 0.0178]})
+    fig, axes = plot_metrics(table)
+    _save(fig, tmp_path, "metrics_one")
+    for panel, metric in zip(axes, ("M1", "M2", "M3")):
+        assert all(p.get_width() <= 0.3 for p in panel.patches)
+        labels = [t.get_text() for t in panel.texts]
+        assert labels == [f"{100 * v:.3g}%" for v in table[metric]]

@@ -77,7 +77,7 @@ def test_conditioning_set_and_hf_distribution():
 
 
 def test_stopping_windows_and_cov():
-    rule = StoppingRule(eps1=0.5, eps2=0.1, k1=3, k2=3)
+    rule = StoppingRule(eps1=0.5, eps2=0.1, k1=3, k2=3, measure="step")
     assert rule.min_iterations == 1
     outs = [rule.update(np.full(5, h), m) for h, m in [(0, 10), (1, 10), (3, 12), (3.1, 12)]]
     e = [o[0] for o in outs]
@@ -88,6 +88,24 @@ def test_stopping_windows_and_cov():
     last3 = np.array([10, 12, 12.0])
     assert outs[3][2] == pytest.approx(last3.std() / last3.mean())
     assert not any(o[3] for o in outs)  # E_bar never below 0.5
+
+
+def test_window_measure_is_the_change_across_k1_iterations():
+    # Eq. 28 averages per-step changes; the window measure compares with K1 steps back
+    rule = StoppingRule(eps1=0.5, eps2=0.5, k1=2, k2=2)
+    outs = [rule.update(np.full(5, h), 10.0) for h in (0.0, 0.2, 0.4, 0.6, 0.6, 0.6)]
+    assert np.isnan(outs[0][1])
+    # one step available: its change counts for the K1 = 2 of a window
+    assert [o[1] for o in outs[1:]] == pytest.approx([0.4, 0.4, 0.4, 0.2, 0.0])
+    # a steady drift of 0.2 a step passes Eq. 28 (mean step 0.2 < 0.5) ...
+    step = StoppingRule(eps1=0.3, eps2=0.5, k1=4, k2=4, measure="step")
+    window = StoppingRule(eps1=0.3, eps2=0.5, k1=4, k2=4)
+    drift = [0.2 * k for k in range(8)]
+    assert [step.update(np.full(5, h), 10.0)[3] for h in drift][-1]
+    # ... but not the window measure: the distribution moved 0.8 over the window
+    assert not any(window.update(np.full(5, h), 10.0)[3] for h in drift)
+    with pytest.raises(ValueError, match="stop_measure"):
+        StoppingRule(eps1=1.0, measure="steps")
 
 
 def test_stopping_not_before_k1_over_3():

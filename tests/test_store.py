@@ -108,8 +108,10 @@ def test_pending_wait_leaves_event_for_tell(tmp_path):
 def test_settings_and_peaks_must_match(tmp_path):
     db = str(tmp_path / "s.db")
     pas.run_pas(LF, hf, study=db, **{**KW, "max_hf": 6})
-    with pytest.raises(StoreError, match="eps1"):
-        pas.run_pas(LF, hf, study=db, **{**KW, "eps1": 0.5})
+    with pytest.raises(StoreError, match="p_exp"):
+        pas.run_pas(LF, hf, study=db, **{**KW, "p_exp": 2e-2})
+    with pytest.raises(StoreError, match="threshold"):
+        pas.run_pas(LF, hf, study=db, **{**KW, "threshold": 0.1})
     with pytest.raises(StoreError, match="z differs"):
         pas.run_pas(LF, hf, study=db, z=20, **KW)
     with pytest.raises(StoreError, match="seed"):
@@ -198,3 +200,45 @@ def test_resume_after_unusable_indicator_warning(tmp_path):
         first = pas.run_pas(lf, lambda ev: float(hf[ev.index]), **kw)
         again = pas.run_pas(lf, lambda ev: float(hf[ev.index]), **kw)
     assert again.mpm == first.mpm and again.n_hf == first.n_hf == 12
+
+
+# eps1 = 0.05 converges after 12 HF evaluations on this problem, 0.03 after 15 (with the
+# per-step measure and redrawn uniforms, whose noise makes eps1 matter here)
+STOP = dict(n_waves=2000, p_exp=1e-2, seed=5, max_hf=60, n_bootstrap=0, k1=6, k2=6,
+            stop_measure="step", estimator="selected", common_random_numbers=False)
+
+
+@pytest.mark.parametrize("batch_size", [1, 2])
+def test_resume_with_a_tighter_eps1_asks_what_an_uninterrupted_run_asks(tmp_path, batch_size):
+    db = str(tmp_path / "s.db")
+    loose = pas.run_pas(LF, hf, study=db, eps1=0.05, batch_size=batch_size, **STOP)
+    ref = pas.run_pas(LF, hf, eps1=0.03, batch_size=batch_size, **STOP)
+    assert loose.converged and ref.converged and ref.n_hf > loose.n_hf  # the test has teeth
+    calls = []
+    res = pas.run_pas(LF, lambda ev: calls.append(ev.index) or hf(ev), study=db, eps1=0.03,
+                      batch_size=batch_size, **STOP)
+    assert list(res.history["event_index"]) == list(ref.history["event_index"])
+    assert res.mpm == ref.mpm and res.converged
+    assert len(calls) == ref.n_hf - loose.n_hf  # only the new events ran
+    # the stopping columns are those of the new limit, from the first iteration on
+    np.testing.assert_array_equal(res.history["stop"].eq(True), ref.history["stop"].eq(True))
+    with StudyStore(db, create=False) as store:
+        assert store.settings()["eps1"] == 0.03
+        (change,) = store.get("settings_changes")
+        assert (change["key"], change["old"], change["new"]) == ("eps1", 0.05, 0.03)
+        assert change["n_told"] == loose.n_hf + loose.n_failed
+
+
+def test_resume_with_looser_limits_or_smaller_budget_keeps_what_was_done(tmp_path):
+    db = str(tmp_path / "s.db")
+    tight = pas.run_pas(LF, hf, study=db, eps1=0.03, **STOP)
+    no_call = lambda ev: pytest.fail("a finished study asked for more")  # noqa: E731
+    # the looser limit would have stopped earlier; the evaluated events stay, nothing new runs
+    res = pas.run_pas(LF, no_call, study=db, **{**STOP, "eps1": 0.05, "k1": 5, "eps2": 0.2})
+    assert res.n_hf == tight.n_hf and res.converged
+    assert list(res.history["event_index"]) == list(tight.history["event_index"])
+    res = pas.run_pas(LF, no_call, study=db, **{**STOP, "eps1": 0.03, "max_hf": 8})
+    assert res.n_hf == tight.n_hf
+    with StudyStore(db, create=False) as store:
+        keys = [c["key"] for c in store.get("settings_changes")]
+    assert keys == ["eps1", "eps2", "k1", "eps1", "eps2", "k1", "max_hf"]

@@ -87,7 +87,7 @@ def _tell_many(db, items):
 
 
 def test_eight_processes_tell_200_results(tmp_path, capsys):
-    cfg = write_case(tmp_path, extra="")
+    cfg = write_case(tmp_path, extra="max_hf = 400")  # above the default budget of 160
     db = str(tmp_path / "s.db")
     assert cli("study", "create", db, "--config", cfg) == 0
     assert cli("study", "ask", db, "-n", "200", "--format", "csv", "-o", str(tmp_path / "a.csv")) == 0
@@ -211,3 +211,93 @@ def test_study_run_with_command_oracle_survives_sigkill(tmp_path, capsys):
     assert len(ev) == 14 and set(ev["state"]) == {"done"} and max(done.values()) == 1
     assert set(done) == set(ev["key"])
     np.testing.assert_array_equal(ev["hf"], _campaign.oracle_value(ev["lf"], ev["idx"]))
+
+
+def _answer_all(db, tmp_path):
+    """Ask until the study has nothing to ask, telling the HF value of every event."""
+    for _ in range(60):
+        assert cli("study", "ask", db, "-n", "2", "--format", "csv",
+                   "-o", str(tmp_path / "a.csv")) == 0
+        if not (tmp_path / "a.csv").exists():
+            return
+        asked = pd.read_csv(tmp_path / "a.csv")
+        (tmp_path / "a.csv").unlink()
+        asked.assign(hf=hf_of(asked["lf"]))[["id", "hf"]].to_csv(tmp_path / "r.csv", index=False)
+        assert cli("study", "tell", db, "--csv", str(tmp_path / "r.csv")) == 0
+    pytest.fail("the study did not finish")
+
+
+def test_status_does_not_claim_convergence_beside_results_it_has_not_used(tmp_path, capsys):
+    cfg = write_case(tmp_path, toml=TOML.format(extra="max_hf = 40").replace(
+        "eps1 = 0.01", "eps1 = 0.05"))
+    db = str(tmp_path / "s.db")
+    assert cli("study", "create", db, "--config", cfg) == 0
+    assert cli("study", "ask", db, "-n", "30", "--format", "csv", "-o", str(tmp_path / "a.csv")) == 0
+    asked = pd.read_csv(tmp_path / "a.csv")
+    asked.assign(hf=hf_of(asked["lf"]))[["id", "hf"]].to_csv(tmp_path / "r.csv", index=False)
+    assert cli("study", "tell", db, "--csv", str(tmp_path / "r.csv")) == 0
+    capsys.readouterr()
+    assert cli("study", "status", db, "--json") == 0
+    status = json.loads(capsys.readouterr().out)
+    assert status["results_not_yet_used"] == 30 and status["converged"] is None
+    assert status["converged_with_waiting"] is True  # the 30 results would converge it
+    assert status["mpm"] > 0 and status["finished"] is None
+    assert cli("study", "status", db) == 0
+    text = capsys.readouterr().out
+    assert "30 result(s) told since the last ask" in text
+    assert "open until the waiting results are used (with them: converged)" in text
+    assert "converged (at" not in text
+    # once an ask has used them, the verdict is the study's own
+    assert cli("study", "ask", db) == 0
+    capsys.readouterr()
+    assert cli("study", "status", db, "--json") == 0
+    status = json.loads(capsys.readouterr().out)
+    assert status["results_not_yet_used"] == 0 and status["converged"] is True
+    assert status["converged_at_n_hf"] <= 30
+
+
+def test_set_tightens_eps1_and_grows_the_budget_of_a_converged_study(tmp_path, capsys):
+    cfg = write_case(tmp_path, toml=TOML.format(extra="max_hf = 40").replace(
+        "eps1 = 0.01", "eps1 = 0.05"))
+    db = str(tmp_path / "s.db")
+    assert cli("study", "create", db, "--config", cfg) == 0
+    _answer_all(db, tmp_path)
+    capsys.readouterr()
+    assert cli("study", "status", db, "--json") == 0
+    before = json.loads(capsys.readouterr().out)
+    assert before["converged"] and before["n_hf"] < 40
+    assert cli("study", "set", db, "--eps1", "0.001", "--max-hf", "45") == 0
+    out = capsys.readouterr().out
+    assert f"{db}: eps1 0.05 -> 0.001" in out and f"{db}: max_hf 40 -> 45" in out
+    assert "not finished" in out
+    assert cli("study", "ask", db, "--format", "json") == 0
+    assert len(json.loads(capsys.readouterr().out)) == 1  # asking again
+    assert cli("study", "status", db) == 0
+    text = capsys.readouterr().out
+    assert "setting changed: eps1 0.05 -> 0.001" in text and "limit eps1 0.001" in text
+    # settings that decide what is asked cannot change; bad values are named
+    for argv, needle in ((["--eps1", "-1"], "--eps1"), (["--max-hf", "2"], "--max-hf"), ([], "--eps1")):
+        assert cli("study", "set", db, *argv) == 2
+        assert needle in capsys.readouterr().err
+
+
+def test_the_documented_study_file_creates_a_study(tmp_path, capsys):
+    """The complete example of docs/study-file.md is a valid study file."""
+    from pathlib import Path
+
+    doc = (Path(__file__).parents[1] / "docs" / "study-file.md").read_text(encoding="utf-8")
+    toml = doc.split("```toml\n", 1)[1].split("```", 1)[0]
+    rng = np.random.default_rng(0)
+    n = 16000
+    pd.DataFrame({"event": [f"s{i % 50:02d}-w{i}" for i in range(n)],
+                  "rwe": rng.rayleigh(6.0, n), "seed": np.arange(n) % 50,
+                  "t_start": np.arange(n) * 6.0, "t_end": np.arange(n) * 6.0 + 20.0}
+                 ).to_csv(tmp_path / "peaks.csv", index=False)
+    (tmp_path / "study.toml").write_text(toml)
+    db = str(tmp_path / "campaign.db")
+    assert cli("study", "create", db, "--config", str(tmp_path / "study.toml")) == 0
+    with StudyStore(db, create=False) as store:
+        s = store.settings()
+        assert store.get("oracle")["command"][:2] == ["python", "cfd_event.py"]
+        assert store.get("batch_size") == 2
+    assert (s["eps1"], s["threshold"], s["max_hf"], s["strategy_settings"]["z"]) == (20.0, 12.0, 60, 10)

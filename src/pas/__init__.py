@@ -4,29 +4,31 @@ Predicts the most probable maximum (MPM) of a high-fidelity (HF) load from a
 long low-fidelity (LF) simulation and a few adaptively chosen HF events
 (van Essen & Seyffert 2026).  Start with :func:`run_pas`; :func:`run_as` and the
 design-wave :func:`run_rcw` (Dermatis et al. 2025) solve the same problem.
+
+The public names are imported on first use (PEP 562), so ``import pas`` and
+the command line (``pas --help``, ``pas study tell``) do not pay for scipy,
+scikit-learn, pyvinecopulib or matplotlib before they need them.
 """
 
+from __future__ import annotations
+
+import importlib
+
 from ._version import __version__
-from .api import make_study, run_as, run_pas
-from .design_waves import run_rcw
-from .metrics import m1, m2, m3, metrics
-from .screening import Event, LFSet
-from .stats.exceedance import (
-    encounter_period,
-    mean_period_from_peak_period,
-    n_waves_from_duration,
-    p_exp_from_duration,
-    quantile_exceedance,
-)
-from .strategies import AS, PAS
-from .study import (
-    CommandOracle,
-    OracleFailureLimit,
-    ScreeningResult,
-    Study,
-    StudyStore,
-    TableOracle,
-)
+from .metrics import m1, m2, m3, metrics  # light (numpy); eager so pas.metrics is the function
+
+#: Public name -> the module that defines it (imported when the name is first used).
+_EXPORTS = {
+    "run_pas": "api", "run_as": "api", "make_study": "api", "run_rcw": "design_waves",
+    "Event": "screening", "LFSet": "screening",
+    "encounter_period": "stats.exceedance", "mean_period_from_peak_period": "stats.exceedance",
+    "n_waves_from_duration": "stats.exceedance", "p_exp_from_duration": "stats.exceedance",
+    "quantile_exceedance": "stats.exceedance",
+    "AS": "strategies.as_", "PAS": "strategies.pas",
+    "CommandOracle": "study.oracles", "OracleFailureLimit": "study.oracles",
+    "TableOracle": "study.oracles", "ScreeningResult": "study.result", "Study": "study.study",
+    "StudyStore": "study.store",
+}
 
 __all__ = [
     "run_pas", "make_study", "Study", "ScreeningResult", "OracleFailureLimit", "Event", "LFSet",
@@ -34,3 +36,15 @@ __all__ = [
     "mean_period_from_peak_period", "encounter_period", "quantile_exceedance", "__version__",
     "run_as", "AS", "StudyStore", "TableOracle", "CommandOracle", "run_rcw",
 ]
+
+
+def __getattr__(name):
+    if name in _EXPORTS:
+        module = importlib.import_module(f".{_EXPORTS[name]}", __name__)
+        value = globals()[name] = getattr(module, name)
+        return value
+    raise AttributeError(f"module 'pas' has no attribute {name!r}")
+
+
+def __dir__():
+    return sorted(set(globals()) | set(__all__))

@@ -2,6 +2,9 @@
 
 from __future__ import annotations
 
+import warnings
+
+from .screening import check_n_waves
 from .strategies.as_ import AS
 from .strategies.pas import PAS
 from .study.factory import DEFAULT_MAX_HF, apply_preset, split_settings
@@ -13,7 +16,7 @@ __all__ = ["run_pas", "run_as", "make_study"]
 
 def make_study(strategy, lf_peaks, *, n_waves, p_exp, eps1, eps2=0.1, threshold=None,
                seed=None, max_hf=DEFAULT_MAX_HF, ids=None, meta=None, store=None, preset=None,
-               **settings) -> Study:
+               n_waves_convention="count", **settings) -> Study:
     """Validate the inputs and build a :class:`~pas.study.study.Study` for ``strategy``.
 
     Parameters
@@ -27,7 +30,12 @@ def make_study(strategy, lf_peaks, *, n_waves, p_exp, eps1, eps2=0.1, threshold=
         As for :func:`run_pas`.
     store : str, os.PathLike or StudyStore, optional
         Makes the study crash-safe and resumable (:mod:`pas.study.store`);
-        with ``seed=None`` an existing store's seed is used.
+        with ``seed=None`` an existing store's seed is used.  The stopping
+        settings (``eps1``, ``eps2``, ``k1``, ``k2``) and budgets (``max_hf``,
+        ``max_failures``) may differ from the stored ones: the new values
+        are used from the first stored iteration on and recorded in the store.
+    n_waves_convention : {"count", "spectral"}, default "count"
+        As for :func:`run_pas`.
     preset : {None, "default", "paper"}, optional
         A named bundle of PAS settings (:data:`pas.study.factory.PRESETS`);
         settings given explicitly win.
@@ -41,8 +49,11 @@ def make_study(strategy, lf_peaks, *, n_waves, p_exp, eps1, eps2=0.1, threshold=
     -------
     Study
     """
-    study_settings, strategy_settings = split_settings(settings)
-    strategy_settings = apply_preset(preset, strategy, strategy_settings)
+    note = check_n_waves(lf_peaks, n_waves, threshold, convention=n_waves_convention,
+                         names={"convention": "n_waves_convention='spectral'"})
+    if note is not None:
+        warnings.warn(note, stacklevel=3)
+    study_settings, strategy_settings = split_settings(apply_preset(preset, strategy, settings))
     return Study.from_settings(
         {"strategy": strategy, "strategy_settings": strategy_settings, "n_waves": n_waves,
          "p_exp": p_exp, "threshold": threshold, "eps1": eps1, "eps2": eps2, "seed": seed,
@@ -52,7 +63,8 @@ def make_study(strategy, lf_peaks, *, n_waves, p_exp, eps1, eps2=0.1, threshold=
 
 def run_pas(lf_peaks, oracle, *, n_waves, p_exp, eps1, eps2=0.1, threshold=None, seed=None,
             max_hf=DEFAULT_MAX_HF, ids=None, meta=None, batch_size=1, callback=None, study=None,
-            pending="resubmit", executor=None, n_workers=None, preset=None,
+            pending="resubmit", executor=None, n_workers=None, n_waves_convention="count",
+            preset=None,
             **settings) -> ScreeningResult:
     """Predict the MPM of an HF load with Probabilistic Adaptive Screening.
 
@@ -92,7 +104,12 @@ def run_pas(lf_peaks, oracle, *, n_waves, p_exp, eps1, eps2=0.1, threshold=None,
         SQLite study store (:mod:`pas.study.store`): created when missing,
         otherwise checked against this call and continued — no stored HF
         result is lost or re-run, and the run makes the decisions an
-        uninterrupted one would have made (same ``batch_size``).
+        uninterrupted one would have made (same ``batch_size``).  The
+        stopping settings (``eps1``, ``eps2``, ``k1``, ``k2``) and budgets
+        (``max_hf``, ``max_failures``) may change on a resumed study: no
+        decision taken so far depends on them, so the continued run asks for
+        the events an uninterrupted run with the new values would have asked
+        for (a looser limit cannot undo evaluations already made).
     pending : {"resubmit", "wait"}, default "resubmit"
         Events a killed run left without a result: run them again, or leave
         them for ``pas study tell``.
@@ -108,6 +125,13 @@ def run_pas(lf_peaks, oracle, *, n_waves, p_exp, eps1, eps2=0.1, threshold=None,
         Archimedean copulas, selected-sample space, redrawn uniforms, the
         sampling band; :data:`pas.study.factory.PRESETS`,
         ``docs/departures.md``); settings given explicitly win.
+    n_waves_convention : {"count", "spectral"}, default "count"
+        How ``n_waves`` was obtained (:func:`pas.screening.check_n_waves`).
+        ``"count"``: counted wave encounters; ``n_waves`` below the number of
+        LF peaks over the threshold (exceedance probabilities above 1) is a
+        ``ValueError``, below the number of all peaks a warning.
+        ``"spectral"``: ``n_w = T_MCS / T_p,e`` on purpose, as in the paper's
+        Table 2 and :mod:`pas.validation`; not checked.
     **settings
         Settings of :class:`~pas.strategies.pas.PAS` (``families``, ``z``,
         ``delta_aic``, ``exclude_at_bound``, ``upper_tail``, ``outlier_k``,
@@ -139,14 +163,16 @@ def run_pas(lf_peaks, oracle, *, n_waves, p_exp, eps1, eps2=0.1, threshold=None,
     """
     built = make_study(PAS, lf_peaks, n_waves=n_waves, p_exp=p_exp, eps1=eps1, eps2=eps2,
                        threshold=threshold, seed=seed, max_hf=max_hf, ids=ids, meta=meta,
-                       store=study, preset=preset, **settings)
+                       store=study, n_waves_convention=n_waves_convention, preset=preset,
+                       **settings)
     return built.optimize(oracle, batch_size=batch_size, callback=callback, executor=executor,
                           n_workers=n_workers, pending=pending)
 
 
 def run_as(lf_peaks, oracle, *, n_waves, p_exp, eps1, eps2=0.1, threshold=None, seed=None,
            max_hf=DEFAULT_MAX_HF, ids=None, meta=None, batch_size=1, callback=None, study=None,
-           pending="resubmit", executor=None, n_workers=None, **settings) -> ScreeningResult:
+           pending="resubmit", executor=None, n_workers=None, n_waves_convention="count",
+           **settings) -> ScreeningResult:
     """Predict the MPM of an HF load with Adaptive Screening (paper App. A), the GPR reference.
 
     Runs :class:`~pas.strategies.as_.AS` in the same study loop as
@@ -191,7 +217,12 @@ def run_as(lf_peaks, oracle, *, n_waves, p_exp, eps1, eps2=0.1, threshold=None, 
         SQLite study store (:mod:`pas.study.store`): created when missing,
         otherwise checked against this call and continued — no stored HF
         result is lost or re-run, and the run makes the decisions an
-        uninterrupted one would have made (same ``batch_size``).
+        uninterrupted one would have made (same ``batch_size``).  The
+        stopping settings (``eps1``, ``eps2``, ``k1``, ``k2``) and budgets
+        (``max_hf``, ``max_failures``) may change on a resumed study: no
+        decision taken so far depends on them, so the continued run asks for
+        the events an uninterrupted run with the new values would have asked
+        for (a looser limit cannot undo evaluations already made).
     pending : {"resubmit", "wait"}, default "resubmit"
         Events a killed run left without a result: run them again, or leave
         them for ``pas study tell``.
@@ -202,6 +233,13 @@ def run_as(lf_peaks, oracle, *, n_waves, p_exp, eps1, eps2=0.1, threshold=None, 
     n_workers : int, optional
         Without ``executor``: a local process pool of this size (the oracle
         must be picklable).
+    n_waves_convention : {"count", "spectral"}, default "count"
+        How ``n_waves`` was obtained (:func:`pas.screening.check_n_waves`).
+        ``"count"``: counted wave encounters; ``n_waves`` below the number of
+        LF peaks over the threshold (exceedance probabilities above 1) is a
+        ``ValueError``, below the number of all peaks a warning.
+        ``"spectral"``: ``n_w = T_MCS / T_p,e`` on purpose, as in the paper's
+        Table 2 and :mod:`pas.validation`; not checked.
     **settings
         Settings of :class:`~pas.strategies.as_.AS` (``fidelity``
         ``"multi"``/``"single"``, ``range_factor``, ``n_grid``,
@@ -231,6 +269,6 @@ def run_as(lf_peaks, oracle, *, n_waves, p_exp, eps1, eps2=0.1, threshold=None, 
     """
     built = make_study(AS, lf_peaks, n_waves=n_waves, p_exp=p_exp, eps1=eps1, eps2=eps2,
                        threshold=threshold, seed=seed, max_hf=max_hf, ids=ids, meta=meta,
-                       store=study, **settings)
+                       store=study, n_waves_convention=n_waves_convention, **settings)
     return built.optimize(oracle, batch_size=batch_size, callback=callback, executor=executor,
                           n_workers=n_workers, pending=pending)

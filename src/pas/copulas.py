@@ -10,11 +10,15 @@ Conditional inverses are closed forms where they exist (Gaussian, Student-t,
 Clayton, Frank, Gumbel, and their rotations) because pyvinecopulib inverts
 several of them numerically, which costs 0.03–0.8 s per 150 000 draws; Joe,
 BB1 and TLL use pyvinecopulib's ``hinv1``.  The closed forms are tested
-against ``hinv1`` and against the ``copulas`` package.
+against ``hinv1`` and against the ``copulas`` package.  The Student-t one
+needs the t quantile and CDF; :func:`t_quantile` and :func:`t_cdf` give them
+from cubic Hermite interpolants cached per ν (~1e-9 relative to scipy,
+several times faster).
 """
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -229,9 +233,9 @@ def _hinv1(fam, p, bicop, u, r):
         return special.ndtr(rho * special.ndtri(u) + np.sqrt(1 - rho**2) * special.ndtri(r))
     if fam == pv.BicopFamily.student:
         rho, nu = p
-        x1 = special.stdtrit(nu, u)
+        x1 = t_quantile(nu, u)
         scale = np.sqrt((nu + x1**2) * (1 - rho**2) / (nu + 1.0))
-        return special.stdtr(nu, rho * x1 + scale * special.stdtrit(nu + 1.0, r))
+        return t_cdf(nu, rho * x1 + scale * t_quantile(nu + 1.0, r))
     if fam == pv.BicopFamily.clayton:
         th = p[0]
         if th < 1e-8:
@@ -259,3 +263,103 @@ def _hinv1(fam, p, bicop, u, r):
         return np.broadcast_to(r, np.broadcast_shapes(u.shape, r.shape)).copy()
     u, r = np.broadcast_arrays(u, r)
     return bicop.hinv1(np.column_stack([u.ravel(), r.ravel()])).reshape(u.shape)
+
+
+# -- Student-t quantile and CDF for the conditional draws --------------------
+# scipy's stdtrit/stdtr cost ~0.35 µs per value (~100 ms for the 2 × 150 000 values of
+# one iteration).  Both are monotone maps that become smooth after a change of
+# variable, so a cubic Hermite interpolant with exact derivatives on a fixed grid,
+# built once per ν (~0.5 ms) and looked up by index arithmetic, reproduces them to
+# ~1e-9 relative (tests/test_copulas.py); values beyond the grid go to scipy.
+_T_Z = 5.4
+"""Half-width of the normal-score grid: Φ(−5.4) ≈ 3e-8, below the ε = 1e-6 draws."""
+_T_NODES = 1024
+"""Grid intervals per half of each table."""
+
+
+def _t_pdf(x, nu):
+    c = special.gammaln((nu + 1) / 2) - special.gammaln(nu / 2) - 0.5 * np.log(nu * np.pi)
+    return np.exp(c - (nu + 1) / 2 * np.log1p(x * x / nu))
+
+
+def _phi(z):
+    return np.exp(-0.5 * z * z) / np.sqrt(2 * np.pi)
+
+
+def _hermite_coefficients(y, dy, h):
+    """Per-interval cubic coefficients ``(c0, c1, c2, c3)`` of the Hermite interpolant
+    through ``y`` with slopes ``dy`` on a grid of step ``h`` (local variable in [0, 1])."""
+    y0, y1, m0, m1 = y[:-1], y[1:], dy[:-1] * h, dy[1:] * h
+    return np.column_stack([y0, m0, 3 * (y1 - y0) - 2 * m0 - m1, 2 * (y0 - y1) + m0 + m1])
+
+
+def _hermite(x, x0, h, coef):
+    """The interpolant of :func:`_hermite_coefficients` on the grid ``x0 + k h`` at ``x``.
+
+    NaN where ``x`` is NaN; the caller replaces values outside the grid.
+    """
+    s = (x - x0) * (1.0 / h)
+    i = np.fmin(np.fmax(s, 0.0), coef.shape[0] - 1).astype(np.intp)  # NaN -> 0
+    c = coef[i]
+    with np.errstate(invalid="ignore", over="ignore"):  # ±inf outside the grid
+        t = s - i
+        return ((c[..., 3] * t + c[..., 2]) * t + c[..., 1]) * t + c[..., 0]
+
+
+@functools.lru_cache(maxsize=128)
+def _t_quantile_table(nu: float):
+    """Grid start, step and Hermite coefficients of ``t_ν⁻¹(Φ(z))`` on ``z ∈ [−Z, Z]``."""
+    z = np.linspace(-_T_Z, _T_Z, 2 * _T_NODES + 1)
+    low = special.stdtrit(nu, special.ndtr(z[:_T_NODES]))  # lower half: no cancellation
+    q = np.concatenate([low, [0.0], -low[::-1]])
+    h = z[1] - z[0]
+    return z[0], h, _hermite_coefficients(q, _phi(z) / _t_pdf(q, nu), h)
+
+
+@functools.lru_cache(maxsize=128)
+def _t_cdf_table(nu: float):
+    """Grid start, step and Hermite coefficients of ``Φ⁻¹(F_ν(sinh a))`` (a = asinh x)."""
+    a_max = float(np.arcsinh(-special.stdtrit(nu, special.ndtr(-_T_Z))))
+    a = np.linspace(-a_max, a_max, 2 * _T_NODES + 1)
+    low = special.ndtri(special.stdtr(nu, np.sinh(a[:_T_NODES])))
+    z = np.concatenate([low, [0.0], -low[::-1]])
+    h = a[1] - a[0]
+    return a[0], h, _hermite_coefficients(z, _t_pdf(np.sinh(a), nu) * np.cosh(a) / _phi(z), h)
+
+
+def t_quantile(nu, p) -> np.ndarray:
+    """Student-t quantile ``t_ν⁻¹(p)``, elementwise; scipy's ``stdtrit`` to ~1e-9, faster.
+
+    Examples
+    --------
+    >>> from scipy import special
+    >>> p = np.array([1e-6, 0.025, 0.5, 0.9, 1 - 1e-6])
+    >>> bool(np.allclose(t_quantile(3.5, p), special.stdtrit(3.5, p), rtol=1e-8))
+    True
+    """
+    x = special.ndtri(np.asarray(p, dtype=float))
+    out = np.asarray(_hermite(x, *_t_quantile_table(float(nu))))
+    outside = np.abs(x) > _T_Z
+    if outside.any():
+        out[outside] = special.stdtrit(nu, np.asarray(p, dtype=float)[outside])
+    return out
+
+
+def t_cdf(nu, x) -> np.ndarray:
+    """Student-t CDF ``F_ν(x)``, elementwise; scipy's ``stdtr`` to ~1e-9 relative, faster.
+
+    Examples
+    --------
+    >>> from scipy import special
+    >>> x = np.array([-300.0, -2.0, 0.0, 1.5, 40.0])
+    >>> bool(np.allclose(t_cdf(3.5, x), special.stdtr(3.5, x), rtol=1e-8, atol=0))
+    True
+    """
+    a0, h, coef = _t_cdf_table(float(nu))
+    x = np.asarray(x, dtype=float)
+    w = np.arcsinh(x)
+    out = np.asarray(special.ndtr(_hermite(w, a0, h, coef)))
+    outside = np.abs(w) > -a0
+    if outside.any():
+        out[outside] = special.stdtr(nu, x[outside])
+    return out

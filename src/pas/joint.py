@@ -37,7 +37,10 @@ from .copula_densities import GRADIENT_FAMILIES, copula_loghfunc, copula_logpdf,
 from .copulas import CopulaFit, _at_bound, _family_and_rotation, kendall_tau
 from .stats.weibull import Weibull3, fit_weibull3_ls
 
-__all__ = ["JointFit", "fit_joint", "fit_joint_candidates"]
+__all__ = ["JOINT_FAMILIES", "JointFit", "fit_joint", "fit_joint_candidates"]
+
+JOINT_FAMILIES = ("gaussian", "student", "clayton", "gumbel", "frank", "clayton_180", "gumbel_180")
+"""Families the joint fit knows: the paper's five and the survival Clayton and Gumbel."""
 
 _TINY = 1e-12
 
@@ -218,8 +221,11 @@ def fit_joint(name: str, u, h, *, start=None, location: bool = True,
     n_par = n_marg + (2 if base == "student" else 1)
     # the Weibull may not run off to its Gumbel limit (location → −∞, β → ∞): the
     # location stays within three load ranges below the smallest load, as in
-    # :func:`pas.stats.weibull.fit_weibull3_ls`, and β in [0.05, 50]
-    bounds = ([(np.log(1e-6), np.log(3.0))] if location else []) + [
+    # :func:`pas.stats.weibull.fit_weibull3_ls`, and at or above 0 (loads are
+    # non-negative, so no draw needs clipping); β in [0.05, 50]
+    h_min, span = float(h.min()), float(np.ptp(h)) or float(h.min())
+    s_max = min(np.log(3.0), np.log(h_min / span))
+    bounds = ([(min(np.log(1e-9), s_max - 1.0), s_max)] if location else []) + [
         (None, None), (np.log(0.05), np.log(50.0))] + [(None, None)] * (n_par - n_marg)
 
     def minimise(x0):

@@ -8,15 +8,20 @@ sorted descending with their exceedance probabilities ``d = k / n_w``
 
 from __future__ import annotations
 
-import warnings
 from dataclasses import dataclass, field
 
 import numpy as np
 
-from ._validation import check_finite, check_open_unit, check_peaks, check_positive_int
+from ._validation import (check_finite, check_open_unit, check_option, check_peaks,
+                          check_positive_int)
 from .stats.exceedance import exceedance_probabilities
 
-__all__ = ["Event", "LFSet", "peaks_over_threshold"]
+__all__ = ["Event", "LFSet", "peaks_over_threshold", "check_n_waves", "N_WAVES_CONVENTIONS"]
+
+N_WAVES_CONVENTIONS = ("count", "spectral")
+"""How ``n_waves`` was obtained: counted wave encounters (one LF peak per
+encounter at most) or ``T_MCS / T_p,e`` from a spectral period (paper Table 2,
+the validation cases), which may lie below the number of LF peaks."""
 
 
 @dataclass(frozen=True)
@@ -50,6 +55,69 @@ def peaks_over_threshold(lf, threshold=None) -> np.ndarray:
     if threshold is None:
         return np.ones(lf.shape, dtype=bool)
     return lf > threshold
+
+
+def check_n_waves(lf_peaks, n_waves, threshold=None, *, convention="count",
+                  names=None):
+    """Refuse an ``n_waves`` that makes exceedance probabilities exceed 1 (Eq. 3).
+
+    The k-th largest LF peak over the threshold gets ``d = k / n_w``, so
+    ``n_w`` below the number of peaks over the threshold gives ``d > 1`` for
+    the smallest ones: a ``ValueError``.  ``n_w`` below the number of all
+    given peaks (one per wave encounter) is suspicious and returns a one-line
+    warning text.  With ``convention="spectral"`` (``n_w = T_MCS / T_p,e`` on
+    purpose, as the paper's Table 2 and :mod:`pas.validation` do) neither is
+    checked.
+
+    Parameters
+    ----------
+    lf_peaks : array-like
+        All LF peaks given (below the threshold included).
+    n_waves : int
+        Wave encounters ``n_w`` in the LF Monte-Carlo duration.
+    threshold : float, optional
+        LF threshold ``l0_input`` (Eq. 2).
+    convention : {"count", "spectral"}
+        :data:`N_WAVES_CONVENTIONS`.
+    names : dict, optional
+        How the message calls ``n_waves`` and ``convention`` (the CLI gives
+        its option names).
+
+    Returns
+    -------
+    str or None
+        The warning text, or None when ``n_waves`` is plausible.
+
+    Examples
+    --------
+    >>> check_n_waves([3.0, 2.0, 1.0], 2, threshold=1.5) is None
+    False
+    >>> check_n_waves([3.0, 2.0, 1.0], 1, threshold=1.5)
+    Traceback (most recent call last):
+    ...
+    ValueError: n_waves=1 is below the 2 LF peaks over the threshold: their exceedance \
+probabilities k/n_w would reach 2 (above 1); give the number of wave encounters in the \
+LF run (at least 2), or convention='spectral' when n_w = T_MCS/T_p,e on purpose (paper Table 2)
+    """
+    names = {"n_waves": "n_waves", "convention": "convention='spectral'", **(names or {})}
+    convention = check_option(convention, names["convention"].split("=")[0],
+                              N_WAVES_CONVENTIONS)
+    n_waves = check_positive_int(n_waves, "n_waves")
+    lf = check_peaks(lf_peaks, "lf_peaks")
+    if convention == "spectral":
+        return None
+    n_over = int(peaks_over_threshold(lf, threshold).sum())
+    if n_over > n_waves:
+        raise ValueError(
+            f"{names['n_waves']}={n_waves} is below the {n_over} LF peaks over the threshold: "
+            f"their exceedance probabilities k/n_w would reach {n_over / n_waves:.3g} (above 1); "
+            f"give the number of wave encounters in the LF run (at least {n_over}), or "
+            f"{names['convention']} when n_w = T_MCS/T_p,e on purpose (paper Table 2)")
+    if lf.size > n_waves:
+        return (f"{names['n_waves']}={n_waves} is below the {lf.size} LF peaks given "
+                f"({n_over} over the threshold): with one peak per wave encounter n_w is at least "
+                f"{lf.size}; say {names['convention']} if n_w = T_MCS/T_p,e on purpose")
+    return None
 
 
 class LFSet:
@@ -92,13 +160,6 @@ class LFSet:
             raise ValueError(
                 f"threshold: only {keep.size} LF peak(s) lie above threshold={threshold}; "
                 f"the screening needs at least {min_peaks}"
-            )
-        if keep.size > self.n_waves:
-            warnings.warn(
-                f"n_waves={self.n_waves} is below the number of LF peaks used ({keep.size}); "
-                "this happens when n_w comes from a spectral period (the paper's case 1 does), "
-                "but check the convention: exceedance probabilities above 1 follow",
-                stacklevel=3,
             )
         order = keep[np.argsort(-lf_all[keep], kind="stable")]
         self.index = order

@@ -1,33 +1,86 @@
-"""The progress line ``pas run`` and ``pas study run`` print after every HF result."""
+"""What ``pas run`` and ``pas study run`` print while a study runs, and how they stop.
+
+:class:`Progress` prints one line per told result and, even when quiet, one
+stderr line per failed HF evaluation; :func:`stopped_message` is the one line
+printed when Ctrl-C or a closed pipe ends a run early.
+"""
 
 from __future__ import annotations
 
 import math
 import sys
 
-__all__ = ["Progress"]
+__all__ = ["Progress", "RunStopped", "failure_line", "stopped", "stopped_message",
+           "EXIT_INTERRUPTED", "EXIT_BROKEN_PIPE"]
+
+#: Exit codes of an early stop: Ctrl-C (128 + SIGINT) and a closed pipe (128 + SIGPIPE),
+#: what a shell reports for a process those signals killed.
+EXIT_INTERRUPTED, EXIT_BROKEN_PIPE = 130, 141
+
+
+class RunStopped(Exception):
+    """A run ended early (Ctrl-C, closed pipe); the message says what was kept and how to resume.
+
+    ``code`` is the exit code :func:`pas.cli.main` returns.
+    """
+
+    def __init__(self, message: str, code: int):
+        super().__init__(message)
+        self.code = code
+
+
+def failure_line(command: str, study, row) -> str:
+    """One line naming a failed HF evaluation: event, LF rank among the peaks, error."""
+    rank = row["position"] + 1
+    largest = " (the largest LF peak)" if rank == 1 else ""
+    return (f"{command}: HF evaluation failed for event {row['event_id']}, LF rank {rank} of "
+            f"{study.lfset.n}{largest}, LF {row['lf']:.4g}: {row.get('error')}; "
+            "it is left out of the model")
 
 
 class Progress:
     """``callback(study, row)`` printing one line per told result.
 
     Iteration, HF count, event, LF, the HF value (or the failure), and once a
-    model is fitted the MPM with its band, the copula family, ``Ē`` and the
-    COV against their limits.
+    model is fitted the MPM with the sampling part of its U95 (the z-draw
+    band of Eq. 10; the reported U95 adds the model part at the end), the
+    copula family, ``Ē`` and the COV against their limits.
 
     Parameters
     ----------
     stream : file, optional
-        Where to print; default ``sys.stderr`` (read when called).
+        Where to print the progress lines; default ``sys.stderr`` (read when called).
+    quiet : bool, default False
+        Print nothing but the failure lines.
+    command : str, default "pas run"
+        Prefix of the failure lines.
+
+    Notes
+    -----
+    A failed HF evaluation always gives one line on stderr (:func:`failure_line`),
+    also when ``quiet``: a failure of the largest LF event moves the MPM.
     """
 
-    def __init__(self, stream=None):
+    def __init__(self, stream=None, *, quiet: bool = False, command: str = "pas run"):
         self.stream = stream
+        self.quiet = bool(quiet)
+        self.command = command
 
     def __call__(self, study, row) -> None:
+        stream = self.stream or sys.stderr
+        failed = row.get("status") == "failed"
+        if failed and (self.quiet or stream is not sys.stderr):
+            print(failure_line(self.command, study, row), file=sys.stderr, flush=True)
+        if self.quiet:
+            return
+        print(self.line(study, row), file=stream, flush=True)
+
+    @staticmethod
+    def line(study, row) -> str:
         status = row.get("status")
         if status == "failed":
-            what = f"FAILED ({row.get('error')})"
+            what = (f"FAILED (LF rank {row['position'] + 1} of {study.lfset.n}: "
+                    f"{row.get('error')})")
         elif status == "false_positive":
             what = "HF 0 (false positive)"
         else:
@@ -35,14 +88,46 @@ class Progress:
         model = "no fit yet"
         if _finite(row.get("mpm")):
             fam = f" {row['family']}" if row.get("family") else ""
-            model = (f"MPM {row['mpm']:.4g} [{_num(row.get('mpm_low'), '.4g')}, "
-                     f"{_num(row.get('mpm_high'), '.4g')}]{fam}  "
+            model = (f"MPM {row['mpm']:.4g} (sampling band {_num(row.get('mpm_low'), '.4g')}–"
+                     f"{_num(row.get('mpm_high'), '.4g')}){fam}  "
                      f"E_bar {_num(row.get('E_bar'))} (eps1 {study.stopping.eps1:g})  "
                      f"COV {_num(row.get('COV'))} (eps2 {study.stopping.eps2:g})")
             if row.get("stop"):
                 model += "  converged"
-        print(f"[pas] it {row['row'] + 1:>4}  n_HF {study.n_hf:>4}  event {row['event_id']}  "
-              f"LF {row['lf']:.4g}  {what}  {model}", file=self.stream or sys.stderr, flush=True)
+        return (f"[pas] it {row['row'] + 1:>4}  n_HF {study.n_hf:>4}  event {row['event_id']}  "
+                f"LF {row['lf']:.4g}  {what}  {model}")
+
+
+def stopped(command: str, exc: BaseException, study, **where) -> RunStopped:
+    """The :class:`RunStopped` for a run that ``exc`` (Ctrl-C or a closed pipe) ended early.
+
+    ``where`` is passed to :func:`stopped_message` (``store``, ``out``, ``resume``).
+    """
+    pipe = isinstance(exc, BrokenPipeError)
+    why = "output pipe closed" if pipe else "interrupted"
+    return RunStopped(stopped_message(command, why, n_results=len(study.rows), **where),
+                      EXIT_BROKEN_PIPE if pipe else EXIT_INTERRUPTED)
+
+
+def stopped_message(command: str, why: str, *, n_results: int, store=None, out=None,
+                    resume: str | None = None) -> str:
+    """The one line printed when a run stops early (Ctrl-C, closed pipe).
+
+    Says what was kept, how to resume and that HF programs started by a
+    command oracle may still be running: they run in their own session, so
+    Ctrl-C does not reach them.
+    """
+    parts = [f"{command}: {why} after {n_results} HF result(s)"]
+    if out is not None:
+        parts.append(f"partial result written to {out}/")
+    if store is not None:
+        parts.append(f"every HF result is in {store}; run "
+                     f"{resume or 'the same command'} again to resume")
+    else:
+        parts.append("nothing was stored to resume from (--no-store)")
+    parts.append("HF programs a command oracle started may still be running (a resumed run "
+                 "waits for them and reuses their results)")
+    return "; ".join(parts)
 
 
 def _finite(x) -> bool:

@@ -69,7 +69,7 @@ def _draw(kind, result, summary, lf_curve, args):
     if kind == "mpm":
         return figures.plot_mpm_convergence(result, truth=args.truth, unit=unit)[0]
     if kind == "distribution":
-        return figures.plot_distribution(result, lf=lf_curve, unit=unit)[0]
+        return figures.plot_distribution(result, lf=lf_curve, unit=unit, lf_unit=lf_unit)[0]
     if kind == "scatter":
         h = result.history
         ok = h["status"].isin(["true_positive", "false_positive"]).to_numpy()

@@ -23,8 +23,14 @@ file (a 1-D array, or a structured array with named columns).  The oracle
     ``{index}``, ``{lf}``, ``{d}``, ``{workdir}``, ``{result}`` and the
     ``--meta-columns``; each event runs in ``OUT/hf-runs/<id>/``.
 
-Progress goes to stderr (one line per HF result: iteration, HF count, MPM,
-Ē, COV); the result summary to stdout (``--json`` for machine-readable).
+Progress goes to stderr (one line per HF result: iteration, HF count, MPM
+with the sampling part of its band, Ē, COV; with ``--quiet`` only one line
+per failed HF evaluation, naming the event and its LF rank); the result
+summary to stdout (``--json`` for machine-readable), with the MPM's U95 and
+its two labelled parts.  ``--n-waves`` below the number of LF peaks over the
+threshold is an error (exceedance probabilities would exceed 1) unless
+``--n-waves-convention spectral`` says that n_w = T_MCS/T_p,e on purpose.
+Ctrl-C or a closed pipe writes the partial result and says how to resume.
 The output folder receives ``history.csv``, ``distribution.csv``,
 ``pairs.csv``, ``range_curves.csv``, ``lf_curve.csv`` and ``summary.json``
 — everything ``pas plot`` needs to redraw the figures — and, unless
@@ -66,8 +72,8 @@ examples:
 """
 
 
-_INPUTS = ("lf_file", "lf_column", "id_column", "oracle", "n_waves", "p_exp", "eps1", "eps2",
-           "threshold", "strategy", "max_hf", "batch_size", "unit", "lf_unit")
+_INPUTS = ("lf_file", "lf_column", "id_column", "oracle", "n_waves", "n_waves_convention", "p_exp",
+           "eps1", "eps2", "threshold", "strategy", "max_hf", "batch_size", "unit", "lf_unit")
 """The options written to ``summary.json`` as the run's ``inputs``."""
 
 _LF_FILE_NAMES = {"file": "LF_FILE", "column": "--lf-column", "id_column": "--id-column",
@@ -84,10 +90,13 @@ def _positive_int(text):
     return v
 
 
+STRATEGY_NAMES = ("pas", "as")
+"""The names of :data:`pas.study.factory.STRATEGIES`, kept here so ``pas --help`` imports
+no strategy (a test checks that the two agree)."""
+
+
 def add_parser(sub) -> None:
     """Register ``pas run`` on the sub-command parser ``sub``."""
-    from ..study.factory import STRATEGIES
-
     p = sub.add_parser(
         "run", help="run PAS (or AS) on an LF peak file with an HF oracle",
         description=__doc__.split("\n\n")[0].replace("``", ""),
@@ -103,6 +112,10 @@ def add_parser(sub) -> None:
                    help="table:FILE[:ID_COL:VALUE_COL] | python:MODULE:FUNCTION | command:ARGS")
     p.add_argument("--n-waves", required=True, type=_positive_int, metavar="N",
                    help="wave encounters in the LF Monte-Carlo run (n_w)")
+    p.add_argument("--n-waves-convention", choices=("count", "spectral"), default="count",
+                   help="'count' (default): N counted wave encounters, at least the LF peaks "
+                        "over the threshold; 'spectral': N = T_MCS/T_p,e on purpose (paper "
+                        "Table 2), may lie below the number of peaks")
     p.add_argument("--p-exp", required=True, type=float, metavar="P",
                    help="target exceedance probability (e.g. T_1/T_exp)")
     p.add_argument("--eps1", required=True, type=float, metavar="E",
@@ -112,7 +125,7 @@ def add_parser(sub) -> None:
     p.add_argument("--threshold", type=float, metavar="L0", help="LF threshold l0_input")
     p.add_argument("--seed", type=int, help="random seed (default: drawn and reported)")
     p.add_argument("--max-hf", type=_positive_int, metavar="N", help="budget of HF evaluations")
-    p.add_argument("--strategy", choices=tuple(STRATEGIES), default="pas",
+    p.add_argument("--strategy", choices=STRATEGY_NAMES, default="pas",
                    help="PAS (copula, default) or AS (GPR on order statistics)")
     p.add_argument("--batch-size", type=_positive_int, default=1, metavar="Q",
                    help="events per iteration (default 1)")
@@ -125,7 +138,8 @@ def add_parser(sub) -> None:
                    help="output folder (default: pas-run)")
     p.add_argument("--no-store", action="store_true",
                    help="do not keep the crash-safe study store OUT/study.sqlite")
-    p.add_argument("--quiet", action="store_true", help="no progress output on stderr")
+    p.add_argument("--quiet", action="store_true",
+                   help="no progress on stderr, only one line per failed HF evaluation")
     p.add_argument("--json", action="store_true", help="print the result summary as JSON")
     p.set_defaults(func=run)
 
@@ -134,15 +148,21 @@ def run(args) -> int:
     """Execute ``pas run``; returns the exit code (0 done, 1 oracle failure limit)."""
     from ..api import make_study
     from ..io import read_lf_peaks
+    from ..screening import check_n_waves
     from ..study.oracles import OracleFailureLimit, oracle_from_spec
     from ..study.replay import attach
     from ..study.store import StoreError, read_settings
-    from ._progress import Progress
+    from ._progress import Progress, stopped
 
     _check_numbers(args)
     lf, ids, meta = read_lf_peaks(args.lf_file, column=args.lf_column, id_column=args.id_column,
                                   meta_columns=args.meta_columns, guess_columns=True,
                                   names=_LF_FILE_NAMES)
+    note = check_n_waves(lf, args.n_waves, args.threshold, convention=args.n_waves_convention,
+                         names={"n_waves": "--n-waves",
+                                "convention": "--n-waves-convention spectral"})
+    if note is not None:
+        print(f"pas run: warning: {note}", file=sys.stderr)
     out = Path(args.out)
     try:
         oracle = oracle_from_spec(args.oracle, root=out / "hf-runs", timeout=args.timeout)
@@ -150,33 +170,56 @@ def run(args) -> int:
         raise type(exc)(f"--oracle: {exc}") from None
     store = None if args.no_store else out / "study.sqlite"
     failed = None
+    inputs = {name: getattr(args, name) for name in _INPUTS}
     try:
-        seed = args.seed if args.seed is not None or store is None else \
-            read_settings(store).get("seed")
+        stored = {} if store is None else read_settings(store)
+        seed = args.seed if args.seed is not None or store is None else stored.get("seed")
         study = make_study(args.strategy, lf, n_waves=args.n_waves, p_exp=args.p_exp,
                            eps1=args.eps1, eps2=args.eps2, threshold=args.threshold, seed=seed,
-                           max_hf=args.max_hf, ids=ids, meta=meta)
+                           max_hf=args.max_hf, ids=ids, meta=meta,
+                           n_waves_convention="spectral")  # checked above, with option names
         if store is not None:  # only now: bad inputs leave no output folder behind
             out.mkdir(parents=True, exist_ok=True)
-            attach(study, store)
-        result = study.optimize(oracle, batch_size=args.batch_size, n_workers=args.workers,
-                                callback=None if args.quiet else Progress())
+            for ch in attach(study, store):
+                print(f"pas run: {ch['key']} changed from {ch['old']} to {ch['new']} on resuming "
+                      f"(recorded in {store})", file=sys.stderr)
+        try:
+            result = study.optimize(oracle, batch_size=args.batch_size, n_workers=args.workers,
+                                    callback=Progress(quiet=args.quiet))
+        except (KeyboardInterrupt, BrokenPipeError) as exc:
+            written = _save_partial(study, out, inputs, args)
+            raise stopped("pas run", exc, study, store=store, out=written,
+                          resume="the same 'pas run' command") from None
     except StoreError as exc:
         raise ValueError(f"{exc} (to start a new study use another --out or --no-store)") from None
     except OracleFailureLimit as exc:
         result, failed = exc.result, str(exc)
-    inputs = {name: getattr(args, name) for name in _INPUTS}
     summary = result.save(out, inputs={**inputs, "lf_file": str(args.lf_file), "seed": result.seed},
                           lfset=study.lfset)
     if args.json:
         print(json.dumps(summary, indent=2))
     else:
-        print(result.summary())
+        print(result.summary(unit=args.unit))
         print(f"results written to {out}/ (draw them with: pas plot {out} --kind all)")
     if failed is not None:
         print(f"pas run: error: {failed} (partial result written to {out}/)", file=sys.stderr)
         return 1
     return 0
+
+
+def _save_partial(study, out, inputs, args):
+    """Write the result so far to ``out`` after Ctrl-C or a closed pipe; the folder or None."""
+    import warnings
+
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")  # the partial result's own caveats
+            study.result().save(out, inputs={**inputs, "lf_file": str(args.lf_file),
+                                             "seed": study.seed, "stopped_early": True},
+                                lfset=study.lfset)
+    except (OSError, ValueError):
+        return None
+    return out
 
 
 def _check_numbers(args) -> None:

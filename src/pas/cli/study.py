@@ -6,41 +6,29 @@
     pas study ask STUDY.db [-n N] [--format table|csv|json] [-o FILE]
     pas study tell STUDY.db EVENT VALUE | EVENT --error MSG | --csv results.csv
     pas study status STUDY.db [--json]
+    pas study set STUDY.db [--eps1 E] [--eps2 C] [--k1 K] [--k2 K] [--max-hf N]
     pas study run STUDY.db [-q Q] [--workers N] [--pending resubmit|wait]
 
 The study file is a :mod:`pas.study.store` (SQLite): ``tell`` only records the
 result (any number of processes at once), ``ask`` replays the study, uses the
 results told since the last ask and marks the next events pending.
 
-The TOML file (paths relative to it)::
+The TOML file (paths relative to it; every key in ``docs/study-file.md``)::
 
     n_waves = 16364          # required: wave encounters in the LF run
     p_exp = 2.55e-3          # required: target exceedance probability
     eps1 = 0.1               # required: stopping limit, load units
-    eps2 = 0.1
-    threshold = 2.0          # LF threshold (optional)
-    strategy = "pas"         # or "as"
-    seed = 1
-    max_hf = 60
-
     [lf]
     file = "peaks.csv"       # .csv, .parquet or .npy
     column = "lf"            # required for .csv/.parquet
-    id_column = "event"      # optional: event ids (default: row index)
-    meta_columns = ["seed", "t_start", "t_end"]   # optional: handed to the HF tool
-
-    [settings]               # strategy and study settings
-    n_bootstrap = 0
-
-    [oracle]                 # optional, for 'pas study run': a command per event ...
+    [oracle]                 # optional, for 'pas study run': a command per event
     command = ["python", "cfd.py", "--event", "{id}", "--lf", "{lf}", "--out", "{result}"]
-    root = "runs"            # per-event working directories root/<id>
-    timeout = 36000          # seconds
-    # ... or a table of results:  table = "basin.csv", id_column = "id", value_column = "hf"
 
 ``pas study run`` drives the study with that oracle, storing each result as it
 arrives; kill it at any time and run it again to continue (same ``-q``; the
-batch size of the first run is the default).
+batch size of the first run is the default).  ``pas study set`` changes the
+stopping limits or the budget of a study, converged or not (recorded in the
+store; no decision taken so far depends on them).
 """
 
 from __future__ import annotations
@@ -65,6 +53,7 @@ examples:
   pas study tell campaign.db 877 0                   # no impact: a false positive
   pas study tell campaign.db --csv results.csv       # columns id, hf (from any process)
   pas study status campaign.db                       # MPM so far, convergence, pending
+  pas study set campaign.db --eps1 10 --max-hf 80    # tighter limit, bigger budget
   pas study run campaign.db -q 4 --workers 4         # drive it with the TOML's [oracle]
 """
 
@@ -102,12 +91,20 @@ def add_parser(sub) -> None:
     s = cmds.add_parser("status", help="convergence, MPM so far, counts and pending events")
     s.add_argument("study", metavar="STUDY.db")
     s.add_argument("--json", action="store_true")
+    c = cmds.add_parser("set", help="change the stopping limits or the budget of a study")
+    c.add_argument("study", metavar="STUDY.db")
+    c.add_argument("--eps1", type=float, metavar="E", help="limit on the distribution change")
+    c.add_argument("--eps2", type=float, metavar="C", help="limit on the COV of the MPM")
+    c.add_argument("--k1", type=int, metavar="K", help="window of the distribution change")
+    c.add_argument("--k2", type=int, metavar="K", help="window of the MPM COV")
+    c.add_argument("--max-hf", type=int, metavar="N", help="budget of HF evaluations")
+    c.add_argument("--max-failures", type=int, metavar="N", help="failed calls tolerated")
     p.set_defaults(func=run)
 
 
 def run(args) -> int:
-    return {"create": _create, "ask": _ask, "tell": _tell, "status": _status, "run": _drive}[
-        args.study_command](args)
+    return {"create": _create, "ask": _ask, "tell": _tell, "status": _status, "run": _drive,
+            "set": _set}[args.study_command](args)
 
 
 # -- actions ----------------------------------------------------------------
@@ -118,7 +115,8 @@ def _create(args) -> int:
     if os.path.exists(args.study):
         raise ValueError(f"{args.study} already exists (continue it with 'pas study ask')")
     lf, ids, meta = load_peaks(cfg["lf"])
-    kw = {k: cfg[k] for k in ("eps2", "threshold", "seed", "max_hf") if k in cfg}
+    kw = {k: cfg[k] for k in ("eps2", "threshold", "seed", "max_hf", "n_waves_convention")
+          if k in cfg}
     try:
         study = make_study(cfg["strategy"], lf, n_waves=cfg["n_waves"],
                            p_exp=cfg["p_exp"], eps1=cfg["eps1"], ids=ids, meta=meta,
@@ -264,12 +262,56 @@ def _drive(args) -> int:
     if args.workers is not None and args.workers < 1:
         raise ValueError(f"--workers must be at least 1, got {args.workers}")
     study = open_study(store, consume=False)
-    progress = None if args.quiet else Progress(sys.stdout)
-    res = study.optimize(oracle_from_spec(spec), batch_size=q, n_workers=args.workers,
-                         pending=args.pending, callback=progress)
-    store.close()
+    progress = Progress(sys.stdout, quiet=args.quiet, command="pas study run")
+    try:
+        res = study.optimize(oracle_from_spec(spec), batch_size=q, n_workers=args.workers,
+                             pending=args.pending, callback=progress)
+    except (KeyboardInterrupt, BrokenPipeError) as exc:
+        from ._progress import stopped
+
+        raise stopped("pas study run", exc, study, store=args.study,
+                      resume=f"'pas study run {args.study}'") from None
+    finally:
+        store.close()
     print(res.summary())
     return 0
+
+
+def _set(args) -> int:
+    from ..study.store import StudyStore
+    from ..study.study import open_study
+
+    names = {"eps1": "--eps1", "eps2": "--eps2", "k1": "--k1", "k2": "--k2",
+             "max_hf": "--max-hf", "max_failures": "--max-failures"}
+    changes = {k: getattr(args, k) for k in names if getattr(args, k) is not None}
+    if not changes:
+        raise ValueError(f"give at least one of {', '.join(names.values())}")
+    for key, value in changes.items():
+        if isinstance(value, float) and not (math.isfinite(value) and value > 0):
+            raise ValueError(f"{names[key]} must be a positive number, got {value:g}")
+        if isinstance(value, int) and value < (0 if key == "max_failures" else 1):
+            raise ValueError(f"{names[key]} must be a positive integer, got {value}")
+    with StudyStore(args.study, create=False) as store:
+        old = store.settings()
+        try:
+            study = open_study(store, consume=False, changes=changes)
+        except ValueError as exc:
+            raise ValueError(_option_names(str(exc), names)) from None
+    for key, value in changes.items():
+        if old.get(key) != value:
+            print(f"{args.study}: {key} {old.get(key)} -> {value}")
+    print(f"recorded in {args.study}; the study is "
+          + ("finished (" + _why_finished(study) + ")" if study.finished else
+             f"not finished: continue with 'pas study ask {args.study}'"))
+    return 0
+
+
+def _option_names(msg: str, names: dict) -> str:
+    """An error of the study constructor with its argument names as the CLI options."""
+    for key, opt in names.items():
+        if msg.startswith(key + " "):
+            return opt + msg[len(key):]
+    return msg
 
 
 def _status(args) -> int:
@@ -279,22 +321,35 @@ def _status(args) -> int:
     with StudyStore(args.study, create=False) as store:
         study = open_study(store, consume=False)
         study.store = None
+        used_converged = bool(study.converged)
         waiting = store.unconsumed()
         for idx, hf, err in waiting:
             study.tell(int(idx), hf, error=err)
         events = store.events()
+        changes = store.get("settings_changes", [])
     pend = events[events["state"] == "pending"]
+    res = study.result()
     fitted = [r for r in study.rows if r.get("mpm") is not None]
     last = fitted[-1] if fitted else {}
+    at = next((r["n_hf"] for r in fitted if r.get("stop")), None)
     info = {
         "study": args.study, "strategy": study.strategy.name, "seed": study.seed,
         "n_hf": study.n_hf, "n_false_positive": study.n_false_positive,
         "n_failed": study.n_failed, "n_pending": len(pend), "results_not_yet_used": len(waiting),
-        "max_hf": study.max_hf, "mpm": last.get("mpm"),
-        "mpm_band": [last.get("mpm_low"), last.get("mpm_high")] if last else None,
-        "family": last.get("family"), "E_bar": last.get("E_bar"), "COV": last.get("COV"),
+        "max_hf": study.max_hf, "mpm": res.mpm if fitted else None,
+        "mpm_band": list(res.mpm_band) if fitted else None,
+        "mpm_band_sampling": list(res.mpm_band_sampling) if fitted else None,
+        "mpm_band_model": None if res.mpm_band_model is None else list(res.mpm_band_model),
+        "family": res.family, "E_bar": last.get("E_bar"), "COV": last.get("COV"),
         "eps1": study.stopping.eps1, "eps2": study.stopping.eps2,
-        "converged": bool(study.converged), "finished": bool(study.finished),
+        "k1": study.stopping.k1, "k2": study.stopping.k2,
+        # convergence is decided on the results the study has used: with results waiting
+        # it is open until an ask or run uses them ('converged_with_waiting' says how it
+        # would come out, the numbers above include them)
+        "converged": None if waiting else used_converged,
+        "converged_with_waiting": bool(study.converged) if waiting else None,
+        "converged_at_n_hf": at, "finished": bool(study.finished) if not waiting else None,
+        "settings_changes": changes,
         "pending": [{"id": r.event_id, "index": int(r.idx), "lf": r.lf, "d": r.d,
                      "asked_at": r.asked_at} for r in pend.itertuples()],
     }
@@ -306,15 +361,24 @@ def _status(args) -> int:
     print(f"HF evaluations {info['n_hf']} (false positive {info['n_false_positive']}), failed "
           f"{info['n_failed']}, pending {info['n_pending']}"
           + (f", budget {study.max_hf}" if study.max_hf else ""))
-    if last:
-        print(f"MPM so far {info['mpm']:.5g} (U95 {last['mpm_low']:.5g} - {last['mpm_high']:.5g})"
-              f", copula {info['family']}" if info["family"] else
-              f"MPM so far {info['mpm']:.5g}")
+    if waiting:
+        print(f"{len(waiting)} result(s) told since the last ask: included below, not yet used "
+              f"by the study ('pas study ask' or 'pas study run' uses them)")
+    if fitted:
+        fam = f", copula {info['family']}" if info["family"] else ""
+        print(f"MPM so far {res.mpm:.5g}, {res.band_text()}{fam}")
+        verdict = ("converged" + (f" (at {at} HF evaluations)" if at is not None else "")
+                   if used_converged else "not converged")
+        if waiting:
+            verdict = ("open until the waiting results are used (with them: "
+                       + ("converged" if study.converged else "not converged") + ")")
         print(f"convergence: E_bar {_fmt(info['E_bar'])} (limit eps1 {info['eps1']:g}), COV "
-              f"{_fmt(info['COV'])} (limit eps2 {info['eps2']:g}): "
-              + ("converged" if info["converged"] else "not converged"))
+              f"{_fmt(info['COV'])} (limit eps2 {info['eps2']:g}): {verdict}")
     else:
         print("no model fitted yet")
+    for ch in changes:
+        print(f"setting changed: {ch['key']} {ch['old']} -> {ch['new']} "
+              f"(after {ch['n_told']} results, {ch['at']})")
     if info["pending"]:
         print("pending:")
         for p in info["pending"]:

@@ -1,7 +1,8 @@
 """The TOML file of ``pas study create``: reading and checking it, its oracle and LF peaks.
 
-The keys are described in :mod:`pas.cli.study`; every error is one line
-naming the key to fix (``lf.column``, ``oracle.timeout`` ...).
+The keys are described in :mod:`pas.cli.study` and ``docs/study-file.md``;
+every error is one line naming the key to fix (``lf.column``,
+``oracle.timeout`` ...).
 """
 
 from __future__ import annotations
@@ -11,9 +12,9 @@ from pathlib import Path
 
 __all__ = ["load_config", "load_peaks"]
 
-_TOP = {"n_waves": int, "p_exp": float, "eps1": float, "eps2": float, "threshold": float,
-        "strategy": str, "seed": int, "max_hf": int, "batch_size": int, "lf": dict,
-        "settings": dict, "oracle": dict}
+_TOP = {"n_waves": int, "n_waves_convention": str, "p_exp": float, "eps1": float, "eps2": float,
+        "threshold": float, "strategy": str, "seed": int, "max_hf": int, "batch_size": int,
+        "lf": dict, "settings": dict, "oracle": dict}
 _LF = {"file": str, "column": str, "id_column": str, "meta_columns": list}
 _REQUIRED = ("n_waves", "p_exp", "eps1", "lf")
 _ORACLE = {"command": list, "root": str, "timeout": float, "result_name": str, "table": str,

@@ -48,15 +48,18 @@ def _strategy_name(result, label):
     return f"{name} ({family})" if name and isinstance(family, str) and family else name or "result"
 
 
-def _plot_with_band(ax, x, table, mean, low, high, fmt, *, name, label, color, **style):
+def _plot_with_band(ax, x, table, mean, low, high, fmt, *, name, label, color,
+                    band_label="U95 band", **style):
     """Plot column ``mean`` of ``table`` over ``x`` and, when ``table`` has the columns
-    ``low`` and ``high``, its U95 band in the same colour; returns that colour."""
+    ``low`` and ``high``, their band in the same colour (no legend entry when
+    ``band_label`` is None); returns that colour."""
     (line,) = ax.plot(x, table[mean].to_numpy(dtype=float), fmt, color=color,
                       label=f"{name}: {label}", **style)
     c = line.get_color()
     if {low, high} <= set(table.columns):
         ax.fill_between(x, table[low].to_numpy(dtype=float), table[high].to_numpy(dtype=float),
-                        color=c, alpha=0.2, lw=0, label=f"{name}: U95 band")
+                        color=c, alpha=0.2, lw=0,
+                        label=f"{name}: {band_label}" if band_label else "_band")
     return c
 
 
@@ -68,4 +71,11 @@ def _exceedance_axes(ax, quantity, unit):
     ax.set_xlabel("exceedance probability per wave $d$ [-]")
     ax.set_ylabel(_with_unit(quantity, unit))
     ax.grid(True, which="both", lw=0.3, alpha=0.5)
-    ax.legend(fontsize=7, loc="upper left")
+    # one legend, also for the LF curve on its own axis (plot_distribution), where it
+    # covers the fewest points; see-through, as a long truth curve leaves no empty corner
+    handles, labels = ax.get_legend_handles_labels()
+    twin = getattr(ax, "_pas_lf_axes", None)
+    if twin is not None:
+        more = twin.get_legend_handles_labels()
+        handles, labels = handles + more[0], labels + more[1]
+    ax.legend(handles, labels, fontsize=7, loc="best", framealpha=0.6)

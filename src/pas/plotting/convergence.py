@@ -60,8 +60,11 @@ def plot_mpm_convergence(result, *, truth=None, ax=None, label=None, unit=None,
     Notes
     -----
     The x axis counts HF evaluations ``n_c`` (false positives included,
-    failed calls not).  The band is ``mpm_low``–``mpm_high`` of each fitted
-    iteration (the paper's z-draw band, Eq. 10).  False positives (HF = 0)
+    failed calls not).  The shaded band is ``mpm_low``–``mpm_high`` of each
+    fitted iteration: the sampling part of the U95 (the paper's z-draw band,
+    Eq. 10); the error bar at the last iteration is the reported U95
+    (:attr:`ScreeningResult.mpm_band <pas.study.result.ScreeningResult.mpm_band>`,
+    sampling and model parts together).  False positives (HF = 0)
     are marked at the MPM of the iteration they interrupted; the
     convergence point is the first iteration meeting the App. C criterion.
 
@@ -84,7 +87,14 @@ def plot_mpm_convergence(result, *, truth=None, ax=None, label=None, unit=None,
     name = _strategy_name(result, label)
     n = fitted["n_hf"].to_numpy(dtype=float)
     c = _plot_with_band(ax, n, fitted, "mpm", "mpm_low", "mpm_high", "-o", name=name,
-                        label="MPM", color=color, ms=2.5, lw=1.3)
+                        label="MPM, shaded: sampling band (Eq. 10)", color=color, ms=2.5,
+                        lw=1.3, band_label=None)
+    lo, hi = (float(x) for x in getattr(result, "mpm_band", (np.nan, np.nan)))
+    mpm = float(getattr(result, "mpm", np.nan))
+    if np.isfinite(mpm) and np.isfinite(lo) and np.isfinite(hi):
+        ax.errorbar([n[-1]], [mpm], yerr=[[max(mpm - lo, 0.0)], [max(hi - mpm, 0.0)]], fmt="none",
+                    ecolor=c, elinewidth=1.0, capsize=4,
+                    label=f"{name}: final U95 {lo:.4g}–{hi:.4g}")
     running = pd.to_numeric(hist["mpm"], errors="coerce").ffill().bfill()
     for status, marker, mcolor, text in (("false_positive", "x", _FP_COLOR, "false positive (HF = 0)"),
                                          ("failed", "v", _FAIL_COLOR, "failed HF call")):
@@ -109,6 +119,26 @@ def plot_mpm_convergence(result, *, truth=None, ax=None, label=None, unit=None,
     return fig, ax
 
 
+def _passed_over(fitted, families, selected, aic):
+    """Iterations whose lowest-AIC family was not selected, split by the reason.
+
+    ``(mask, marker, reason)`` for: its fit sat on a parameter bound and was
+    not eligible (PAS ``exclude_at_bound``, history column ``ineligible``);
+    it was less than ΔAIC below the current family (hysteresis); unknown
+    (results written before the history recorded eligibility).
+    """
+    finite = np.where(np.isnan(aic), np.inf, aic)
+    ok = np.isfinite(finite).any(axis=1)
+    lowest = np.array(families, dtype=object)[np.argmin(finite, axis=1)]
+    passed = ok & (lowest != selected)
+    if "ineligible" not in fitted:
+        return [(passed, "s", "ΔAIC hysteresis or a parameter at its bound")]
+    excluded = np.array([fam in str(x).split() for fam, x in
+                         zip(lowest, fitted["ineligible"].fillna("").to_numpy())])
+    return [(passed & excluded, "X", "parameter at its bound (not eligible)"),
+            (passed & ~excluded, "^", "less than ΔAIC below the current family")]
+
+
 # -- copula selection (paper Fig. 17 and 18) --------------------------------
 def plot_aic(result, *, ax=None, axes=None):
     """AIC of every copula candidate per iteration and the family selected (Fig. 17/18).
@@ -124,6 +154,13 @@ def plot_aic(result, *, ax=None, axes=None):
         Draw two panels: AIC curves (top) and the selected family per
         iteration (bottom).  When neither ``ax`` nor ``axes`` is given, a new
         two-panel figure is made.
+
+    Notes
+    -----
+    Where the family with the lowest AIC is not the one selected, its AIC is
+    marked and the legend says why: its fit sat on a parameter bound (e.g.
+    Student-t ν = 2), which PAS's ``exclude_at_bound`` makes ineligible, or
+    it was less than ΔAIC = 4 below the current family (§2.2 hysteresis).
 
     Returns
     -------
@@ -151,15 +188,20 @@ def plot_aic(result, *, ax=None, axes=None):
     n = fitted["n_hf"].to_numpy(dtype=float)
     families = [c[4:] for c in aic_cols]
     selected = fitted["family"].astype(str).to_numpy()
+    aic = fitted[aic_cols].to_numpy(dtype=float)
     colors = {}
-    for fam, col in zip(families, aic_cols):
-        aic = fitted[col].to_numpy(dtype=float)
-        (line,) = top.plot(n, aic, "-", lw=1.2, label=f"{fam}")
+    for k, fam in enumerate(families):
+        (line,) = top.plot(n, aic[:, k], "-", lw=1.2, label=f"{fam}")
         colors[fam] = line.get_color()
         chosen = selected == fam
         if chosen.any():
-            top.plot(n[chosen], aic[chosen], "o", ms=3.5, color=line.get_color())
-    top.plot([], [], "o", ms=3.5, color="0.3", label="selected family (ΔAIC ≥ 4 to switch)")
+            top.plot(n[chosen], aic[chosen, k], "o", ms=3.5, color=line.get_color())
+    top.plot([], [], "o", ms=3.5, color="0.3", label="selected family (switches at ΔAIC ≥ 4)")
+    for why, marker, text in _passed_over(fitted, families, selected, aic):
+        if why.any():
+            k = np.nanargmin(np.where(np.isnan(aic), np.inf, aic), axis=1)[why]
+            top.plot(n[why], aic[why, k], marker, ms=6, mfc="none", mew=1.1, color="k",
+                     ls="none", label=f"lowest AIC, not selected: {text} ×{int(why.sum())}")
     top.set_ylabel("AIC [-] (lower is better)")
     top.grid(True, lw=0.3, alpha=0.5)
     top.legend(fontsize=7, ncol=2, loc="best")

@@ -19,6 +19,10 @@ from ._common import (_exceedance_axes, _fmt, _new_axes, _plot_with_band, _strat
 __all__ = ["plot_distribution", "plot_scatter", "conditional_quantile_curves"]
 
 
+_MIN_TAIL_POINTS = 10
+"""Fewest pairs beyond ``q_tail`` for the scatter figure to report λU and λL."""
+
+
 def _pair_curve(value, name, sym, alternative=""):
     """A ``(d, values)`` pair of equal-length 1-D arrays, or a ValueError naming ``name``."""
     try:
@@ -45,9 +49,9 @@ def _truth_curve(truth):
 
 # -- exceedance distribution (paper Fig. 6/7 bottom) ------------------------
 def plot_distribution(result, *, lf=None, truth=None, ax=None, label=None, unit=None,
-                      quantity="HF load", lf_label="LF indicator", color=None,
+                      quantity="HF load", lf_label="LF indicator", lf_unit=None, color=None,
                       show_samples=True):
-    """Predicted HF exceedance distribution h*(d) with its U95 band (paper Fig. 6/7, bottom).
+    """Predicted HF exceedance distribution h*(d) with its band and the MPM's U95 (Fig. 6/7 bottom).
 
     Parameters
     ----------
@@ -56,8 +60,9 @@ def plot_distribution(result, *, lf=None, truth=None, ax=None, label=None, unit=
         ``h_low``, ``h_high``), ``result.pairs``, ``result.p_exp`` and
         ``result.mpm``/``mpm_band``.
     lf : (d, l) tuple of arrays or LFSet, optional
-        The LF indicator distribution to draw for reference (same axis; it
-        is usually a different quantity, see ``lf_label``).
+        The LF indicator distribution to draw for reference, on a second
+        value axis on the right (it is another quantity in another unit)
+        unless ``lf_unit`` equals ``unit``.
     truth : (d, h) tuple of arrays, optional
         The true HF exceedance distribution (e.g. from a brute-force HF
         Monte-Carlo run).
@@ -70,6 +75,8 @@ def plot_distribution(result, *, lf=None, truth=None, ax=None, label=None, unit=
         Name of the quantity on the value axis.
     lf_label : str, default "LF indicator"
         Legend text of the LF curve.
+    lf_unit : str, optional
+        Unit of the LF indicator, for its axis label.
     color : color, optional
     show_samples : bool, default True
         Draw the HF samples at the LF exceedance probability of their event
@@ -82,8 +89,14 @@ def plot_distribution(result, *, lf=None, truth=None, ax=None, label=None, unit=
     Notes
     -----
     The exceedance axis is logarithmic and reversed, so rarer events lie to
-    the right; ``P_exp`` is a vertical line and the MPM with its U95 band an
-    error bar on it.
+    the right; ``P_exp`` is a vertical line.  The shaded band is the sampling
+    band of the mean distribution (``h* ± 1.96 σ`` over the z conditional
+    draws, Eq. 10).  The MPM marker carries the one reported U95
+    (:attr:`ScreeningResult.mpm_band <pas.study.result.ScreeningResult.mpm_band>`)
+    as a thin error bar, with its sampling part as a thick bar inside it.
+    Where the mean distribution is exactly 0 although no evaluated event
+    gave 0, the draws fell below the HF marginal's support and were clipped;
+    that part is not drawn and the legend says from where.
 
     Examples
     --------
@@ -103,34 +116,40 @@ def plot_distribution(result, *, lf=None, truth=None, ax=None, label=None, unit=
     name = _strategy_name(result, label)
     d = dist["exceedance_probability"].to_numpy(dtype=float)
     h = dist["h_mean"].to_numpy(dtype=float)
-    c = _plot_with_band(ax, d, dist, "h_mean", "h_low", "h_high", "-", name=name,
-                        label="mean $h^*(d)$", color=color, lw=1.6)
+    clipped = _clipped(result, h)
+    shown = dist.mask(pd.Series(clipped, index=dist.index), np.nan) if clipped.any() else dist
+    c = _plot_with_band(ax, d, shown, "h_mean", "h_low", "h_high", "-", name=name,
+                        label="mean $h^*(d)$, shaded: sampling band (Eq. 10)", color=color,
+                        lw=1.6, band_label=None)
+    if clipped.any():
+        ax.plot([], [], " ", label=f"{name}: not drawn for d ≥ {d[clipped].min():.2g}: "
+                                   "draws clipped at 0 (below the HF marginal)")
     if lf is not None:
         d_l, l_v = _lf_curve(lf)
-        ax.plot(d_l, l_v, "-", color="0.5", lw=1.0, label=lf_label)
+        lf_ax = ax if (lf_unit is not None and lf_unit == unit) else _lf_axes(ax)
+        lf_ax.plot(d_l, l_v, "-", color="0.5", lw=1.0, label=lf_label)
+        if lf_ax is not ax:
+            lf_ax.set_ylabel(_with_unit(lf_label, lf_unit), color="0.4")
     pairs = getattr(result, "pairs", None)
     if show_samples and isinstance(pairs, pd.DataFrame) and {"d", "hf"} <= set(pairs.columns) \
             and not pairs.empty:
         ax.plot(pairs["d"].to_numpy(dtype=float), pairs["hf"].to_numpy(dtype=float), "o", ms=4,
                 mfc="none", mew=1.0, color=c,
-                label=f"{name}: HF samples at their LF exceedance (n = {len(pairs)})")
+                label=f"{name}: HF samples at their LF exceedance ({len(pairs)})")
     if truth is not None:
         d_t, h_t = _truth_curve(truth)
         ax.plot(d_t, h_t, "k--", lw=1.2, label="truth (HF Monte-Carlo)")
     p_exp = float(result.p_exp)
-    ax.axvline(p_exp, color="0.3", lw=0.8, ls=":", label=f"$P_{{exp}}$ = {p_exp:.3g}")
+    pexp_label = f"$P_{{exp}}$ = {p_exp:.3g}"
+    if pexp_label in ax.get_legend_handles_labels()[1]:
+        pexp_label = "_" + pexp_label  # drawn by an earlier call on this Axes
+    ax.axvline(p_exp, color="0.3", lw=0.8, ls=":", label=pexp_label)
     mpm = float(result.mpm)
     if np.isfinite(mpm):
-        lo, hi = (float(x) for x in result.mpm_band)
-        yerr = None
-        if np.isfinite(lo) and np.isfinite(hi):
-            yerr = [[max(mpm - lo, 0.0)], [max(hi - mpm, 0.0)]]
-        ax.errorbar([p_exp], [mpm], yerr=yerr, fmt="D", ms=6, color=c, mec="k", mew=0.6,
-                    capsize=4, label=f"{name}: MPM {_fmt(mpm, unit)}"
-                                     + (f" (U95 {lo:.4g}–{hi:.4g})" if yerr is not None else ""))
+        _mpm_marker(ax, result, p_exp, mpm, c, name, unit)
     # far from P_exp the Weibull marginals may extrapolate the mean curve below every
     # observed load (even below 0); keep the view on the data
-    seen = [h[d <= 10 * p_exp]]
+    seen = [h[(d <= 10 * p_exp) & ~clipped]]
     if isinstance(pairs, pd.DataFrame) and "hf" in pairs:
         seen.append(pairs["hf"].to_numpy(dtype=float))
     if truth is not None:
@@ -143,6 +162,42 @@ def plot_distribution(result, *, lf=None, truth=None, ax=None, label=None, unit=
         ax.set_ylim(max(lo, min(seen.min(), 0.0) - 0.05 * span), hi)
     _exceedance_axes(ax, quantity, unit)
     return fig, ax
+
+
+def _clipped(result, h) -> np.ndarray:
+    """Rows where the mean distribution is exactly 0 although no evaluated event gave 0
+    (:attr:`ScreeningResult.clipped_from <pas.study.result.ScreeningResult.clipped_from>`)."""
+    if getattr(result, "n_false_positive", 0) or not np.any(h == 0.0):
+        return np.zeros(h.shape, dtype=bool)
+    return h == 0.0
+
+
+def _lf_axes(ax):
+    """The right-hand value axis for the LF curve, made once per Axes."""
+    twin = getattr(ax, "_pas_lf_axes", None)
+    if twin is None:
+        twin = ax.twinx()
+        twin.tick_params(axis="y", colors="0.4")
+        ax._pas_lf_axes = twin
+    return twin
+
+
+def _mpm_marker(ax, result, p_exp, mpm, c, name, unit):
+    """The MPM at ``P_exp`` with its U95 (thin bar) and the sampling part (thick bar)."""
+    lo, hi = (float(x) for x in result.mpm_band)
+    if not (np.isfinite(lo) and np.isfinite(hi)):
+        ax.plot([p_exp], [mpm], "D", ms=6, color=c, mec="k", mew=0.6,
+                label=f"{name}: MPM {_fmt(mpm, unit)}")
+        return
+    s_lo, s_hi = (float(x) for x in getattr(result, "mpm_band_sampling", (np.nan, np.nan)))
+    thick = np.isfinite(s_lo) and np.isfinite(s_hi) and (s_lo, s_hi) != (lo, hi)
+    if thick:
+        ax.plot([p_exp, p_exp], [s_lo, s_hi], "-", color=c, lw=3.5, alpha=0.6,
+                solid_capstyle="butt")
+    ax.errorbar([p_exp], [mpm], yerr=[[max(mpm - lo, 0.0)], [max(hi - mpm, 0.0)]], fmt="D",
+                ms=6, color=c, mec="k", mew=0.6, capsize=4, elinewidth=0.9,
+                label=f"{name}: MPM {_fmt(mpm, unit)}, U95 {lo:.4g}–{hi:.4g}"
+                      + (f" (thick: sampling part {s_lo:.4g}–{s_hi:.4g})" if thick else ""))
 
 
 # -- LF–HF scatter with the fitted copula (paper Fig. 4, 16, 19) ------------
@@ -219,7 +274,10 @@ def plot_scatter(lf, hf, *, result=None, ax=None, lf_unit=None, unit=None,
     Notes
     -----
     τ, λU and λL are computed on all the given pairs and shown in the title
-    and the legend.  Large samples are rasterised in vector output.
+    and the legend.  λU and λL are fractions of the pairs beyond ``q_tail``;
+    with fewer than 10 such pairs (fewer than 100 pairs at q = 0.9) they
+    would be 0, 0.5 or 1 from a handful of points and are not shown.  Large
+    samples are rasterised in vector output.
     """
     from ..stats.dependence import empirical_tail_dependence, kendall_tau
 
@@ -232,9 +290,16 @@ def plot_scatter(lf, hf, *, result=None, ax=None, lf_unit=None, unit=None,
         raise ValueError(f"lf, hf: need at least 3 finite pairs, got {x.size}")
     fig, ax = _new_axes(ax, figsize=(6.0, 5.0))
     tau = kendall_tau(x, y)
-    lam_u, lam_l = empirical_tail_dependence(x, y, q=q_tail)
-    stats_txt = f"τ = {tau:.2f}, $λ_U$ = {lam_u:.2f}, $λ_L$ = {lam_l:.2f}"
-    ax.scatter(x, y, s=4, color="0.6", alpha=0.5, lw=0, rasterized=x.size > 2000,
+    n_tail = int(np.sum(np.arange(1, x.size + 1) / (x.size + 1) > q_tail))  # pairs with u > q
+    if n_tail >= _MIN_TAIL_POINTS:
+        lam_u, lam_l = empirical_tail_dependence(x, y, q=q_tail)
+        stats_txt = f"τ = {tau:.2f}, $λ_U$ = {lam_u:.2f}, $λ_L$ = {lam_l:.2f} (q = {q_tail:g})"
+    else:
+        stats_txt = (f"τ = {tau:.2f}; $λ_U$, $λ_L$ not estimated: {n_tail} of {x.size} pairs "
+                     f"beyond q = {q_tail:g} (needs {_MIN_TAIL_POINTS})")
+    many = x.size > 2000
+    ax.scatter(x, y, s=4 if many else 14, color="0.6" if many else "0.45", alpha=0.5 if many else 0.8,
+               lw=0, rasterized=many,
                label=f"{label} (n = {x.size}); {stats_txt}")
     if result is not None:
         pairs = result.pairs
@@ -254,5 +319,5 @@ def plot_scatter(lf, hf, *, result=None, ax=None, lf_unit=None, unit=None,
     ax.set_ylabel(_with_unit(hf_label, unit))
     ax.set_title(stats_txt, fontsize=9)
     ax.grid(True, lw=0.3, alpha=0.5)
-    ax.legend(fontsize=7, loc="upper left")
+    ax.legend(fontsize=7, loc="upper left")  # data rise to the right: upper left is freest
     return fig, ax

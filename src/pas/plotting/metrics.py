@@ -8,6 +8,10 @@ import pandas as pd
 __all__ = ["plot_metrics"]
 
 # -- validation metrics (paper Fig. 8) --------------------------------------
+_MAX_BAR = 0.28
+"""Widest bar, in units of the case spacing: one case does not become one full-width block."""
+_MAX_LABELLED = 24
+"""Bars are labelled with their values up to this many per panel."""
 _METRICS = ("M1", "M2", "M3")
 _METRIC_LABEL = {
     "M1": "$M_1 = n_c/n_w$ [%] (HF cost)",
@@ -66,16 +70,20 @@ def plot_metrics(table, *, ax=None, axes=None, percent=True):
         parts = [p for p in (metric, strat.upper() if strat else "") if p]
         return " ".join(parts) or "value"
 
+    unit = "%" if percent else ""
     if ax is not None:
         fig = ax.figure
         series = [(m, s) for m in _METRICS for s in strategies]
-        width = 0.8 / len(series)
+        width = min(0.8 / len(series), _MAX_BAR)
         for k, (m, s) in enumerate(series):
             vals = [value(c, s, m) for c in cases]
-            ax.bar(x - 0.4 + width * (k + 0.5), vals, width, label=label_of(s, m),
-                   color=f"C{_METRICS.index(m)}", alpha=1.0 - 0.35 * strategies.index(s) / max(1, len(strategies)),
-                   edgecolor="k", lw=0.4)
+            bars = ax.bar(x + width * (k + 0.5 - len(series) / 2), vals, width,
+                          label=label_of(s, m), color=f"C{_METRICS.index(m)}",
+                          alpha=1.0 - 0.35 * strategies.index(s) / max(1, len(strategies)),
+                          edgecolor="k", lw=0.4)
+            _label_bars(ax, bars, vals, unit, len(cases) * len(series))
         ax.axhline(0.0, color="k", lw=0.6)
+        ax.set_xlim(-0.6, len(cases) - 0.4)
         ax.set_xticks(x, cases)
         ax.set_xlabel("validation case")
         ax.set_ylabel("metric [%]" if percent else "metric [-]")
@@ -85,19 +93,23 @@ def plot_metrics(table, *, ax=None, axes=None, percent=True):
     if axes is None:
         import matplotlib.pyplot as plt
 
-        fig, axes = plt.subplots(3, 1, figsize=(7.0, 7.0), sharex=True, layout="constrained")
+        fig, axes = plt.subplots(3, 1, figsize=(min(7.0, 2.5 + 1.2 * len(cases)), 7.0),
+                                 sharex=True, layout="constrained")
     else:
         axes = list(axes)
         if len(axes) != 3:
             raise ValueError(f"axes: expected three Axes (M1, M2, M3), got {len(axes)}")
         fig = axes[0].figure
-    width = 0.8 / len(strategies)
+    width = min(0.8 / len(strategies), _MAX_BAR)
     for panel, m in zip(axes, _METRICS):
         for k, s in enumerate(strategies):
             vals = [value(c, s, m) for c in cases]
-            panel.bar(x - 0.4 + width * (k + 0.5), vals, width, label=label_of(s) if s else m,
-                      color=f"C{k}", edgecolor="k", lw=0.4)
+            bars = panel.bar(x + width * (k + 0.5 - len(strategies) / 2), vals, width,
+                             label=label_of(s) if s else m, color=f"C{k}", edgecolor="k", lw=0.4)
+            _label_bars(panel, bars, vals, unit, len(cases) * len(strategies))
         panel.axhline(0.0, color="k", lw=0.6)
+        panel.set_xlim(-0.6, len(cases) - 0.4)
+        panel.margins(y=0.15)
         label = _METRIC_LABEL[m] if percent else _METRIC_LABEL[m].replace("[%]", "[-]")
         panel.set_ylabel(label, fontsize=8)
         panel.grid(True, axis="y", lw=0.3, alpha=0.5)
@@ -106,3 +118,10 @@ def plot_metrics(table, *, ax=None, axes=None, percent=True):
     axes[-1].set_xticks(x, cases)
     axes[-1].set_xlabel("validation case")
     return fig, np.asarray(axes)
+
+
+def _label_bars(ax, bars, values, unit, n_bars):
+    """Write each bar's value on it when the panel has few bars (a one-case figure)."""
+    if n_bars <= _MAX_LABELLED:
+        ax.bar_label(bars, labels=["" if not np.isfinite(v) else f"{v:.3g}{unit}"
+                                   for v in values], fontsize=7, padding=2)

@@ -54,7 +54,7 @@ from ..copulas import (
     fit_copula,
     select_family,
 )
-from ..joint import fit_joint_candidates
+from ..joint import JOINT_FAMILIES, fit_joint_candidates
 from ..marginals import fit_marginal
 from ..screening import LFSet
 from ..stats.dependence import (
@@ -277,8 +277,7 @@ class PAS(Strategy):
                  outlier_k: float = 3.0, n_bootstrap: int = 50, skip_unsplittable: bool = True,
                  marginals_from: str = "all", impact_model: bool = True,
                  estimator: str = "conditional", copula_fit: str = "mle",
-                 common_random_numbers: bool = True, hf_location: bool = True,
-                 fit_fraction: float = 1.0):
+                 common_random_numbers: bool = True, hf_location: bool = True):
         for f in families:
             _family_and_rotation(f)
         if z < 2:
@@ -295,10 +294,13 @@ class PAS(Strategy):
         self.impact_model = bool(impact_model)
         self.estimator = check_option(estimator, "estimator",
                                       {"conditional", "selected"})
+        unknown = [f for f in self.families if f not in JOINT_FAMILIES]
+        if self.estimator == "conditional" and unknown:
+            raise ValueError(f"families {', '.join(unknown)} have no joint fit; use "
+                             f"estimator='selected' for them, or the families {JOINT_FAMILIES}")
         self.copula_fit = check_option(copula_fit, "copula_fit", {"mle", "itau"})
         self.common_random_numbers = bool(common_random_numbers)
         self.hf_location = bool(hf_location)
-        self.fit_fraction = float(fit_fraction)
         self.family_ = None
         self._seed = None
         self._uniforms = None
@@ -361,15 +363,11 @@ class PAS(Strategy):
         u_cond = population_lf_ranks(cond_lf, impact)
         starts = self._joint if family is None else {
             k: v for k, v in self._joint.items() if k == family}
-        u_pairs = u_cond[pairs.position]
-        use = keep & (u_pairs >= 1.0 - self.fit_fraction)
-        if use.sum() < 8:
-            use = keep & (u_pairs >= np.sort(u_pairs[keep])[-min(8, keep.sum())])
         # a warm start from the previous iteration converges in a few steps; every
         # COLD_EVERY-th fit also starts from the data, so no family stays trapped
         # in the basin of an earlier, smaller sample
         cold = family is None and self._n_fits % COLD_EVERY == 0
-        joint = fit_joint_candidates(u_pairs[use], pairs.hf[use], families,
+        joint = fit_joint_candidates(u_cond[pairs.position][keep], pairs.hf[keep], families,
                                      starts=starts, location=self.hf_location,
                                      cold=cold or not starts)
         if family is None:
@@ -409,6 +407,9 @@ class PAS(Strategy):
             "family": self.family_,
             **{f"aic_{k}": model.fits[k].aic if k in model.fits else np.nan
                for k in self.families},
+            # families select_family passed over for a fit on a parameter bound
+            "ineligible": " ".join(k for k, f in model.fits.items() if f.at_bound)
+            if self.exclude_at_bound and not all(f.at_bound for f in model.fits.values()) else "",
             "copula_params": " ".join(f"{x:.4g}" for x in model.copula.parameters),
             "n_outliers": model.n_outliers,
             "tau": kendall_tau(pairs.lf, pairs.hf),

@@ -9,7 +9,8 @@ iterations.
 
 ``measure="window"`` (the package default, beyond the paper) takes for ``Ē``
 the mean absolute change of the distribution *across* the window instead,
-``mean |h*_j − h*_{j−K1}|`` over the same range.  Eq. 28's per-step change
+``mean |h*_j − h*_{j−K1}|`` over the same range (before ``K1`` iterations
+exist, the change over the ``L`` available ones times ``K1/L``).  Eq. 28's per-step change
 was tuned for conditional draws redrawn every iteration, whose noise kept it
 high until the model settled; with common random numbers (each LF peak keeps
 its uniforms) a step changes the distribution only by what one more pair
@@ -84,8 +85,9 @@ class StoppingRule:
             e_bar = float("nan")
         elif self.measure == "step":
             e_bar = float(np.mean(self.changes[-self.k1:]))
-        else:
-            e_bar = distribution_change(self.curves[0], h_range)
+        else:  # across the window; over fewer steps, scaled up to K1 of them
+            lag = len(self.curves) - 1
+            e_bar = distribution_change(self.curves[0], h_range) * self.k1 / lag
         window = np.asarray(self.mpms[-self.k2:])
         cov = float(np.std(window) / abs(np.mean(window))) if np.mean(window) != 0 else float("inf")
         j = len(self.mpms)

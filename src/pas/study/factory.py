@@ -33,8 +33,9 @@ STRATEGIES = {"pas": PAS, "as": AS}
 LF_SETTINGS = ("n_waves", "p_exp", "threshold")
 """Settings of the LF screening set."""
 
-STUDY_SETTINGS = ("eps1", "eps2", "k1", "k2", "seed", "max_hf", "max_failures",
-                  "stop_on_convergence", "adaptive_threshold", "threshold_step", "fp_run")
+STUDY_SETTINGS = ("eps1", "eps2", "k1", "k2", "stop_measure", "seed", "max_hf", "max_failures",
+                  "stop_on_convergence", "adaptive_threshold", "threshold_step", "fp_run",
+                  "legacy_md")
 """Keyword settings of :class:`~pas.study.study.Study` (its constructor takes them all)."""
 
 
@@ -56,6 +57,7 @@ PRESETS = {
         "impact_model": False,             # Step 6: a positive draw for every conditioning peak
         "marginals_from": "kept",          # Step 7: outliers out of the iteration's fits
         "n_bootstrap": 0,                  # Eq. 10: the sampling band only
+        "stop_measure": "step",            # App. C, Eq. 28: the per-iteration change
     },
 }
 """Named bundles of PAS settings.  ``"paper"`` reproduces van Essen & Seyffert
@@ -65,7 +67,7 @@ explicitly beside a preset win."""
 
 
 def apply_preset(preset: str | None, strategy, settings: dict) -> dict:
-    """``settings`` on top of the named preset's (PAS only)."""
+    """``settings`` (strategy and study settings) on top of the named preset's (PAS only)."""
     if preset in (None, "default"):
         return dict(settings)
     if preset not in PRESETS:

@@ -80,10 +80,28 @@ def optimize(study, oracle, *, batch_size: int = 1, executor: Executor | None = 
     try:
         if isinstance(executor, ProcessPoolExecutor):
             _check_picklable(oracle)
-        return _Loop(study, oracle, executor, callback).run(batch_size, pending)
-    finally:
+        result = _Loop(study, oracle, executor, callback).run(batch_size, pending)
+    except BaseException:
         if own is not None:
-            own.shutdown()
+            _abandon(own)
+        raise
+    if own is not None:
+        own.shutdown()
+    return result
+
+
+def _abandon(pool: ProcessPoolExecutor) -> None:
+    """Stop our own process pool without waiting for running oracle calls (Ctrl-C, errors).
+
+    Their events stay pending in the store and are resubmitted on resume; a
+    :class:`~pas.study.oracles.CommandOracle` program runs in its own session
+    and survives its worker, and the resumed call waits for it and reuses
+    its result.
+    """
+    workers = list((getattr(pool, "_processes", None) or {}).values())  # shutdown forgets them
+    for proc in workers:
+        proc.terminate()
+    pool.shutdown(wait=False, cancel_futures=True)
 
 
 def failure_limit(study) -> OracleFailureLimit | None:

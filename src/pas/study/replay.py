@@ -6,7 +6,12 @@ threshold) is never serialised: :func:`attach` rebuilds it by replaying the
 stored asks and tells through :meth:`Study.ask` / :meth:`Study.tell` in their
 stored order.  Each fit draws from ``default_rng([seed, len(rows)])``, so the
 replay is exact and a resumed study makes the decisions an uninterrupted one
-would have made.  :func:`pas.study.study.open_study` builds the study from
+would have made.  The stopping settings and budgets
+(:data:`~pas.study.schema.RESUMABLE`) may differ from the stored ones: they
+decide when a study stops asking, never which events it asks for, so the
+stored asks are replayed whatever they say now, and the continued study asks
+for what an uninterrupted one with the new settings would have asked for
+(unless those settings would have stopped it before the stored asks).  :func:`pas.study.study.open_study` builds the study from
 the stored settings first.
 """
 
@@ -34,29 +39,36 @@ def study_settings(study) -> dict:
         raise StoreError(f"study settings must be JSON-serialisable for the store: {exc}") from None
 
 
-def attach(study, store) -> None:
+def attach(study, store) -> list[dict]:
     """Bind ``study`` to ``store``: initialise a new store, or check it and replay it.
 
     Raises :class:`StoreError` when the stored settings or LF pool differ from
     ``study``'s, or when the replay does not reproduce the stored asks.
+    Returns the changes of resumable settings recorded now
+    (:meth:`StudyStore.check <pas.study.store.StudyStore.check>`).
     """
     if not isinstance(store, StudyStore):
         store = StudyStore(store)
     settings = study_settings(study)
+    changes = []
     with store.transaction():
         if store.is_new:
             store.initialize(settings, study.lfset)
         else:
-            store.check(settings, study.lfset)
-    for n, op in enumerate(store.ops()):
-        if op[0] == "ask":
-            got = [ev.index for ev in study.ask(len(op[1]))]
-            if got != op[1]:
-                raise StoreError(
-                    f"study store {store.path} does not replay: ask #{n} gives events {got} but "
-                    f"the store holds {op[1]} (written by another pas version?)")
-        else:
-            study.tell(op[1], op[2], error=op[3])
+            changes = store.check(settings, study.lfset)
+    study._replaying = True
+    try:
+        for n, op in enumerate(store.ops()):
+            if op[0] == "ask":
+                got = [ev.index for ev in study.ask(len(op[1]))]
+                if got != op[1]:
+                    raise StoreError(
+                        f"study store {store.path} does not replay: ask #{n} gives events {got} "
+                        f"but the store holds {op[1]} (written by another pas version?)")
+            else:
+                study.tell(op[1], op[2], error=op[3])
+    finally:
+        study._replaying = False
     stored = store.history()
     if stored and study.rows and stored[-1].get("mpm") is not None:
         replayed = study.rows[len(stored) - 1].get("mpm")
@@ -64,3 +76,4 @@ def attach(study, store) -> None:
             warnings.warn(f"replaying {store.path} gives MPM {replayed} where the store recorded "
                           f"{stored[-1]['mpm']}: library versions changed?", stacklevel=3)
     study.store = store
+    return changes

@@ -29,12 +29,17 @@ class ScreeningResult:
     mpm : float
         Most probable maximum at ``p_exp`` from the mean distribution (Eq. 12).
     mpm_band : tuple of float
-        U95 of the MPM including model uncertainty: the union of the paper's
-        z-draw band and the bootstrap band over the LF–HF pairs.
+        The U95 of the MPM, the one band pas reports (summary, ``summary.json``,
+        ``pas study status``, the MPM error bar of the distribution figure):
+        the union of its two parts below.
     mpm_band_sampling : tuple of float
-        The paper's band, ``h* ± 1.96 σ_b`` read at ``p_exp`` (Eq. 10).
+        Sampling part: the paper's band from the z conditional draws,
+        ``h* ± 1.96 σ_b`` read at ``p_exp`` (Eq. 10).  The progress lines and
+        the history's ``mpm_low``/``mpm_high`` give this part per iteration.
     mpm_band_model : tuple of float or None
-        2.5–97.5 % of bootstrap MPMs (pairs resampled, model refitted).
+        Model part: the strategy's model-uncertainty band (PAS: refits on
+        resampled pairs, :meth:`pas.strategies.base.Strategy.model_band`);
+        None when the strategy has none (then U95 is the sampling part).
     n_hf : int
         HF evaluations made, false positives included, failures excluded.
     n_false_positive, n_failed : int
@@ -99,6 +104,14 @@ class ScreeningResult:
                     band = (min(band[0], mb[0]), max(band[1], mb[1]))
             distribution = distribution_frame(pred.d, pred.h_mean, pred.h_low, pred.h_high,
                                               **pred.columns)
+            clip = clipped_from(distribution, study.n_false_positive)
+            if clip is not None and clip <= study.grid[-1]:
+                warnings.warn(
+                    f"the predicted distribution is exactly 0 from d = {clip:.3g} on, inside the "
+                    f"stopping range [P_exp/2, 2·P_exp]: every conditional draw there fell below "
+                    "the fitted HF marginal's lower bound and was clipped at 0, although no "
+                    "evaluated event gave 0; the MPM and the stopping rule read clipped values",
+                    stacklevel=2)
             ids = [study.lfset.event(p).id for p in pairs.position]
             pair_frame = pd.DataFrame({"event_id": ids, "lf": pairs.lf, "hf": pairs.hf,
                                        "d": pairs.d})
@@ -110,6 +123,18 @@ class ScreeningResult:
             range_curves=pd.DataFrame.from_dict(study.curves, orient="index", columns=study.grid),
             p_exp=study.lfset.p_exp, n_waves=study.lfset.n_waves, seed=study.seed, family=family,
             settings=study.settings())
+
+    @property
+    def clipped_from(self) -> float | None:
+        """Smallest ``d`` from which the mean distribution is 0 by clipping, else None.
+
+        The conditional draws are clipped at 0 (loads are not negative); where
+        the fitted HF marginal's lower bound lies below 0, the draws of the
+        smallest LF peaks can all land there.  With no evaluated false
+        positive a mean of exactly 0 is then an artefact of the model, not a
+        prediction: :func:`pas.plotting.plot_distribution` does not draw it.
+        """
+        return clipped_from(self.distribution, self.n_false_positive)
 
     @property
     def fitted(self) -> pd.DataFrame:
@@ -133,14 +158,37 @@ class ScreeningResult:
         """
         return float(self.value_at(quantile_exceedance(q, self.p_exp, 1.0)))
 
-    def summary(self) -> str:
-        """A few human-readable lines."""
+    def band_text(self, unit: str | None = None) -> str:
+        """The U95 of the MPM with its parts labelled.
+
+        Examples
+        --------
+        >>> r = ScreeningResult("pas", 600.0, (561.0, 668.0), (582.0, 612.0), (561.0, 668.0),
+        ...                     20, 0, 0, True, *[pd.DataFrame()] * 4, 1e-3, 1000, 1)
+        >>> r.band_text("kN")
+        'U95 561–668 kN (sampling part 582–612, model part 561–668)'
+        """
+        u = f" {unit}" if unit else ""
         lo, hi = self.mpm_band
+        parts = f"sampling part {_range(self.mpm_band_sampling)}"
+        parts += (", no model part" if self.mpm_band_model is None
+                  else f", model part {_range(self.mpm_band_model)}")
+        return f"U95 {lo:.4g}–{hi:.4g}{u} ({parts})"
+
+    def summary(self, unit: str | None = None) -> str:
+        """One human-readable line: MPM with its U95 and parts, counts, convergence.
+
+        ``unit`` (e.g. ``"kN"``) is appended to the MPM and its band.
+        """
         fam = f", copula {self.family}" if self.family else ""
         state = "converged" if self.converged else "NOT converged"
-        return (f"{self.strategy.upper()}: MPM {self.mpm:.4g} (U95 {lo:.4g} – {hi:.4g}){fam}; "
-                f"{self.n_hf} HF evaluations ({self.n_false_positive} false positive, "
-                f"{self.n_failed} failed); {state}")
+        counts = (f"{self.n_hf} HF evaluations ({self.n_false_positive} false positive, "
+                  f"{self.n_failed} failed); {state}")
+        if not np.isfinite(self.mpm):
+            return f"{self.strategy.upper()}: no model fitted yet; {counts}"
+        u = f" {unit}" if unit else ""
+        return (f"{self.strategy.upper()}: MPM {self.mpm:.4g}{u}, {self.band_text(unit)}{fam}; "
+                f"{counts}")
 
     def __repr__(self) -> str:
         return f"<ScreeningResult {self.summary()}>"
@@ -154,6 +202,7 @@ class ScreeningResult:
             "n_hf": self.n_hf, "n_false_positive": self.n_false_positive,
             "n_failed": self.n_failed, "converged": self.converged, "family": self.family,
             "p_exp": self.p_exp, "n_waves": self.n_waves, "seed": self.seed,
+            "clipped_from": self.clipped_from,
         }
 
     def save(self, out, *, inputs=None, lfset=None) -> dict:
@@ -178,8 +227,9 @@ class ScreeningResult:
         self.range_curves.to_csv(out / "range_curves.csv", index_label="row")
         if lfset is not None:
             pd.DataFrame({"d": lfset.d, "lf": lfset.lf}).to_csv(out / "lf_curve.csv", index=False)
-        summary = json_data({**self.to_dict(), "summary": self.summary(),
-                             "inputs": dict(inputs or {})})
+        inputs = dict(inputs or {})
+        summary = json_data({**self.to_dict(), "summary": self.summary(unit=inputs.get("unit")),
+                             "inputs": inputs})
         (out / "summary.json").write_text(json.dumps(summary, indent=2) + "\n", encoding="utf-8")
         return summary
 
@@ -230,8 +280,20 @@ def read_summary(path) -> dict:
     return s
 
 
+def _range(band) -> str:
+    return f"{band[0]:.4g}–{band[1]:.4g}"
+
+
 def _float_or_nan(x):
     return float("nan") if x is None else float(x)
+
+
+def clipped_from(distribution: pd.DataFrame, n_false_positive: int):
+    """:attr:`ScreeningResult.clipped_from` of a distribution table."""
+    h = distribution["h_mean"].to_numpy(dtype=float)
+    if n_false_positive or not np.any(h == 0.0):
+        return None
+    return float(distribution["exceedance_probability"].to_numpy(dtype=float)[h == 0.0].min())
 
 
 def distribution_frame(d, mean, low, high, **columns) -> pd.DataFrame:

@@ -14,7 +14,10 @@ Schema (version 1)
     ``lf_sha256`` (hash of the LF pool), ``created_at``, ``pas_version``,
     ``seq`` (the last sequence number handed out) and ``op_seq`` (the last
     ask or tell consumed by a study); ``oracle`` and ``batch_size`` when the
-    study was created by ``pas study create`` with an ``[oracle]`` table.
+    study was created by ``pas study create`` with an ``[oracle]`` table;
+    ``settings_changes``, a list of ``{"key", "old", "new", "n_told", "at"}``,
+    one per change of a :data:`RESUMABLE` setting on a resumed study
+    (``n_told``: results the study had consumed then).
 ``lf_peaks(idx, key, event_id, lf, d, meta)``
     The LF pool the study was created with: every peak over the threshold,
     keyed by ``idx``, its index in the user's ``lf_peaks``; ``key`` is
@@ -50,7 +53,8 @@ import numpy as np
 from .._json import dumps
 from .state import EventState
 
-__all__ = ["SCHEMA_VERSION", "STATES", "STORED", "RESUMABLE", "StoreError", "StoreConflict",
+__all__ = ["SCHEMA_VERSION", "STATES", "STORED", "RESUMABLE", "LEGACY_SETTINGS",
+           "with_legacy_settings", "StoreError", "StoreConflict",
            "dumps"]
 
 SCHEMA_VERSION = 1
@@ -58,8 +62,33 @@ SCHEMA_VERSION = 1
 STORED = {EventState.PENDING: "pending", EventState.TRUE_POSITIVE: "done",
           EventState.FALSE_POSITIVE: "false_positive", EventState.FAILED: "failed"}
 STATES = tuple(STORED.values())
-#: Settings that may change when a study is resumed (budgets); all others must match.
-RESUMABLE = ("max_hf", "max_failures")
+#: Settings that may change when a study is resumed: the stopping rule (App. C) and the
+#: budgets.  They decide when a study stops, never which event it asks for next; every
+#: change is logged in ``meta.settings_changes``.  All other settings must match.
+LEGACY_SETTINGS = {
+    "strategy_settings": {"estimator": "selected", "copula_fit": "mle",
+                          "common_random_numbers": False, "hf_location": True},
+    "stop_measure": "step",
+    "legacy_md": True,
+}
+"""What a study store written before these settings existed (pas 0.1, schema 1) ran
+with: filled in for the missing keys when such a store is opened, so it replays
+and continues as it was created."""
+
+
+def with_legacy_settings(stored: dict) -> dict:
+    """``stored`` study settings with :data:`LEGACY_SETTINGS` for the keys they lack."""
+    out = dict(stored)
+    if out.get("strategy") == "pas":
+        out["strategy_settings"] = {**LEGACY_SETTINGS["strategy_settings"],
+                                    **(out.get("strategy_settings") or {})}
+    if "eps1" in out:
+        for key in ("stop_measure", "legacy_md"):
+            out.setdefault(key, LEGACY_SETTINGS[key])
+    return out
+
+
+RESUMABLE = ("eps1", "eps2", "k1", "k2", "stop_measure", "max_hf", "max_failures")
 
 _SCHEMA = f"""
 CREATE TABLE IF NOT EXISTS schema_version (version INTEGER NOT NULL);

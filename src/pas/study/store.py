@@ -33,7 +33,7 @@ from contextlib import contextmanager
 import numpy as np
 
 from .._version import __version__
-from .schema import (_SCHEMA, RESUMABLE, SCHEMA_VERSION, STATES, STORED, StoreConflict, StoreError,
+from .schema import (_SCHEMA, RESUMABLE, with_legacy_settings, SCHEMA_VERSION, STATES, STORED, StoreConflict, StoreError,
                      _now, _pool_hash, _pool_records, dumps)
 from .state import EventState
 
@@ -173,13 +173,16 @@ class StudyStore:
                          ("created_at", _now()), ("pas_version", __version__)):
                 self._set_meta(c, k, v)
 
-    def check(self, settings: dict, lfset) -> None:
+    def check(self, settings: dict, lfset) -> list[dict]:
         """Raise :class:`StoreError` naming the first setting that differs from the store.
 
-        Budgets (``max_hf``, ``max_failures``) may change; the new values are stored.
+        The stopping settings and budgets (:data:`~pas.study.schema.RESUMABLE`)
+        may change: the new values are stored and each change is appended to
+        ``meta.settings_changes``, which is returned (the changes made now).
         """
+        changes = []
         with self.transaction() as c:
-            stored = self._meta(c, "settings")
+            stored = with_legacy_settings(self._meta(c, "settings"))
             for key in sorted(set(stored) | set(settings)):
                 old, new = stored.get(key), settings.get(key)
                 if key == "strategy_settings":
@@ -188,6 +191,8 @@ class StudyStore:
                             raise StoreError(self._differs(k, (old or {}).get(k), (new or {}).get(k)))
                 elif old != new and key not in RESUMABLE:
                     raise StoreError(self._differs(key, old, new))
+                elif old != new:
+                    changes.append({"key": key, "old": old, "new": new})
             if _pool_hash(_pool_records(lfset)) != self._meta(c, "lf_sha256"):
                 n = c.execute("SELECT COUNT(*) FROM lf_peaks").fetchone()[0]
                 raise StoreError(
@@ -196,6 +201,15 @@ class StudyStore:
                     "changed)")
             if stored != settings:
                 self._set_meta(c, "settings", settings)
+            if changes:
+                n_told = c.execute("SELECT COUNT(*) FROM events WHERE tell_seq IS NOT NULL"
+                                   ).fetchone()[0]
+                now = _now()
+                for ch in changes:
+                    ch.update(n_told=n_told, at=now)
+                self._set_meta(c, "settings_changes",
+                               self._meta(c, "settings_changes", []) + changes)
+        return changes
 
     def _differs(self, key, old, new) -> str:
         return (f"{key} differs from the study store {self.path}: it was created with "
@@ -208,7 +222,8 @@ class StudyStore:
 
     def put(self, key, value) -> None:
         """Store a JSON value in the ``meta`` table (not the reserved keys)."""
-        if key in ("settings", "lf_sha256", "seq", "op_seq", "created_at", "pas_version"):
+        if key in ("settings", "lf_sha256", "seq", "op_seq", "created_at", "pas_version",
+                   "settings_changes"):
             raise StoreError(f"meta key {key!r} is reserved")
         with self.transaction() as c:
             self._set_meta(c, key, value)
