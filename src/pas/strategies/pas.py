@@ -324,29 +324,34 @@ class PAS(Strategy):
         return lfset.threshold is None if self.upper_tail is None else self.upper_tail
 
     # -- Steps 7–9: the model ------------------------------------------------
-    def fit(self, pairs: Pairs, lfset: LFSet, family: str | None = None) -> FittedModel:
+    def fit(self, pairs: Pairs, lfset: LFSet, family: str | None = None, *,
+            update: bool = True) -> FittedModel:
         """Steps 7–9: fit the copula, the HF marginal and the impact model to ``pairs``.
 
-        With ``family`` only that family is fitted (bootstrap replicates);
-        otherwise all candidates, and the selection with hysteresis (§2.2)
-        updates :attr:`family_`.
+        With ``family`` only that family is fitted; otherwise all candidates,
+        and the selection with hysteresis (§2.2) updates :attr:`family_`.
+        With ``update=False`` (bootstrap replicates) nothing the study carries
+        changes: the family is the lowest eligible AIC of these pairs.
         """
         keep = (np.ones(len(pairs), dtype=bool) if self.outlier_k is None
                 else remove_outliers(pairs.lf, pairs.hf, k=self.outlier_k))
         families = self.families if family is None else (family,)
         impact = impact_probability(pairs.lf, pairs.fp_lf) if self.impact_model else None
         fit = self._fit_conditional if self.estimator == "conditional" else self._fit_selected
-        fits, hf_marginals, lf_to_u, n0 = fit(pairs, lfset, keep, families, impact, family)
+        fits, hf_marginals, lf_to_u, n0 = fit(pairs, lfset, keep, families, impact, family,
+                                              update)
         if family is None:
-            self.family_ = select_family(fits, self.family_, delta_aic=self.delta_aic,
-                                         exclude_at_bound=self.exclude_at_bound)
-            family = self.family_
+            family = select_family(fits, self.family_ if update else None,
+                                   delta_aic=self.delta_aic,
+                                   exclude_at_bound=self.exclude_at_bound)
+            if update:
+                self.family_ = family
         cond = lfset.lf[:n0]
         return FittedModel(fits[family], hf_marginals[family], lf_to_u,
                            np.asarray(lf_to_u(cond), float),
                            None if impact is None else impact(cond), fits, int((~keep).sum()))
 
-    def _fit_selected(self, pairs, lfset, keep, families, impact, family):
+    def _fit_selected(self, pairs, lfset, keep, families, impact, family, update):
         """The paper's fit in selected-sample space (§2.2–2.3, Eq. 5, 15)."""
         lf, hf = pairs.lf[keep], pairs.hf[keep]
         fits = fit_candidates(*pseudo_observations(lf, hf), families, method=self.copula_fit)
@@ -356,7 +361,7 @@ class PAS(Strategy):
         n0 = conditioning_set(lfset.lf, lf_sample.min()).size
         return fits, dict.fromkeys(fits, f_h), f_l.cdf, n0
 
-    def _fit_conditional(self, pairs, lfset, keep, families, impact, family):
+    def _fit_conditional(self, pairs, lfset, keep, families, impact, family, update):
         """Population LF ranks and the joint conditional likelihood (:mod:`pas.joint`)."""
         n0 = conditioning_set(lfset.lf, pairs.lf.min()).size
         cond_lf = lfset.lf[:n0]
@@ -366,11 +371,11 @@ class PAS(Strategy):
         # a warm start from the previous iteration converges in a few steps; every
         # COLD_EVERY-th fit also starts from the data, so no family stays trapped
         # in the basin of an earlier, smaller sample
-        cold = family is None and self._n_fits % COLD_EVERY == 0
+        cold = update and family is None and self._n_fits % COLD_EVERY == 0
         joint = fit_joint_candidates(u_cond[pairs.position][keep], pairs.hf[keep], families,
                                      starts=starts, location=self.hf_location,
                                      cold=cold or not starts)
-        if family is None:
+        if update and family is None:
             self._joint = joint
             self._n_fits += 1
         ascending = cond_lf[::-1], u_cond[::-1]
@@ -426,10 +431,12 @@ class PAS(Strategy):
         """U95 of the MPM over a bootstrap of the evaluated events (beyond the paper).
 
         Each replicate resamples the true and false positives with
-        replacement, repeats outlier removal, refits the selected family, the
-        marginals and the impact model, and predicts with the same random
-        numbers; the band is the 2.5–97.5 % range of the replicate MPMs.
-        Returns ``(low, high, mpms)`` or None when off.
+        replacement, repeats outlier removal, refits every candidate family,
+        the marginals and the impact model, selects the family again (lowest
+        eligible AIC, so the choice of family is part of the uncertainty), and
+        predicts with the same random numbers; the band is the 2.5–97.5 %
+        range of the replicate MPMs.  Returns ``(low, high, mpms)`` or None
+        when off.
         """
         if self.n_bootstrap <= 0 or self.family_ is None:
             return None
@@ -442,7 +449,7 @@ class PAS(Strategy):
             if tp.size < 4 or np.ptp(b.lf) == 0 or np.ptp(b.hf) == 0:
                 continue
             try:
-                model = self.fit(b, lfset, family=self.family_)
+                model = self.fit(b, lfset, update=False)
                 d, mean, _, _ = self._predict_model(model, lfset, rng)
             except (ValueError, np.linalg.LinAlgError):
                 continue
