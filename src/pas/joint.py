@@ -37,7 +37,7 @@ from .copula_densities import GRADIENT_FAMILIES, copula_loghfunc, copula_logpdf,
 from .copulas import CopulaFit, _at_bound, _family_and_rotation, kendall_tau
 from .stats.weibull import Weibull3, fit_weibull3_ls
 
-__all__ = ["JOINT_FAMILIES", "JointFit", "fit_joint", "fit_joint_candidates"]
+__all__ = ["JOINT_FAMILIES", "JointFit", "censoring_level", "fit_joint", "fit_joint_candidates"]
 
 JOINT_FAMILIES = ("gaussian", "student", "clayton", "gumbel", "frank", "clayton_180", "gumbel_180")
 """Families the joint fit knows: the paper's five and the survival Clayton and Gumbel."""
@@ -107,7 +107,20 @@ def _weibull_start(h, location: bool):
     return [np.log(np.exp(-c / beta)), np.log(beta)]
 
 
-def joint_objective(name: str, u, h, *, location: bool = True):
+def censoring_level(h, censor: float, location: bool) -> float:
+    """The load at and below which loads enter the likelihood left-censored.
+
+    The smallest ``censor`` fraction of the loads (with a location, at least
+    the smallest one) count as "at most this load"; 0 when none.
+    """
+    h = np.sort(np.asarray(h, float))
+    k = int(np.floor(censor * h.size))
+    if location:
+        k = max(k, 1)
+    return float(h[min(k, h.size - 2) - 1]) if k > 0 else 0.0
+
+
+def joint_objective(name: str, u, h, *, location: bool = True, censor: float = 0.0):
     """The negative log-likelihood of :func:`fit_joint` and how to read its parameters.
 
     Returns ``(negloglik, negloglik_grad, unpack)``: the objective of the
@@ -120,18 +133,17 @@ def joint_objective(name: str, u, h, *, location: bool = True):
     h = np.asarray(h, float)
     if np.any(h <= 0):
         raise ValueError("the joint fit needs positive HF loads (false positives are not pairs)")
-    i_min = int(np.argmin(h))
-    h_min, span = float(h[i_min]), float(np.ptp(h)) or float(h[i_min])
+    h_c = censoring_level(h, censor, location)
+    span = float(np.ptp(h)) or float(h.min())
     n_marg = 3 if location else 2
 
     def unpack(x):
-        theta = h_min - np.exp(x[0]) * span if location else 0.0
+        theta = h_c - np.exp(x[0]) * span if location else 0.0
         return theta, np.exp(x[n_marg - 2]), np.exp(x[n_marg - 1]), x[n_marg:]
 
     uu = 1.0 - u if rotation == 180 else u
-    density = np.ones(h.size, dtype=bool)
-    if location:
-        density[i_min] = False
+    density = h > h_c
+    h = np.where(density, h, h_c)  # a censored load counts as "at most h_c"
 
     @np.errstate(all="ignore")  # the optimiser's trial steps may overflow: scored as +inf
     def negloglik(x):
@@ -143,7 +155,7 @@ def joint_objective(name: str, u, h, *, location: bool = True):
         p = _copula_parameters(base, c).ravel()
         log_f = np.log(beta / alpha) + (beta - 1.0) * ln_z - zb
         val = np.sum((log_f + copula_logpdf(base, p, uu, vv))[density])
-        if location:  # the smallest load, left-censored: P(H ≤ h_min | u)
+        if not density.all():  # the censored loads: P(H ≤ h_c | u)
             lh = copula_loghfunc(base, p, uu[~density], vv[~density])
             val += np.sum(np.log(-np.expm1(lh)) if rotation == 180 else lh)
         return -float(val) if np.isfinite(val) else 1e300
@@ -162,7 +174,7 @@ def joint_objective(name: str, u, h, *, location: bool = True):
         d_v = np.where(density, dc_dv, 0.0)
         d_p = np.where(density, dc_dp, 0.0)
         total = np.where(density, log_f + lc, 0.0)
-        if location:
+        if not density.all():
             lh, dh_dv, dh_dp = logh_grad(base, p, u[~density], v[~density])
             total[~density], d_v[~density], d_p[~density] = lh, dh_dv, dh_dp
         val = float(np.sum(total))
@@ -185,7 +197,7 @@ def joint_objective(name: str, u, h, *, location: bool = True):
     return negloglik, grad, unpack
 
 
-def fit_joint(name: str, u, h, *, start=None, location: bool = True,
+def fit_joint(name: str, u, h, *, start=None, location: bool = True, censor: float = 0.0,
               cold: bool = True) -> JointFit:
     """Fit one copula family and the Weibull HF marginal by conditional likelihood.
 
@@ -203,6 +215,13 @@ def fit_joint(name: str, u, h, *, start=None, location: bool = True,
         load, which enters the likelihood left-censored — "a load of at most
         ``min(h)``" — so the likelihood stays bounded; module docs), or the
         two-parameter Weibull with location 0.
+    censor : float, default 0
+        Fraction of the smallest loads that enter left-censored, as "at most
+        the largest of them" (:func:`censoring_level`): the marginal is then
+        fitted to the shape of the upper loads — the tail the MPM is read
+        from — while every pair still informs the copula through
+        ``P(H ≤ h_c | u)``.  The likelihood analogue of the paper's
+        upper-tail mode (§2.3).
     start : ndarray, optional
         Optimiser values of an earlier fit (``JointFit.x``): the optimiser
         starts there as well as from the least-squares Weibull and the
@@ -216,15 +235,17 @@ def fit_joint(name: str, u, h, *, start=None, location: bool = True,
     base = name.partition("_")[0]
     u = np.clip(np.asarray(u, float), _TINY, 1 - _TINY)
     h = np.asarray(h, float)
-    negloglik, negloglik_grad, unpack = joint_objective(name, u, h, location=location)
+    negloglik, negloglik_grad, unpack = joint_objective(name, u, h, location=location,
+                                                        censor=censor)
     n_marg = 3 if location else 2
     n_par = n_marg + (2 if base == "student" else 1)
     # the Weibull may not run off to its Gumbel limit (location → −∞, β → ∞): the
     # location stays within three load ranges below the smallest load, as in
     # :func:`pas.stats.weibull.fit_weibull3_ls`, and at or above 0 (loads are
     # non-negative, so no draw needs clipping); β in [0.05, 50]
-    h_min, span = float(h.min()), float(np.ptp(h)) or float(h.min())
-    s_max = min(np.log(3.0), np.log(h_min / span))
+    h_c = censoring_level(h, censor, location)
+    span = float(np.ptp(h)) or float(h.min())
+    s_max = min(np.log(3.0), np.log(max(h_c, 1e-300) / span))
     bounds = ([(min(np.log(1e-9), s_max - 1.0), s_max)] if location else []) + [
         (None, None), (np.log(0.05), np.log(50.0))] + [(None, None)] * (n_par - n_marg)
 
@@ -255,7 +276,7 @@ def fit_joint(name: str, u, h, *, start=None, location: bool = True,
 
 
 def fit_joint_candidates(u, h, families, *, starts=None, location: bool = True,
-                         cold: bool = True) -> dict[str, JointFit]:
+                         censor: float = 0.0, cold: bool = True) -> dict[str, JointFit]:
     """:func:`fit_joint` for every family (``starts``: earlier fits by name, to warm-start)."""
     starts = starts or {}
     out = {}
@@ -263,5 +284,5 @@ def fit_joint_candidates(u, h, families, *, starts=None, location: bool = True,
         for name in families:
             prev = starts.get(name)
             out[name] = fit_joint(name, u, h, start=None if prev is None else prev.x,
-                                  location=location, cold=cold)
+                                  location=location, censor=censor, cold=cold)
     return out
