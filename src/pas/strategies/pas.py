@@ -1,41 +1,41 @@
 """Probabilistic Adaptive Screening: the copula model of paper §2.1 Steps 7–12.
 
 Each step is one function; :class:`PAS` strings them together per iteration
-and carries the one piece of state the method has, the selected copula family
-(the ΔAIC hysteresis of §2.2 compares against it).
+and carries the state the method has: the selected copula family (the ΔAIC
+hysteresis of §2.2 compares against it), the previous joint fits (warm
+starts) and the study's common random numbers.  ``pas.run_pas(...,
+preset="paper")`` runs the paper's method as written; the defaults depart
+from it where a measurement said so — every departure, its reason and its
+measured effect are listed in ``docs/departures.md``.  In short:
 
-Stability remedy (beyond the paper)
------------------------------------
-A faithful implementation of the paper's selection, tried on a problem whose
-true copula is Gumbel, saw its MPM double once ~80 HF samples were in: the
-Student-t candidate won the AIC with ν at its lower bound (2), and its
-strong symmetric tail dependence pushed conditional draws of the largest LF
-peaks into the far extrapolation of the Weibull HF marginal.  An MLE on the
-boundary of the parameter space is not a regular estimate — the
-asymptotics behind AIC (Akaike 1974) assume an interior optimum — so the
-default here is ``exclude_at_bound=True``: a candidate whose fitted parameter
-sits on its bound (Student-t ν = 2 or 50, |ρ| = 1, an Archimedean parameter at
-its upper limit) is not eligible for selection in that iteration; the next
-best regular fit is used.  ``exclude_at_bound=False`` restores the paper's
-exact selection.
-
-Reading of Step 7
------------------
-The temporary outlier removal feeds the *copula* fit ("the remaining data
-are then used for copula fitting", §2.1); the Weibull marginals of Step 9 are
-fitted to all true-positive samples (``marginals_from="all"``).  Removing the
-largest genuine loads from the HF marginal biases its tail low by
-construction — on the slamming analogues (cases 4a/4b) the removal count grew
-to 15 pairs and the MPM drifted 5–6 % lower than with all pairs.
-``marginals_from="kept"`` fits the marginals to the cleaned pairs as well.
-
-Impact model (optional, beyond the paper)
------------------------------------------
-With an LF threshold, every conditioning peak above ``l0`` gets a positive
-HF draw, although the evaluated false positives show that some of them give
-no impact.  ``impact_model=True`` estimates ``P(impact | LF)`` by logistic
-regression on the evaluated events (true positives vs false positives) and
-zeroes each draw with probability ``1 − P``.  Off by default.
+Estimator (``estimator``)
+    ``"conditional"`` (default): the LF ranks are those of the LF
+    *population* (every conditioning peak is known), and the copula and a
+    three-parameter Weibull HF marginal are fitted together by the
+    likelihood of HF given LF (:mod:`pas.joint`), which selection by LF
+    (MD) leaves valid.  ``"selected"``: the paper's fit of rank
+    pseudo-observations of the selected sample (Eq. 5) and least-squares
+    Weibull marginals (Eq. 15) — consistent only as far as a one-parameter
+    copula and a Weibull describe a tail-heavy, non-i.i.d. sample (§5.4).
+Impact model (``impact_model``)
+    Once false positives have been seen, ``P(impact | LF)`` (logistic
+    regression on true vs false positives) zeroes draws, instead of a
+    positive draw for every conditioning peak (:mod:`pas.strategies.selection`).
+Common random numbers (``common_random_numbers``)
+    Each LF peak keeps its ``z`` uniforms for the whole study, so the
+    stopping rule measures model change, not redrawn noise.
+Stability remedy (``exclude_at_bound``)
+    A faithful implementation of the paper's selection, tried on a problem
+    whose true copula is Gumbel, saw its MPM double once ~80 HF samples were
+    in: the Student-t candidate won the AIC with ν at its lower bound (2).
+    An MLE on the boundary of the parameter space is not a regular estimate
+    (the asymptotics behind AIC, Akaike 1974, assume an interior optimum), so
+    a candidate whose parameter sits on its bound is not eligible.
+Reading of Step 7 (``marginals_from``, selected-space estimator)
+    The temporary outlier removal feeds the *copula* fit ("the remaining
+    data are then used for copula fitting", §2.1); the Weibull marginals are
+    fitted to all true-positive samples by default (``"kept"``: the cleaned
+    pairs, the paper preset).
 """
 
 from __future__ import annotations
@@ -266,6 +266,9 @@ class PAS(Strategy):
         Each LF peak keeps its own ``z`` uniforms for the whole study, so the
         stopping measures see model change, not redrawn noise (module docs);
         False redraws them every iteration, as the paper.
+    hf_location : bool, default True
+        Conditional estimator: a three-parameter Weibull HF marginal
+        (location ≥ 0, below the smallest load) or the two-parameter one.
     """
 
     name = "pas"
