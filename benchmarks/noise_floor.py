@@ -56,7 +56,8 @@ def main(cases):
                 warnings.simplefilter("ignore")
                 res = pas.run_pas(data.lf, data.oracle(), n_waves=data.n_waves, p_exp=data.p_exp,
                                   eps1=data.eps1, threshold=data.threshold, seed=0,
-                                  max_hf=400, common_random_numbers=crn)
+                                  max_hf=160, common_random_numbers=crn,
+                                  n_waves_convention="spectral")
             h = res.history.dropna(subset=["E_bar"])
             floor = same_model_change(data, res, crn)
             print(f"{case} CRN {'on ' if crn else 'off'}: same-model E {floor:9.3g} "

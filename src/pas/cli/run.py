@@ -46,6 +46,8 @@ import math
 import sys
 from pathlib import Path
 
+from ..study.schema import DEFAULT_MAX_HF
+
 __all__ = ["add_parser", "run"]
 
 EPILOG = """\
@@ -73,11 +75,17 @@ examples:
 
 
 _INPUTS = ("lf_file", "lf_column", "id_column", "oracle", "n_waves", "n_waves_convention", "p_exp",
-           "eps1", "eps2", "threshold", "strategy", "max_hf", "batch_size", "unit", "lf_unit")
+           "eps1", "eps2", "threshold", "strategy", "preset", "max_hf", "batch_size", "unit",
+           "lf_unit")
 """The options written to ``summary.json`` as the run's ``inputs``."""
 
 _LF_FILE_NAMES = {"file": "LF_FILE", "column": "--lf-column", "id_column": "--id-column",
                   "meta_columns": "--meta-columns"}
+
+
+def _budget(text):
+    """``--max-hf``: a positive integer, or ``none`` for no budget."""
+    return None if str(text).strip().lower() == "none" else _positive_int(text)
 
 
 def _positive_int(text):
@@ -124,7 +132,12 @@ def add_parser(sub) -> None:
                    help="stopping limit on the COV of the MPM (default 0.1)")
     p.add_argument("--threshold", type=float, metavar="L0", help="LF threshold l0_input")
     p.add_argument("--seed", type=int, help="random seed (default: drawn and reported)")
-    p.add_argument("--max-hf", type=_positive_int, metavar="N", help="budget of HF evaluations")
+    p.add_argument("--max-hf", type=_budget, default=DEFAULT_MAX_HF, metavar="N",
+                   help=f"budget of HF evaluations (default {DEFAULT_MAX_HF}, the most the paper "
+                        "needed; 'none': no budget)")
+    p.add_argument("--preset", choices=("default", "paper"), default="default",
+                   help="PAS settings: the package's defaults, or 'paper' to run the method as "
+                        "van Essen & Seyffert (2026) wrote it (docs/departures.md)")
     p.add_argument("--strategy", choices=STRATEGY_NAMES, default="pas",
                    help="PAS (copula, default) or AS (GPR on order statistics)")
     p.add_argument("--batch-size", type=_positive_int, default=1, metavar="Q",
@@ -177,7 +190,8 @@ def run(args) -> int:
         study = make_study(args.strategy, lf, n_waves=args.n_waves, p_exp=args.p_exp,
                            eps1=args.eps1, eps2=args.eps2, threshold=args.threshold, seed=seed,
                            max_hf=args.max_hf, ids=ids, meta=meta,
-                           n_waves_convention="spectral")  # checked above, with option names
+                           n_waves_convention="spectral",  # checked above, with option names
+                           preset=None if args.strategy != "pas" else args.preset)
         if store is not None:  # only now: bad inputs leave no output folder behind
             out.mkdir(parents=True, exist_ok=True)
             for ch in attach(study, store):

@@ -115,8 +115,8 @@ def _create(args) -> int:
     if os.path.exists(args.study):
         raise ValueError(f"{args.study} already exists (continue it with 'pas study ask')")
     lf, ids, meta = load_peaks(cfg["lf"])
-    kw = {k: cfg[k] for k in ("eps2", "threshold", "seed", "max_hf", "n_waves_convention")
-          if k in cfg}
+    kw = {k: cfg[k] for k in ("eps2", "threshold", "seed", "max_hf", "n_waves_convention",
+                              "preset") if k in cfg}
     try:
         study = make_study(cfg["strategy"], lf, n_waves=cfg["n_waves"],
                            p_exp=cfg["p_exp"], eps1=cfg["eps1"], ids=ids, meta=meta,

@@ -23,6 +23,7 @@ import inspect
 from ..strategies.as_ import AS
 from ..strategies.base import Strategy
 from ..strategies.pas import PAS
+from .schema import DEFAULT_MAX_HF
 
 __all__ = ["STRATEGIES", "LF_SETTINGS", "STUDY_SETTINGS", "PRESETS", "DEFAULT_MAX_HF",
            "make_strategy", "split_settings", "apply_preset"]
@@ -38,12 +39,6 @@ STUDY_SETTINGS = ("eps1", "eps2", "k1", "k2", "stop_measure", "seed", "max_hf", 
                   "legacy_md")
 """Keyword settings of :class:`~pas.study.study.Study` (its constructor takes them all)."""
 
-
-DEFAULT_MAX_HF = 160
-"""Default budget of HF evaluations: the most the paper needed (case 4b, Table 4).
-
-A study stops there, converged or not, so a typo cannot start thousands of
-CFD runs; ``max_hf=None`` lifts it."""
 
 PRESETS = {
     "default": {},

@@ -202,7 +202,7 @@ class ScreeningResult:
             "n_hf": self.n_hf, "n_false_positive": self.n_false_positive,
             "n_failed": self.n_failed, "converged": self.converged, "family": self.family,
             "p_exp": self.p_exp, "n_waves": self.n_waves, "seed": self.seed,
-            "clipped_from": self.clipped_from,
+            "clipped_from": self.clipped_from, "settings": self.settings,
         }
 
     def save(self, out, *, inputs=None, lfset=None) -> dict:
@@ -257,6 +257,7 @@ class ScreeningResult:
             distribution=pd.read_csv(path / "distribution.csv"),
             pairs=pd.read_csv(path / "pairs.csv"), range_curves=curves, p_exp=float(s["p_exp"]),
             n_waves=int(s["n_waves"]), seed=s.get("seed"), family=s.get("family"),
+            settings=s.get("settings"),
         )
 
 

@@ -53,7 +53,7 @@ import numpy as np
 from .._json import dumps
 from .state import EventState
 
-__all__ = ["SCHEMA_VERSION", "STATES", "STORED", "RESUMABLE", "LEGACY_SETTINGS",
+__all__ = ["SCHEMA_VERSION", "STATES", "STORED", "RESUMABLE", "LEGACY_SETTINGS", "DEFAULT_MAX_HF",
            "with_legacy_settings", "StoreError", "StoreConflict",
            "dumps"]
 
@@ -65,6 +65,12 @@ STATES = tuple(STORED.values())
 #: Settings that may change when a study is resumed: the stopping rule (App. C) and the
 #: budgets.  They decide when a study stops, never which event it asks for next; every
 #: change is logged in ``meta.settings_changes``.  All other settings must match.
+DEFAULT_MAX_HF = 160
+"""Default budget of HF evaluations: the most the paper needed (case 4b, Table 4).
+
+A study stops there, converged or not, so a typo cannot start thousands of
+CFD runs; ``max_hf=None`` lifts it."""
+
 LEGACY_SETTINGS = {
     "strategy_settings": {"estimator": "selected", "copula_fit": "mle",
                           "common_random_numbers": False, "hf_location": True},
