@@ -144,7 +144,7 @@ def _event_row(ev) -> dict:
 
 def _ask(args) -> int:
     from ..study.store import StudyStore
-    from ..study.study import open_study
+    from ..study.resume import open_study
 
     if args.n < 1:
         raise ValueError(f"-n must be at least 1, got {args.n}")
@@ -248,7 +248,7 @@ def _key(x) -> str:
 def _drive(args) -> int:
     from ..study.oracles import oracle_from_spec
     from ..study.store import StudyStore
-    from ..study.study import open_study
+    from ..study.resume import open_study
     from ._progress import Progress
 
     store = StudyStore(args.study, create=False)
@@ -279,7 +279,7 @@ def _drive(args) -> int:
 
 def _set(args) -> int:
     from ..study.store import StudyStore
-    from ..study.study import open_study
+    from ..study.resume import open_study
 
     names = {"eps1": "--eps1", "eps2": "--eps2", "k1": "--k1", "k2": "--k2",
              "max_hf": "--max-hf", "max_failures": "--max-failures"}
@@ -316,7 +316,7 @@ def _option_names(msg: str, names: dict) -> str:
 
 def _status(args) -> int:
     from ..study.store import StudyStore
-    from ..study.study import open_study
+    from ..study.resume import open_study
 
     with StudyStore(args.study, create=False) as store:
         study = open_study(store, consume=False)

@@ -8,7 +8,7 @@ stored as JSON or plain columns; nothing is pickled.
 
 The tables are described in :mod:`pas.study.schema`; rebuilding a study from
 them is :mod:`pas.study.replay` (:func:`~pas.study.replay.attach`) and
-:func:`~pas.study.study.open_study`.
+:func:`~pas.study.resume.open_study`.
 
 Examples
 --------
