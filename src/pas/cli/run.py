@@ -7,7 +7,7 @@
 ``LF_FILE`` is a CSV or Parquet table (one row per wave event; ``--lf-column``
 names the LF peak column, ``--id-column`` the event ids) or a NumPy ``.npy``
 file (a 1-D array, or a structured array with named columns).  The oracle
-(:func:`pas.study.oracles.oracle_from_spec`) is one of
+(:func:`pas.study.oracle_spec.oracle_from_spec`) is one of
 
 ``table:FILE[:ID_COLUMN:VALUE_COLUMN]``
     HF results looked up by event id in a CSV/Parquet table (basin tests, a
@@ -162,7 +162,8 @@ def run(args) -> int:
     from ..api import make_study
     from ..io import read_lf_peaks
     from ..screening import check_n_waves
-    from ..study.oracles import OracleFailureLimit, oracle_from_spec
+    from ..study.oracle_spec import oracle_from_spec
+    from ..study.oracles import OracleFailureLimit
     from ..study.replay import attach
     from ..study.store import StoreError, read_settings
     from ._progress import Progress, stopped

@@ -246,7 +246,7 @@ def _key(x) -> str:
 
 
 def _drive(args) -> int:
-    from ..study.oracles import oracle_from_spec
+    from ..study.oracle_spec import oracle_from_spec
     from ..study.store import StudyStore
     from ..study.resume import open_study
     from ._progress import Progress

@@ -73,7 +73,7 @@ def load_config(path) -> dict:
 
 
 def _oracle_config(o: dict, base: Path, where: str) -> dict:
-    from ..study.oracles import oracle_from_spec
+    from ..study.oracle_spec import oracle_from_spec
 
     for key in o:
         if key not in _ORACLE:
