@@ -108,6 +108,14 @@ def test_window_measure_is_the_change_across_k1_iterations():
         StoppingRule(eps1=1.0, measure="steps")
 
 
+def test_window_measure_sees_a_model_flipping_between_two_curves():
+    # two curves 10 eps1 apart, alternating: an even lag back sees the same curve
+    for measure in ("window", "step"):
+        rule = StoppingRule(eps1=1.0, eps2=0.5, k1=20, k2=20, measure=measure)
+        stops = [rule.update(np.full(5, 10.0 * (k % 2)), 10.0)[3] for k in range(60)]
+        assert not any(stops), measure
+
+
 def test_stopping_not_before_k1_over_3():
     rule = StoppingRule(eps1=1.0, eps2=0.5, k1=20, k2=20)
     stops = [rule.update(np.zeros(3), 5.0)[3] for _ in range(8)]

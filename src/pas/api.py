@@ -15,7 +15,7 @@ __all__ = ["run_pas", "run_as", "make_study"]
 
 
 def make_study(strategy, lf_peaks, *, n_waves, p_exp, eps1, eps2=0.1, threshold=None,
-               seed=None, max_hf=DEFAULT_MAX_HF, ids=None, meta=None, store=None, preset=None,
+               seed=None, max_hf="default", ids=None, meta=None, store=None, preset=None,
                n_waves_convention="count", **settings) -> Study:
     """Validate the inputs and build a :class:`~pas.study.study.Study` for ``strategy``.
 
@@ -53,7 +53,10 @@ def make_study(strategy, lf_peaks, *, n_waves, p_exp, eps1, eps2=0.1, threshold=
                          names={"convention": "n_waves_convention='spectral'"})
     if note is not None:
         warnings.warn(note, stacklevel=3)
-    study_settings, strategy_settings = split_settings(apply_preset(preset, strategy, settings))
+    settings = apply_preset(preset, strategy, settings)
+    budget = settings.pop("max_hf", DEFAULT_MAX_HF)
+    max_hf = budget if isinstance(max_hf, str) and max_hf == "default" else max_hf
+    study_settings, strategy_settings = split_settings(settings)
     return Study.from_settings(
         {"strategy": strategy, "strategy_settings": strategy_settings, "n_waves": n_waves,
          "p_exp": p_exp, "threshold": threshold, "eps1": eps1, "eps2": eps2, "seed": seed,
@@ -62,7 +65,7 @@ def make_study(strategy, lf_peaks, *, n_waves, p_exp, eps1, eps2=0.1, threshold=
 
 
 def run_pas(lf_peaks, oracle, *, n_waves, p_exp, eps1, eps2=0.1, threshold=None, seed=None,
-            max_hf=DEFAULT_MAX_HF, ids=None, meta=None, batch_size=1, callback=None, study=None,
+            max_hf="default", ids=None, meta=None, batch_size=1, callback=None, study=None,
             pending="resubmit", executor=None, n_workers=None, n_waves_convention="count",
             preset=None,
             **settings) -> ScreeningResult:
@@ -90,10 +93,11 @@ def run_pas(lf_peaks, oracle, *, n_waves, p_exp, eps1, eps2=0.1, threshold=None,
         LF threshold ``l0_input`` (Eq. 2).
     seed : int, optional
         Seed for reproducible draws (reported on the result when None).
-    max_hf : int or None, default 160
-        Budget of HF evaluations (:data:`pas.study.factory.DEFAULT_MAX_HF`,
-        the most the paper needed): the study stops there, converged or not.
-        None: no budget.
+    max_hf : int, None or "default"
+        Budget of HF evaluations: the study stops there, converged or not.
+        ``"default"``: 160 (:data:`pas.study.factory.DEFAULT_MAX_HF`, the
+        most the paper needed), or none with ``preset="paper"``.  None: no
+        budget.
     ids, meta : sequence, optional
         User ids / metadata per event, passed to the oracle on the event.
     batch_size : int, default 1
@@ -170,7 +174,7 @@ def run_pas(lf_peaks, oracle, *, n_waves, p_exp, eps1, eps2=0.1, threshold=None,
 
 
 def run_as(lf_peaks, oracle, *, n_waves, p_exp, eps1, eps2=0.1, threshold=None, seed=None,
-           max_hf=DEFAULT_MAX_HF, ids=None, meta=None, batch_size=1, callback=None, study=None,
+           max_hf="default", ids=None, meta=None, batch_size=1, callback=None, study=None,
            pending="resubmit", executor=None, n_workers=None, n_waves_convention="count",
            **settings) -> ScreeningResult:
     """Predict the MPM of an HF load with Adaptive Screening (paper App. A), the GPR reference.
@@ -205,8 +209,9 @@ def run_as(lf_peaks, oracle, *, n_waves, p_exp, eps1, eps2=0.1, threshold=None, 
         LF threshold ``l0_input`` (Eq. 2).
     seed : int, optional
         Seed for reproducible runs (reported on the result when None).
-    max_hf : int or None, default 160
-        Budget of HF evaluations (at least 2; None: no budget).
+    max_hf : int, None or "default"
+        Budget of HF evaluations (at least 2; ``"default"``: 160; None: no
+        budget).
     ids, meta : sequence, optional
         User ids / metadata per event, passed to the oracle on the event.
     batch_size : int, default 1

@@ -46,6 +46,12 @@ def copula_loghfunc(base: str, p, u, v) -> np.ndarray:
     return logh_grad(base, p, u, v, grad=False)[0]
 
 
+def _frank_den(th, u, v):
+    """``(1 − e^{−θ}) − (1 − e^{−θu})(1 − e^{−θv})`` without the cancellation of
+    that form at large θ: ``e^{−θu} + e^{−θv} − e^{−θ(u+v)} − e^{−θ}``."""
+    return np.exp(-th * u) + np.exp(-th * v) - np.exp(-th * (u + v)) - np.exp(-th)
+
+
 def logc_grad(base: str, p, u, v, *, grad: bool = True):
     """``(log c, ∂ log c/∂v, ∂ log c/∂θ)`` (derivatives None when ``grad`` is False)."""
     th = p[0]
@@ -89,7 +95,7 @@ def logc_grad(base: str, p, u, v, *, grad: bool = True):
     if base == "frank":
         em = -np.expm1(-th)
         eu, ev = np.expm1(-th * u), np.expm1(-th * v)
-        den = em - eu * ev
+        den = _frank_den(th, u, v)
         val = np.log(th * em) - th * (u + v) - 2.0 * np.log(np.abs(den))
         if not grad:
             return val, None, None
@@ -143,9 +149,8 @@ def logh_grad(base: str, p, u, v, *, grad: bool = True):
         dth = -dbig + la - ls / th**2 + (1.0 / th - 1.0) * ds_s
         return val, dv, dth
     if base == "frank":
-        em = -np.expm1(-th)
         eu, ev = np.expm1(-th * u), np.expm1(-th * v)
-        den = em - eu * ev
+        den = _frank_den(th, u, v)
         val = -th * u + np.log(np.abs(ev)) - np.log(np.abs(den))
         if not grad:
             return val, None, None

@@ -10,17 +10,21 @@ the population the predicted distribution (Eq. 8–12) is about.  Here:
 * the LF ranks ``u`` are those of the LF *population* (every conditioning
   peak is known; :func:`pas.strategies.selection.population_lf_ranks`), so
   no LF marginal is fitted at all;
-* the copula parameters and a two-parameter Weibull HF marginal
-  ``F_H(h) = 1 − exp(−(h/α)^β)`` are fitted together by maximising the
+* the copula parameters and a three-parameter Weibull HF marginal
+  ``F_H(h) = 1 − exp(−((h − θ)/α)^β)`` are fitted together by maximising the
   conditional log-likelihood of the HF values given their LF ranks,
-  ``ℓ = Σ_i [log c(u_i, F_H(h_i)) + log f_H(h_i)]``, which the selection by LF
+  ``ℓ = Σ_i [log c(u_i, F_H(h_i)) + log f_H(h_i)]``, which a selection by LF
   leaves valid (the likelihood of a regression does not depend on how its
-  covariate was sampled);
-* the location of the Weibull is 0 (loads are non-negative): a free location
-  makes this likelihood unbounded as it approaches the smallest load with
-  β < 1 (a known property of the three-parameter Weibull).
+  covariate was sampled) — and which a selection by HF, such as the paper's
+  Step 7 outlier removal, would not: every pair enters;
+* the smallest load enters left-censored, as ``P(H ≤ h_min | u)``: with its
+  density instead, the likelihood is unbounded as θ approaches it with β < 1
+  (a known property of the three-parameter Weibull); θ stays in
+  ``[max(0, h_min − 3·range), h_min)`` and β in [0.05, 50], so the Weibull can
+  neither produce negative loads nor run off to its Gumbel limit;
+* ``location=False`` gives the two-parameter Weibull (θ = 0).
 
-AIC (Eq. 13) counts the two marginal parameters with the copula's, so the
+AIC (Eq. 13) counts the marginal's parameters with the copula's, so the
 families are compared on the same likelihood.
 """
 
@@ -133,6 +137,9 @@ def joint_objective(name: str, u, h, *, location: bool = True, censor: float = 0
     h = np.asarray(h, float)
     if np.any(h <= 0):
         raise ValueError("the joint fit needs positive HF loads (false positives are not pairs)")
+    if np.unique(h).size < 3:
+        raise ValueError(f"the joint fit needs at least 3 different HF loads, got "
+                         f"{np.unique(h).size} among {h.size} pairs")
     h_c = censoring_level(h, censor, location)
     span = float(np.ptp(h)) or float(h.min())
     n_marg = 3 if location else 2

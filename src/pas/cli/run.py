@@ -84,8 +84,9 @@ _LF_FILE_NAMES = {"file": "LF_FILE", "column": "--lf-column", "id_column": "--id
 
 
 def _budget(text):
-    """``--max-hf``: a positive integer, or ``none`` for no budget."""
-    return None if str(text).strip().lower() == "none" else _positive_int(text)
+    """``--max-hf``: a positive integer, ``none`` for no budget, or ``default``."""
+    word = str(text).strip().lower()
+    return None if word == "none" else "default" if word == "default" else _positive_int(text)
 
 
 def _positive_int(text):
@@ -132,9 +133,9 @@ def add_parser(sub) -> None:
                    help="stopping limit on the COV of the MPM (default 0.1)")
     p.add_argument("--threshold", type=float, metavar="L0", help="LF threshold l0_input")
     p.add_argument("--seed", type=int, help="random seed (default: drawn and reported)")
-    p.add_argument("--max-hf", type=_budget, default=DEFAULT_MAX_HF, metavar="N",
+    p.add_argument("--max-hf", type=_budget, default="default", metavar="N",
                    help=f"budget of HF evaluations (default {DEFAULT_MAX_HF}, the most the paper "
-                        "needed; 'none': no budget)")
+                        "needed, or none with --preset paper; 'none': no budget)")
     p.add_argument("--preset", choices=("default", "paper"), default="default",
                    help="PAS settings: the package's defaults, or 'paper' to run the method as "
                         "van Essen & Seyffert (2026) wrote it (docs/departures.md)")

@@ -141,7 +141,8 @@ class Strategy(ABC):
         """Next ``q`` positions by maximum distance on ``ln d`` (Eq. 16–17).
 
         ``selected_d`` are the LF exceedance probabilities of the selected
-        (true-positive) samples; ``available`` marks pool positions that may
+        samples — every evaluated or pending event, false positives included
+        (§2.4; the study decides); ``available`` marks pool positions that may
         still be chosen.  Gaps no pool peak can split are skipped
         (:func:`~pas.strategies.acquisition.md_select`).
         """

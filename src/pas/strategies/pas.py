@@ -82,6 +82,7 @@ __all__ = [
 ]
 
 COLD_EVERY = 10
+CRN_BLOCK = 1024
 
 
 def refit(result) -> "FittedModel":
@@ -260,7 +261,11 @@ class PAS(Strategy):
         With ``update=False`` (bootstrap replicates) nothing the study carries
         changes: the family is the lowest eligible AIC of these pairs.
         """
-        keep = (np.ones(len(pairs), dtype=bool) if self.outlier_k is None
+        # Step 7 removes pairs by their HF value: a selection on the response, which
+        # the conditional likelihood does not allow (it would drop the largest loads
+        # from the tail it fits), so it belongs to the selected-space fit only
+        keep = (np.ones(len(pairs), dtype=bool)
+                if self.outlier_k is None or self.estimator == "conditional"
                 else remove_outliers(pairs.lf, pairs.hf, k=self.outlier_k))
         families = self.families if family is None else (family,)
         impact = impact_probability(pairs.lf, pairs.fp_lf) if self.impact_model else None
@@ -296,9 +301,9 @@ class PAS(Strategy):
         starts = self._joint if family is None else {
             k: v for k, v in self._joint.items() if k == family}
         # a warm start from the previous iteration converges in a few steps; every
-        # COLD_EVERY-th fit also starts from the data, so no family stays trapped
-        # in the basin of an earlier, smaller sample
-        cold = update and family is None and self._n_fits % COLD_EVERY == 0
+        # COLD_EVERY-th fit, and every bootstrap replicate, also starts from the
+        # data, so no fit stays trapped in the basin of another sample
+        cold = not update or (family is None and self._n_fits % COLD_EVERY == 0)
         joint = fit_joint_candidates(u_cond[pairs.position][keep], pairs.hf[keep], families,
                                      starts=starts, location=self.hf_location,
                                      cold=cold or not starts)
@@ -314,16 +319,24 @@ class PAS(Strategy):
         """Uniforms ``r`` (copula) and ``q`` (impact), shape ``(z, n0)`` each (Eq. 7).
 
         With common random numbers they belong to the LF peaks (pool
-        positions) for the whole study, drawn once from the study seed.
+        positions) for the whole study: block ``k`` of :data:`CRN_BLOCK` peaks
+        draws from its own stream ``(seed, k)``, so a growing conditioning set
+        only appends blocks and no peak's uniforms ever change.
         """
         if not self.common_random_numbers:
             return (rng.uniform(EPS, 1 - EPS, size=(self.z, n0)),
                     rng.uniform(size=(self.z, n0)))
-        if self._uniforms is None or self._uniforms.shape[2] < n0:
-            crn = np.random.default_rng([0 if self._seed is None else self._seed, 0x43524E])
-            n = max(n0, 1024 if self._uniforms is None else 2 * self._uniforms.shape[2])
-            self._uniforms = np.stack([crn.uniform(EPS, 1 - EPS, size=(self.z, n)),
-                                       crn.uniform(size=(self.z, n))])
+        have = 0 if self._uniforms is None else self._uniforms.shape[2]
+        if have < n0:
+            seed = 0 if self._seed is None else self._seed
+            blocks = []
+            for k in range(have // CRN_BLOCK, -(-n0 // CRN_BLOCK)):
+                crn = np.random.default_rng([seed, 0x43524E, k])
+                blocks.append(np.stack([crn.uniform(EPS, 1 - EPS, size=(self.z, CRN_BLOCK)),
+                                        crn.uniform(size=(self.z, CRN_BLOCK))]))
+            new = np.concatenate(blocks, axis=2)
+            self._uniforms = new if self._uniforms is None else np.concatenate(
+                [self._uniforms, new], axis=2)
         return self._uniforms[0, :, :n0], self._uniforms[1, :, :n0]
 
     def _predict_model(self, model: FittedModel, lfset: LFSet, rng):

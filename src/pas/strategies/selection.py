@@ -29,6 +29,16 @@ def impact_probability(lf_true, lf_false):
 
     Returns a vectorised callable, or ``None`` when no false positive has been
     seen.  MD selects events by LF alone, so the regression needs no weights.
+    The indicator is chosen because large LF peaks make impacts, so the
+    probability may not fall with LF: a fitted slope below zero (misses as
+    common among the largest peaks, as spread misses make by chance) gives
+    the constant impact share of the evaluated events instead.
+
+    Examples
+    --------
+    >>> p = impact_probability([5.0, 6.0, 7.0], [5.5, 7.5])  # a miss high up
+    >>> bool(p([5.0])[0] <= p([8.0])[0])
+    True
     """
     lf_false = np.asarray(lf_false, float)
     if lf_false.size == 0:
@@ -39,6 +49,9 @@ def impact_probability(lf_true, lf_false):
     y = np.r_[np.ones(len(lf_true)), np.zeros(lf_false.size)]
     mu, sd = x.mean(), x.std() or 1.0
     model = LogisticRegression(C=1.0).fit(((x - mu) / sd)[:, None], y)
+    if model.coef_[0, 0] < 0:
+        share = y.mean()
+        return lambda l: np.full(np.shape(np.atleast_1d(l)), share)
     return lambda l: model.predict_proba(((np.asarray(l, float) - mu) / sd)[:, None])[:, 1]
 
 

@@ -53,6 +53,7 @@ PRESETS = {
         "marginals_from": "kept",          # Step 7: outliers out of the iteration's fits
         "n_bootstrap": 0,                  # Eq. 10: the sampling band only
         "stop_measure": "step",            # App. C, Eq. 28: the per-iteration change
+        "max_hf": None,                    # no budget (unless max_hf is given)
     },
 }
 """Named bundles of PAS settings.  ``"paper"`` reproduces van Essen & Seyffert

@@ -62,9 +62,6 @@ SCHEMA_VERSION = 1
 STORED = {EventState.PENDING: "pending", EventState.TRUE_POSITIVE: "done",
           EventState.FALSE_POSITIVE: "false_positive", EventState.FAILED: "failed"}
 STATES = tuple(STORED.values())
-#: Settings that may change when a study is resumed: the stopping rule (App. C) and the
-#: budgets.  They decide when a study stops, never which event it asks for next; every
-#: change is logged in ``meta.settings_changes``.  All other settings must match.
 DEFAULT_MAX_HF = 160
 """Default budget of HF evaluations: the most the paper needed (case 4b, Table 4).
 
@@ -94,6 +91,9 @@ def with_legacy_settings(stored: dict) -> dict:
     return out
 
 
+#: Settings that may change when a study is resumed: the stopping rule (App. C) and the
+#: budgets.  They decide when a study stops, never which event it asks for next; every
+#: change is logged in ``meta.settings_changes``.  All other settings must match.
 RESUMABLE = ("eps1", "eps2", "k1", "k2", "stop_measure", "max_hf", "max_failures")
 
 _SCHEMA = f"""
