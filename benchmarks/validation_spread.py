@@ -34,7 +34,8 @@ def main(argv=None):
     ap.add_argument("n", nargs="?", type=int, default=10)
     ap.add_argument("--cases", default=",".join(CASE_IDS))
     ap.add_argument("--out", default="pas-output/spread")
-    ap.add_argument("--max-hf", type=int, default=None)
+    ap.add_argument("--max-hf", type=lambda v: None if v == "none" else int(v), default=160,
+                    help="HF budget per run (default 160, as every study; 'none': none)")
     ap.add_argument("--strategies", default=",".join(_strategies()))
     args = ap.parse_args(argv)
     strategies = parse_strategies(args.strategies)

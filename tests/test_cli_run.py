@@ -307,3 +307,23 @@ def test_n_waves_below_the_peaks_is_an_error_and_spectral_says_so(files, tmp_pat
     assert code == 0 and "n-waves" not in err
     assert json.loads((tmp_path / "c" / "summary.json").read_text())["inputs"][
         "n_waves_convention"] == "spectral"
+
+
+def test_run_with_the_paper_preset_and_no_budget(files, tmp_path, capsys):
+    d, _, _, _ = files
+    out = tmp_path / "paper"
+    code, _, stderr = _run(capsys, "run", d / "lf.csv", "--lf-column", "rwe",
+                           "--oracle", f"table:{d / 'hf.csv'}:event:force", *COMMON,
+                           "--preset", "paper", "--max-hf", "none", "--out", out, "--quiet")
+    assert code == 0, stderr
+    summary = json.loads((out / "summary.json").read_text())
+    settings = summary["settings"]
+    assert settings["max_hf"] is None and settings["stop_measure"] == "step"
+    assert (settings["strategy_settings"]["estimator"], settings["strategy_settings"]["copula_fit"],
+            settings["strategy_settings"]["common_random_numbers"]) == ("selected", "itau", False)
+    with pytest.raises(SystemExit) as stop:
+        main([str(a) for a in ("run", d / "lf.csv", "--lf-column", "rwe", "--oracle",
+                               f"table:{d / 'hf.csv'}:event:force", *COMMON, "--max-hf", "0",
+                               "--out", tmp_path / "bad")])
+    stderr = capsys.readouterr().err
+    assert stop.value.code == 2 and "--max-hf" in stderr and "positive integer" in stderr

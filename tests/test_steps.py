@@ -77,7 +77,7 @@ def test_conditioning_set_and_hf_distribution():
 
 
 def test_stopping_windows_and_cov():
-    rule = StoppingRule(eps1=0.5, eps2=0.1, k1=3, k2=3)
+    rule = StoppingRule(eps1=0.5, eps2=0.1, k1=3, k2=3, measure="step")
     assert rule.min_iterations == 1
     outs = [rule.update(np.full(5, h), m) for h, m in [(0, 10), (1, 10), (3, 12), (3.1, 12)]]
     e = [o[0] for o in outs]
@@ -88,6 +88,32 @@ def test_stopping_windows_and_cov():
     last3 = np.array([10, 12, 12.0])
     assert outs[3][2] == pytest.approx(last3.std() / last3.mean())
     assert not any(o[3] for o in outs)  # E_bar never below 0.5
+
+
+def test_window_measure_is_the_change_across_k1_iterations():
+    # Eq. 28 averages per-step changes; the window measure compares with K1 steps back
+    rule = StoppingRule(eps1=0.5, eps2=0.5, k1=2, k2=2)
+    outs = [rule.update(np.full(5, h), 10.0) for h in (0.0, 0.2, 0.4, 0.6, 0.6, 0.6)]
+    assert np.isnan(outs[0][1])
+    # one step available: its change counts for the K1 = 2 of a window
+    assert [o[1] for o in outs[1:]] == pytest.approx([0.4, 0.4, 0.4, 0.2, 0.0])
+    # a steady drift of 0.2 a step passes Eq. 28 (mean step 0.2 < 0.5) ...
+    step = StoppingRule(eps1=0.3, eps2=0.5, k1=4, k2=4, measure="step")
+    window = StoppingRule(eps1=0.3, eps2=0.5, k1=4, k2=4)
+    drift = [0.2 * k for k in range(8)]
+    assert [step.update(np.full(5, h), 10.0)[3] for h in drift][-1]
+    # ... but not the window measure: the distribution moved 0.8 over the window
+    assert not any(window.update(np.full(5, h), 10.0)[3] for h in drift)
+    with pytest.raises(ValueError, match="stop_measure"):
+        StoppingRule(eps1=1.0, measure="steps")
+
+
+def test_window_measure_sees_a_model_flipping_between_two_curves():
+    # two curves 10 eps1 apart, alternating: an even lag back sees the same curve
+    for measure in ("window", "step"):
+        rule = StoppingRule(eps1=1.0, eps2=0.5, k1=20, k2=20, measure=measure)
+        stops = [rule.update(np.full(5, 10.0 * (k % 2)), 10.0)[3] for k in range(60)]
+        assert not any(stops), measure
 
 
 def test_stopping_not_before_k1_over_3():
@@ -125,13 +151,15 @@ def test_impact_probability_rises_with_lf():
     assert low < 0.15 and 0.3 < mid < 0.7 and high > 0.9
 
 
-def test_outliers_leave_the_marginals_by_default():
+def test_outliers_leave_the_selected_space_marginals_by_default():
     s = LFSet(np.linspace(10, 0.1, 500), n_waves=600, p_exp=0.01)
     pos = np.arange(0, 500, 25)
     hf = 2 * s.lf[pos] + 1
     hf[1] += 60.0  # one genuine heavy load far off the trend
     pairs = Pairs(pos, s.lf[pos], hf, s.d[pos])
-    all_ = PAS(marginals_from="all").predict(pairs, s, np.random.default_rng(0))
-    kept = PAS(marginals_from="kept").predict(pairs, s, np.random.default_rng(0))
+    all_ = PAS(estimator="selected", marginals_from="all").predict(pairs, s,
+                                                                  np.random.default_rng(0))
+    kept = PAS(estimator="selected", marginals_from="kept").predict(pairs, s,
+                                                                   np.random.default_rng(0))
     assert all_.record["n_outliers"] == kept.record["n_outliers"] == 1
     assert all_.h_mean[0] > kept.h_mean[0]  # the HF tail keeps the heavy load

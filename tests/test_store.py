@@ -202,8 +202,10 @@ def test_resume_after_unusable_indicator_warning(tmp_path):
     assert again.mpm == first.mpm and again.n_hf == first.n_hf == 12
 
 
-# eps1 = 0.05 converges after 12 HF evaluations on this problem, 0.03 after 15
-STOP = dict(n_waves=2000, p_exp=1e-2, seed=5, max_hf=60, n_bootstrap=0, k1=6, k2=6)
+# eps1 = 0.05 converges after 12 HF evaluations on this problem, 0.03 after 15 (with the
+# per-step measure and redrawn uniforms, whose noise makes eps1 matter here)
+STOP = dict(n_waves=2000, p_exp=1e-2, seed=5, max_hf=60, n_bootstrap=0, k1=6, k2=6,
+            stop_measure="step", estimator="selected", common_random_numbers=False)
 
 
 @pytest.mark.parametrize("batch_size", [1, 2])

@@ -87,7 +87,7 @@ def _tell_many(db, items):
 
 
 def test_eight_processes_tell_200_results(tmp_path, capsys):
-    cfg = write_case(tmp_path, extra="")
+    cfg = write_case(tmp_path, extra="max_hf = 400")  # above the default budget of 160
     db = str(tmp_path / "s.db")
     assert cli("study", "create", db, "--config", cfg) == 0
     assert cli("study", "ask", db, "-n", "200", "--format", "csv", "-o", str(tmp_path / "a.csv")) == 0

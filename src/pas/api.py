@@ -7,7 +7,7 @@ import warnings
 from .screening import check_n_waves
 from .strategies.as_ import AS
 from .strategies.pas import PAS
-from .study.factory import split_settings
+from .study.factory import DEFAULT_MAX_HF, apply_preset, split_settings
 from .study.result import ScreeningResult
 from .study.study import Study
 
@@ -15,7 +15,7 @@ __all__ = ["run_pas", "run_as", "make_study"]
 
 
 def make_study(strategy, lf_peaks, *, n_waves, p_exp, eps1, eps2=0.1, threshold=None,
-               seed=None, max_hf=None, ids=None, meta=None, store=None,
+               seed=None, max_hf="default", ids=None, meta=None, store=None, preset=None,
                n_waves_convention="count", **settings) -> Study:
     """Validate the inputs and build a :class:`~pas.study.study.Study` for ``strategy``.
 
@@ -36,6 +36,9 @@ def make_study(strategy, lf_peaks, *, n_waves, p_exp, eps1, eps2=0.1, threshold=
         are used from the first stored iteration on and recorded in the store.
     n_waves_convention : {"count", "spectral"}, default "count"
         As for :func:`run_pas`.
+    preset : {None, "default", "paper"}, optional
+        A named bundle of PAS settings (:data:`pas.study.factory.PRESETS`);
+        settings given explicitly win.
     **settings
         Strategy settings (checked against the strategy's constructor;
         unknown names raise ``ValueError``) and study settings (``k1``,
@@ -50,6 +53,9 @@ def make_study(strategy, lf_peaks, *, n_waves, p_exp, eps1, eps2=0.1, threshold=
                          names={"convention": "n_waves_convention='spectral'"})
     if note is not None:
         warnings.warn(note, stacklevel=3)
+    settings = apply_preset(preset, strategy, settings)
+    budget = settings.pop("max_hf", DEFAULT_MAX_HF)
+    max_hf = budget if isinstance(max_hf, str) and max_hf == "default" else max_hf
     study_settings, strategy_settings = split_settings(settings)
     return Study.from_settings(
         {"strategy": strategy, "strategy_settings": strategy_settings, "n_waves": n_waves,
@@ -59,8 +65,9 @@ def make_study(strategy, lf_peaks, *, n_waves, p_exp, eps1, eps2=0.1, threshold=
 
 
 def run_pas(lf_peaks, oracle, *, n_waves, p_exp, eps1, eps2=0.1, threshold=None, seed=None,
-            max_hf=None, ids=None, meta=None, batch_size=1, callback=None, study=None,
+            max_hf="default", ids=None, meta=None, batch_size=1, callback=None, study=None,
             pending="resubmit", executor=None, n_workers=None, n_waves_convention="count",
+            preset=None,
             **settings) -> ScreeningResult:
     """Predict the MPM of an HF load with Probabilistic Adaptive Screening.
 
@@ -86,8 +93,11 @@ def run_pas(lf_peaks, oracle, *, n_waves, p_exp, eps1, eps2=0.1, threshold=None,
         LF threshold ``l0_input`` (Eq. 2).
     seed : int, optional
         Seed for reproducible draws (reported on the result when None).
-    max_hf : int, optional
-        Budget of HF evaluations.
+    max_hf : int, None or "default"
+        Budget of HF evaluations: the study stops there, converged or not.
+        ``"default"``: 160 (:data:`pas.study.factory.DEFAULT_MAX_HF`, the
+        most the paper needed), or none with ``preset="paper"``.  None: no
+        budget.
     ids, meta : sequence, optional
         User ids / metadata per event, passed to the oracle on the event.
     batch_size : int, default 1
@@ -114,6 +124,11 @@ def run_pas(lf_peaks, oracle, *, n_waves, p_exp, eps1, eps2=0.1, threshold=None,
     n_workers : int, optional
         Without ``executor``: a local process pool of this size (the oracle
         must be picklable).
+    preset : {None, "default", "paper"}, optional
+        ``"paper"`` reproduces the paper's scripts (τ inversion for the
+        Archimedean copulas, selected-sample space, redrawn uniforms, the
+        sampling band; :data:`pas.study.factory.PRESETS`,
+        ``docs/departures.md``); settings given explicitly win.
     n_waves_convention : {"count", "spectral"}, default "count"
         How ``n_waves`` was obtained (:func:`pas.screening.check_n_waves`).
         ``"count"``: counted wave encounters; ``n_waves`` below the number of
@@ -125,7 +140,8 @@ def run_pas(lf_peaks, oracle, *, n_waves, p_exp, eps1, eps2=0.1, threshold=None,
         Settings of :class:`~pas.strategies.pas.PAS` (``families``, ``z``,
         ``delta_aic``, ``exclude_at_bound``, ``upper_tail``, ``outlier_k``,
         ``n_bootstrap``, ``skip_unsplittable``, ``marginals_from``,
-        ``impact_model``) and study settings (``k1``, ``k2``,
+        ``impact_model``, ``estimator``, ``copula_fit``,
+        ``common_random_numbers``) and study settings (``k1``, ``k2``,
         ``max_failures``, ``stop_on_convergence``, ``adaptive_threshold``,
         ``threshold_step``, ``fp_run``: :class:`~pas.study.study.Study`).
 
@@ -151,13 +167,14 @@ def run_pas(lf_peaks, oracle, *, n_waves, p_exp, eps1, eps2=0.1, threshold=None,
     """
     built = make_study(PAS, lf_peaks, n_waves=n_waves, p_exp=p_exp, eps1=eps1, eps2=eps2,
                        threshold=threshold, seed=seed, max_hf=max_hf, ids=ids, meta=meta,
-                       store=study, n_waves_convention=n_waves_convention, **settings)
+                       store=study, n_waves_convention=n_waves_convention, preset=preset,
+                       **settings)
     return built.optimize(oracle, batch_size=batch_size, callback=callback, executor=executor,
                           n_workers=n_workers, pending=pending)
 
 
 def run_as(lf_peaks, oracle, *, n_waves, p_exp, eps1, eps2=0.1, threshold=None, seed=None,
-           max_hf=None, ids=None, meta=None, batch_size=1, callback=None, study=None,
+           max_hf="default", ids=None, meta=None, batch_size=1, callback=None, study=None,
            pending="resubmit", executor=None, n_workers=None, n_waves_convention="count",
            **settings) -> ScreeningResult:
     """Predict the MPM of an HF load with Adaptive Screening (paper App. A), the GPR reference.
@@ -192,8 +209,9 @@ def run_as(lf_peaks, oracle, *, n_waves, p_exp, eps1, eps2=0.1, threshold=None, 
         LF threshold ``l0_input`` (Eq. 2).
     seed : int, optional
         Seed for reproducible runs (reported on the result when None).
-    max_hf : int, optional
-        Budget of HF evaluations (at least 2).
+    max_hf : int, None or "default"
+        Budget of HF evaluations (at least 2; ``"default"``: 160; None: no
+        budget).
     ids, meta : sequence, optional
         User ids / metadata per event, passed to the oracle on the event.
     batch_size : int, default 1

@@ -25,13 +25,14 @@ import numpy as np
 import pyvinecopulib as pv
 from scipy import special
 
-from .stats.dependence import pseudo_observations  # Eq. 5, the input of every fit here
+from .stats.dependence import kendall_tau, pseudo_observations  # Eq. 5: the input of every fit
 
 __all__ = [
     "PAPER_FAMILIES",
     "EXTRA_FAMILIES",
     "CopulaFit",
     "pseudo_observations",
+    "tau_inversion_parameter",
     "fit_copula",
     "fit_candidates",
     "select_family",
@@ -105,22 +106,81 @@ def _at_bound(bicop: pv.Bicop, name: str) -> bool:
     return bool(np.any(np.abs(p - hi) < tol))
 
 
-def fit_copula(name: str, u, v) -> CopulaFit:
-    """Fit one family by maximum likelihood to pseudo-observations ``(u, v)``."""
+#: families whose paper fit is the inversion of Kendall's tau (§2.8, the ``copulas`` package)
+ARCHIMEDEAN = ("clayton", "gumbel", "frank")
+
+
+def tau_inversion_parameter(name: str, tau: float) -> float:
+    """The parameter of a one-parameter family with Kendall's ``tau`` (App. B.2).
+
+    Clayton ``θ = 2τ/(1−τ)``, Gumbel ``θ = 1/(1−τ)``, Frank by the Debye
+    relation — the rank-based estimator of the ``copulas`` package the paper
+    used for these families (§2.8).  Raises ``ValueError`` where the family
+    cannot have that τ (Clayton and Gumbel need τ > 0), as that package does.
+    """
+    base = name.partition("_")[0]
+    if not -1.0 < tau < 1.0:
+        raise ValueError(f"Kendall's tau must be in (-1, 1) for a {name} fit, got {tau}")
+    if base == "clayton":
+        if tau <= 0:
+            raise ValueError(f"a Clayton copula cannot have tau = {tau:.3f} <= 0")
+        return 2.0 * tau / (1.0 - tau)
+    if base == "gumbel":
+        if tau < 0:
+            raise ValueError(f"a Gumbel copula cannot have tau = {tau:.3f} < 0")
+        return 1.0 / (1.0 - tau)
+    if base == "frank":
+        family, _ = _family_and_rotation(name)
+        return float(pv.Bicop(family=family).tau_to_parameters(tau).ravel()[0])
+    raise ValueError(f"tau inversion is defined here for {ARCHIMEDEAN}, not {name!r}")
+
+
+def fit_copula(name: str, u, v, *, method: str = "mle") -> CopulaFit:
+    """Fit one family to pseudo-observations ``(u, v)``.
+
+    ``method="mle"``: maximum likelihood (pyvinecopulib).
+    ``method="itau"``: the inversion of Kendall's τ for Clayton, Gumbel and
+    Frank (:func:`tau_inversion_parameter`, the paper's estimator for these
+    three); other families are fitted by maximum likelihood.
+    """
     family, rotation = _family_and_rotation(name)
     data = np.column_stack([np.asarray(u, float), np.asarray(v, float)])
-    bicop = pv.Bicop(family=family, rotation=rotation)
-    controls = pv.FitControlsBicop(family_set=[family], parametric_method="mle")
-    bicop.fit(data, controls=controls)
+    if method not in ("mle", "itau"):
+        raise ValueError(f"method must be 'mle' or 'itau', got {method!r}")
+    if method == "itau" and name.partition("_")[0] in ARCHIMEDEAN:
+        tau = kendall_tau(data[:, 0], data[:, 1])  # a 180° rotation keeps τ
+        theta = tau_inversion_parameter(name, tau)
+        bicop = pv.Bicop(family=family, rotation=rotation)
+        lo = float(np.ravel(bicop.parameters_lower_bounds)[0])
+        hi = float(np.ravel(bicop.parameters_upper_bounds)[0])
+        bicop = pv.Bicop(family=family, rotation=rotation,
+                         parameters=np.array([[min(max(theta, lo), hi)]]))
+    else:
+        bicop = pv.Bicop(family=family, rotation=rotation)
+        controls = pv.FitControlsBicop(family_set=[family], parametric_method="mle")
+        bicop.fit(data, controls=controls)
     loglik = float(bicop.loglik(data))
     npars = float(bicop.npars)
     return CopulaFit(name=name, bicop=bicop, loglik=loglik, aic=2.0 * npars - 2.0 * loglik,
                      npars=npars, at_bound=_at_bound(bicop, name))
 
 
-def fit_candidates(u, v, families=PAPER_FAMILIES) -> dict[str, CopulaFit]:
-    """Fit every candidate family; returns ``{name: CopulaFit}`` in the given order."""
-    return {name: fit_copula(name, u, v) for name in families}
+def fit_candidates(u, v, families=PAPER_FAMILIES, *, method: str = "mle") -> dict[str, CopulaFit]:
+    """Fit every candidate family; returns ``{name: CopulaFit}`` in the given order.
+
+    A family that cannot be fitted to these data (a τ-inversion Clayton or
+    Gumbel with τ ≤ 0) is left out, as the paper's stack fails on it.
+    """
+    fits = {}
+    for name in families:
+        try:
+            fits[name] = fit_copula(name, u, v, method=method)
+        except ValueError:
+            if method != "itau":
+                raise
+    if not fits:
+        raise ValueError("no copula family could be fitted to these pairs")
+    return fits
 
 
 def select_family(fits: dict[str, CopulaFit], current: str | None = None, *,

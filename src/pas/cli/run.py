@@ -7,7 +7,7 @@
 ``LF_FILE`` is a CSV or Parquet table (one row per wave event; ``--lf-column``
 names the LF peak column, ``--id-column`` the event ids) or a NumPy ``.npy``
 file (a 1-D array, or a structured array with named columns).  The oracle
-(:func:`pas.study.oracles.oracle_from_spec`) is one of
+(:func:`pas.study.oracle_spec.oracle_from_spec`) is one of
 
 ``table:FILE[:ID_COLUMN:VALUE_COLUMN]``
     HF results looked up by event id in a CSV/Parquet table (basin tests, a
@@ -46,6 +46,8 @@ import math
 import sys
 from pathlib import Path
 
+from ..study.schema import DEFAULT_MAX_HF
+
 __all__ = ["add_parser", "run"]
 
 EPILOG = """\
@@ -73,11 +75,18 @@ examples:
 
 
 _INPUTS = ("lf_file", "lf_column", "id_column", "oracle", "n_waves", "n_waves_convention", "p_exp",
-           "eps1", "eps2", "threshold", "strategy", "max_hf", "batch_size", "unit", "lf_unit")
+           "eps1", "eps2", "threshold", "strategy", "preset", "max_hf", "batch_size", "unit",
+           "lf_unit")
 """The options written to ``summary.json`` as the run's ``inputs``."""
 
 _LF_FILE_NAMES = {"file": "LF_FILE", "column": "--lf-column", "id_column": "--id-column",
                   "meta_columns": "--meta-columns"}
+
+
+def _budget(text):
+    """``--max-hf``: a positive integer, ``none`` for no budget, or ``default``."""
+    word = str(text).strip().lower()
+    return None if word == "none" else "default" if word == "default" else _positive_int(text)
 
 
 def _positive_int(text):
@@ -124,7 +133,12 @@ def add_parser(sub) -> None:
                    help="stopping limit on the COV of the MPM (default 0.1)")
     p.add_argument("--threshold", type=float, metavar="L0", help="LF threshold l0_input")
     p.add_argument("--seed", type=int, help="random seed (default: drawn and reported)")
-    p.add_argument("--max-hf", type=_positive_int, metavar="N", help="budget of HF evaluations")
+    p.add_argument("--max-hf", type=_budget, default="default", metavar="N",
+                   help=f"budget of HF evaluations (default {DEFAULT_MAX_HF}, the most the paper "
+                        "needed, or none with --preset paper; 'none': no budget)")
+    p.add_argument("--preset", choices=("default", "paper"), default="default",
+                   help="PAS settings: the package's defaults, or 'paper' to run the method as "
+                        "van Essen & Seyffert (2026) wrote it (docs/departures.md)")
     p.add_argument("--strategy", choices=STRATEGY_NAMES, default="pas",
                    help="PAS (copula, default) or AS (GPR on order statistics)")
     p.add_argument("--batch-size", type=_positive_int, default=1, metavar="Q",
@@ -149,7 +163,8 @@ def run(args) -> int:
     from ..api import make_study
     from ..io import read_lf_peaks
     from ..screening import check_n_waves
-    from ..study.oracles import OracleFailureLimit, oracle_from_spec
+    from ..study.oracle_spec import oracle_from_spec
+    from ..study.oracles import OracleFailureLimit
     from ..study.replay import attach
     from ..study.store import StoreError, read_settings
     from ._progress import Progress, stopped
@@ -177,7 +192,8 @@ def run(args) -> int:
         study = make_study(args.strategy, lf, n_waves=args.n_waves, p_exp=args.p_exp,
                            eps1=args.eps1, eps2=args.eps2, threshold=args.threshold, seed=seed,
                            max_hf=args.max_hf, ids=ids, meta=meta,
-                           n_waves_convention="spectral")  # checked above, with option names
+                           n_waves_convention="spectral",  # checked above, with option names
+                           preset=None if args.strategy != "pas" else args.preset)
         if store is not None:  # only now: bad inputs leave no output folder behind
             out.mkdir(parents=True, exist_ok=True)
             for ch in attach(study, store):

@@ -115,8 +115,8 @@ def _create(args) -> int:
     if os.path.exists(args.study):
         raise ValueError(f"{args.study} already exists (continue it with 'pas study ask')")
     lf, ids, meta = load_peaks(cfg["lf"])
-    kw = {k: cfg[k] for k in ("eps2", "threshold", "seed", "max_hf", "n_waves_convention")
-          if k in cfg}
+    kw = {k: cfg[k] for k in ("eps2", "threshold", "seed", "max_hf", "n_waves_convention",
+                              "preset") if k in cfg}
     try:
         study = make_study(cfg["strategy"], lf, n_waves=cfg["n_waves"],
                            p_exp=cfg["p_exp"], eps1=cfg["eps1"], ids=ids, meta=meta,
@@ -144,7 +144,7 @@ def _event_row(ev) -> dict:
 
 def _ask(args) -> int:
     from ..study.store import StudyStore
-    from ..study.study import open_study
+    from ..study.resume import open_study
 
     if args.n < 1:
         raise ValueError(f"-n must be at least 1, got {args.n}")
@@ -246,9 +246,9 @@ def _key(x) -> str:
 
 
 def _drive(args) -> int:
-    from ..study.oracles import oracle_from_spec
+    from ..study.oracle_spec import oracle_from_spec
     from ..study.store import StudyStore
-    from ..study.study import open_study
+    from ..study.resume import open_study
     from ._progress import Progress
 
     store = StudyStore(args.study, create=False)
@@ -279,7 +279,7 @@ def _drive(args) -> int:
 
 def _set(args) -> int:
     from ..study.store import StudyStore
-    from ..study.study import open_study
+    from ..study.resume import open_study
 
     names = {"eps1": "--eps1", "eps2": "--eps2", "k1": "--k1", "k2": "--k2",
              "max_hf": "--max-hf", "max_failures": "--max-failures"}
@@ -316,7 +316,7 @@ def _option_names(msg: str, names: dict) -> str:
 
 def _status(args) -> int:
     from ..study.store import StudyStore
-    from ..study.study import open_study
+    from ..study.resume import open_study
 
     with StudyStore(args.study, create=False) as store:
         study = open_study(store, consume=False)

@@ -13,7 +13,8 @@ from pathlib import Path
 __all__ = ["load_config", "load_peaks"]
 
 _TOP = {"n_waves": int, "n_waves_convention": str, "p_exp": float, "eps1": float, "eps2": float,
-        "threshold": float, "strategy": str, "seed": int, "max_hf": int, "batch_size": int,
+        "threshold": float, "strategy": str, "preset": str, "seed": int, "max_hf": int,
+        "batch_size": int,
         "lf": dict, "settings": dict, "oracle": dict}
 _LF = {"file": str, "column": str, "id_column": str, "meta_columns": list}
 _REQUIRED = ("n_waves", "p_exp", "eps1", "lf")
@@ -72,7 +73,7 @@ def load_config(path) -> dict:
 
 
 def _oracle_config(o: dict, base: Path, where: str) -> dict:
-    from ..study.oracles import oracle_from_spec
+    from ..study.oracle_spec import oracle_from_spec
 
     for key in o:
         if key not in _ORACLE:

@@ -201,15 +201,12 @@ def _mpm_marker(ax, result, p_exp, mpm, c, name, unit):
 
 
 # -- LF–HF scatter with the fitted copula (paper Fig. 4, 16, 19) ------------
-def conditional_quantile_curves(result, lf_grid, quantiles=(0.05, 0.5, 0.95), *,
-                                upper_tail=None, outlier_k=3.0):
-    """Quantiles of HF given LF in real space from a PAS result's final model.
+def conditional_quantile_curves(result, lf_grid, quantiles=(0.05, 0.5, 0.95)):
+    """Quantiles of HF given LF (and an impact) in real space from a PAS result's final model.
 
-    Refits what the strategy fitted in its last iteration: temporary outlier
-    removal (:func:`pas.strategies.pas.remove_outliers`), the selected
-    family on the pseudo-observations (:func:`pas.copulas.fit_copula`) and
-    both Weibull marginals (:func:`pas.marginals.fit_marginal`); then
-    ``h_q(l) = F_h⁻¹(C⁻¹_{V|U}(q | F_l(l)))``.
+    Refits what the strategy fitted in its last iteration, with the result's
+    own settings (:func:`pas.strategies.pas.refit`); then
+    ``h_q(l) = F_h⁻¹(C⁻¹_{V|U}(q | u(l)))``.
 
     Parameters
     ----------
@@ -219,49 +216,31 @@ def conditional_quantile_curves(result, lf_grid, quantiles=(0.05, 0.5, 0.95), *,
         LF values at which to evaluate the curves.
     quantiles : sequence of float, default (0.05, 0.5, 0.95)
         Conditional probabilities, each in (0, 1).
-    upper_tail : bool, optional
-        Weibull upper-tail mode; default as PAS decides it: on when the run
-        had no LF threshold (first history row's ``threshold`` is empty).
-    outlier_k : float, default 3.0
-        Residual limit of the outlier removal when the result does not
-        record its settings (a result's own ``settings`` take precedence,
-        as do its ``upper_tail`` and ``marginals_from``).
 
     Returns
     -------
     dict of float -> ndarray
         One HF curve per quantile, aligned with ``lf_grid``.
     """
-    from ..copulas import EXTRA_FAMILIES, PAPER_FAMILIES, conditional_quantile
-    from ..strategies.pas import EPS, fit_model
+    from ..copulas import EXTRA_FAMILIES, PAPER_FAMILIES
+    from ..strategies.pas import refit
 
     family = getattr(result, "family", None)
     if family not in PAPER_FAMILIES + EXTRA_FAMILIES:
         raise ValueError(f"result.family is {family!r}: only a PAS result has a fitted copula")
-    pairs = result.pairs
-    lf, hf = pairs["lf"].to_numpy(dtype=float), pairs["hf"].to_numpy(dtype=float)
-    used = (getattr(result, "settings", None) or {}).get("strategy_settings", {})
-    if upper_tail is None:
-        upper_tail = used.get("upper_tail")
-    if upper_tail is None:
-        thr = result.history["threshold"].iloc[0] if "threshold" in result.history else None
-        upper_tail = thr is None or pd.isna(thr)
-    fit, f_l, f_h = fit_model(lf, hf, family, outlier_k=used.get("outlier_k", outlier_k),
-                              upper_tail=upper_tail,
-                              marginals_from=used.get("marginals_from", "all"))
-    u = np.clip(f_l.cdf(np.asarray(lf_grid, dtype=float)), EPS, 1 - EPS)
+    model = refit(result)
+    grid = np.asarray(lf_grid, dtype=float)
     out = {}
     for q in quantiles:
         if not 0.0 < q < 1.0:
             raise ValueError(f"quantiles: {q} is not in (0, 1)")
-        v = np.clip(conditional_quantile(fit, u, np.full_like(u, q)), EPS, 1 - EPS)
-        out[float(q)] = f_h.ppf(v)
+        out[float(q)] = model.conditional_quantiles(grid, q)
     return out
 
 
 def plot_scatter(lf, hf, *, result=None, ax=None, lf_unit=None, unit=None,
                  lf_label="LF indicator peak", hf_label="HF peak",
-                 quantiles=(0.05, 0.5, 0.95), upper_tail=None, q_tail=0.9, label="all events"):
+                 quantiles=(0.05, 0.5, 0.95), q_tail=0.9, label="all events"):
     """Scatter of matched LF–HF peaks with Kendall's τ and tail dependence (paper Fig. 16).
 
     Parameters
@@ -282,8 +261,6 @@ def plot_scatter(lf, hf, *, result=None, ax=None, lf_unit=None, unit=None,
         Names of the two quantities for the axis labels.
     quantiles : sequence of three floats, default (0.05, 0.5, 0.95)
         Lower, middle and upper conditional quantile drawn.
-    upper_tail : bool, optional
-        Passed to :func:`conditional_quantile_curves`.
     q_tail : float, default 0.9
         Level of the empirical tail dependence
         (:func:`pas.stats.dependence.empirical_tail_dependence`).
@@ -333,8 +310,7 @@ def plot_scatter(lf, hf, *, result=None, ax=None, lf_unit=None, unit=None,
             lo_q, mid_q, hi_q = quantiles
             l_sel = pairs["lf"].to_numpy(dtype=float)
             grid = np.linspace(l_sel.min(), max(l_sel.max(), x.max()), 200)
-            curves = conditional_quantile_curves(result, grid, (lo_q, mid_q, hi_q),
-                                                 upper_tail=upper_tail)
+            curves = conditional_quantile_curves(result, grid, (lo_q, mid_q, hi_q))
             ax.fill_between(grid, curves[lo_q], curves[hi_q], color="tab:blue", alpha=0.2, lw=0,
                             label=f"{family} copula: {lo_q:.0%}–{hi_q:.0%} of HF given LF")
             ax.plot(grid, curves[mid_q], "-", color="tab:blue", lw=1.5,

@@ -9,7 +9,7 @@ from __future__ import annotations
 import numpy as np
 from scipy import stats
 
-__all__ = ["pseudo_observations", "kendall_tau", "empirical_tail_dependence"]
+__all__ = ["pseudo_observations", "weighted_ranks", "kendall_tau", "empirical_tail_dependence"]
 
 
 def pseudo_observations(x, y):
@@ -23,6 +23,30 @@ def pseudo_observations(x, y):
         raise ValueError(f"x and y must be 1-D of equal length, got {x.shape} and {y.shape}")
     m = x.size
     return stats.rankdata(x) / (m + 1.0), stats.rankdata(y) / (m + 1.0)
+
+
+def weighted_ranks(x, w) -> np.ndarray:
+    """Weighted mid-point plotting positions ``(W_{<i} + w_i/2) / W`` in (0, 1).
+
+    The weighted empirical CDF halfway up each value's own step (Hazen's
+    ``(i − ½)/m`` for equal weights); tied values share the mean of their
+    positions.  PAS ranks the LF population with each peak weighted by its
+    impact probability (:func:`pas.strategies.selection.population_lf_ranks`).
+
+    Examples
+    --------
+    >>> weighted_ranks([3.0, 1.0, 2.0], [1.0, 1.0, 2.0]).tolist()
+    [0.875, 0.125, 0.5]
+    """
+    x, w = np.asarray(x, float), np.asarray(w, float)
+    order = np.argsort(x, kind="stable")
+    cum = np.cumsum(w[order])
+    mid = cum - w[order] / 2.0
+    _, inv = np.unique(x[order], return_inverse=True)
+    mid = (np.bincount(inv, mid * w[order]) / np.bincount(inv, w[order]))[inv]
+    out = np.empty_like(mid)
+    out[order] = mid / cum[-1]
+    return out
 
 
 def kendall_tau(x, y) -> float:

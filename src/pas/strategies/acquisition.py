@@ -50,7 +50,8 @@ def md_select(ln_d: np.ndarray, available: np.ndarray, ln_d_selected, q: int = 1
     available : ndarray of bool
         Pool positions that may be chosen.
     ln_d_selected : array-like
-        ``ln d`` of the selected (true-positive) samples, at least two.
+        ``ln d`` of the selected samples (the study passes every evaluated or
+        pending event, false positives included), at least two.
     q : int
         Batch size; the batch is filled sequentially, each chosen peak joining
         the selected set before the next gap is sought.

@@ -52,26 +52,23 @@ Acquisition MVPD (Eq. 20): ``f1 = 1 − (ln d* − ln P_exp)²``,
 the nearest available LF pool peak on ``ln d`` is sampled
 (:func:`mvpd_select`).
 
-Small GP matrices gain nothing from BLAS threads and, on a loaded machine,
-lose a lot (a 157-point fit took 5 s instead of 60 ms with OpenBLAS's default
-threads on 2 busy cores), so every fit and prediction here runs under a
-one-thread BLAS limit (:mod:`threadpoolctl`, restored afterwards).
+Every fit and prediction here runs under a one-thread BLAS limit
+(:func:`pas._threads.one_blas_thread`: small GP matrices lose a lot to BLAS
+threads on a loaded machine).
 scikit-learn's ``ConvergenceWarning`` (a hyper-parameter at its bound, common
 with a handful of samples) is silenced inside the fits.
 """
 
 from __future__ import annotations
 
-import functools
 import warnings
-from contextlib import contextmanager
 
 import numpy as np
 from sklearn.exceptions import ConvergenceWarning
 from sklearn.gaussian_process import GaussianProcessRegressor
 from sklearn.gaussian_process.kernels import ConstantKernel, Matern, WhiteKernel
-from threadpoolctl import ThreadpoolController
 
+from .._threads import one_blas_thread
 from .._validation import check_option, check_positive, check_positive_int
 from ..screening import LFSet
 from ..stats.dependence import kendall_tau
@@ -88,19 +85,6 @@ __all__ = [
 
 FIDELITIES = ("single", "multi")
 LENGTH_MIN = 0.5
-
-
-@functools.cache
-def _blas_controller() -> ThreadpoolController:
-    """The loaded BLAS libraries, inspected once (≈ 4 ms a time, 0.03 ms to limit them)."""
-    return ThreadpoolController()
-
-
-@contextmanager
-def _one_blas_thread():
-    """Limit BLAS to one thread for the small GP algebra (module docs)."""
-    with _blas_controller().limit(limits=1, user_api="blas"):
-        yield
 
 
 def prediction_grid(lfset: LFSet, *, range_factor: float = 10.0, n_grid: int = 101) -> np.ndarray:
@@ -317,7 +301,7 @@ class AS(Strategy):
         self.n_restarts = int(n_restarts)
         self.lf_model_ = None
 
-    def reset(self) -> None:
+    def reset(self, seed: int | None = None) -> None:
         self.lf_model_ = None
 
     def _lf_model(self, lfset: LFSet, grid, rng) -> _LFModel:
@@ -348,7 +332,7 @@ class AS(Strategy):
         h_sel = np.asarray(pairs.hf, dtype=float)
         x_grid = np.log(grid)
         record = {"fidelity": self.fidelity, "tau": kendall_tau(pairs.lf, pairs.hf)}
-        with _one_blas_thread():
+        with one_blas_thread():
             if self.fidelity == "single":
                 gp = _GP(x_sel, h_sel, noise_bounds=(1e-10, 1.0), n_restarts=self.n_restarts,
                          random_state=int(rng.integers(2**31)))

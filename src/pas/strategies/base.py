@@ -43,12 +43,17 @@ class Pairs:
     d: np.ndarray
     #: LF values of the evaluated false positives (HF = 0), for impact models
     fp_lf: np.ndarray = field(default_factory=lambda: np.empty(0))
+    #: their positions in the LFSet order (for their exceedance probabilities)
+    fp_position: np.ndarray = field(default_factory=lambda: np.empty(0, dtype=int))
 
     def __len__(self) -> int:
         return int(self.position.size)
 
-    def take(self, idx) -> "Pairs":
-        return Pairs(self.position[idx], self.lf[idx], self.hf[idx], self.d[idx], self.fp_lf)
+    def take(self, idx, fp_idx=None) -> "Pairs":
+        """The pairs at ``idx`` (and the false positives at ``fp_idx``; all when None)."""
+        fp = slice(None) if fp_idx is None else fp_idx
+        return Pairs(self.position[idx], self.lf[idx], self.hf[idx], self.d[idx],
+                     np.asarray(self.fp_lf)[fp], np.asarray(self.fp_position, dtype=int)[fp])
 
 
 @dataclass
@@ -57,7 +62,10 @@ class Prediction:
 
     ``d`` ascending; ``h_mean`` the mean distribution, ``h_low``/``h_high`` its
     U95 band; ``mpm_band`` the band read at ``P_exp``; ``record`` holds the
-    strategy-specific diagnostics written to the iteration history.
+    strategy-specific diagnostics written to the iteration history;
+    ``columns`` optional per-rank arrays aligned with ``d`` (PAS: the LF peak
+    conditioned on at each rank and its impact probability), written beside
+    the distribution.
     """
 
     d: np.ndarray
@@ -67,15 +75,18 @@ class Prediction:
     mpm: float
     mpm_band: tuple
     record: dict = field(default_factory=dict)
+    columns: dict = field(default_factory=dict)
 
     @classmethod
-    def read_at(cls, p_exp: float, d, h_mean, h_low, h_high, record=None) -> Prediction:
+    def read_at(cls, p_exp: float, d, h_mean, h_low, h_high, record=None,
+                columns=None) -> Prediction:
         """A distribution and its band, with the MPM and its band read at ``p_exp`` (Step 12)."""
         return cls(d=d, h_mean=h_mean, h_low=h_low, h_high=h_high,
                    mpm=float(value_at_exceedance(d, h_mean, p_exp)),
                    mpm_band=(float(value_at_exceedance(d, h_low, p_exp)),
                              float(value_at_exceedance(d, h_high, p_exp))),
-                   record={} if record is None else record)
+                   record={} if record is None else record,
+                   columns={} if columns is None else columns)
 
     def at(self, p):
         """The mean distribution interpolated at probabilities ``p`` on ``ln d``."""
@@ -98,8 +109,12 @@ class Strategy(ABC):
     #: measures the indicator (False for strategies that cluster samples)
     spreads_samples: bool = True
 
-    def reset(self) -> None:
-        """Forget state carried between iterations (e.g. the selected copula)."""
+    def reset(self, seed: int | None = None) -> None:
+        """Start a study: forget state carried between iterations (e.g. the selected copula).
+
+        ``seed`` is the study's seed, for random numbers a strategy keeps for the
+        whole study (PAS's common random numbers).
+        """
 
     @abstractmethod
     def predict(self, pairs: Pairs, lfset: LFSet, rng: np.random.Generator) -> Prediction:
@@ -126,7 +141,8 @@ class Strategy(ABC):
         """Next ``q`` positions by maximum distance on ``ln d`` (Eq. 16–17).
 
         ``selected_d`` are the LF exceedance probabilities of the selected
-        (true-positive) samples; ``available`` marks pool positions that may
+        samples — every evaluated or pending event, false positives included
+        (§2.4; the study decides); ``available`` marks pool positions that may
         still be chosen.  Gaps no pool peak can split are skipped
         (:func:`~pas.strategies.acquisition.md_select`).
         """

@@ -1,47 +1,48 @@
 """Probabilistic Adaptive Screening: the copula model of paper §2.1 Steps 7–12.
 
 Each step is one function; :class:`PAS` strings them together per iteration
-and carries the one piece of state the method has, the selected copula family
-(the ΔAIC hysteresis of §2.2 compares against it).
+and carries the state the method has: the selected copula family (the ΔAIC
+hysteresis of §2.2 compares against it), the previous joint fits (warm
+starts) and the study's common random numbers.  ``pas.run_pas(...,
+preset="paper")`` runs the paper's method as written; the defaults depart
+from it where a measurement said so — every departure, its reason and its
+measured effect are listed in ``docs/departures.md``.  In short:
 
-Stability remedy (beyond the paper)
------------------------------------
-A faithful implementation of the paper's selection, tried on a problem whose
-true copula is Gumbel, saw its MPM double once ~80 HF samples were in: the
-Student-t candidate won the AIC with ν at its lower bound (2), and its
-strong symmetric tail dependence pushed conditional draws of the largest LF
-peaks into the far extrapolation of the Weibull HF marginal.  An MLE on the
-boundary of the parameter space is not a regular estimate — the
-asymptotics behind AIC (Akaike 1974) assume an interior optimum — so the
-default here is ``exclude_at_bound=True``: a candidate whose fitted parameter
-sits on its bound (Student-t ν = 2 or 50, |ρ| = 1, an Archimedean parameter at
-its upper limit) is not eligible for selection in that iteration; the next
-best regular fit is used.  ``exclude_at_bound=False`` restores the paper's
-exact selection.
-
-Reading of Step 7
------------------
-The temporary outlier removal feeds the *copula* fit ("the remaining data
-are then used for copula fitting", §2.1); the Weibull marginals of Step 9 are
-fitted to all true-positive samples (``marginals_from="all"``).  Removing the
-largest genuine loads from the HF marginal biases its tail low by
-construction — on the slamming analogues (cases 4a/4b) the removal count grew
-to 15 pairs and the MPM drifted 5–6 % lower than with all pairs.
-``marginals_from="kept"`` fits the marginals to the cleaned pairs as well.
-
-Impact model (optional, beyond the paper)
------------------------------------------
-With an LF threshold, every conditioning peak above ``l0`` gets a positive
-HF draw, although the evaluated false positives show that some of them give
-no impact.  ``impact_model=True`` estimates ``P(impact | LF)`` by logistic
-regression on the evaluated events (true positives vs false positives) and
-zeroes each draw with probability ``1 − P``.  Off by default.
+Estimator (``estimator``)
+    ``"conditional"`` (default): the LF ranks are those of the LF
+    *population* (every conditioning peak is known), and the copula and a
+    three-parameter Weibull HF marginal are fitted together by the
+    likelihood of HF given LF (:mod:`pas.joint`), which selection by LF
+    (MD) leaves valid.  ``"selected"``: the paper's fit of rank
+    pseudo-observations of the selected sample (Eq. 5) and least-squares
+    Weibull marginals (Eq. 15) — consistent only as far as a one-parameter
+    copula and a Weibull describe a tail-heavy, non-i.i.d. sample (§5.4).
+Impact model (``impact_model``)
+    Once false positives have been seen, ``P(impact | LF)`` (logistic
+    regression on true vs false positives) zeroes draws, instead of a
+    positive draw for every conditioning peak (:mod:`pas.strategies.selection`).
+Common random numbers (``common_random_numbers``)
+    Each LF peak keeps its ``z`` uniforms for the whole study, so the
+    stopping rule measures model change, not redrawn noise.
+Stability remedy (``exclude_at_bound``)
+    A faithful implementation of the paper's selection, tried on a problem
+    whose true copula is Gumbel, saw its MPM double once ~80 HF samples were
+    in: the Student-t candidate won the AIC with ν at its lower bound (2).
+    An MLE on the boundary of the parameter space is not a regular estimate
+    (the asymptotics behind AIC, Akaike 1974, assume an interior optimum), so
+    a candidate whose parameter sits on its bound is not eligible.
+Reading of Step 7 (``marginals_from``, selected-space estimator)
+    The temporary outlier removal feeds the *copula* fit ("the remaining
+    data are then used for copula fitting", §2.1); the Weibull marginals are
+    fitted to all true-positive samples by default (``"kept"``: the cleaned
+    pairs, the paper preset).
 """
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
-from sklearn.linear_model import LogisticRegression
 
 from .._validation import check_option
 from ..copulas import (
@@ -50,126 +51,107 @@ from ..copulas import (
     _family_and_rotation,
     conditional_quantile,
     fit_candidates,
-    fit_copula,
     select_family,
 )
-from ..marginals import fit_marginal
+from ..joint import JOINT_FAMILIES, fit_joint_candidates
 from ..screening import LFSet
 from ..stats.dependence import empirical_tail_dependence, kendall_tau, pseudo_observations
 from ..stats.exceedance import value_at_exceedance
 from .acquisition import md_select
-from .base import Pairs, Prediction, Strategy, band95
+from .base import Pairs, Prediction, Strategy
+from .selection import impact_probability, population_lf_ranks
+from .steps import (
+    EPS,
+    conditioning_set,
+    draw_conditional_hf,
+    fit_marginals,
+    hf_distribution,
+    remove_outliers,
+)
 
 __all__ = [
     "PAS",
+    "FittedModel",
+    "refit",
     "remove_outliers",
     "conditioning_set",
     "draw_conditional_hf",
     "impact_probability",
     "fit_marginals",
-    "fit_model",
     "hf_distribution",
 ]
 
-EPS = 1e-6
+COLD_EVERY = 10
+CRN_BLOCK = 1024
 
 
-def remove_outliers(lf, hf, *, k: float = 3.0) -> np.ndarray:
-    """Step 7: mask of pairs kept after temporary outlier removal.
+def refit(result) -> "FittedModel":
+    """The final model of a PAS result, fitted again from what the result holds.
 
-    A quadratic ``h ≈ poly2(l)`` is fitted; pairs with ``|r| > k · RMS(r)`` are
-    dropped for this iteration only.  Fewer than 4 pairs: all kept.
+    Uses the result's settings, pairs, false positives (history), selected
+    family and the LF peaks it conditioned on (``distribution["lf"]``), so a
+    saved result can be redrawn (:func:`pas.plotting.conditional_quantile_curves`)
+    without the LF Monte-Carlo run.
     """
-    lf, hf = np.asarray(lf, float), np.asarray(hf, float)
-    if lf.size < 4:
-        return np.ones(lf.size, dtype=bool)
-    scale = np.ptp(lf) or 1.0
-    x = (lf - lf.mean()) / scale
-    r = hf - np.polyval(np.polyfit(x, hf, 2), x)
-    rms = np.sqrt(np.mean(r**2))
-    if rms == 0:
-        return np.ones(lf.size, dtype=bool)
-    return np.abs(r) <= k * rms
+    dist = result.distribution
+    if "lf" not in dist or not result.family:
+        raise ValueError("the result holds no fitted PAS model (no 'lf' column in its "
+                         "distribution, or no copula family)")
+    settings = dict((result.settings or {}).get("strategy_settings", {}))
+    strategy = PAS(**settings)
+    strategy.reset(result.seed)
+    lfset = LFSet(dist["lf"].to_numpy(float), n_waves=result.n_waves, p_exp=result.p_exp,
+                  threshold=(result.settings or {}).get("threshold"))
+    lf = result.pairs["lf"].to_numpy(float)
+    pos = np.clip(lfset.n - np.searchsorted(lfset.lf[::-1], lf, side="right"), 0, lfset.n - 1)
+    hist = result.history
+    fp_lf = hist.loc[hist["status"] == "false_positive", "lf"].to_numpy(float)
+    pairs = Pairs(pos, lf, result.pairs["hf"].to_numpy(float), lfset.d[pos], fp_lf,
+                  np.zeros(fp_lf.size, dtype=int))
+    return strategy.fit(pairs, lfset, family=result.family)
 
 
-def conditioning_set(lf_sorted, l0: float) -> np.ndarray:
-    """Step 9: the LF peaks ``≥ l0 = min(l_sel)`` the copula is conditioned on."""
-    return lf_sorted[lf_sorted >= l0]
+@dataclass
+class FittedModel:
+    """What one PAS iteration fitted (Steps 7–9), enough to draw from it again.
 
-
-def draw_conditional_hf(fit: CopulaFit, lf_marginal, hf_marginal, lf_cond, z: int,
-                        rng: np.random.Generator, *, eps: float = EPS) -> np.ndarray:
-    """Step 9: ``z`` realisations of HF values given each conditioning LF peak (Eq. 6–7).
-
-    Returns an array of shape ``(z, n0)``.
+    ``u_cond`` are the LF ranks of the conditioning peaks (the top ``n0`` of the
+    pool, LF descending), ``impact`` the probability of an impact at each of
+    them (None: every draw is an impact, as in the paper).
     """
-    u = np.clip(lf_marginal.cdf(lf_cond), eps, 1 - eps)
-    r = rng.uniform(eps, 1 - eps, size=(z, u.size))
-    v = np.clip(conditional_quantile(fit, u[None, :], r), eps, 1 - eps)
-    # HF loads are non-negative by the oracle's contract; a Weibull location
-    # below zero must not produce negative loads in the bulk
-    return np.maximum(hf_marginal.ppf(v), 0.0)
 
+    copula: CopulaFit
+    hf_marginal: object
+    lf_to_u: object
+    u_cond: np.ndarray
+    impact: np.ndarray | None
+    fits: dict
+    n_outliers: int
 
-def impact_probability(lf_true, lf_false):
-    """P(impact | LF) from evaluated events: logistic regression of TP (1) vs FP (0) on LF.
+    @property
+    def n0(self) -> int:
+        return int(self.u_cond.size)
 
-    Returns a callable; ``None`` when no false positive has been seen.  An
-    extension of the paper (module docs).
-    """
-    lf_false = np.asarray(lf_false, float)
-    if lf_false.size == 0:
-        return None
-    x = np.r_[lf_true, lf_false]
-    y = np.r_[np.ones(len(lf_true)), np.zeros(lf_false.size)]
-    mu, sd = x.mean(), x.std() or 1.0
-    model = LogisticRegression(C=1.0).fit(((x - mu) / sd)[:, None], y)
-    return lambda l: model.predict_proba(((np.asarray(l, float) - mu) / sd)[:, None])[:, 1]
+    def draws(self, r, q=None) -> np.ndarray:
+        """HF draws for uniforms ``r`` (and impact uniforms ``q``), shape ``(z, n0)``."""
+        h = draw_conditional_hf(self.copula, self.u_cond, self.hf_marginal, r)
+        if self.impact is not None:
+            h = np.where(q < self.impact[None, :], h, 0.0)
+        return h
 
-
-def fit_marginals(lf, hf, keep, *, upper_tail: bool, marginals_from: str = "all"):
-    """Step 9's Weibull marginals: ``(F_l, F_h, lf_sample)``.
-
-    Fitted to all pairs or to the ``keep`` mask of Step 7 (``marginals_from``,
-    module docs); ``lf_sample`` is the LF sample they saw, whose minimum is the
-    conditioning level ``l0``.
-    """
-    m_lf, m_hf = (lf, hf) if marginals_from == "all" else (lf[keep], hf[keep])
-    return fit_marginal(m_lf, upper_tail=upper_tail), fit_marginal(m_hf, upper_tail=upper_tail), m_lf
-
-
-def fit_model(lf, hf, family: str, *, outlier_k: float = 3.0, upper_tail: bool = True,
-              marginals_from: str = "all"):
-    """Steps 7–9 for one copula family: ``(copula fit, LF marginal, HF marginal)``.
-
-    Outliers (Step 7) leave the copula fit; the marginals see all pairs or the
-    kept ones (``marginals_from``, module docs).  Used to redraw a result's
-    final model (:func:`pas.plotting.conditional_quantile_curves`).
-    """
-    lf, hf = np.asarray(lf, float), np.asarray(hf, float)
-    keep = remove_outliers(lf, hf, k=outlier_k)
-    fit = fit_copula(family, *pseudo_observations(lf[keep], hf[keep]))
-    f_l, f_h, _ = fit_marginals(lf, hf, keep, upper_tail=upper_tail,
-                                marginals_from=marginals_from)
-    return fit, f_l, f_h
-
-
-def hf_distribution(h_draws, n_waves: int):
-    """Steps 10–11: exceedance probabilities and mean distribution with U95 (Eq. 8–10).
-
-    Each realisation is sorted descending and gets ``d = k / n_w``; the mean
-    distribution is the mean over realisations of each order statistic and
-    the band ``h* ± 1.96 σ``.  Returns ``(d, h_mean, h_low, h_high)``.
-    """
-    h = -np.sort(-np.atleast_2d(h_draws), axis=1)
-    d = np.arange(1, h.shape[1] + 1) / n_waves
-    mean = h.mean(axis=0)
-    sd = h.std(axis=0, ddof=1) if h.shape[0] > 1 else np.zeros_like(mean)
-    return d, mean, *band95(mean, sd)
+    def conditional_quantiles(self, lf, q) -> np.ndarray:
+        """HF quantile ``q`` given LF ``lf`` (given an impact), in real space."""
+        u = np.clip(self.lf_to_u(np.asarray(lf, float)), EPS, 1 - EPS)
+        v = np.clip(conditional_quantile(self.copula, u, np.full_like(u, q)), EPS, 1 - EPS)
+        return self.hf_marginal.ppf(v)
 
 
 class PAS(Strategy):
     """The PAS copula model (Steps 7–12) with MD acquisition.
+
+    Defaults are the package's (module docs; each departure from the paper is
+    listed in ``docs/departures.md``); ``pas.run_pas(..., preset="paper")``
+    reproduces the paper's scripts.
 
     Parameters
     ----------
@@ -194,8 +176,24 @@ class PAS(Strategy):
         (:mod:`pas.strategies.acquisition`); False is Eq. 16–17 verbatim.
     marginals_from : {"all", "kept"}, default "all"
         Pairs the Weibull marginals are fitted to (module docs, Step 7).
-    impact_model : bool, default False
-        Zero draws by the estimated impact probability (module docs).
+    impact_model : bool, default True
+        Zero draws by the estimated impact probability once false positives
+        have been seen (:mod:`pas.strategies.selection`); False is the paper.
+    estimator : {"conditional", "selected"}, default "conditional"
+        Fit the copula and the HF marginal by the likelihood of HF given the
+        LF population ranks (:mod:`pas.joint`), or to rank pseudo-observations
+        of the selected sample with least-squares Weibull marginals (the
+        paper, Eq. 5, 15; §5.4).
+    copula_fit : {"mle", "itau"}, default "mle"
+        Maximum likelihood for all families, or the paper's inversion of
+        Kendall's τ for Clayton, Gumbel and Frank (§2.8).
+    common_random_numbers : bool, default True
+        Each LF peak keeps its own ``z`` uniforms for the whole study, so the
+        stopping measures see model change, not redrawn noise (module docs);
+        False redraws them every iteration, as the paper.
+    hf_location : bool, default True
+        Conditional estimator: a three-parameter Weibull HF marginal
+        (location ≥ 0, below the smallest load) or the two-parameter one.
     """
 
     name = "pas"
@@ -205,7 +203,9 @@ class PAS(Strategy):
     def __init__(self, *, families=PAPER_FAMILIES, z: int = 10, delta_aic: float = 4.0,
                  exclude_at_bound: bool = True, upper_tail: bool | None = None,
                  outlier_k: float = 3.0, n_bootstrap: int = 50, skip_unsplittable: bool = True,
-                 marginals_from: str = "all", impact_model: bool = False):
+                 marginals_from: str = "all", impact_model: bool = True,
+                 estimator: str = "conditional", copula_fit: str = "mle",
+                 common_random_numbers: bool = True, hf_location: bool = True):
         for f in families:
             _family_and_rotation(f)
         if z < 2:
@@ -215,15 +215,32 @@ class PAS(Strategy):
         self.delta_aic = float(delta_aic)
         self.exclude_at_bound = bool(exclude_at_bound)
         self.upper_tail = upper_tail
-        self.outlier_k = float(outlier_k)
+        self.outlier_k = None if outlier_k is None else float(outlier_k)
         self.n_bootstrap = int(n_bootstrap)
         self.skip_unsplittable = bool(skip_unsplittable)
         self.marginals_from = check_option(marginals_from, "marginals_from", {"all", "kept"})
         self.impact_model = bool(impact_model)
+        self.estimator = check_option(estimator, "estimator",
+                                      {"conditional", "selected"})
+        unknown = [f for f in self.families if f not in JOINT_FAMILIES]
+        if self.estimator == "conditional" and unknown:
+            raise ValueError(f"families {', '.join(unknown)} have no joint fit; use "
+                             f"estimator='selected' for them, or the families {JOINT_FAMILIES}")
+        self.copula_fit = check_option(copula_fit, "copula_fit", {"mle", "itau"})
+        self.common_random_numbers = bool(common_random_numbers)
+        self.hf_location = bool(hf_location)
         self.family_ = None
+        self._seed = None
+        self._uniforms = None
+        self._joint = {}
+        self._n_fits = 0
 
-    def reset(self) -> None:
+    def reset(self, seed: int | None = None) -> None:
         self.family_ = None
+        self._seed = seed
+        self._uniforms = None
+        self._joint = {}
+        self._n_fits = 0
 
     def propose(self, selected_d, lfset: LFSet, available: np.ndarray,
                 last: Prediction | None, q: int = 1) -> list[int]:
@@ -234,68 +251,147 @@ class PAS(Strategy):
     def _upper_tail(self, lfset: LFSet) -> bool:
         return lfset.threshold is None if self.upper_tail is None else self.upper_tail
 
-    def _marginals(self, lf, hf, keep, lfset):
-        return fit_marginals(lf, hf, keep, upper_tail=self._upper_tail(lfset),
-                             marginals_from=self.marginals_from)
+    # -- Steps 7–9: the model ------------------------------------------------
+    def fit(self, pairs: Pairs, lfset: LFSet, family: str | None = None, *,
+            update: bool = True) -> FittedModel:
+        """Steps 7–9: fit the copula, the HF marginal and the impact model to ``pairs``.
 
-    def _distribution(self, fit, marginals, lfset, rng, fp_lf=()):
-        f_l, f_h, lf = marginals
-        cond = conditioning_set(lfset.lf, lf.min())
-        draws = draw_conditional_hf(fit, f_l, f_h, cond, self.z, rng)
-        p_imp = impact_probability(lf, fp_lf) if self.impact_model else None
-        if p_imp is not None:
-            hit = rng.uniform(size=draws.shape) < p_imp(cond)[None, :]
-            draws = np.where(hit, draws, 0.0)
-        return hf_distribution(draws, lfset.n_waves)
+        With ``family`` only that family is fitted; otherwise all candidates,
+        and the selection with hysteresis (§2.2) updates :attr:`family_`.
+        With ``update=False`` (bootstrap replicates) nothing the study carries
+        changes: the family is the lowest eligible AIC of these pairs.
+        """
+        # Step 7 removes pairs by their HF value: a selection on the response, which
+        # the conditional likelihood does not allow (it would drop the largest loads
+        # from the tail it fits), so it belongs to the selected-space fit only
+        keep = (np.ones(len(pairs), dtype=bool)
+                if self.outlier_k is None or self.estimator == "conditional"
+                else remove_outliers(pairs.lf, pairs.hf, k=self.outlier_k))
+        families = self.families if family is None else (family,)
+        impact = impact_probability(pairs.lf, pairs.fp_lf) if self.impact_model else None
+        fit = self._fit_conditional if self.estimator == "conditional" else self._fit_selected
+        fits, hf_marginals, lf_to_u, n0 = fit(pairs, lfset, keep, families, impact, family,
+                                              update)
+        if family is None:
+            family = select_family(fits, self.family_ if update else None,
+                                   delta_aic=self.delta_aic,
+                                   exclude_at_bound=self.exclude_at_bound)
+            if update:
+                self.family_ = family
+        cond = lfset.lf[:n0]
+        return FittedModel(fits[family], hf_marginals[family], lf_to_u,
+                           np.asarray(lf_to_u(cond), float),
+                           None if impact is None else impact(cond), fits, int((~keep).sum()))
+
+    def _fit_selected(self, pairs, lfset, keep, families, impact, family, update):
+        """The paper's fit in selected-sample space (§2.2–2.3, Eq. 5, 15)."""
+        lf, hf = pairs.lf[keep], pairs.hf[keep]
+        fits = fit_candidates(*pseudo_observations(lf, hf), families, method=self.copula_fit)
+        f_l, f_h, lf_sample = fit_marginals(pairs.lf, pairs.hf, keep,
+                                            upper_tail=self._upper_tail(lfset),
+                                            marginals_from=self.marginals_from)
+        n0 = conditioning_set(lfset.lf, lf_sample.min()).size
+        return fits, dict.fromkeys(fits, f_h), f_l.cdf, n0
+
+    def _fit_conditional(self, pairs, lfset, keep, families, impact, family, update):
+        """Population LF ranks and the joint conditional likelihood (:mod:`pas.joint`)."""
+        n0 = conditioning_set(lfset.lf, pairs.lf.min()).size
+        cond_lf = lfset.lf[:n0]
+        u_cond = population_lf_ranks(cond_lf, impact)
+        starts = self._joint if family is None else {
+            k: v for k, v in self._joint.items() if k == family}
+        # a warm start from the previous iteration converges in a few steps; every
+        # COLD_EVERY-th fit, and every bootstrap replicate, also starts from the
+        # data, so no fit stays trapped in the basin of another sample
+        cold = not update or (family is None and self._n_fits % COLD_EVERY == 0)
+        joint = fit_joint_candidates(u_cond[pairs.position][keep], pairs.hf[keep], families,
+                                     starts=starts, location=self.hf_location,
+                                     cold=cold or not starts)
+        if update and family is None:
+            self._joint = joint
+            self._n_fits += 1
+        ascending = cond_lf[::-1], u_cond[::-1]
+        return ({k: j.copula for k, j in joint.items()},
+                {k: j.hf_marginal for k, j in joint.items()},
+                lambda x: np.interp(x, *ascending), n0)
+
+    def _random_numbers(self, n0: int, rng: np.random.Generator):
+        """Uniforms ``r`` (copula) and ``q`` (impact), shape ``(z, n0)`` each (Eq. 7).
+
+        With common random numbers they belong to the LF peaks (pool
+        positions) for the whole study: block ``k`` of :data:`CRN_BLOCK` peaks
+        draws from its own stream ``(seed, k)``, so a growing conditioning set
+        only appends blocks and no peak's uniforms ever change.
+        """
+        if not self.common_random_numbers:
+            return (rng.uniform(EPS, 1 - EPS, size=(self.z, n0)),
+                    rng.uniform(size=(self.z, n0)))
+        have = 0 if self._uniforms is None else self._uniforms.shape[2]
+        if have < n0:
+            seed = 0 if self._seed is None else self._seed
+            blocks = []
+            for k in range(have // CRN_BLOCK, -(-n0 // CRN_BLOCK)):
+                crn = np.random.default_rng([seed, 0x43524E, k])
+                blocks.append(np.stack([crn.uniform(EPS, 1 - EPS, size=(self.z, CRN_BLOCK)),
+                                        crn.uniform(size=(self.z, CRN_BLOCK))]))
+            new = np.concatenate(blocks, axis=2)
+            self._uniforms = new if self._uniforms is None else np.concatenate(
+                [self._uniforms, new], axis=2)
+        return self._uniforms[0, :, :n0], self._uniforms[1, :, :n0]
+
+    def _predict_model(self, model: FittedModel, lfset: LFSet, rng):
+        r, q = self._random_numbers(model.n0, rng)
+        return hf_distribution(model.draws(r, q), lfset.n_waves)
 
     def predict(self, pairs: Pairs, lfset: LFSet, rng: np.random.Generator) -> Prediction:
-        keep = remove_outliers(pairs.lf, pairs.hf, k=self.outlier_k)
-        lf, hf = pairs.lf[keep], pairs.hf[keep]
-        u, v = pseudo_observations(lf, hf)
-        fits = fit_candidates(u, v, self.families)
-        self.family_ = select_family(fits, self.family_, delta_aic=self.delta_aic,
-                                     exclude_at_bound=self.exclude_at_bound)
-        fit = fits[self.family_]
-        marginals = self._marginals(pairs.lf, pairs.hf, keep, lfset)
-        d, mean, low, high = self._distribution(fit, marginals, lfset, rng, pairs.fp_lf)
+        model = self.fit(pairs, lfset)
+        self.model_ = model
+        d, mean, low, high = self._predict_model(model, lfset, rng)
         lam_u, lam_l = empirical_tail_dependence(pairs.lf, pairs.hf)
         record = {
             "family": self.family_,
-            **{f"aic_{k}": f.aic for k, f in fits.items()},
+            **{f"aic_{k}": model.fits[k].aic if k in model.fits else np.nan
+               for k in self.families},
             # families select_family passed over for a fit on a parameter bound
-            "ineligible": " ".join(k for k, f in fits.items() if f.at_bound)
-            if self.exclude_at_bound and not all(f.at_bound for f in fits.values()) else "",
-            "copula_params": " ".join(f"{x:.4g}" for x in fit.parameters),
-            "n_outliers": int((~keep).sum()),
+            "ineligible": " ".join(k for k, f in model.fits.items() if f.at_bound)
+            if self.exclude_at_bound and not all(f.at_bound for f in model.fits.values()) else "",
+            "copula_params": " ".join(f"{x:.4g}" for x in model.copula.parameters),
+            "n_outliers": model.n_outliers,
             "tau": kendall_tau(pairs.lf, pairs.hf),
             "lambda_u": lam_u,
             "lambda_l": lam_l,
+            "p_impact": np.nan if model.impact is None else float(model.impact.mean()),
         }
-        return Prediction.read_at(lfset.p_exp, d, mean, low, high, record)
+        columns = {"lf": lfset.lf[:model.n0]}
+        if model.impact is not None:
+            columns["p_impact"] = model.impact
+        return Prediction.read_at(lfset.p_exp, d, mean, low, high, record, columns)
 
     def model_band(self, pairs: Pairs, lfset: LFSet, rng: np.random.Generator):
-        """U95 of the MPM over a bootstrap of the LF–HF pairs (beyond the paper).
+        """U95 of the MPM over a bootstrap of the evaluated events (beyond the paper).
 
-        Each replicate resamples the pairs with replacement, repeats outlier
-        removal, refits the selected family and both marginals, and predicts
-        with ``z`` realisations; the band is the 2.5–97.5 % range of the
-        replicate MPMs.  Returns ``(low, high, mpms)`` or None when off.
+        Each replicate resamples the true and false positives with
+        replacement, repeats outlier removal, refits every candidate family,
+        the marginals and the impact model, selects the family again (lowest
+        eligible AIC, so the choice of family is part of the uncertainty), and
+        predicts with the same random numbers; the band is the 2.5–97.5 %
+        range of the replicate MPMs.  Returns ``(low, high, mpms)`` or None
+        when off.
         """
         if self.n_bootstrap <= 0 or self.family_ is None:
             return None
         mpms = []
-        m = len(pairs)
+        m, n_fp = len(pairs), len(pairs.fp_position)
         for _ in range(self.n_bootstrap):
-            b = pairs.take(rng.integers(0, m, m))
-            keep = remove_outliers(b.lf, b.hf, k=self.outlier_k)
-            lf, hf = b.lf[keep], b.hf[keep]
-            if np.ptp(lf) == 0 or np.ptp(hf) == 0 or lf.size < 3:
+            idx = rng.integers(0, m + n_fp, m + n_fp)
+            tp, fp = idx[idx < m], idx[idx >= m] - m
+            b = pairs.take(tp, fp)
+            if tp.size < 4 or np.ptp(b.lf) == 0 or np.ptp(b.hf) == 0:
                 continue
             try:
-                fit = fit_copula(self.family_, *pseudo_observations(lf, hf))
-                marginals = self._marginals(b.lf, b.hf, keep, lfset)
-                d, mean, _, _ = self._distribution(fit, marginals, lfset, rng, b.fp_lf)
-            except ValueError:
+                model = self.fit(b, lfset, update=False)
+                d, mean, _, _ = self._predict_model(model, lfset, rng)
+            except (ValueError, np.linalg.LinAlgError):
                 continue
             mpms.append(float(value_at_exceedance(d, mean, lfset.p_exp)))
         if len(mpms) < 10:

@@ -13,7 +13,7 @@ _EXPORTS = {
     "CommandOracle": "oracles", "OracleError": "oracles", "OracleFailureLimit": "oracles",
     "TableOracle": "oracles", "check_hf_value": "oracles", "ScreeningResult": "result",
     "EventState": "state", "StoreError": "store", "StudyStore": "store", "Study": "study",
-    "open_study": "study",
+    "open_study": "resume",
 }
 
 __all__ = ["Study", "ScreeningResult", "OracleFailureLimit", "check_hf_value", "StudyStore",

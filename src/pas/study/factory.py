@@ -23,8 +23,10 @@ import inspect
 from ..strategies.as_ import AS
 from ..strategies.base import Strategy
 from ..strategies.pas import PAS
+from .schema import DEFAULT_MAX_HF
 
-__all__ = ["STRATEGIES", "LF_SETTINGS", "STUDY_SETTINGS", "make_strategy", "split_settings"]
+__all__ = ["STRATEGIES", "LF_SETTINGS", "STUDY_SETTINGS", "PRESETS", "DEFAULT_MAX_HF",
+           "make_strategy", "split_settings", "apply_preset"]
 
 STRATEGIES = {"pas": PAS, "as": AS}
 """Strategies by the name a study stores (``Strategy.name``)."""
@@ -32,9 +34,45 @@ STRATEGIES = {"pas": PAS, "as": AS}
 LF_SETTINGS = ("n_waves", "p_exp", "threshold")
 """Settings of the LF screening set."""
 
-STUDY_SETTINGS = ("eps1", "eps2", "k1", "k2", "seed", "max_hf", "max_failures",
-                  "stop_on_convergence", "adaptive_threshold", "threshold_step", "fp_run")
+STUDY_SETTINGS = ("eps1", "eps2", "k1", "k2", "stop_measure", "seed", "max_hf", "max_failures",
+                  "stop_on_convergence", "adaptive_threshold", "threshold_step", "fp_run",
+                  "legacy_md")
 """Keyword settings of :class:`~pas.study.study.Study` (its constructor takes them all)."""
+
+
+PRESETS = {
+    "default": {},
+    "paper": {
+        "copula_fit": "itau",              # §2.8: Clayton, Gumbel, Frank by τ inversion
+        "exclude_at_bound": False,         # §2.2: AIC with hysteresis over all five
+        "skip_unsplittable": False,        # Eq. 16–17 verbatim
+        "common_random_numbers": False,    # Eq. 7: new uniforms every iteration
+        "z": 10,
+        "estimator": "selected",           # §5.4: copula and marginals in selected-sample space
+        "impact_model": False,             # Step 6: a positive draw for every conditioning peak
+        "marginals_from": "kept",          # Step 7: outliers out of the iteration's fits
+        "n_bootstrap": 0,                  # Eq. 10: the sampling band only
+        "stop_measure": "step",            # App. C, Eq. 28: the per-iteration change
+        "max_hf": None,                    # no budget (unless max_hf is given)
+    },
+}
+"""Named bundles of PAS settings.  ``"paper"`` reproduces van Essen & Seyffert
+(2026) as their scripts ran (``docs/departures.md`` lists every difference
+from ``"default"``, with its reason and measured effect); settings given
+explicitly beside a preset win."""
+
+
+def apply_preset(preset: str | None, strategy, settings: dict) -> dict:
+    """``settings`` (strategy and study settings) on top of the named preset's (PAS only)."""
+    if preset in (None, "default"):
+        return dict(settings)
+    if preset not in PRESETS:
+        raise ValueError(f"preset must be one of {', '.join(PRESETS)}, got {preset!r}")
+    name = strategy if isinstance(strategy, str) else getattr(strategy, "name", None)
+    if name != "pas":
+        raise ValueError(f"preset {preset!r} is a set of PAS settings; it does not apply to "
+                         f"{name or strategy!r}")
+    return {**PRESETS[preset], **settings}
 
 
 def strategy_parameters(cls) -> list[str]:

@@ -11,7 +11,7 @@ would have made.  The stopping settings and budgets
 decide when a study stops asking, never which events it asks for, so the
 stored asks are replayed whatever they say now, and the continued study asks
 for what an uninterrupted one with the new settings would have asked for
-(unless those settings would have stopped it before the stored asks).  :func:`pas.study.study.open_study` builds the study from
+(unless those settings would have stopped it before the stored asks).  :func:`pas.study.resume.open_study` builds the study from
 the stored settings first.
 """
 

@@ -102,7 +102,8 @@ class ScreeningResult:
                 if mb is not None:
                     model = (mb[0], mb[1])
                     band = (min(band[0], mb[0]), max(band[1], mb[1]))
-            distribution = distribution_frame(pred.d, pred.h_mean, pred.h_low, pred.h_high)
+            distribution = distribution_frame(pred.d, pred.h_mean, pred.h_low, pred.h_high,
+                                              **pred.columns)
             clip = clipped_from(distribution, study.n_false_positive)
             if clip is not None and clip <= study.grid[-1]:
                 warnings.warn(
@@ -201,7 +202,7 @@ class ScreeningResult:
             "n_hf": self.n_hf, "n_false_positive": self.n_false_positive,
             "n_failed": self.n_failed, "converged": self.converged, "family": self.family,
             "p_exp": self.p_exp, "n_waves": self.n_waves, "seed": self.seed,
-            "clipped_from": self.clipped_from,
+            "clipped_from": self.clipped_from, "settings": self.settings,
         }
 
     def save(self, out, *, inputs=None, lfset=None) -> dict:
@@ -256,6 +257,7 @@ class ScreeningResult:
             distribution=pd.read_csv(path / "distribution.csv"),
             pairs=pd.read_csv(path / "pairs.csv"), range_curves=curves, p_exp=float(s["p_exp"]),
             n_waves=int(s["n_waves"]), seed=s.get("seed"), family=s.get("family"),
+            settings=s.get("settings"),
         )
 
 
@@ -295,6 +297,7 @@ def clipped_from(distribution: pd.DataFrame, n_false_positive: int):
     return float(distribution["exceedance_probability"].to_numpy(dtype=float)[h == 0.0].min())
 
 
-def distribution_frame(d, mean, low, high) -> pd.DataFrame:
+def distribution_frame(d, mean, low, high, **columns) -> pd.DataFrame:
+    """The predicted distribution as a table (``columns``: more per-rank arrays)."""
     return pd.DataFrame({"exceedance_probability": np.asarray(d), "h_mean": mean,
-                         "h_low": low, "h_high": high})
+                         "h_low": low, "h_high": high, **columns})

@@ -53,7 +53,8 @@ import numpy as np
 from .._json import dumps
 from .state import EventState
 
-__all__ = ["SCHEMA_VERSION", "STATES", "STORED", "RESUMABLE", "StoreError", "StoreConflict",
+__all__ = ["SCHEMA_VERSION", "STATES", "STORED", "RESUMABLE", "LEGACY_SETTINGS", "DEFAULT_MAX_HF",
+           "with_legacy_settings", "StoreError", "StoreConflict",
            "dumps"]
 
 SCHEMA_VERSION = 1
@@ -61,10 +62,39 @@ SCHEMA_VERSION = 1
 STORED = {EventState.PENDING: "pending", EventState.TRUE_POSITIVE: "done",
           EventState.FALSE_POSITIVE: "false_positive", EventState.FAILED: "failed"}
 STATES = tuple(STORED.values())
+DEFAULT_MAX_HF = 160
+"""Default budget of HF evaluations: the most the paper needed (case 4b, Table 4).
+
+A study stops there, converged or not, so a typo cannot start thousands of
+CFD runs; ``max_hf=None`` lifts it."""
+
+LEGACY_SETTINGS = {
+    "strategy_settings": {"estimator": "selected", "copula_fit": "mle",
+                          "common_random_numbers": False, "hf_location": True},
+    "stop_measure": "step",
+    "legacy_md": True,
+}
+"""What a study store written before these settings existed (pas 0.1, schema 1) ran
+with: filled in for the missing keys when such a store is opened, so it replays
+and continues as it was created."""
+
+
+def with_legacy_settings(stored: dict) -> dict:
+    """``stored`` study settings with :data:`LEGACY_SETTINGS` for the keys they lack."""
+    out = dict(stored)
+    if out.get("strategy") == "pas":
+        out["strategy_settings"] = {**LEGACY_SETTINGS["strategy_settings"],
+                                    **(out.get("strategy_settings") or {})}
+    if "eps1" in out:
+        for key in ("stop_measure", "legacy_md"):
+            out.setdefault(key, LEGACY_SETTINGS[key])
+    return out
+
+
 #: Settings that may change when a study is resumed: the stopping rule (App. C) and the
 #: budgets.  They decide when a study stops, never which event it asks for next; every
 #: change is logged in ``meta.settings_changes``.  All other settings must match.
-RESUMABLE = ("eps1", "eps2", "k1", "k2", "max_hf", "max_failures")
+RESUMABLE = ("eps1", "eps2", "k1", "k2", "stop_measure", "max_hf", "max_failures")
 
 _SCHEMA = f"""
 CREATE TABLE IF NOT EXISTS schema_version (version INTEGER NOT NULL);

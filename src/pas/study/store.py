@@ -8,7 +8,7 @@ stored as JSON or plain columns; nothing is pickled.
 
 The tables are described in :mod:`pas.study.schema`; rebuilding a study from
 them is :mod:`pas.study.replay` (:func:`~pas.study.replay.attach`) and
-:func:`~pas.study.study.open_study`.
+:func:`~pas.study.resume.open_study`.
 
 Examples
 --------
@@ -33,7 +33,7 @@ from contextlib import contextmanager
 import numpy as np
 
 from .._version import __version__
-from .schema import (_SCHEMA, RESUMABLE, SCHEMA_VERSION, STATES, STORED, StoreConflict, StoreError,
+from .schema import (_SCHEMA, RESUMABLE, with_legacy_settings, SCHEMA_VERSION, STATES, STORED, StoreConflict, StoreError,
                      _now, _pool_hash, _pool_records, dumps)
 from .state import EventState
 
@@ -182,7 +182,7 @@ class StudyStore:
         """
         changes = []
         with self.transaction() as c:
-            stored = self._meta(c, "settings")
+            stored = with_legacy_settings(self._meta(c, "settings"))
             for key in sorted(set(stored) | set(settings)):
                 old, new = stored.get(key), settings.get(key)
                 if key == "strategy_settings":

@@ -20,15 +20,14 @@ from ..screening import Event, LFSet
 from ..strategies.base import Pairs, Prediction, Strategy
 from ..strategies.stopping import StoppingRule, range_grid
 from . import loop
-from .factory import LF_SETTINGS, STRATEGIES, STUDY_SETTINGS, make_strategy, strategy_parameters
+from .factory import LF_SETTINGS, STUDY_SETTINGS, make_strategy, strategy_parameters
 from .oracles import check_hf_value
 from .replay import attach
 from .result import ScreeningResult
-from .schema import RESUMABLE, StoreError
 from .state import EventState
 from .store import StudyStore, read_settings
 
-__all__ = ["Study", "open_study"]
+__all__ = ["Study"]
 
 
 
@@ -59,6 +58,14 @@ class Study:
         Raise the acquisition threshold by ``threshold_step`` × max LF after
         ``fp_run`` (5) consecutive false positives (§2.4; see
         :meth:`_maybe_raise_threshold` for the reading of the paper's rule).
+    stop_measure : {"window", "step"}, default "window"
+        ``Ē`` of the stopping rule: the change of the distribution across the
+        last ``k1`` iterations, or the mean per-iteration change of App. C,
+        Eq. 28 (:class:`~pas.strategies.stopping.StoppingRule`).
+    legacy_md : bool, default False
+        MD gaps between true positives only and the earlier reading of the
+        threshold rule (pas 0.1): set for study stores written then, so they
+        replay as they ran (:data:`~pas.study.schema.LEGACY_SETTINGS`).
     store : str, os.PathLike or StudyStore, optional
         Crash-safe SQLite store (:mod:`pas.study.store`): a new one records
         this study's settings, LF pool, every ask and every result as it
@@ -69,15 +76,17 @@ class Study:
 
     def __init__(self, lfset: LFSet, strategy: Strategy, *, eps1, eps2=0.1, k1=20, k2=20,
                  seed=None, max_hf=None, max_failures=10, stop_on_convergence=True,
-                 adaptive_threshold=True, threshold_step=0.02, fp_run=5, store=None):
+                 adaptive_threshold=True, threshold_step=0.02, fp_run=5, stop_measure="window",
+                 legacy_md=False, store=None):
         self.lfset = lfset
         self.strategy = strategy
-        strategy.reset()
         self.stopping = StoppingRule(eps1=check_positive(eps1, "eps1"),
-                                     eps2=check_positive(eps2, "eps2"), k1=int(k1), k2=int(k2))
+                                     eps2=check_positive(eps2, "eps2"), k1=int(k1), k2=int(k2),
+                                     measure=stop_measure)
         if seed is None:
             seed = int(np.random.SeedSequence().entropy % (2**63))
         self.seed = int(seed)
+        strategy.reset(self.seed)
         if max_hf is not None and (int(max_hf) != max_hf or max_hf < strategy.n_initial):
             raise ValueError(f"max_hf must be an integer ≥ {strategy.n_initial}, got {max_hf!r}")
         self.max_hf = None if max_hf is None else int(max_hf)
@@ -86,6 +95,7 @@ class Study:
         self.adaptive_threshold = bool(adaptive_threshold)
         self.threshold_step = float(threshold_step)
         self.fp_run = int(fp_run)
+        self.legacy_md = bool(legacy_md)
         self.grid = range_grid(lfset.p_exp)
         self.state: dict[int, EventState] = {}
         self.value: dict[int, float] = {}
@@ -168,7 +178,7 @@ class Study:
         pos = np.array(self._told(EventState.TRUE_POSITIVE), dtype=int)
         fp = np.array(self._told(EventState.FALSE_POSITIVE), dtype=int)
         return Pairs(pos, self.lfset.lf[pos], np.array([self.value[p] for p in pos], dtype=float),
-                     self.lfset.d[pos], self.lfset.lf[fp])
+                     self.lfset.d[pos], self.lfset.lf[fp], fp)
 
     def available(self) -> np.ndarray:
         mask = np.ones(self.lfset.n, dtype=bool)
@@ -204,12 +214,13 @@ class Study:
             # settings and budget say now: they decided when to stop, not what to ask
             room = n if self.max_hf is None or self._replaying else \
                 min(n, self.max_hf - self.n_hf - self._n_pending)
-            tp = self.pairs()
-            if len(tp) >= 2:
-                sel_d = tp.d
-            else:
-                sel_d = self.lfset.d[self._told(EventState.TRUE_POSITIVE, EventState.FALSE_POSITIVE)
-                                     + self._positions(EventState.PENDING)]
+            # MD's gaps run over every evaluated event, false positives included, and the
+            # pending ones: only then can MD sample below the lowest true positive and
+            # "oversample zero HF values" as §2.4 describes
+            sel_d = self.lfset.d[self._told(EventState.TRUE_POSITIVE, EventState.FALSE_POSITIVE)
+                                 + self._positions(EventState.PENDING)]
+            if self.legacy_md and len(self.pairs()) >= 2:
+                sel_d = self.pairs().d  # pas 0.1: gaps between true positives only
             if len(sel_d) >= 2:
                 new = self.strategy.propose(sel_d, self.lfset, self.available(), self.last,
                                             q=max(room, 0))
@@ -263,18 +274,22 @@ class Study:
     def _maybe_raise_threshold(self, ev: Event) -> None:
         """§2.4: after ``fp_run`` consecutive false positives, raise ``l0``.
 
-        The paper adds "and the exceedance probability of a new sample
-        exceeds that of any existing sample".  Read as *every* selected
-        sample, the rule can never fire under MD, whose proposals lie inside
-        gaps between selected samples, and false positives could then eat the
-        whole budget; it is read as *some* selected sample (the new sample is
-        not the rarest one).  With no true positive yet the condition is void.
+        As the paper writes it: the ``fp_run``-th consecutive false positive
+        raises the acquisition threshold by ``threshold_step`` × the largest LF
+        peak "when the exceedance probability of [the] new sample exceeds that
+        of any existing sample" of the selected (true-positive) set — the new
+        false positive lies below every true positive.  MD reaches there
+        because its gaps include the false positives (:meth:`ask`).  With no
+        true positive yet the condition is void.  The count starts again after
+        a raise.
         """
         tp = self.pairs()
-        if (self.adaptive_threshold and self.consecutive_fp >= self.fp_run
-                and (len(tp) == 0 or ev.d > tp.d.min())):
+        below = len(tp) == 0 or (ev.d > tp.d.min() if self.legacy_md else ev.d > tp.d.max())
+        if self.adaptive_threshold and self.consecutive_fp >= self.fp_run and below:
             base = self.lfset.lf.min() if self.l0 is None else self.l0
             self.l0 = float(base + self.threshold_step * self.lfset.lf.max())
+            if not self.legacy_md:
+                self.consecutive_fp = 0
 
     def _iterate(self, row: dict) -> None:
         pairs = self.pairs()
@@ -349,6 +364,7 @@ class Study:
         return {"strategy": strategy.name, "strategy_settings": params,
                 "n_waves": lfset.n_waves, "p_exp": lfset.p_exp, "threshold": lfset.threshold,
                 "eps1": stop.eps1, "eps2": stop.eps2, "k1": stop.k1, "k2": stop.k2,
+                "stop_measure": stop.measure, "legacy_md": self.legacy_md,
                 "seed": self.seed, "max_hf": self.max_hf, "max_failures": self.max_failures,
                 "stop_on_convergence": self.stop_on_convergence,
                 "adaptive_threshold": self.adaptive_threshold,
@@ -373,34 +389,3 @@ class Study:
         (:meth:`~pas.strategies.base.Strategy.model_band`) to the MPM's band.
         """
         return ScreeningResult.from_study(self, model_band=model_band)
-
-
-def open_study(store, *, consume: bool = True, changes: dict | None = None) -> Study:
-    """Rebuild the :class:`Study` held by ``store`` (a path or a :class:`StudyStore`).
-
-    The stored settings and LF pool build the study (:meth:`Study.from_settings`),
-    which then replays the stored asks and tells (:func:`pas.study.replay.attach`).
-    With ``consume`` the results told by other processes and not used yet are
-    told to the study in arrival order (written to the store only when the
-    caller holds its write transaction; see ``pas study ask``).  ``changes``
-    sets new stopping settings or budgets (:data:`~pas.study.schema.RESUMABLE`,
-    e.g. ``{"eps1": 10.0}``), recorded in the store (``pas study set``).
-    """
-    if not isinstance(store, StudyStore):
-        store = StudyStore(store, create=False)
-    s = store.settings()
-    if not s:
-        raise StoreError(f"study store {store.path} holds no study")
-    for key in changes or {}:
-        if key not in RESUMABLE:
-            raise ValueError(f"{key} cannot change on a resumed study; these can: "
-                             f"{', '.join(RESUMABLE)}")
-    s = {**s, **(changes or {})}
-    if not isinstance(s["strategy"], str) or s["strategy"] not in STRATEGIES:
-        raise StoreError(f"strategy {s['strategy']!r} in {store.path} is unknown to this pas")
-    lf_all, all_ids, all_meta = store.lf_inputs()
-    study = Study.from_settings(s, lf_all, ids=all_ids, meta=all_meta, store=store)
-    if consume:
-        for i, hf, err in store.unconsumed():
-            study.tell(int(i), hf, error=err)
-    return study

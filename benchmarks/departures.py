@@ -1,0 +1,66 @@
+"""Measured effect of each departure from the paper: switch one setting back at a time.
+
+For every setting in which the package's defaults differ from
+``preset="paper"`` (:data:`pas.study.factory.PRESETS`), run the known-truth
+problems (:mod:`known_truth`) with the defaults except that one setting at
+its paper value, and print the median and worst |MPM error|, the U95
+coverage and the median HF count beside the defaults and the full paper
+preset.  This is the "measured effect" column of ``docs/departures.md``.
+
+Run: python benchmarks/departures.py [N] [--types core,miss,...] [--out DIR]
+"""
+
+from __future__ import annotations
+
+import argparse
+from pathlib import Path
+
+import pandas as pd
+
+from known_truth import TYPES, make_problem, run_one
+from pas.study.factory import PRESETS
+
+
+def variants():
+    """``{label: settings}``: defaults, the paper preset, and one paper setting at a time."""
+    out = {"default": {}, "paper": {"preset": "paper"}}
+    for name, value in PRESETS["paper"].items():
+        out[f"{name}={value}"] = {name: value}
+    return out
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("n", nargs="?", type=int, default=5, help="replications per type")
+    ap.add_argument("--types", default="core,tail,miss,outlier,floor,reg")
+    ap.add_argument("--variants", default=None, help="comma-separated labels (default all)")
+    ap.add_argument("--out", default="pas-output/departures")
+    args = ap.parse_args(argv)
+    names = [n for n in TYPES if any(n == t or n.startswith(t + "-")
+                                     for t in args.types.split(","))]
+    chosen = variants()
+    if args.variants:
+        chosen = {k: v for k, v in chosen.items() if k in args.variants.split(",")}
+    out = Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
+    rows = []
+    for label, settings in chosen.items():
+        for name in names:
+            for r in range(args.n):
+                row = run_one(make_problem(TYPES[name], r), **settings)
+                row["variant"] = label
+                rows.append(row)
+            print(f"{label} {name} done", flush=True)
+        pd.DataFrame(rows).to_csv(out / "runs.csv", index=False)
+    runs = pd.DataFrame(rows).assign(abs_error=lambda t: t["error"].abs())
+    table = runs.groupby("variant", sort=False).agg(
+        median_abs=("abs_error", "median"), p90_abs=("abs_error", lambda x: x.quantile(0.9)),
+        worst_abs=("abs_error", "max"), coverage=("covered", "mean"),
+        n_hf=("n_hf", "median"), converged=("converged", "mean")).reset_index()
+    table.to_csv(out / "summary.csv", index=False)
+    with pd.option_context("display.width", 200):
+        print(table.round(3).to_string(index=False))
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,295 @@
+"""Copula and HF marginal fitted together by the likelihood of HF given LF.
+
+Beyond the paper (its §5.4 names the problem).  PAS's samples are chosen by
+their LF value alone — MD spreads them uniformly over ``ln d``, so they are
+tail-heavy and not i.i.d.  The law of HF *given* LF is the same in the sample
+as in the population; the marginal laws are not.  Fitting rank
+pseudo-observations of the sample (Eq. 5) therefore describes the sample, not
+the population the predicted distribution (Eq. 8–12) is about.  Here:
+
+* the LF ranks ``u`` are those of the LF *population* (every conditioning
+  peak is known; :func:`pas.strategies.selection.population_lf_ranks`), so
+  no LF marginal is fitted at all;
+* the copula parameters and a three-parameter Weibull HF marginal
+  ``F_H(h) = 1 − exp(−((h − θ)/α)^β)`` are fitted together by maximising the
+  conditional log-likelihood of the HF values given their LF ranks,
+  ``ℓ = Σ_i [log c(u_i, F_H(h_i)) + log f_H(h_i)]``, which a selection by LF
+  leaves valid (the likelihood of a regression does not depend on how its
+  covariate was sampled) — and which a selection by HF, such as the paper's
+  Step 7 outlier removal, would not: every pair enters;
+* the smallest load enters left-censored, as ``P(H ≤ h_min | u)``: with its
+  density instead, the likelihood is unbounded as θ approaches it with β < 1
+  (a known property of the three-parameter Weibull); θ stays in
+  ``[max(0, h_min − 3·range), h_min)`` and β in [0.05, 50], so the Weibull can
+  neither produce negative loads nor run off to its Gumbel limit;
+* ``location=False`` gives the two-parameter Weibull (θ = 0).
+
+AIC (Eq. 13) counts the marginal's parameters with the copula's, so the
+families are compared on the same likelihood.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import pyvinecopulib as pv
+from scipy import optimize
+
+from ._threads import one_blas_thread
+from .copula_densities import GRADIENT_FAMILIES, copula_loghfunc, copula_logpdf, logc_grad, logh_grad
+from .copulas import CopulaFit, _at_bound, _family_and_rotation, kendall_tau
+from .stats.weibull import Weibull3, fit_weibull3_ls
+
+__all__ = ["JOINT_FAMILIES", "JointFit", "censoring_level", "fit_joint", "fit_joint_candidates"]
+
+JOINT_FAMILIES = ("gaussian", "student", "clayton", "gumbel", "frank", "clayton_180", "gumbel_180")
+"""Families the joint fit knows: the paper's five and the survival Clayton and Gumbel."""
+
+_TINY = 1e-12
+
+
+@dataclass(frozen=True)
+class JointFit:
+    """A copula and its HF Weibull marginal fitted together (module docs)."""
+
+    copula: CopulaFit
+    hf_marginal: Weibull3
+    x: np.ndarray  # the optimiser's unconstrained parameters, for warm starts
+
+
+def _copula_parameters(base: str, c):
+    """Unconstrained optimiser values → the family's parameter matrix (inside its bounds)."""
+    if base == "gaussian":
+        return np.array([[0.999 * np.tanh(c[0])]])
+    if base == "student":
+        return np.array([[0.999 * np.tanh(c[0])], [2.0 + 48.0 / (1.0 + np.exp(-c[1]))]])
+    if base == "clayton":
+        return np.array([[np.clip(np.exp(c[0]), 1e-6, 28.0)]])
+    if base == "gumbel":
+        return np.array([[min(1.0 + np.exp(c[0]), 50.0)]])
+    if base == "frank":
+        return np.array([[35.0 * np.tanh(c[0] / 35.0)]])
+    raise ValueError(f"no joint fit for the copula family {base!r}")
+
+
+def _parameter_slope(base: str, c) -> float:
+    """``dθ/dc`` of :func:`_copula_parameters` for the one-parameter families."""
+    if base == "gaussian":
+        return 0.999 * (1.0 - np.tanh(c[0]) ** 2)
+    if base == "clayton":
+        return float(np.exp(c[0])) if 1e-6 < np.exp(c[0]) < 28.0 else 0.0
+    if base == "gumbel":
+        return float(np.exp(c[0])) if 1.0 + np.exp(c[0]) < 50.0 else 0.0
+    return 1.0 - np.tanh(c[0] / 35.0) ** 2  # frank
+
+
+def _copula_start(base: str, tau: float):
+    tau = float(np.clip(tau, 0.05, 0.85))
+    if base in ("gaussian", "student"):
+        rho = np.sin(np.pi * tau / 2.0)
+        return [np.arctanh(rho / 0.999)] + ([0.0] if base == "student" else [])
+    if base == "clayton":
+        return [np.log(2 * tau / (1 - tau))]
+    if base == "gumbel":
+        return [np.log(tau / (1 - tau))]  # θ − 1 = τ/(1−τ)
+    p = pv.Bicop(family=pv.BicopFamily.frank).tau_to_parameters(tau).ravel()[0]
+    return [35.0 * np.arctanh(min(p, 34.9) / 35.0)]
+
+
+def _weibull_start(h, location: bool):
+    """Least-squares Weibull on Weibull paper (ranks i/(n+1)) as optimiser values."""
+    if location and h.size >= 3 and np.ptp(h) > 0:
+        w = fit_weibull3_ls(h)
+        h_min, span = h.min(), np.ptp(h)
+        gap = max(h_min - w.theta, 1e-3 * span)
+        return [np.log(gap / span), np.log(w.alpha), np.log(max(w.beta, 0.2))]
+    x = np.log(np.sort(h))
+    y = np.log(-np.log1p(-np.arange(1, h.size + 1) / (h.size + 1.0)))
+    beta, c = np.polyfit(x, y, 1)
+    beta = max(beta, 0.2)
+    return [np.log(np.exp(-c / beta)), np.log(beta)]
+
+
+def censoring_level(h, censor: float, location: bool) -> float:
+    """The load at and below which loads enter the likelihood left-censored.
+
+    The smallest ``censor`` fraction of the loads (with a location, at least
+    the smallest one) count as "at most this load"; 0 when none.
+    """
+    h = np.sort(np.asarray(h, float))
+    k = int(np.floor(censor * h.size))
+    if location:
+        k = max(k, 1)
+    return float(h[min(k, h.size - 2) - 1]) if k > 0 else 0.0
+
+
+def joint_objective(name: str, u, h, *, location: bool = True, censor: float = 0.0):
+    """The negative log-likelihood of :func:`fit_joint` and how to read its parameters.
+
+    Returns ``(negloglik, negloglik_grad, unpack)``: the objective of the
+    optimiser values ``x``; the objective with its exact gradient (None for
+    Student-t and rotated families); and ``x → (θ, α, β, copula values)``.
+    """
+    family, rotation = _family_and_rotation(name)
+    base = name.partition("_")[0]
+    u = np.clip(np.asarray(u, float), _TINY, 1 - _TINY)
+    h = np.asarray(h, float)
+    if np.any(h <= 0):
+        raise ValueError("the joint fit needs positive HF loads (false positives are not pairs)")
+    if np.unique(h).size < 3:
+        raise ValueError(f"the joint fit needs at least 3 different HF loads, got "
+                         f"{np.unique(h).size} among {h.size} pairs")
+    h_c = censoring_level(h, censor, location)
+    span = float(np.ptp(h)) or float(h.min())
+    n_marg = 3 if location else 2
+
+    def unpack(x):
+        theta = h_c - np.exp(x[0]) * span if location else 0.0
+        return theta, np.exp(x[n_marg - 2]), np.exp(x[n_marg - 1]), x[n_marg:]
+
+    uu = 1.0 - u if rotation == 180 else u
+    density = h > h_c
+    h = np.where(density, h, h_c)  # a censored load counts as "at most h_c"
+
+    @np.errstate(all="ignore")  # the optimiser's trial steps may overflow: scored as +inf
+    def negloglik(x):
+        theta, alpha, beta, c = unpack(x)
+        ln_z = np.log(h - theta) - np.log(alpha)
+        zb = np.exp(beta * ln_z)
+        v = np.clip(-np.expm1(-zb), _TINY, 1 - _TINY)
+        vv = 1.0 - v if rotation == 180 else v
+        p = _copula_parameters(base, c).ravel()
+        log_f = np.log(beta / alpha) + (beta - 1.0) * ln_z - zb
+        val = np.sum((log_f + copula_logpdf(base, p, uu, vv))[density])
+        if not density.all():  # the censored loads: P(H ≤ h_c | u)
+            lh = copula_loghfunc(base, p, uu[~density], vv[~density])
+            val += np.sum(np.log(-np.expm1(lh)) if rotation == 180 else lh)
+        return -float(val) if np.isfinite(val) else 1e300
+
+    @np.errstate(all="ignore")
+    def negloglik_grad(x):
+        """The same with its exact gradient (one-parameter families, no rotation)."""
+        theta, alpha, beta, c = unpack(x)
+        w = h - theta
+        ln_z = np.log(w) - np.log(alpha)
+        zb = np.exp(beta * ln_z)
+        v = np.clip(-np.expm1(-zb), _TINY, 1 - _TINY)
+        p = _copula_parameters(base, c).ravel()
+        log_f = np.log(beta / alpha) + (beta - 1.0) * ln_z - zb
+        lc, dc_dv, dc_dp = logc_grad(base, p, u, v)
+        d_v = np.where(density, dc_dv, 0.0)
+        d_p = np.where(density, dc_dp, 0.0)
+        total = np.where(density, log_f + lc, 0.0)
+        if not density.all():
+            lh, dh_dv, dh_dp = logh_grad(base, p, u[~density], v[~density])
+            total[~density], d_v[~density], d_p[~density] = lh, dh_dv, dh_dp
+        val = float(np.sum(total))
+        if not np.isfinite(val):
+            return 1e300, np.zeros_like(x)
+        one_v = 1.0 - v  # dv/dzb
+        dens = density.astype(float)
+        g_a = np.sum(dens * beta * (zb - 1.0) + d_v * one_v * (-beta * zb))
+        g_b = np.sum(dens * (1.0 + beta * ln_z * (1.0 - zb)) + d_v * one_v * beta * zb * ln_z)
+        g_c = np.sum(d_p) * _parameter_slope(base, c)
+        grad = [g_a, g_b, g_c]
+        if location:
+            dtheta = -np.exp(x[0]) * span
+            g_t = np.sum(dens * (beta * zb - beta + 1.0) / w + d_v * one_v * (-beta * zb / w))
+            grad.insert(0, g_t * dtheta)
+        g = -np.asarray(grad, float)
+        return (-val, g) if np.all(np.isfinite(g)) else (1e300, np.zeros_like(x))
+
+    grad = negloglik_grad if base in GRADIENT_FAMILIES and rotation == 0 else None
+    return negloglik, grad, unpack
+
+
+def fit_joint(name: str, u, h, *, start=None, location: bool = True, censor: float = 0.0,
+              cold: bool = True) -> JointFit:
+    """Fit one copula family and the Weibull HF marginal by conditional likelihood.
+
+    Parameters
+    ----------
+    name : str
+        Copula family (``"gaussian"``, ``"student"``, ``"clayton"``,
+        ``"gumbel"``, ``"frank"`` or their ``_180`` rotations).
+    u : array-like, shape (m,)
+        LF population ranks of the pairs, in (0, 1).
+    h : array-like, shape (m,)
+        Their HF loads, > 0.
+    location : bool, default True
+        A three-parameter Weibull marginal (location below the smallest
+        load, which enters the likelihood left-censored — "a load of at most
+        ``min(h)``" — so the likelihood stays bounded; module docs), or the
+        two-parameter Weibull with location 0.
+    censor : float, default 0
+        Fraction of the smallest loads that enter left-censored, as "at most
+        the largest of them" (:func:`censoring_level`): the marginal is then
+        fitted to the shape of the upper loads — the tail the MPM is read
+        from — while every pair still informs the copula through
+        ``P(H ≤ h_c | u)``.  The likelihood analogue of the paper's
+        upper-tail mode (§2.3).
+    start : ndarray, optional
+        Optimiser values of an earlier fit (``JointFit.x``): the optimiser
+        starts there as well as from the least-squares Weibull and the
+        copula with the pairs' Kendall τ, and keeps the better optimum (a
+        warm start alone can stay in the basin of a fit to fewer pairs).
+    cold : bool, default True
+        With ``start``: also start from the data (slower, safer); False
+        starts from ``start`` only.
+    """
+    family, rotation = _family_and_rotation(name)
+    base = name.partition("_")[0]
+    u = np.clip(np.asarray(u, float), _TINY, 1 - _TINY)
+    h = np.asarray(h, float)
+    negloglik, negloglik_grad, unpack = joint_objective(name, u, h, location=location,
+                                                        censor=censor)
+    n_marg = 3 if location else 2
+    n_par = n_marg + (2 if base == "student" else 1)
+    # the Weibull may not run off to its Gumbel limit (location → −∞, β → ∞): the
+    # location stays within three load ranges below the smallest load, as in
+    # :func:`pas.stats.weibull.fit_weibull3_ls`, and at or above 0 (loads are
+    # non-negative, so no draw needs clipping); β in [0.05, 50]
+    h_c = censoring_level(h, censor, location)
+    span = float(np.ptp(h)) or float(h.min())
+    s_max = min(np.log(3.0), np.log(max(h_c, 1e-300) / span))
+    bounds = ([(min(np.log(1e-9), s_max - 1.0), s_max)] if location else []) + [
+        (None, None), (np.log(0.05), np.log(50.0))] + [(None, None)] * (n_par - n_marg)
+
+    def minimise(x0):
+        x0 = np.array([np.clip(x, lo if lo is not None else -np.inf, hi if hi is not None else np.inf)
+                       for x, (lo, hi) in zip(x0, bounds)])
+        if negloglik_grad is not None:
+            return optimize.minimize(negloglik_grad, x0, jac=True, method="L-BFGS-B",
+                                     bounds=bounds)
+        return optimize.minimize(negloglik, x0, method="L-BFGS-B", bounds=bounds)
+
+    res = None
+    if start is not None and len(start) == n_par:
+        res = minimise(np.asarray(start, float))  # an earlier fit
+    if cold or res is None or res.fun >= 1e299:
+        tau = kendall_tau(u, h) if u.size > 2 else 0.3
+        fresh = minimise(np.r_[_weibull_start(h, location), _copula_start(base, tau)])
+        res = fresh if res is None or fresh.fun < res.fun else res
+    if not np.isfinite(res.fun) or res.fun >= 1e299:
+        raise ValueError(f"joint fit of the {name} copula failed: {res.message}")
+    theta, alpha, beta, c = unpack(res.x)
+    cop = pv.Bicop(family=family, rotation=rotation, parameters=_copula_parameters(base, c))
+    k = n_marg + float(cop.npars)
+    loglik = -float(res.fun)
+    fit = CopulaFit(name=name, bicop=cop, loglik=loglik, aic=2.0 * k - 2.0 * loglik,
+                    npars=k, at_bound=_at_bound(cop, name))
+    return JointFit(fit, Weibull3(float(theta), float(alpha), float(beta)), np.asarray(res.x))
+
+
+def fit_joint_candidates(u, h, families, *, starts=None, location: bool = True,
+                         censor: float = 0.0, cold: bool = True) -> dict[str, JointFit]:
+    """:func:`fit_joint` for every family (``starts``: earlier fits by name, to warm-start)."""
+    starts = starts or {}
+    out = {}
+    with one_blas_thread():
+        for name in families:
+            prev = starts.get(name)
+            out[name] = fit_joint(name, u, h, start=None if prev is None else prev.x,
+                                  location=location, censor=censor, cold=cold)
+    return out

@@ -1,0 +1,69 @@
+"""The LF side of the selection-aware estimator: impacts and population ranks.
+
+Beyond the paper.  MD (Eq. 16–17) spreads the HF samples uniformly over
+``ln d``, so the selected pairs are tail-heavy: the ten largest of 15 000 LF
+peaks are as likely to be sampled as the lowest 5 000.  Because MD chooses
+events by their LF value alone, the law of HF *given* LF — and of an impact
+given LF — is the same in the sample as in the population.  Two pieces of
+PAS's default estimator (:mod:`pas.joint` has the third) use that:
+
+* :func:`impact_probability` — ``P(impact | LF)`` from the true and false
+  positives, so a conditional draw can be "no impact" (the paper draws a
+  positive load for every conditioning peak although the false positives
+  show that some give none);
+* :func:`population_lf_ranks` — the LF pseudo-observations from the known
+  LF population itself (every conditioning peak, counted with its impact
+  probability), used for the pairs and for the draws of Eq. 6 alike, so no LF
+  marginal is fitted.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+__all__ = ["impact_probability", "population_lf_ranks"]
+
+
+def impact_probability(lf_true, lf_false):
+    """``P(impact | LF)``: logistic regression of true (1) vs false (0) positives on LF.
+
+    Returns a vectorised callable, or ``None`` when no false positive has been
+    seen.  MD selects events by LF alone, so the regression needs no weights.
+    The indicator is chosen because large LF peaks make impacts, so the
+    probability may not fall with LF: a fitted slope below zero (misses as
+    common among the largest peaks, as spread misses make by chance) gives
+    the constant impact share of the evaluated events instead.
+
+    Examples
+    --------
+    >>> p = impact_probability([5.0, 6.0, 7.0], [5.5, 7.5])  # a miss high up
+    >>> bool(p([5.0])[0] <= p([8.0])[0])
+    True
+    """
+    lf_false = np.asarray(lf_false, float)
+    if lf_false.size == 0:
+        return None
+    from sklearn.linear_model import LogisticRegression
+
+    x = np.r_[np.asarray(lf_true, float), lf_false]
+    y = np.r_[np.ones(len(lf_true)), np.zeros(lf_false.size)]
+    mu, sd = x.mean(), x.std() or 1.0
+    model = LogisticRegression(C=1.0).fit(((x - mu) / sd)[:, None], y)
+    if model.coef_[0, 0] < 0:
+        share = y.mean()
+        return lambda l: np.full(np.shape(np.atleast_1d(l)), share)
+    return lambda l: model.predict_proba(((np.asarray(l, float) - mu) / sd)[:, None])[:, 1]
+
+
+def population_lf_ranks(lf_pool, impact=None) -> np.ndarray:
+    """LF pseudo-observations of every pool peak in the population of impacts.
+
+    ``u_j`` is the weighted mid-rank of ``lf_pool[j]`` with weights
+    ``P(impact | l_j)`` (all 1 without an impact model): the LF marginal of the
+    population the copula describes, known without fitting.
+    """
+    from ..stats.dependence import weighted_ranks
+
+    lf_pool = np.asarray(lf_pool, float)
+    w = np.ones(lf_pool.size) if impact is None else np.maximum(impact(lf_pool), 1e-6)
+    return weighted_ranks(lf_pool, w)

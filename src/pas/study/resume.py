@@ -1,0 +1,42 @@
+"""Reopen a stored study: :func:`open_study` rebuilds it from its store and replays it."""
+
+from __future__ import annotations
+
+from .factory import STRATEGIES
+from .schema import RESUMABLE, StoreError, with_legacy_settings
+from .store import StudyStore
+from .study import Study
+
+__all__ = ["open_study"]
+
+
+def open_study(store, *, consume: bool = True, changes: dict | None = None) -> Study:
+    """Rebuild the :class:`Study` held by ``store`` (a path or a :class:`StudyStore`).
+
+    The stored settings and LF pool build the study (:meth:`Study.from_settings`),
+    which then replays the stored asks and tells (:func:`pas.study.replay.attach`).
+    With ``consume`` the results told by other processes and not used yet are
+    told to the study in arrival order (written to the store only when the
+    caller holds its write transaction; see ``pas study ask``).  ``changes``
+    sets new stopping settings or budgets (:data:`~pas.study.schema.RESUMABLE`,
+    e.g. ``{"eps1": 10.0}``), recorded in the store (``pas study set``).
+    """
+    if not isinstance(store, StudyStore):
+        store = StudyStore(store, create=False)
+    s = store.settings()
+    if not s:
+        raise StoreError(f"study store {store.path} holds no study")
+    s = with_legacy_settings(s)
+    for key in changes or {}:
+        if key not in RESUMABLE:
+            raise ValueError(f"{key} cannot change on a resumed study; these can: "
+                             f"{', '.join(RESUMABLE)}")
+    s = {**s, **(changes or {})}
+    if not isinstance(s["strategy"], str) or s["strategy"] not in STRATEGIES:
+        raise StoreError(f"strategy {s['strategy']!r} in {store.path} is unknown to this pas")
+    lf_all, all_ids, all_meta = store.lf_inputs()
+    study = Study.from_settings(s, lf_all, ids=all_ids, meta=all_meta, store=store)
+    if consume:
+        for i, hf, err in store.unconsumed():
+            study.tell(int(i), hf, error=err)
+    return study

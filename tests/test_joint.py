@@ -1,0 +1,152 @@
+"""The joint fit of copula and HF marginal, its closed-form densities, τ inversion, presets."""
+
+import numpy as np
+import pytest
+import pyvinecopulib as pv
+from scipy import stats
+
+import pas
+from pas.copula_densities import copula_loghfunc, copula_logpdf, logc_grad, logh_grad
+from pas.copulas import fit_copula, tau_inversion_parameter
+from pas.joint import fit_joint
+from pas.strategies.pas import PAS
+
+RNG = np.random.default_rng(0)
+U, V = RNG.uniform(0.002, 0.998, 400), RNG.uniform(0.002, 0.998, 400)
+CASES = [("gaussian", [0.6]), ("gaussian", [-0.3]), ("clayton", [2.5]), ("gumbel", [1.7]),
+         ("gumbel", [6.0]), ("frank", [6.0]), ("frank", [34.9]), ("frank", [-2.0])]
+
+
+def _frank_exact(th, u, v):
+    """log c and log h of Frank in 60-digit decimals (a reference where floats cancel)."""
+    from decimal import Decimal, getcontext
+
+    getcontext().prec = 60
+    th, u, v = Decimal(th), Decimal(float(u)), Decimal(float(v))
+    e = lambda x: (-x).exp()  # noqa: E731
+    den = e(th * u) + e(th * v) - e(th * (u + v)) - e(th)
+    log_c = (th * (1 - e(th))).ln() - th * (u + v) - 2 * abs(den).ln()
+    log_h = (e(th * u) * (1 - e(th * v)) / den).ln()
+    return float(log_c), float(log_h)
+
+
+def test_frank_near_its_bound_matches_exact_arithmetic():
+    # pyvinecopulib's own Frank h-function is off by up to 1e-2 here (the form
+    # (1 − e^{−θ}) − (1 − e^{−θu})(1 − e^{−θv}) cancels); ours is not
+    for u, v in zip(U[:40], V[:40]):
+        c, h = _frank_exact(34.9, u, v)
+        assert copula_logpdf("frank", [34.9], np.array([u]), np.array([v]))[0] == pytest.approx(
+            c, abs=1e-9)
+        assert copula_loghfunc("frank", [34.9], np.array([u]), np.array([v]))[0] == pytest.approx(
+            h, abs=1e-9)
+
+
+@pytest.mark.parametrize("family, p", [c for c in CASES if c[1][0] < 30])
+def test_closed_forms_match_pyvinecopulib(family, p):
+    cop = pv.Bicop(family=getattr(pv.BicopFamily, family), parameters=np.array(p).reshape(-1, 1))
+    uv = np.column_stack([U, V])
+    np.testing.assert_allclose(copula_logpdf(family, p, U, V), np.log(cop.pdf(uv)),
+                               atol=1e-9, rtol=1e-9)
+    np.testing.assert_allclose(copula_loghfunc(family, p, U, V), np.log(cop.hfunc1(uv)),
+                               atol=1e-8, rtol=1e-8)
+
+
+def test_student_closed_forms_match_pyvinecopulib():
+    cop = pv.Bicop(family=pv.BicopFamily.student, parameters=np.array([[0.6], [4.0]]))
+    uv = np.column_stack([U, V])
+    np.testing.assert_allclose(copula_logpdf("student", [0.6, 4.0], U, V), np.log(cop.pdf(uv)),
+                               atol=1e-9)
+    np.testing.assert_allclose(copula_loghfunc("student", [0.6, 4.0], U, V),
+                               np.log(cop.hfunc1(uv)), atol=1e-9)
+
+
+@pytest.mark.parametrize("family, p", [c for c in CASES if c[1][0] < 30])
+@pytest.mark.parametrize("fn", [logc_grad, logh_grad])
+def test_derivatives_match_finite_differences(family, p, fn):
+    _, dv, dth = fn(family, p, U, V)
+    e = 1e-6
+    num_v = (fn(family, p, U, V + e, grad=False)[0] - fn(family, p, U, V - e, grad=False)[0]) / 2e-6
+    num_t = (fn(family, [p[0] + e], U, V, grad=False)[0]
+             - fn(family, [p[0] - e], U, V, grad=False)[0]) / 2e-6
+    np.testing.assert_allclose(dv, num_v, rtol=1e-5, atol=1e-5)
+    np.testing.assert_allclose(dth, num_t, rtol=1e-5, atol=1e-5)
+
+
+@pytest.mark.parametrize("family", ["clayton", "gumbel", "frank"])
+def test_tau_inversion_is_the_copulas_package_estimate(family):
+    from copulas.bivariate import Clayton, Frank, Gumbel
+
+    cop = pv.Bicop(family=getattr(pv.BicopFamily, family), parameters=np.array(
+        [[{"clayton": 3.0, "gumbel": 2.5, "frank": 9.0}[family]]]))
+    uv = cop.simulate(300, seeds=[1, 2, 3])
+    peer = {"clayton": Clayton, "gumbel": Gumbel, "frank": Frank}[family]()
+    peer.fit(uv)
+    ours = fit_copula(family, uv[:, 0], uv[:, 1], method="itau")
+    assert ours.parameters[0] == pytest.approx(peer.theta, rel=1e-5)
+    with pytest.raises(ValueError, match="cannot have tau"):
+        tau_inversion_parameter("gumbel", -0.2)
+
+
+def test_joint_fit_recovers_a_known_model():
+    n = 3000
+    rng = np.random.default_rng(4)
+    u = rng.uniform(size=n)
+    cop = pv.Bicop(family=pv.BicopFamily.gaussian, parameters=np.array([[0.7]]))
+    v = cop.hinv1(np.column_stack([u, rng.uniform(size=n)]))
+    h = stats.weibull_min(1.5, loc=0.5, scale=2.0).ppf(v)
+    fit = fit_joint("gaussian", u, h)
+    assert fit.copula.parameters[0] == pytest.approx(0.7, abs=0.03)
+    w = fit.hf_marginal
+    assert (w.theta, w.alpha, w.beta) == pytest.approx((0.5, 2.0, 1.5), rel=0.1)
+    with pytest.raises(ValueError, match="at least 3 different HF loads"):
+        fit_joint("gaussian", u[:10], np.full(10, 3.0))
+
+
+def test_common_random_numbers_never_change_as_the_conditioning_set_grows():
+    def numbers(history, seed=7):
+        st = PAS()
+        st.reset(seed)
+        for n in history:
+            r, q = st._random_numbers(n, None)
+        return r, q
+
+    r_big, q_big = numbers([300, 1500, 5000])
+    for history in ([5000], [1200, 2500, 5000], [10, 1024, 1025, 5000]):
+        r, q = numbers(history)
+        np.testing.assert_array_equal(r, r_big)
+        np.testing.assert_array_equal(q, q_big)
+    r_small, q_small = numbers([300])
+    np.testing.assert_array_equal(r_small, r_big[:, :300])
+    assert not np.array_equal(numbers([300], seed=8)[0], r_small)
+
+
+def test_paper_preset_through_the_api():
+    lf = np.random.default_rng(0).rayleigh(2.0, 2000)
+    study = pas.make_study("pas", lf, n_waves=2000, p_exp=1e-2, eps1=0.1, preset="paper")
+    s = study.settings()
+    assert s["max_hf"] is None and s["stop_measure"] == "step"
+    assert s["strategy_settings"]["estimator"] == "selected"
+    assert s["strategy_settings"]["copula_fit"] == "itau"
+    own = pas.make_study("pas", lf, n_waves=2000, p_exp=1e-2, eps1=0.1, preset="paper",
+                         max_hf=40, z=20)
+    assert own.max_hf == 40 and own.strategy.z == 20     # given settings win
+    assert pas.make_study("pas", lf, n_waves=2000, p_exp=1e-2, eps1=0.1).max_hf == 160
+    with pytest.raises(ValueError, match="preset must be one of"):
+        pas.make_study("pas", lf, n_waves=2000, p_exp=1e-2, eps1=0.1, preset="papers")
+    with pytest.raises(ValueError, match="set of PAS settings"):
+        pas.make_study("as", lf, n_waves=2000, p_exp=1e-2, eps1=0.1, preset="paper")
+
+
+def test_the_conditional_fit_keeps_every_pair():
+    # Step 7 selects pairs by their HF value; the conditional likelihood must not
+    from pas.screening import LFSet
+    from pas.strategies.base import Pairs
+
+    s = LFSet(np.linspace(10, 0.1, 500), n_waves=600, p_exp=0.01)
+    pos = np.arange(0, 500, 25)
+    hf = 2 * s.lf[pos] + 1
+    hf[1] += 60.0  # a genuine heavy load far off the trend
+    pairs = Pairs(pos, s.lf[pos], hf, s.d[pos])
+    cond = PAS().predict(pairs, s, np.random.default_rng(0))
+    sel = PAS(estimator="selected").predict(pairs, s, np.random.default_rng(0))
+    assert cond.record["n_outliers"] == 0 and sel.record["n_outliers"] == 1
