@@ -13,19 +13,36 @@ Run: python benchmarks/departures.py [N] [--types core,miss,...] [--out DIR]
 from __future__ import annotations
 
 import argparse
+import inspect
 from pathlib import Path
 
 import pandas as pd
 
 from known_truth import TYPES, make_problem, run_one
-from pas.study.factory import PRESETS
+from pas.strategies.pas import PAS
+from pas.study.factory import DEFAULT_MAX_HF, PRESETS
+from pas.study.study import Study
+
+
+def default_value(name):
+    """The package default of a PAS or study setting (from the constructors' signatures)."""
+    for cls in (PAS, Study):
+        parameter = inspect.signature(cls.__init__).parameters.get(name)
+        if parameter is not None:
+            return DEFAULT_MAX_HF if name == "max_hf" else parameter.default
+    raise KeyError(name)
 
 
 def variants():
-    """``{label: settings}``: defaults, the paper preset, and one paper setting at a time."""
+    """``{label: settings}``: defaults, the paper preset, one paper setting at a time on the
+    defaults, and (labels ``paper+name=value``) one default at a time on the paper preset —
+    for settings that act only inside the paper's selected-space estimator."""
     out = {"default": {}, "paper": {"preset": "paper"}}
     for name, value in PRESETS["paper"].items():
         out[f"{name}={value}"] = {name: value}
+    for name in PRESETS["paper"]:
+        value = default_value(name)
+        out[f"paper+{name}={value}"] = {"preset": "paper", name: value}
     return out
 
 

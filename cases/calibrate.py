@@ -7,7 +7,7 @@ chosen values are frozen in ``src/pas/validation/case_vbm.py``,
 ``case_impacts.py`` (paper-like 3a–4b) and ``case_impacts_hard.py`` (the
 ``-hard`` variants).
 
-Run: ``python cases/calibrate.py {2,3,4,3-hard,4-hard}``.
+Run: ``python cases/calibrate.py {2,3,4,4-gate,3-hard,4-hard}``.
 
 Case 2 (issue 11): the first calibration gave hogging < sagging, the paper
 hogging 1.10e9 > sagging 9.00e8 N m; a Froude–Krylov term of a side flare
@@ -132,6 +132,26 @@ def case4():
                   f"{p['lambda_l']:.2f}", flush=True)
 
 
+def case4_gate():
+    """Tested and not adopted (stop 17): an impulsive part only above a velocity gate.
+
+    Hypothesis: the low-RRV positives owe their load to an impulsive part (module docs of
+    case_impacts), so allowing it only for violent impacts, ``v > gate · v_Ochi``, would tie
+    small loads to small RRV and give λ_L ≥ λ_U.  Same rule as :func:`case4`.  Also an
+    impulsive part in every contact (``slam_impulse_p`` 1.0 / 0.6).
+    """
+    fn = case_impacts.generate_slamming
+    trials = ([{"slam_impulse_gate": g, "slam_impulse": i} for g in (1.0, 2.0, 2.5, 3.0)
+               for i in (0.5, 1.0, 2.0)]
+              + [{"slam_impulse_p": p, "slam_impulse": i}
+                 for p, i in ((1.0, 0.1), (1.0, 0.25), (1.0, 0.5), (0.6, 0.5))])
+    for trial in trials:
+        trial["C0"] = round(_scale_to_truth("4a", fn, trial, "C0", 0.05), 4)
+        print(trial, flush=True)
+        for cid in ("4a", "4b"):
+            print("   ", _line(_properties(cid, fn, trial)), flush=True)
+
+
 def case3_hard():
     # targets: green-water rate ~3 % / ~8 % of encounters, MPM 1850 / 4920 kN (+-25 %)
     for csw, dm, cgw in [(1.5, 1.0, 0.5), (1.6, 1.5, 0.45), (1.7, 2.5, 0.35), (1.7, 2.5, 0.37)]:
@@ -156,6 +176,6 @@ def case4_hard():
 
 if __name__ == "__main__":
     t0 = time.perf_counter()
-    {"2": case2, "3": case3, "4": case4, "3-hard": case3_hard,
+    {"2": case2, "3": case3, "4": case4, "4-gate": case4_gate, "3-hard": case3_hard,
      "4-hard": case4_hard}[sys.argv[1] if len(sys.argv) > 1 else "2"]()
     print(f"[{time.perf_counter() - t0:.0f} s]")

@@ -247,6 +247,12 @@ def test_slamming_load_of_an_episode_uses_the_panel_level_speed():
     impulsive = {"u_impulse": 0.0, "e_impulse": 2.0, "z_scatter": 0.0}
     assert slamming_load(r, dt, rng=impulsive, coefficients=no_cut) == pytest.approx(
         expected * (1 + C["slam_impulse"] * v / v_ochi * 2.0), rel=1e-3)
+    # the tested-and-rejected velocity gate (cases/README.md): below it, no impulsive part
+    gated = dict(no_cut, slam_impulse_gate=1.01 * v / v_ochi)
+    assert slamming_load(r, dt, rng=impulsive, coefficients=gated) == pytest.approx(expected,
+                                                                                    rel=1e-3)
+    assert slamming_load(r, dt, rng=impulsive, coefficients=dict(gated, slam_impulse_gate=(
+        0.99 * v / v_ochi))) > 1.5 * expected
     assert slamming_load(np.minimum(r, 2.8), dt, coefficients=no_cut) == 0.0  # panels not reached
     assert slamming_load(r[int(1.5 / dt):], dt, coefficients=no_cut) == 0.0  # no up-crossing
     with pytest.raises(ValueError, match="dt"):

@@ -152,6 +152,7 @@ COEFFICIENTS = {
     # fixed choices (not tuned)
     "gw_scatter": 0.15, "gw_impulse_p": 0.3, "slam_scatter": 0.15, "slam_impulse_p": 0.3,
     "ochi_factor": 0.093,
+    "slam_impulse_gate": 0.0,  # impulsive part only above gate * v_Ochi (0: none; scan 4-gate)
     # calibrated once on data seed 0, full scale (python cases/calibrate.py 3 / 4; the scan
     # output and the selection rule are in cases/README.md), then frozen:
     "gw_margin": 0.0,       # m, flare-deflection margin over the freeboard (scan: 0 best)
@@ -218,8 +219,8 @@ def _slamming_force(v, d, c):
     v = np.asarray(v, float)
     k = 0.5 * RHO_SEAWATER * c["C0"] * np.pi * c["panel_area"] / 1000.0  # kN s^2/m^2
     v_ochi = c["ochi_factor"] * np.sqrt(GRAVITY * FERRY_190M.length)
-    impulse = np.where(d["u_impulse"] < c["slam_impulse_p"],
-                       c["slam_impulse"] * v / v_ochi * d["e_impulse"], 0.0)
+    violent = (d["u_impulse"] < c["slam_impulse_p"]) & (v > c["slam_impulse_gate"] * v_ochi)
+    impulse = np.where(violent, c["slam_impulse"] * v / v_ochi * d["e_impulse"], 0.0)
     force = k / np.tan(np.deg2rad(c["beta_flare_deg"])) * v**2 * (1.0 + impulse) \
         * np.exp(c["slam_scatter"] * d["z_scatter"])
     return np.where((v > 0) & (force >= c["noise_kN"]), force, 0.0)
