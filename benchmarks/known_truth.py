@@ -10,7 +10,9 @@ load drawn from a known model:
 * **dependence**, either a copula — ``V | U ~ C_{V|U}(· | u)`` for a family
   and Kendall's τ, ``U = F_L(l)`` the LF population CDF over the pool (over
   the threshold when one is set), ``h = F_H⁻¹(V)`` with a Weibull HF marginal
-  of shape ``hf_shape`` (smaller = heavier tail) — or a regression that no
+  of shape ``hf_shape`` (smaller = heavier tail; ``hf_law="lognormal"``: a
+  log-normal of log-sd ``hf_shape``, heavier than any Weibull with β ≥ 1)
+  — or a regression that no
   candidate copula contains: ``"power"``, ``ln h = ln 1000 + 1.5 ln l + σ ε``,
   and ``"crest"``, ``h = 1000 (l + 0.15 l²) + 1000 σ ε`` (a second-order-crest-like
   HF, ε standard normal);
@@ -62,6 +64,7 @@ class ProblemType:
     family: str = "gaussian"
     tau: float = 0.6
     hf_shape: float = 1.2
+    hf_law: str = "weibull"  # or "lognormal" (hf_shape is then the log-sd)
     misses: str = "none"
     outlier_p: float = 0.0
     outlier_k: float = 3.0
@@ -80,6 +83,8 @@ def _types():
     for fam in ("gaussian", "gumbel"):
         for shape in (0.8, 3.0):
             out.append(ProblemType(f"tail-{fam}-b{shape:g}", fam, 0.6, shape))
+    for fam, sigma in (("gaussian", 0.6), ("gaussian", 1.0), ("gumbel", 1.0), ("clayton", 1.0)):
+        out.append(ProblemType(f"tail-{fam}-ln{sigma:g}", fam, 0.6, sigma, hf_law="lognormal"))
     for fam in ("gaussian", "clayton"):
         for tau in (0.4, 0.7):
             for misses in ("low", "spread"):
@@ -149,13 +154,20 @@ def _pool_u(lf, threshold):
     return 1.0 - sf / sf0
 
 
+def hf_law(ptype: ProblemType):
+    """The HF marginal of a copula-type problem (frozen scipy distribution)."""
+    if ptype.hf_law == "lognormal":
+        return stats.lognorm(ptype.hf_shape, scale=HF_SCALE)
+    return stats.weibull_min(ptype.hf_shape, scale=HF_SCALE)
+
+
 def conditional_sf(x, lf, u, ptype: ProblemType, bicop) -> np.ndarray:
     """``P(H > x | l)`` given an impact, before outliers, for every pool peak."""
     if ptype.model == "power":
         return stats.norm.sf((np.log(x / HF_SCALE) - 1.5 * np.log(lf)) / ptype.sigma)
     if ptype.model == "crest":
         return stats.norm.sf((x / HF_SCALE - lf - 0.15 * lf**2) / ptype.sigma)
-    v = np.clip(stats.weibull_min(ptype.hf_shape, scale=HF_SCALE).cdf(x), 1e-12, 1 - 1e-12)
+    v = np.clip(hf_law(ptype).cdf(x), 1e-12, 1 - 1e-12)
     return 1.0 - bicop.hfunc1(np.column_stack([u, np.full(u.size, v)]))
 
 
@@ -200,7 +212,7 @@ def make_problem(ptype: ProblemType, replication: int, *, n_waves=N_WAVES, p_exp
         h = HF_SCALE * np.maximum(lf + 0.15 * lf**2 + ptype.sigma * stats.norm.ppf(r), 1e-3)
     else:
         v = bicop.hinv1(np.column_stack([u, r]))
-        h = stats.weibull_min(ptype.hf_shape, scale=HF_SCALE).ppf(np.clip(v, 1e-12, 1 - 1e-12))
+        h = hf_law(ptype).ppf(np.clip(v, 1e-12, 1 - 1e-12))
     if ptype.outlier_p > 0:
         h = np.where(rng.uniform(size=lf.size) < ptype.outlier_p, h * ptype.outlier_k, h)
     hit = rng.uniform(size=lf.size) < impact_probability(u, ptype.misses)

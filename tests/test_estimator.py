@@ -24,7 +24,7 @@ PAPER = dict(estimator="selected", copula_fit="itau", exclude_at_bound=False,
              marginals_from="kept", impact_model=False, common_random_numbers=False)
 
 
-def _problem(seed, *, tau, p_impact=1.0):
+def _problem(seed, *, tau, p_impact=1.0, hf_law=stats.weibull_min(1.2, scale=1000.0)):
     """Rayleigh LF, Gaussian copula, Weibull HF; MD-like sample of M events uniform in ln d."""
     rng = np.random.default_rng(seed)
     lf = rng.rayleigh(1.0, N)
@@ -32,7 +32,6 @@ def _problem(seed, *, tau, p_impact=1.0):
     cop = pv.Bicop(family=pv.BicopFamily.gaussian,
                    parameters=np.array([[np.sin(np.pi * tau / 2)]]))
     v = cop.hinv1(np.column_stack([u, rng.uniform(1e-9, 1 - 1e-9, N)]))
-    hf_law = stats.weibull_min(1.2, scale=1000.0)
     hf = hf_law.ppf(v) * (rng.uniform(size=N) < p_impact)
 
     def expected_exceedances(h):  # Σ_j P(H_j > h | l_j)
@@ -73,3 +72,22 @@ def test_impact_model_removes_the_bias_of_a_positive_draw_for_every_peak():
     with_ = np.array([_error({}, *p) for p in problems])
     assert np.mean(without) > 0.04      # 40 % of the peaks give no impact, every draw does
     assert abs(np.mean(with_)) < 0.02
+
+
+def test_a_lognormal_hf_marginal_is_recognised_and_fits_better():
+    # HF log-normal (log-sd 1, heavier than the Weibull): with hf_marginal="both" every fit
+    # keeps the log-normal, and the MPM error over six data sets shrinks (measured: mean
+    # |error| 7.8 % Weibull only, 5.9 % both)
+    law = stats.lognorm(1.0, scale=1000.0)
+    errors = {"weibull": [], "both": []}
+    for seed in range(6):
+        s, pairs, truth = _problem(seed, tau=0.6, hf_law=law)
+        for choice in errors:
+            errors[choice].append(abs(_error({"hf_marginal": choice}, s, pairs, truth)))
+        strategy = PAS(n_bootstrap=0, hf_marginal="both")
+        strategy.reset(0)
+        assert strategy.predict(pairs, s, np.random.default_rng(0)).record["hf_marginal"] \
+            == "lognormal"
+    assert np.mean(errors["both"]) < np.mean(errors["weibull"])
+    with pytest.raises(ValueError, match="hf_marginal"):
+        PAS(hf_marginal="gamma")

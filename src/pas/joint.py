@@ -22,7 +22,12 @@ the population the predicted distribution (Eq. 8–12) is about.  Here:
   (a known property of the three-parameter Weibull); θ stays in
   ``[max(0, h_min − 3·range), h_min)`` and β in [0.05, 50], so the Weibull can
   neither produce negative loads nor run off to its Gumbel limit;
-* ``location=False`` gives the two-parameter Weibull (θ = 0).
+* ``location=False`` gives the two-parameter Weibull (θ = 0);
+* ``marginal="lognormal"`` replaces the Weibull by a three-parameter
+  log-normal ``F_H(h) = Φ((ln(h − θ) − μ)/σ)`` (same location rules), whose
+  tail is heavier than a Weibull's with β ≥ 1; :func:`fit_joint_candidates`
+  with both keeps, per copula family, the marginal of higher likelihood
+  (the same number of parameters, so also the lower AIC).
 
 AIC (Eq. 13) counts the marginal's parameters with the copula's, so the
 families are compared on the same likelihood.
@@ -34,14 +39,19 @@ from dataclasses import dataclass
 
 import numpy as np
 import pyvinecopulib as pv
-from scipy import optimize
+from scipy import optimize, special
 
 from ._threads import one_blas_thread
 from .copula_densities import GRADIENT_FAMILIES, copula_loghfunc, copula_logpdf, logc_grad, logh_grad
 from .copulas import CopulaFit, _at_bound, _family_and_rotation, kendall_tau
+from .stats.lognormal import LogNormal3
 from .stats.weibull import Weibull3, fit_weibull3_ls
 
-__all__ = ["JOINT_FAMILIES", "JointFit", "censoring_level", "fit_joint", "fit_joint_candidates"]
+__all__ = ["JOINT_FAMILIES", "HF_MARGINALS", "JointFit", "censoring_level", "fit_joint",
+           "fit_joint_candidates", "fit_joint_all", "best_per_family"]
+
+HF_MARGINALS = ("weibull", "lognormal")
+"""HF marginals the joint fit knows (module docs)."""
 
 JOINT_FAMILIES = ("gaussian", "student", "clayton", "gumbel", "frank", "clayton_180", "gumbel_180")
 """Families the joint fit knows: the paper's five and the survival Clayton and Gumbel."""
@@ -54,8 +64,9 @@ class JointFit:
     """A copula and its HF Weibull marginal fitted together (module docs)."""
 
     copula: CopulaFit
-    hf_marginal: Weibull3
+    hf_marginal: Weibull3 | LogNormal3
     x: np.ndarray  # the optimiser's unconstrained parameters, for warm starts
+    marginal: str = "weibull"
 
 
 def _copula_parameters(base: str, c):
@@ -111,6 +122,15 @@ def _weibull_start(h, location: bool):
     return [np.log(np.exp(-c / beta)), np.log(beta)]
 
 
+def _lognormal_start(h, location: bool):
+    """Log-normal optimiser values: the least-squares Weibull's location, moments of ln(h − θ)."""
+    gap_x = _weibull_start(h, location)[0] if location else None
+    span = float(np.ptp(h)) or float(h.min())
+    theta = h.min() - np.exp(gap_x) * span if location else 0.0
+    lw = np.log(np.maximum(h - theta, 1e-300))
+    return ([gap_x] if location else []) + [float(lw.mean()), np.log(max(lw.std(), 0.05))]
+
+
 def censoring_level(h, censor: float, location: bool) -> float:
     """The load at and below which loads enter the likelihood left-censored.
 
@@ -124,15 +144,9 @@ def censoring_level(h, censor: float, location: bool) -> float:
     return float(h[min(k, h.size - 2) - 1]) if k > 0 else 0.0
 
 
-def joint_objective(name: str, u, h, *, location: bool = True, censor: float = 0.0):
-    """The negative log-likelihood of :func:`fit_joint` and how to read its parameters.
-
-    Returns ``(negloglik, negloglik_grad, unpack)``: the objective of the
-    optimiser values ``x``; the objective with its exact gradient (None for
-    Student-t and rotated families); and ``x → (θ, α, β, copula values)``.
-    """
+def _prepare(name: str, u, h, location: bool, censor: float):
+    """What both marginals' objectives share: checked data, censoring, the rotation."""
     family, rotation = _family_and_rotation(name)
-    base = name.partition("_")[0]
     u = np.clip(np.asarray(u, float), _TINY, 1 - _TINY)
     h = np.asarray(h, float)
     if np.any(h <= 0):
@@ -142,61 +156,99 @@ def joint_objective(name: str, u, h, *, location: bool = True, censor: float = 0
                          f"{np.unique(h).size} among {h.size} pairs")
     h_c = censoring_level(h, censor, location)
     span = float(np.ptp(h)) or float(h.min())
+    density = h > h_c
+    h = np.where(density, h, h_c)  # a censored load counts as "at most h_c"
+    return name.partition("_")[0], rotation, u, h, h_c, span, density
+
+
+def _copula_terms(base, rotation, p, u, v, log_f, density) -> float:
+    """``Σ log f + log c`` over the loads with a density, ``Σ log P(H ≤ h_c | u)`` over the rest."""
+    uu, vv = (1.0 - u, 1.0 - v) if rotation == 180 else (u, v)
+    val = np.sum((log_f + copula_logpdf(base, p, uu, vv))[density])
+    if not density.all():  # the censored loads: P(H ≤ h_c | u)
+        lh = copula_loghfunc(base, p, uu[~density], vv[~density])
+        val += np.sum(np.log(-np.expm1(lh)) if rotation == 180 else lh)
+    return val
+
+
+def _gradient_terms(base, p, u, v, density):
+    """``(log c or log h, ∂/∂v, ∂/∂parameter)`` per pair (densities and censored loads)."""
+    lc, dc_dv, dc_dp = logc_grad(base, p, u, v)
+    d_v = np.where(density, dc_dv, 0.0)
+    d_p = np.where(density, dc_dp, 0.0)
+    total = np.where(density, lc, 0.0)
+    if not density.all():
+        lh, dh_dv, dh_dp = logh_grad(base, p, u[~density], v[~density])
+        total[~density], d_v[~density], d_p[~density] = lh, dh_dv, dh_dp
+    return total, d_v, d_p
+
+
+def joint_objective(name: str, u, h, *, location: bool = True, censor: float = 0.0,
+                    marginal: str = "weibull"):
+    """The negative log-likelihood of :func:`fit_joint` and how to read its parameters.
+
+    Returns ``(negloglik, negloglik_grad, unpack)``: the objective of the
+    optimiser values ``x``; the objective with its exact gradient (None for
+    Student-t and rotated families); and ``x → (θ, α, β, copula values)``
+    (log-normal: ``(θ, μ, σ, copula values)``).
+    """
+    if marginal not in HF_MARGINALS:
+        raise ValueError(f"marginal must be one of {HF_MARGINALS}, got {marginal!r}")
+    base, rotation, u, h, h_c, span, density = _prepare(name, u, h, location, censor)
     n_marg = 3 if location else 2
+    lognormal = marginal == "lognormal"
 
     def unpack(x):
         theta = h_c - np.exp(x[0]) * span if location else 0.0
-        return theta, np.exp(x[n_marg - 2]), np.exp(x[n_marg - 1]), x[n_marg:]
+        first = x[n_marg - 2] if lognormal else np.exp(x[n_marg - 2])
+        return theta, first, np.exp(x[n_marg - 1]), x[n_marg:]
 
-    uu = 1.0 - u if rotation == 180 else u
-    density = h > h_c
-    h = np.where(density, h, h_c)  # a censored load counts as "at most h_c"
+    def marginal_terms(x):
+        """``(θ, log f_H(h), F_H(h))``, with the pieces the gradient needs."""
+        theta, a, b, _ = unpack(x)
+        w = h - theta
+        if lognormal:
+            z = (np.log(w) - a) / b
+            log_f = -np.log(w) - np.log(b) - 0.5 * np.log(2.0 * np.pi) - 0.5 * z * z
+            return log_f, np.clip(special.ndtr(z), _TINY, 1 - _TINY), (w, z)
+        ln_z = np.log(w) - np.log(a)
+        zb = np.exp(b * ln_z)
+        log_f = np.log(b / a) + (b - 1.0) * ln_z - zb
+        return log_f, np.clip(-np.expm1(-zb), _TINY, 1 - _TINY), (w, ln_z, zb)
 
     @np.errstate(all="ignore")  # the optimiser's trial steps may overflow: scored as +inf
     def negloglik(x):
-        theta, alpha, beta, c = unpack(x)
-        ln_z = np.log(h - theta) - np.log(alpha)
-        zb = np.exp(beta * ln_z)
-        v = np.clip(-np.expm1(-zb), _TINY, 1 - _TINY)
-        vv = 1.0 - v if rotation == 180 else v
-        p = _copula_parameters(base, c).ravel()
-        log_f = np.log(beta / alpha) + (beta - 1.0) * ln_z - zb
-        val = np.sum((log_f + copula_logpdf(base, p, uu, vv))[density])
-        if not density.all():  # the censored loads: P(H ≤ h_c | u)
-            lh = copula_loghfunc(base, p, uu[~density], vv[~density])
-            val += np.sum(np.log(-np.expm1(lh)) if rotation == 180 else lh)
+        log_f, v, _ = marginal_terms(x)
+        p = _copula_parameters(base, unpack(x)[3]).ravel()
+        val = _copula_terms(base, rotation, p, u, v, log_f, density)
         return -float(val) if np.isfinite(val) else 1e300
 
     @np.errstate(all="ignore")
     def negloglik_grad(x):
         """The same with its exact gradient (one-parameter families, no rotation)."""
-        theta, alpha, beta, c = unpack(x)
-        w = h - theta
-        ln_z = np.log(w) - np.log(alpha)
-        zb = np.exp(beta * ln_z)
-        v = np.clip(-np.expm1(-zb), _TINY, 1 - _TINY)
+        theta, a, b, c = unpack(x)
+        log_f, v, parts = marginal_terms(x)
         p = _copula_parameters(base, c).ravel()
-        log_f = np.log(beta / alpha) + (beta - 1.0) * ln_z - zb
-        lc, dc_dv, dc_dp = logc_grad(base, p, u, v)
-        d_v = np.where(density, dc_dv, 0.0)
-        d_p = np.where(density, dc_dp, 0.0)
-        total = np.where(density, log_f + lc, 0.0)
-        if not density.all():
-            lh, dh_dv, dh_dp = logh_grad(base, p, u[~density], v[~density])
-            total[~density], d_v[~density], d_p[~density] = lh, dh_dv, dh_dp
-        val = float(np.sum(total))
+        total, d_v, d_p = _gradient_terms(base, p, u, v, density)
+        val = float(np.sum(np.where(density, log_f + total, total)))
         if not np.isfinite(val):
             return 1e300, np.zeros_like(x)
-        one_v = 1.0 - v  # dv/dzb
         dens = density.astype(float)
-        g_a = np.sum(dens * beta * (zb - 1.0) + d_v * one_v * (-beta * zb))
-        g_b = np.sum(dens * (1.0 + beta * ln_z * (1.0 - zb)) + d_v * one_v * beta * zb * ln_z)
-        g_c = np.sum(d_p) * _parameter_slope(base, c)
-        grad = [g_a, g_b, g_c]
+        if lognormal:  # a = μ, b = σ; x holds μ and ln σ
+            w, z = parts
+            phi = np.exp(-0.5 * z * z) / np.sqrt(2.0 * np.pi)  # dv/dz
+            g_a = np.sum(dens * z / b - d_v * phi / b)
+            g_b = np.sum(dens * (z * z - 1.0) - d_v * phi * z)
+            g_t = np.sum(dens * (1.0 + z / b) / w - d_v * phi / (b * w))
+        else:  # a = α, b = β; x holds ln α and ln β
+            w, ln_z, zb = parts
+            one_v = 1.0 - v  # dv/dzb
+            g_a = np.sum(dens * b * (zb - 1.0) + d_v * one_v * (-b * zb))
+            g_b = np.sum(dens * (1.0 + b * ln_z * (1.0 - zb)) + d_v * one_v * b * zb * ln_z)
+            g_t = np.sum(dens * (b * zb - b + 1.0) / w + d_v * one_v * (-b * zb / w))
+        grad = [g_a, g_b, np.sum(d_p) * _parameter_slope(base, c)]
         if location:
-            dtheta = -np.exp(x[0]) * span
-            g_t = np.sum(dens * (beta * zb - beta + 1.0) / w + d_v * one_v * (-beta * zb / w))
-            grad.insert(0, g_t * dtheta)
+            grad.insert(0, g_t * (-np.exp(x[0]) * span))
         g = -np.asarray(grad, float)
         return (-val, g) if np.all(np.isfinite(g)) else (1e300, np.zeros_like(x))
 
@@ -205,8 +257,8 @@ def joint_objective(name: str, u, h, *, location: bool = True, censor: float = 0
 
 
 def fit_joint(name: str, u, h, *, start=None, location: bool = True, censor: float = 0.0,
-              cold: bool = True) -> JointFit:
-    """Fit one copula family and the Weibull HF marginal by conditional likelihood.
+              cold: bool = True, marginal: str = "weibull") -> JointFit:
+    """Fit one copula family and the HF marginal by conditional likelihood.
 
     Parameters
     ----------
@@ -237,24 +289,29 @@ def fit_joint(name: str, u, h, *, start=None, location: bool = True, censor: flo
     cold : bool, default True
         With ``start``: also start from the data (slower, safer); False
         starts from ``start`` only.
+    marginal : {"weibull", "lognormal"}, default "weibull"
+        The HF marginal's family (module docs); the location rules are the
+        same for both.
     """
     family, rotation = _family_and_rotation(name)
     base = name.partition("_")[0]
     u = np.clip(np.asarray(u, float), _TINY, 1 - _TINY)
     h = np.asarray(h, float)
     negloglik, negloglik_grad, unpack = joint_objective(name, u, h, location=location,
-                                                        censor=censor)
+                                                        censor=censor, marginal=marginal)
+    lognormal = marginal == "lognormal"
     n_marg = 3 if location else 2
     n_par = n_marg + (2 if base == "student" else 1)
     # the Weibull may not run off to its Gumbel limit (location → −∞, β → ∞): the
     # location stays within three load ranges below the smallest load, as in
     # :func:`pas.stats.weibull.fit_weibull3_ls`, and at or above 0 (loads are
-    # non-negative, so no draw needs clipping); β in [0.05, 50]
+    # non-negative, so no draw needs clipping); β in [0.05, 50], log-normal σ in [0.02, 10]
     h_c = censoring_level(h, censor, location)
     span = float(np.ptp(h)) or float(h.min())
     s_max = min(np.log(3.0), np.log(max(h_c, 1e-300) / span))
+    shape = (np.log(0.02), np.log(10.0)) if lognormal else (np.log(0.05), np.log(50.0))
     bounds = ([(min(np.log(1e-9), s_max - 1.0), s_max)] if location else []) + [
-        (None, None), (np.log(0.05), np.log(50.0))] + [(None, None)] * (n_par - n_marg)
+        (None, None), shape] + [(None, None)] * (n_par - n_marg)
 
     def minimise(x0):
         x0 = np.array([np.clip(x, lo if lo is not None else -np.inf, hi if hi is not None else np.inf)
@@ -269,27 +326,56 @@ def fit_joint(name: str, u, h, *, start=None, location: bool = True, censor: flo
         res = minimise(np.asarray(start, float))  # an earlier fit
     if cold or res is None or res.fun >= 1e299:
         tau = kendall_tau(u, h) if u.size > 2 else 0.3
-        fresh = minimise(np.r_[_weibull_start(h, location), _copula_start(base, tau)])
+        start_marginal = _lognormal_start if lognormal else _weibull_start
+        fresh = minimise(np.r_[start_marginal(h, location), _copula_start(base, tau)])
         res = fresh if res is None or fresh.fun < res.fun else res
     if not np.isfinite(res.fun) or res.fun >= 1e299:
         raise ValueError(f"joint fit of the {name} copula failed: {res.message}")
-    theta, alpha, beta, c = unpack(res.x)
+    theta, a, b, c = unpack(res.x)
     cop = pv.Bicop(family=family, rotation=rotation, parameters=_copula_parameters(base, c))
     k = n_marg + float(cop.npars)
     loglik = -float(res.fun)
     fit = CopulaFit(name=name, bicop=cop, loglik=loglik, aic=2.0 * k - 2.0 * loglik,
                     npars=k, at_bound=_at_bound(cop, name))
-    return JointFit(fit, Weibull3(float(theta), float(alpha), float(beta)), np.asarray(res.x))
+    hf = (LogNormal3 if lognormal else Weibull3)(float(theta), float(a), float(b))
+    return JointFit(fit, hf, np.asarray(res.x), marginal)
 
 
-def fit_joint_candidates(u, h, families, *, starts=None, location: bool = True,
-                         censor: float = 0.0, cold: bool = True) -> dict[str, JointFit]:
-    """:func:`fit_joint` for every family (``starts``: earlier fits by name, to warm-start)."""
+def fit_joint_all(u, h, families, *, marginals=("weibull",), starts=None,
+                  location: bool = True, censor: float = 0.0,
+                  cold: bool = True) -> dict[tuple[str, str], JointFit]:
+    """:func:`fit_joint` for every copula family and HF marginal, by ``(family, marginal)``.
+
+    ``starts``: earlier fits by the same keys, to warm-start.
+    """
     starts = starts or {}
     out = {}
     with one_blas_thread():
         for name in families:
-            prev = starts.get(name)
-            out[name] = fit_joint(name, u, h, start=None if prev is None else prev.x,
-                                  location=location, censor=censor, cold=cold)
+            for marginal in marginals:
+                prev = starts.get((name, marginal))
+                out[name, marginal] = fit_joint(name, u, h, location=location, censor=censor,
+                                                start=None if prev is None else prev.x,
+                                                cold=cold, marginal=marginal)
     return out
+
+
+def best_per_family(fits: dict[tuple[str, str], JointFit]) -> dict[str, JointFit]:
+    """Per copula family, the HF marginal of highest likelihood (ties: the first listed)."""
+    out = {}
+    for (name, _), fit in fits.items():
+        if name not in out or fit.copula.loglik > out[name].copula.loglik:
+            out[name] = fit
+    return out
+
+
+def fit_joint_candidates(u, h, families, *, starts=None, location: bool = True,
+                         censor: float = 0.0, cold: bool = True,
+                         marginals=("weibull",)) -> dict[str, JointFit]:
+    """Per copula family the best joint fit over ``marginals`` (:func:`fit_joint_all`).
+
+    ``starts``: earlier fits by family name, to warm-start.
+    """
+    keyed = {(name, fit.marginal): fit for name, fit in (starts or {}).items()}
+    return best_per_family(fit_joint_all(u, h, families, marginals=marginals, starts=keyed,
+                                         location=location, censor=censor, cold=cold))

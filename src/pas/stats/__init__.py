@@ -13,6 +13,7 @@ _MODULES = {
         "p_exp_from_duration", "n_waves_from_duration", "mean_period_from_peak_period",
         "encounter_period"),
     "weibull": ("Weibull3", "fit_weibull3_ls", "upper_tail_fraction"),
+    "lognormal": ("LogNormal3",),
     "peaks": ("zero_upcrossings", "upcrossing_times", "segment_max", "segment_min",
         "wave_crests", "wave_troughs", "matched_peaks", "rise_times", "rise_velocities",
         "peaks_over_threshold", "mask_near_joins"),

@@ -53,7 +53,7 @@ from ..copulas import (
     fit_candidates,
     select_family,
 )
-from ..joint import JOINT_FAMILIES, fit_joint_candidates
+from ..joint import JOINT_FAMILIES, best_per_family, fit_joint_all
 from ..screening import LFSet
 from ..stats.dependence import empirical_tail_dependence, kendall_tau, pseudo_observations
 from ..stats.exceedance import value_at_exceedance
@@ -192,8 +192,12 @@ class PAS(Strategy):
         stopping measures see model change, not redrawn noise (module docs);
         False redraws them every iteration, as the paper.
     hf_location : bool, default True
-        Conditional estimator: a three-parameter Weibull HF marginal
-        (location ≥ 0, below the smallest load) or the two-parameter one.
+        Conditional estimator: a three-parameter HF marginal (location ≥ 0,
+        below the smallest load) or the two-parameter one (location 0).
+    hf_marginal : {"weibull", "lognormal", "both"}, default "weibull"
+        Conditional estimator: the HF marginal's family, or both fitted with
+        each copula and the one of higher likelihood kept (:mod:`pas.joint`).
+        The selected-space estimator always fits the paper's Weibull (Eq. 15).
     """
 
     name = "pas"
@@ -205,7 +209,8 @@ class PAS(Strategy):
                  outlier_k: float = 3.0, n_bootstrap: int = 50, skip_unsplittable: bool = True,
                  marginals_from: str = "all", impact_model: bool = True,
                  estimator: str = "conditional", copula_fit: str = "mle",
-                 common_random_numbers: bool = True, hf_location: bool = True):
+                 common_random_numbers: bool = True, hf_location: bool = True,
+                 hf_marginal: str = "weibull"):
         for f in families:
             _family_and_rotation(f)
         if z < 2:
@@ -229,6 +234,8 @@ class PAS(Strategy):
         self.copula_fit = check_option(copula_fit, "copula_fit", {"mle", "itau"})
         self.common_random_numbers = bool(common_random_numbers)
         self.hf_location = bool(hf_location)
+        self.hf_marginal = check_option(hf_marginal, "hf_marginal",
+                                        {"weibull", "lognormal", "both"})
         self.family_ = None
         self._seed = None
         self._uniforms = None
@@ -299,17 +306,20 @@ class PAS(Strategy):
         cond_lf = lfset.lf[:n0]
         u_cond = population_lf_ranks(cond_lf, impact)
         starts = self._joint if family is None else {
-            k: v for k, v in self._joint.items() if k == family}
+            k: v for k, v in self._joint.items() if k[0] == family}
         # a warm start from the previous iteration converges in a few steps; every
         # COLD_EVERY-th fit, and every bootstrap replicate, also starts from the
         # data, so no fit stays trapped in the basin of another sample
         cold = not update or (family is None and self._n_fits % COLD_EVERY == 0)
-        joint = fit_joint_candidates(u_cond[pairs.position][keep], pairs.hf[keep], families,
-                                     starts=starts, location=self.hf_location,
-                                     cold=cold or not starts)
+        marginals = ("weibull", "lognormal") if self.hf_marginal == "both" else (
+            self.hf_marginal,)
+        every = fit_joint_all(u_cond[pairs.position][keep], pairs.hf[keep], families,
+                              marginals=marginals, starts=starts, location=self.hf_location,
+                              cold=cold or not starts)
         if update and family is None:
-            self._joint = joint
+            self._joint = every
             self._n_fits += 1
+        joint = best_per_family(every)
         ascending = cond_lf[::-1], u_cond[::-1]
         return ({k: j.copula for k, j in joint.items()},
                 {k: j.hf_marginal for k, j in joint.items()},
@@ -356,6 +366,7 @@ class PAS(Strategy):
             "ineligible": " ".join(k for k, f in model.fits.items() if f.at_bound)
             if self.exclude_at_bound and not all(f.at_bound for f in model.fits.values()) else "",
             "copula_params": " ".join(f"{x:.4g}" for x in model.copula.parameters),
+            "hf_marginal": type(model.hf_marginal).__name__.rstrip("3").lower(),
             "n_outliers": model.n_outliers,
             "tau": kendall_tau(pairs.lf, pairs.hf),
             "lambda_u": lam_u,

@@ -70,7 +70,8 @@ CFD runs; ``max_hf=None`` lifts it."""
 
 LEGACY_SETTINGS = {
     "strategy_settings": {"estimator": "selected", "copula_fit": "mle",
-                          "common_random_numbers": False, "hf_location": True},
+                          "common_random_numbers": False, "hf_location": True,
+                          "hf_marginal": "weibull"},
     "stop_measure": "step",
     "legacy_md": True,
 }
