@@ -195,9 +195,11 @@ class PAS(Strategy):
         Conditional estimator: a three-parameter HF marginal (location ≥ 0,
         below the smallest load) or the two-parameter one (location 0).
     hf_marginal : {"weibull", "lognormal", "both"}, default "weibull"
-        Conditional estimator: the HF marginal's family, or both fitted with
-        each copula and the one of higher likelihood kept (:mod:`pas.joint`).
-        The selected-space estimator always fits the paper's Weibull (Eq. 15).
+        Conditional estimator: the HF marginal's family (the paper's Weibull
+        by default), or ``"both"``: a Weibull and a log-normal fitted with
+        each copula and the one of higher likelihood kept (:mod:`pas.joint`;
+        measured trade-off in ``docs/departures.md``).  The selected-space
+        estimator always fits the paper's Weibull (Eq. 15).
     """
 
     name = "pas"
