@@ -17,8 +17,8 @@ import inspect
 from pathlib import Path
 
 import pandas as pd
-
 from known_truth import TYPES, make_problem, run_one
+
 from pas.strategies.pas import PAS
 from pas.study.factory import DEFAULT_MAX_HF, PRESETS
 from pas.study.study import Study

@@ -24,8 +24,10 @@ PAPER = dict(estimator="selected", copula_fit="itau", exclude_at_bound=False,
              marginals_from="kept", impact_model=False, common_random_numbers=False)
 
 
-def _problem(seed, *, tau, p_impact=1.0, hf_law=stats.weibull_min(1.2, scale=1000.0)):
-    """Rayleigh LF, Gaussian copula, Weibull HF; MD-like sample of M events uniform in ln d."""
+def _problem(seed, *, tau, p_impact=1.0, hf_law=None):
+    """Rayleigh LF, Gaussian copula, Weibull HF (or ``hf_law``); MD-like sample of M events
+    uniform in ln d."""
+    hf_law = stats.weibull_min(1.2, scale=1000.0) if hf_law is None else hf_law
     rng = np.random.default_rng(seed)
     lf = rng.rayleigh(1.0, N)
     u = -np.expm1(-lf**2 / 2)

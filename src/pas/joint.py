@@ -42,7 +42,13 @@ import pyvinecopulib as pv
 from scipy import optimize, special
 
 from ._threads import one_blas_thread
-from .copula_densities import GRADIENT_FAMILIES, copula_loghfunc, copula_logpdf, logc_grad, logh_grad
+from .copula_densities import (
+    GRADIENT_FAMILIES,
+    copula_loghfunc,
+    copula_logpdf,
+    logc_grad,
+    logh_grad,
+)
 from .copulas import CopulaFit, _at_bound, _family_and_rotation, kendall_tau
 from .stats.lognormal import LogNormal3
 from .stats.weibull import Weibull3, fit_weibull3_ls
@@ -226,7 +232,7 @@ def joint_objective(name: str, u, h, *, location: bool = True, censor: float = 0
     @np.errstate(all="ignore")
     def negloglik_grad(x):
         """The same with its exact gradient (one-parameter families, no rotation)."""
-        theta, a, b, c = unpack(x)
+        _, _, b, c = unpack(x)
         log_f, v, parts = marginal_terms(x)
         p = _copula_parameters(base, c).ravel()
         total, d_v, d_p = _gradient_terms(base, p, u, v, density)

@@ -40,28 +40,29 @@ Reading of Step 7 (``marginals_from``, selected-space estimator)
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 import numpy as np
 
 from .._validation import check_option
 from ..copulas import (
     PAPER_FAMILIES,
-    CopulaFit,
     _family_and_rotation,
-    conditional_quantile,
     fit_candidates,
     select_family,
 )
 from ..joint import JOINT_FAMILIES, best_per_family, fit_joint_all
 from ..screening import LFSet
-from ..stats.dependence import empirical_tail_dependence, kendall_tau, pseudo_observations
+from ..stats.dependence import (
+    empirical_tail_dependence,
+    kendall_tau,
+    pseudo_observations,
+)
 from ..stats.exceedance import value_at_exceedance
 from .acquisition import md_select
 from .base import Pairs, Prediction, Strategy
 from .selection import impact_probability, population_lf_ranks
 from .steps import (
     EPS,
+    FittedModel,
     conditioning_set,
     draw_conditional_hf,
     fit_marginals,
@@ -109,41 +110,6 @@ def refit(result) -> "FittedModel":
     pairs = Pairs(pos, lf, result.pairs["hf"].to_numpy(float), lfset.d[pos], fp_lf,
                   np.zeros(fp_lf.size, dtype=int))
     return strategy.fit(pairs, lfset, family=result.family)
-
-
-@dataclass
-class FittedModel:
-    """What one PAS iteration fitted (Steps 7–9), enough to draw from it again.
-
-    ``u_cond`` are the LF ranks of the conditioning peaks (the top ``n0`` of the
-    pool, LF descending), ``impact`` the probability of an impact at each of
-    them (None: every draw is an impact, as in the paper).
-    """
-
-    copula: CopulaFit
-    hf_marginal: object
-    lf_to_u: object
-    u_cond: np.ndarray
-    impact: np.ndarray | None
-    fits: dict
-    n_outliers: int
-
-    @property
-    def n0(self) -> int:
-        return int(self.u_cond.size)
-
-    def draws(self, r, q=None) -> np.ndarray:
-        """HF draws for uniforms ``r`` (and impact uniforms ``q``), shape ``(z, n0)``."""
-        h = draw_conditional_hf(self.copula, self.u_cond, self.hf_marginal, r)
-        if self.impact is not None:
-            h = np.where(q < self.impact[None, :], h, 0.0)
-        return h
-
-    def conditional_quantiles(self, lf, q) -> np.ndarray:
-        """HF quantile ``q`` given LF ``lf`` (given an impact), in real space."""
-        u = np.clip(self.lf_to_u(np.asarray(lf, float)), EPS, 1 - EPS)
-        v = np.clip(conditional_quantile(self.copula, u, np.full_like(u, q)), EPS, 1 - EPS)
-        return self.hf_marginal.ppf(v)
 
 
 class PAS(Strategy):

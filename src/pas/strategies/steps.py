@@ -1,9 +1,12 @@
 """The paper's PAS steps as plain functions (§2.1, Steps 7–11, Eq. 7–10).
 
-:class:`pas.strategies.pas.PAS` strings them together with the model fits.
+:class:`pas.strategies.pas.PAS` strings them together with the model fits;
+:class:`FittedModel` holds what one iteration fitted and draws from it (Steps 8–9).
 """
 
 from __future__ import annotations
+
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -11,7 +14,7 @@ from ..copulas import CopulaFit, conditional_quantile
 from ..marginals import fit_marginal
 from .base import band95
 
-__all__ = ["EPS", "remove_outliers", "conditioning_set", "draw_conditional_hf", "fit_marginals",
+__all__ = ["EPS", "FittedModel", "remove_outliers", "conditioning_set", "draw_conditional_hf", "fit_marginals",
            "hf_distribution"]
 
 EPS = 1e-6
@@ -75,3 +78,38 @@ def hf_distribution(h_draws, n_waves: int):
     mean = h.mean(axis=0)
     sd = h.std(axis=0, ddof=1) if h.shape[0] > 1 else np.zeros_like(mean)
     return d, mean, *band95(mean, sd)
+
+
+@dataclass
+class FittedModel:
+    """What one PAS iteration fitted (Steps 7–9), enough to draw from it again.
+
+    ``u_cond`` are the LF ranks of the conditioning peaks (the top ``n0`` of the
+    pool, LF descending), ``impact`` the probability of an impact at each of
+    them (None: every draw is an impact, as in the paper).
+    """
+
+    copula: CopulaFit
+    hf_marginal: object
+    lf_to_u: object
+    u_cond: np.ndarray
+    impact: np.ndarray | None
+    fits: dict
+    n_outliers: int
+
+    @property
+    def n0(self) -> int:
+        return int(self.u_cond.size)
+
+    def draws(self, r, q=None) -> np.ndarray:
+        """HF draws for uniforms ``r`` (and impact uniforms ``q``), shape ``(z, n0)``."""
+        h = draw_conditional_hf(self.copula, self.u_cond, self.hf_marginal, r)
+        if self.impact is not None:
+            h = np.where(q < self.impact[None, :], h, 0.0)
+        return h
+
+    def conditional_quantiles(self, lf, q) -> np.ndarray:
+        """HF quantile ``q`` given LF ``lf`` (given an impact), in real space."""
+        u = np.clip(self.lf_to_u(np.asarray(lf, float)), EPS, 1 - EPS)
+        v = np.clip(conditional_quantile(self.copula, u, np.full_like(u, q)), EPS, 1 - EPS)
+        return self.hf_marginal.ppf(v)
