@@ -52,6 +52,33 @@ def _frank_den(th, u, v):
     return np.exp(-th * u) + np.exp(-th * v) - np.exp(-th * (u + v)) - np.exp(-th)
 
 
+def _clayton_sum(th, lu, lv):
+    """``s = u^{−θ} + v^{−θ} − 1`` and ``ln s`` (Clayton)."""
+    s = np.expm1(-th * lu) + np.expm1(-th * lv) + 1.0
+    return s, np.log(s)
+
+
+def _clayton_slope(th, lu, lv):
+    """``v^{−θ}`` and ``∂s/∂θ`` (Clayton)."""
+    vt = np.exp(-th * lv)
+    return vt, -(np.exp(-th * lu) * lu + vt * lv)
+
+
+def _gumbel_sum(th, lu, lv):
+    """``b = −ln v``, ``ln a``, ``ln b``, ``ln S`` with ``S = a^θ + b^θ``, and ``S^{1/θ}`` (Gumbel)."""
+    b = -lv
+    la, lb = np.log(-lu), np.log(b)
+    ls = np.logaddexp(th * la, th * lb)
+    return b, la, lb, ls, np.exp(ls / th)
+
+
+def _gumbel_slope(th, la, lb, ls, big):
+    """``b^{θ−1}/S``, ``S'/S`` (θ-derivative) and ``∂S^{1/θ}/∂θ`` (Gumbel)."""
+    r = np.exp((th - 1.0) * lb - ls)
+    ds_s = (np.exp(th * la - ls) * la + np.exp(th * lb - ls) * lb)
+    return r, ds_s, big * (-ls / th**2 + ds_s / th)
+
+
 def logc_grad(base: str, p, u, v, *, grad: bool = True):
     """``(log c, ∂ log c/∂v, ∂ log c/∂θ)`` (derivatives None when ``grad`` is False)."""
     th = p[0]
@@ -67,29 +94,22 @@ def logc_grad(base: str, p, u, v, *, grad: bool = True):
         return val, dv, dth
     lu, lv = np.log(u), np.log(v)
     if base == "clayton":
-        s = np.expm1(-th * lu) + np.expm1(-th * lv) + 1.0
-        ls = np.log(s)
+        s, ls = _clayton_sum(th, lu, lv)
         val = np.log1p(th) - (1.0 + th) * (lu + lv) - (2.0 + 1.0 / th) * ls
         if not grad:
             return val, None, None
-        vt = np.exp(-th * lv)
+        vt, ds = _clayton_slope(th, lu, lv)
         dv = -(1.0 + th) / v + (2.0 * th + 1.0) * vt / (v * s)
-        ds = -(np.exp(-th * lu) * lu + vt * lv)
         dth = 1.0 / (1.0 + th) - (lu + lv) + ls / th**2 - (2.0 + 1.0 / th) * ds / s
         return val, dv, dth
     if base == "gumbel":
-        a, b = -lu, -lv
-        la, lb = np.log(a), np.log(b)
-        ls = np.logaddexp(th * la, th * lb)
-        big = np.exp(ls / th)
+        b, la, lb, ls, big = _gumbel_sum(th, lu, lv)
         val = -big - lu - lv + (th - 1.0) * (la + lb) + (1.0 / th - 2.0) * ls + np.log(big + th - 1.0)
         if not grad:
             return val, None, None
-        r = np.exp((th - 1.0) * lb - ls)  # b^{θ−1}/S
+        r, ds_s, dbig = _gumbel_slope(th, la, lb, ls, big)
         d_b = -big * r + (th - 1.0) / b + (1.0 - 2.0 * th) * r + big * r / (big + th - 1.0)
         dv = -d_b / v - 1.0 / v
-        ds_s = (np.exp(th * la - ls) * la + np.exp(th * lb - ls) * lb)  # S'/S
-        dbig = big * (-ls / th**2 + ds_s / th)
         dth = -dbig + la + lb - ls / th**2 + (1.0 / th - 2.0) * ds_s + (dbig + 1.0) / (big + th - 1.0)
         return val, dv, dth
     if base == "frank":
@@ -123,29 +143,22 @@ def logh_grad(base: str, p, u, v, *, grad: bool = True):
         return val, dv, dth
     lu, lv = np.log(u), np.log(v)
     if base == "clayton":
-        s = np.expm1(-th * lu) + np.expm1(-th * lv) + 1.0
-        ls = np.log(s)
+        s, ls = _clayton_sum(th, lu, lv)
         val = -(th + 1.0) * lu - (1.0 / th + 1.0) * ls
         if not grad:
             return val, None, None
-        vt = np.exp(-th * lv)
+        vt, ds = _clayton_slope(th, lu, lv)
         dv = (1.0 + th) * vt / (v * s)
-        ds = -(np.exp(-th * lu) * lu + vt * lv)
         dth = -lu + ls / th**2 - (1.0 / th + 1.0) * ds / s
         return val, dv, dth
     if base == "gumbel":
-        a, b = -lu, -lv
-        la, lb = np.log(a), np.log(b)
-        ls = np.logaddexp(th * la, th * lb)
-        big = np.exp(ls / th)
+        b, la, lb, ls, big = _gumbel_sum(th, lu, lv)
         val = -big - lu + (th - 1.0) * la + (1.0 / th - 1.0) * ls
         if not grad:
             return val, None, None
-        r = np.exp((th - 1.0) * lb - ls)
+        r, ds_s, dbig = _gumbel_slope(th, la, lb, ls, big)
         d_b = -big * r + (1.0 - th) * r
         dv = -d_b / v
-        ds_s = (np.exp(th * la - ls) * la + np.exp(th * lb - ls) * lb)
-        dbig = big * (-ls / th**2 + ds_s / th)
         dth = -dbig + la - ls / th**2 + (1.0 / th - 1.0) * ds_s
         return val, dv, dth
     if base == "frank":

@@ -25,9 +25,9 @@ the population the predicted distribution (Eq. 8–12) is about.  Here:
 * ``location=False`` gives the two-parameter Weibull (θ = 0);
 * ``marginal="lognormal"`` replaces the Weibull by a three-parameter
   log-normal ``F_H(h) = Φ((ln(h − θ) − μ)/σ)`` (same location rules), whose
-  tail is heavier than a Weibull's with β ≥ 1; :func:`fit_joint_candidates`
-  with both keeps, per copula family, the marginal of higher likelihood
-  (the same number of parameters, so also the lower AIC).
+  tail is heavier than a Weibull's with β ≥ 1; :func:`best_per_family` keeps,
+  per copula family, the marginal of higher likelihood (the same number of
+  parameters, so also the lower AIC).
 
 AIC (Eq. 13) counts the marginal's parameters with the copula's, so the
 families are compared on the same likelihood.
@@ -54,7 +54,7 @@ from .stats.lognormal import LogNormal3
 from .stats.weibull import Weibull3, fit_weibull3_ls
 
 __all__ = ["JOINT_FAMILIES", "HF_MARGINALS", "JointFit", "censoring_level", "fit_joint",
-           "fit_joint_candidates", "fit_joint_all", "best_per_family"]
+           "fit_joint_all", "best_per_family"]
 
 HF_MARGINALS = ("weibull", "lognormal")
 """HF marginals the joint fit knows (module docs)."""
@@ -210,7 +210,7 @@ def joint_objective(name: str, u, h, *, location: bool = True, censor: float = 0
         return theta, first, np.exp(x[n_marg - 1]), x[n_marg:]
 
     def marginal_terms(x):
-        """``(θ, log f_H(h), F_H(h))``, with the pieces the gradient needs."""
+        """``(log f_H(h), F_H(h), pieces the gradient needs)``."""
         theta, a, b, _ = unpack(x)
         w = h - theta
         if lognormal:
@@ -373,15 +373,3 @@ def best_per_family(fits: dict[tuple[str, str], JointFit]) -> dict[str, JointFit
         if name not in out or fit.copula.loglik > out[name].copula.loglik:
             out[name] = fit
     return out
-
-
-def fit_joint_candidates(u, h, families, *, starts=None, location: bool = True,
-                         censor: float = 0.0, cold: bool = True,
-                         marginals=("weibull",)) -> dict[str, JointFit]:
-    """Per copula family the best joint fit over ``marginals`` (:func:`fit_joint_all`).
-
-    ``starts``: earlier fits by family name, to warm-start.
-    """
-    keyed = {(name, fit.marginal): fit for name, fit in (starts or {}).items()}
-    return best_per_family(fit_joint_all(u, h, families, marginals=marginals, starts=keyed,
-                                         location=location, censor=censor, cold=cold))

@@ -49,7 +49,7 @@ from ..copulas import (
     fit_candidates,
     select_family,
 )
-from ..joint import JOINT_FAMILIES, best_per_family, fit_joint_all
+from ..joint import HF_MARGINALS, JOINT_FAMILIES, best_per_family, fit_joint_all
 from ..screening import LFSet
 from ..stats.dependence import (
     empirical_tail_dependence,
@@ -202,8 +202,7 @@ class PAS(Strategy):
         self.copula_fit = check_option(copula_fit, "copula_fit", {"mle", "itau"})
         self.common_random_numbers = bool(common_random_numbers)
         self.hf_location = bool(hf_location)
-        self.hf_marginal = check_option(hf_marginal, "hf_marginal",
-                                        {"weibull", "lognormal", "both"})
+        self.hf_marginal = check_option(hf_marginal, "hf_marginal", {*HF_MARGINALS, "both"})
         self.family_ = None
         self._seed = None
         self._uniforms = None
@@ -279,8 +278,7 @@ class PAS(Strategy):
         # COLD_EVERY-th fit, and every bootstrap replicate, also starts from the
         # data, so no fit stays trapped in the basin of another sample
         cold = not update or (family is None and self._n_fits % COLD_EVERY == 0)
-        marginals = ("weibull", "lognormal") if self.hf_marginal == "both" else (
-            self.hf_marginal,)
+        marginals = HF_MARGINALS if self.hf_marginal == "both" else (self.hf_marginal,)
         every = fit_joint_all(u_cond[pairs.position][keep], pairs.hf[keep], families,
                               marginals=marginals, starts=starts, location=self.hf_location,
                               cold=cold or not starts)
