@@ -295,6 +295,20 @@ def summarise(runs: pd.DataFrame) -> pd.DataFrame:
     ).reset_index()
 
 
+def settings_from_args(items) -> dict:
+    """``["NAME=VALUE", …]`` → settings, each value a Python literal or else the string."""
+    import ast
+
+    settings = {}
+    for item in items:
+        k, v = item.split("=", 1)
+        try:
+            settings[k] = ast.literal_eval(v)
+        except (ValueError, SyntaxError):
+            settings[k] = v
+    return settings
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("n", nargs="?", type=int, default=10, help="replications per type")
@@ -306,17 +320,9 @@ def main(argv=None):
     ap.add_argument("--max-hf", type=int, default=160)
     ap.add_argument("--out", default="pas-output/known-truth")
     args = ap.parse_args(argv)
-    import ast
-
-    settings = {}
+    settings = settings_from_args(args.set)
     if args.preset:
         settings["preset"] = args.preset
-    for item in args.set:
-        k, v = item.split("=", 1)
-        try:
-            settings[k] = ast.literal_eval(v)
-        except (ValueError, SyntaxError):
-            settings[k] = v
     if args.types == "all":
         names = list(TYPES)
     else:

@@ -13,7 +13,7 @@ deterministic given the data set: they vary between replications only through
 the data (their LF Monte-Carlo targets; the truth they are scored against).
 
 Run: python benchmarks/validation_spread.py [N] [--cases 1a,3a] [--strategies pas,as,rcw]
-[--out DIR]
+[--out DIR] [--set band_marginals=all]
 Writes runs.csv and summary.csv to DIR (default pas-output/spread).
 """
 
@@ -24,6 +24,7 @@ import time
 from pathlib import Path
 
 import pandas as pd
+from known_truth import settings_from_args
 
 from pas.validation import CASE_IDS, generate_case
 from pas.validation.reproduce import _strategies, parse_strategies, run_case
@@ -37,7 +38,10 @@ def main(argv=None):
     ap.add_argument("--max-hf", type=lambda v: None if v == "none" else int(v), default=160,
                     help="HF budget per run (default 160, as every study; 'none': none)")
     ap.add_argument("--strategies", default=",".join(_strategies()))
+    ap.add_argument("--set", action="append", default=[],
+                    help="extra screening setting NAME=VALUE (python literal), repeatable")
     args = ap.parse_args(argv)
+    settings = settings_from_args(args.set)
     strategies = parse_strategies(args.strategies)
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
@@ -48,7 +52,8 @@ def main(argv=None):
             data = generate_case(case, seed=r)
             gen = time.perf_counter() - t0
             for strategy in strategies:
-                _, row = run_case(data, strategy=strategy, seed=r, max_hf=args.max_hf)
+                _, row = run_case(data, strategy=strategy, seed=r, max_hf=args.max_hf,
+                                  settings=settings)
                 row.update(replication=r, truth=data.truth_mpm, generate_s=gen)
                 rows.append(row)
                 print(f"{case} r{r} {strategy}: M2 {row['M2']:+.3f} HF {row['n_hf']} "
@@ -61,7 +66,7 @@ def main(argv=None):
         M1_median=("M1", "median"), M2_median=("M2", "median"),
         absM2_median=("absM2", "median"), absM2_max=("absM2", "max"),
         M2_min=("M2", "min"), M2_max=("M2", "max"), M3_median=("M3", "median"),
-        converged=("converged", "mean")).reset_index()
+        converged=("converged", "mean"), covered=("covered", "mean")).reset_index()
     summary.to_csv(out / "summary.csv", index=False)
     with pd.option_context("display.width", 200, "display.max_columns", 20):
         print(summary.round(4).to_string(index=False))

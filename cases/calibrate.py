@@ -7,7 +7,7 @@ chosen values are frozen in ``src/pas/validation/case_vbm.py``,
 ``case_impacts.py`` (paper-like 3a–4b) and ``case_impacts_hard.py`` (the
 ``-hard`` variants).
 
-Run: ``python cases/calibrate.py {2,3,4,4-gate,3-hard,4-hard}``.
+Run: ``python cases/calibrate.py {2,3,4,4-gate,4-kinematics,4-angle,3-hard,4-hard}``.
 
 Case 2 (issue 11): the first calibration gave hogging < sagging, the paper
 hogging 1.10e9 > sagging 9.00e8 N m; a Froude–Krylov term of a side flare
@@ -34,6 +34,7 @@ import time
 
 import numpy as np
 
+from pas.stats.dependence import empirical_tail_dependence, kendall_tau
 from pas.validation import case_impacts
 from pas.validation._common import seed_plan
 from pas.validation.case_impacts_hard import generate_green_water as hard_green_water
@@ -152,6 +153,79 @@ def case4_gate():
             print("   ", _line(_properties(cid, fn, trial)), flush=True)
 
 
+def case4_kinematics():
+    """Tested after the gate (stop 18): is λ_L < λ_U set by the kinematics, before any load model?
+
+    A load that grows with the panel-level speed ``v`` and nothing else (no impulsive
+    part, no scatter, no noise threshold: ``F ∝ v²``) has the ranks of ``v``; any other
+    increasing function of ``v`` has the same ranks and so the same τ and λ.  Keep
+    the share of events the frozen model has as impacts (the largest loads) and
+    measure the LF–HF dependence on those pairs.  Had λ_L ≥ λ_U held here, a load
+    model monotone in ``v`` with a suitable threshold could reach the paper's
+    property; it does not.
+    """
+    fn = case_impacts.generate_slamming
+    for cid in ("4a", "4b"):
+        spec = get_case(cid)
+        n, dur = seed_plan(spec.t_mcs, 1.0)
+        frozen, _ = fn(spec, 0, n, dur)
+        rate = float(np.mean(frozen["hf"] > 0))
+        ev, _ = fn(spec, 0, n, dur, coeffs={"slam_impulse": 0.0, "slam_scatter": 0.0,
+                                              "noise_kN": 0.0})
+        for share in (0.5, rate, 0.05):
+            top = ev["hf"] > np.quantile(ev["hf"], 1.0 - share)
+            tau = kendall_tau(ev["lf"][top], ev["hf"][top])
+            lu, ll = empirical_tail_dependence(ev["lf"][top], ev["hf"][top])
+            print(f"{cid} F ∝ v², largest {100 * share:.1f} % of events "
+                  f"({'the frozen impact share' if share == rate else 'for comparison'}): "
+                  f"tau {tau:.2f} lU/lL {lu:.2f}/{ll:.2f}", flush=True)
+
+
+def _slope_scattered_force(v, d, c):
+    """Slamming force with the flare's angle to the water scattered by the local wave slope.
+
+    Wagner's load grows with ``cot β`` of the relative deadrise; the water surface
+    at the contact tilts it by ``α = angle0 · (v / v_Ochi)^power · s``, ``s`` standard
+    normal (drawn from the uniform the frozen model uses for its impulsive part, which
+    is off here): steeper, faster contacts meet the flare at a more random angle.
+    """
+    from scipy import special
+
+    from pas.waves import FERRY_190M, GRAVITY
+    from pas.waves.ship import RHO_SEAWATER
+
+    v = np.asarray(v, float)
+    k = 0.5 * RHO_SEAWATER * c["C0"] * np.pi * c["panel_area"] / 1000.0
+    v_ochi = c["ochi_factor"] * np.sqrt(GRAVITY * FERRY_190M.length)
+    s = special.ndtri(np.clip(d["u_impulse"], 1e-12, 1 - 1e-12))
+    alpha = c["angle0"] * (v / v_ochi) ** c["angle_power"] * s
+    beta = np.deg2rad(np.clip(c["beta_flare_deg"] - alpha, 5.0, 85.0))
+    force = k / np.tan(beta) * v**2 * np.exp(c["slam_scatter"] * d["z_scatter"])
+    return np.where((v > 0) & (force >= c["noise_kN"]), force, 0.0)
+
+
+def case4_angle():
+    """Tested and not adopted (stop 18): the relative deadrise scattered by the wave slope.
+
+    The issue's "flare angle at the contact": a scatter of the load that grows with the
+    impact velocity, up and down, instead of the impulsive part (which only adds).  Same
+    rule as :func:`case4`.  The model function is swapped in for the scan only.
+    """
+    frozen = case_impacts._slamming_force
+    case_impacts._slamming_force = _slope_scattered_force
+    try:
+        fn = case_impacts.generate_slamming
+        for power in (1.0, 2.0):
+            for angle0 in (2.0, 4.0, 6.0, 8.0):
+                trial = {"slam_impulse": 0.0, "angle0": angle0, "angle_power": power}
+                trial["C0"] = round(_scale_to_truth("4a", fn, trial, "C0", 0.2), 4)
+                print(trial, flush=True)
+                for cid in ("4a", "4b"):
+                    print("   ", _line(_properties(cid, fn, trial)), flush=True)
+    finally:
+        case_impacts._slamming_force = frozen
+
+
 def case3_hard():
     # targets: green-water rate ~3 % / ~8 % of encounters, MPM 1850 / 4920 kN (+-25 %)
     for csw, dm, cgw in [(1.5, 1.0, 0.5), (1.6, 1.5, 0.45), (1.7, 2.5, 0.35), (1.7, 2.5, 0.37)]:
@@ -176,6 +250,7 @@ def case4_hard():
 
 if __name__ == "__main__":
     t0 = time.perf_counter()
-    {"2": case2, "3": case3, "4": case4, "4-gate": case4_gate, "3-hard": case3_hard,
+    {"2": case2, "3": case3, "4": case4, "4-gate": case4_gate,
+     "4-kinematics": case4_kinematics, "4-angle": case4_angle, "3-hard": case3_hard,
      "4-hard": case4_hard}[sys.argv[1] if len(sys.argv) > 1 else "2"]()
     print(f"[{time.perf_counter() - t0:.0f} s]")

@@ -93,3 +93,32 @@ def test_a_lognormal_hf_marginal_is_recognised_and_fits_better():
     assert np.mean(errors["both"]) < np.mean(errors["weibull"])
     with pytest.raises(ValueError, match="hf_marginal"):
         PAS(hf_marginal="gamma")
+
+
+def test_band_marginals_let_the_bootstrap_choose_or_alternate_the_hf_marginal():
+    # the replicates of the model band fit the study's Weibull ("fitted"), the Weibull and
+    # the log-normal alternately ("alternate"), or the better of the two by likelihood
+    # ("reselected": on log-normal HF mostly the log-normal); the point estimate is the same
+    s, pairs, truth = _problem(0, tau=0.6, hf_law=stats.lognorm(1.0, scale=1000.0))
+    seen, mpms = {}, {}
+    for choice in ("fitted", "alternate", "reselected"):
+        strategy = PAS(n_bootstrap=12, band_marginals=choice)
+        strategy.reset(0)
+        mpms[choice] = strategy.predict(pairs, s, np.random.default_rng(0)).mpm
+        fit, kinds = strategy.fit, []
+
+        def spy(*args, **kwargs):
+            model = fit(*args, **kwargs)
+            kinds.append(type(model.hf_marginal).__name__)
+            return model
+
+        strategy.fit = spy
+        low, high, replicates = strategy.model_band(pairs, s, np.random.default_rng(1))
+        seen[choice] = kinds
+        assert low <= np.median(replicates) <= high
+    assert set(seen["fitted"]) == {"Weibull3"}
+    assert seen["alternate"][:4] == ["Weibull3", "LogNormal3", "Weibull3", "LogNormal3"]
+    assert seen["reselected"].count("LogNormal3") > len(seen["reselected"]) / 2
+    assert mpms["fitted"] == mpms["alternate"] == mpms["reselected"]
+    with pytest.raises(ValueError, match="band_marginals"):
+        PAS(band_marginals="lognormal")

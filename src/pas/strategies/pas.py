@@ -166,6 +166,12 @@ class PAS(Strategy):
         each copula and the one of higher likelihood kept (:mod:`pas.joint`;
         measured trade-off in ``docs/departures.md``).  The selected-space
         estimator always fits the paper's Weibull (Eq. 15).
+    band_marginals : {"fitted", "reselected", "alternate"}, default "fitted"
+        Conditional estimator, model band (:meth:`model_band`): every
+        bootstrap replicate fits the study's ``hf_marginal`` ("fitted");
+        or fits every HF marginal family and keeps the one of higher
+        likelihood, as it re-selects the copula family ("reselected"); or
+        the replicates take the families in turn, one each ("alternate").
     """
 
     name = "pas"
@@ -178,7 +184,7 @@ class PAS(Strategy):
                  marginals_from: str = "all", impact_model: bool = True,
                  estimator: str = "conditional", copula_fit: str = "mle",
                  common_random_numbers: bool = True, hf_location: bool = True,
-                 hf_marginal: str = "weibull"):
+                 hf_marginal: str = "weibull", band_marginals: str = "fitted"):
         for f in families:
             _family_and_rotation(f)
         if z < 2:
@@ -203,6 +209,8 @@ class PAS(Strategy):
         self.common_random_numbers = bool(common_random_numbers)
         self.hf_location = bool(hf_location)
         self.hf_marginal = check_option(hf_marginal, "hf_marginal", {*HF_MARGINALS, "both"})
+        self.band_marginals = check_option(band_marginals, "band_marginals",
+                                           {"fitted", "reselected", "alternate"})
         self.family_ = None
         self._seed = None
         self._uniforms = None
@@ -227,13 +235,14 @@ class PAS(Strategy):
 
     # -- Steps 7–9: the model ------------------------------------------------
     def fit(self, pairs: Pairs, lfset: LFSet, family: str | None = None, *,
-            update: bool = True) -> FittedModel:
+            update: bool = True, hf_marginal: str | None = None) -> FittedModel:
         """Steps 7–9: fit the copula, the HF marginal and the impact model to ``pairs``.
 
         With ``family`` only that family is fitted; otherwise all candidates,
         and the selection with hysteresis (§2.2) updates :attr:`family_`.
         With ``update=False`` (bootstrap replicates) nothing the study carries
         changes: the family is the lowest eligible AIC of these pairs.
+        ``hf_marginal`` overrides the setting of that name for this fit.
         """
         # Step 7 removes pairs by their HF value: a selection on the response, which
         # the conditional likelihood does not allow (it would drop the largest loads
@@ -245,7 +254,7 @@ class PAS(Strategy):
         impact = impact_probability(pairs.lf, pairs.fp_lf) if self.impact_model else None
         fit = self._fit_conditional if self.estimator == "conditional" else self._fit_selected
         fits, hf_marginals, lf_to_u, n0 = fit(pairs, lfset, keep, families, impact, family,
-                                              update)
+                                              update, hf_marginal or self.hf_marginal)
         if family is None:
             family = select_family(fits, self.family_ if update else None,
                                    delta_aic=self.delta_aic,
@@ -257,7 +266,7 @@ class PAS(Strategy):
                            np.asarray(lf_to_u(cond), float),
                            None if impact is None else impact(cond), fits, int((~keep).sum()))
 
-    def _fit_selected(self, pairs, lfset, keep, families, impact, family, update):
+    def _fit_selected(self, pairs, lfset, keep, families, impact, family, update, hf_marginal):
         """The paper's fit in selected-sample space (§2.2–2.3, Eq. 5, 15)."""
         lf, hf = pairs.lf[keep], pairs.hf[keep]
         fits = fit_candidates(*pseudo_observations(lf, hf), families, method=self.copula_fit)
@@ -267,7 +276,8 @@ class PAS(Strategy):
         n0 = conditioning_set(lfset.lf, lf_sample.min()).size
         return fits, dict.fromkeys(fits, f_h), f_l.cdf, n0
 
-    def _fit_conditional(self, pairs, lfset, keep, families, impact, family, update):
+    def _fit_conditional(self, pairs, lfset, keep, families, impact, family, update,
+                         hf_marginal):
         """Population LF ranks and the joint conditional likelihood (:mod:`pas.joint`)."""
         n0 = conditioning_set(lfset.lf, pairs.lf.min()).size
         cond_lf = lfset.lf[:n0]
@@ -278,7 +288,7 @@ class PAS(Strategy):
         # COLD_EVERY-th fit, and every bootstrap replicate, also starts from the
         # data, so no fit stays trapped in the basin of another sample
         cold = not update or (family is None and self._n_fits % COLD_EVERY == 0)
-        marginals = HF_MARGINALS if self.hf_marginal == "both" else (self.hf_marginal,)
+        marginals = HF_MARGINALS if hf_marginal == "both" else (hf_marginal,)
         every = fit_joint_all(u_cond[pairs.position][keep], pairs.hf[keep], families,
                               marginals=marginals, starts=starts, location=self.hf_location,
                               cold=cold or not starts)
@@ -352,21 +362,27 @@ class PAS(Strategy):
         the marginals and the impact model, selects the family again (lowest
         eligible AIC, so the choice of family is part of the uncertainty), and
         predicts with the same random numbers; the band is the 2.5–97.5 %
-        range of the replicate MPMs.  Returns ``(low, high, mpms)`` or None
-        when off.
+        range of the replicate MPMs.  With the conditional estimator,
+        ``band_marginals`` lets the replicates choose the HF marginal family
+        too ("reselected") or take the families in turn ("alternate"), so
+        that the band holds what the pairs cannot tell apart in the tail.
+        Returns ``(low, high, mpms)`` or None when off.
         """
         if self.n_bootstrap <= 0 or self.family_ is None:
             return None
+        marginals = {"fitted": (None,), "reselected": ("both",),
+                     "alternate": HF_MARGINALS}[self.band_marginals]
         mpms = []
         m, n_fp = len(pairs), len(pairs.fp_position)
-        for _ in range(self.n_bootstrap):
+        for i in range(self.n_bootstrap):
             idx = rng.integers(0, m + n_fp, m + n_fp)
             tp, fp = idx[idx < m], idx[idx >= m] - m
             b = pairs.take(tp, fp)
             if tp.size < 4 or np.ptp(b.lf) == 0 or np.ptp(b.hf) == 0:
                 continue
             try:
-                model = self.fit(b, lfset, update=False)
+                model = self.fit(b, lfset, update=False,
+                                 hf_marginal=marginals[i % len(marginals)])
                 d, mean, _, _ = self._predict_model(model, lfset, rng)
             except (ValueError, np.linalg.LinAlgError):
                 continue

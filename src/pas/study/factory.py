@@ -53,6 +53,7 @@ PRESETS = {
         "marginals_from": "kept",          # Step 7: outliers out of the iteration's fits
         "n_bootstrap": 0,                  # Eq. 10: the sampling band only
         "hf_marginal": "weibull",          # Eq. 15: a Weibull HF marginal
+        "band_marginals": "fitted",        # (no model band in the paper; set for completeness)
         "stop_measure": "step",            # App. C, Eq. 28: the per-iteration change
         "max_hf": None,                    # no budget (unless max_hf is given)
     },

@@ -71,7 +71,7 @@ CFD runs; ``max_hf=None`` lifts it."""
 LEGACY_SETTINGS = {
     "strategy_settings": {"estimator": "selected", "copula_fit": "mle",
                           "common_random_numbers": False, "hf_location": True,
-                          "hf_marginal": "weibull"},
+                          "hf_marginal": "weibull", "band_marginals": "fitted"},
     "stop_measure": "step",
     "legacy_md": True,
 }

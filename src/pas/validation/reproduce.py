@@ -58,10 +58,12 @@ def parse_strategies(text):
     return names
 
 
-def run_case(data, *, strategy="pas", seed=0, max_hf=DEFAULT_MAX_HF):
+def run_case(data, *, strategy="pas", seed=0, max_hf=DEFAULT_MAX_HF, settings=None):
     """Run one strategy on a :class:`CaseData` with the paper's stopping settings.
 
-    ``max_hf`` is the HF budget (default 160, as every study; None: none).
+    ``max_hf`` is the HF budget (default 160, as every study; None: none);
+    ``settings`` further keyword settings of the screening run (e.g.
+    ``{"band_marginals": "all"}``).
     ``"rcw"``/``"mler"`` run :func:`.episodes.run_rcw_case` (``seed`` and
     ``max_hf`` do not apply: one HF episode per level).
 
@@ -69,7 +71,8 @@ def run_case(data, *, strategy="pas", seed=0, max_hf=DEFAULT_MAX_HF):
     -------
     result : ScreeningResult
     row : dict
-        MPM, HF counts, M1–M3 and the run time.
+        MPM, its U95 band and whether it holds the truth, HF counts, M1–M3 and
+        the run time.
     """
     if strategy not in STRATEGIES:
         raise ValueError(f"unknown strategy {strategy!r}; choose from {', '.join(STRATEGIES)}")
@@ -77,8 +80,11 @@ def run_case(data, *, strategy="pas", seed=0, max_hf=DEFAULT_MAX_HF):
     if strategy in DETERMINISTIC:
         res = run_rcw_case(data, method="form" if strategy == "rcw" else "mler")
     else:
-        res = _run_screening(data, strategy, seed, max_hf)
+        res = _run_screening(data, strategy, seed, max_hf, settings or {})
+    low, high = (float(b) for b in res.mpm_band)
     row = {"case": data.case, "strategy": strategy, "seed": seed, "mpm": res.mpm,
+           "band_low": low, "band_high": high,
+           "covered": bool(low <= data.truth_mpm <= high) if np.isfinite(low + high) else None,
            "n_hf": res.n_hf, "n_false_positive": res.n_false_positive,
            "converged": bool(res.converged), "family": res.family,
            "seconds": time.perf_counter() - t0}
@@ -89,15 +95,15 @@ def run_case(data, *, strategy="pas", seed=0, max_hf=DEFAULT_MAX_HF):
     return res, row
 
 
-def _run_screening(data, strategy, seed, max_hf):
+def _run_screening(data, strategy, seed, max_hf, settings):
     runner = {"pas": pas.run_pas, "pas-paper": pas.run_pas, "as": pas.run_as}[strategy]
     preset = {"preset": "paper"} if strategy == "pas-paper" else {}
     # n_w = T_MCS / T_p,e as in the paper's Table 2; cases 1 and 4 have more LF peaks
     # than that n_w, so it is stated, not counted
     return runner(data.lf, data.oracle(), n_waves=data.n_waves, p_exp=data.p_exp,
                   eps1=data.eps1, threshold=data.threshold, seed=seed, max_hf=max_hf,
-                  ids=list(data.ids), n_waves_convention="spectral", **PAPER_SETTINGS,
-                  **preset)
+                  ids=list(data.ids), n_waves_convention="spectral",
+                  **{**PAPER_SETTINGS, **preset, **settings})
 
 
 def summarise(runs: pd.DataFrame, datasets: dict) -> pd.DataFrame:
