@@ -166,7 +166,7 @@ class PAS(Strategy):
         each copula and the one of higher likelihood kept (:mod:`pas.joint`;
         measured trade-off in ``docs/departures.md``).  The selected-space
         estimator always fits the paper's Weibull (Eq. 15).
-    band_marginals : {"fitted", "reselected", "alternate"}, default "fitted"
+    band_marginals : {"fitted", "reselected", "alternate"}, default "reselected"
         Conditional estimator, model band (:meth:`model_band`): every
         bootstrap replicate fits the study's ``hf_marginal`` ("fitted");
         or fits every HF marginal family and keeps the one of higher
@@ -184,7 +184,7 @@ class PAS(Strategy):
                  marginals_from: str = "all", impact_model: bool = True,
                  estimator: str = "conditional", copula_fit: str = "mle",
                  common_random_numbers: bool = True, hf_location: bool = True,
-                 hf_marginal: str = "weibull", band_marginals: str = "fitted"):
+                 hf_marginal: str = "weibull", band_marginals: str = "reselected"):
         for f in families:
             _family_and_rotation(f)
         if z < 2:
