@@ -13,7 +13,7 @@ deterministic given the data set: they vary between replications only through
 the data (their LF Monte-Carlo targets; the truth they are scored against).
 
 Run: python benchmarks/validation_spread.py [N] [--cases 1a,3a] [--strategies pas,as,rcw]
-[--out DIR] [--set band_marginals=all]
+[--out DIR] [--set band_marginals=alternate]
 Writes runs.csv and summary.csv to DIR (default pas-output/spread).
 """
 

@@ -63,7 +63,7 @@ def run_case(data, *, strategy="pas", seed=0, max_hf=DEFAULT_MAX_HF, settings=No
 
     ``max_hf`` is the HF budget (default 160, as every study; None: none);
     ``settings`` further keyword settings of the screening run (e.g.
-    ``{"band_marginals": "all"}``).
+    ``{"band_marginals": "alternate"}``).
     ``"rcw"``/``"mler"`` run :func:`.episodes.run_rcw_case` (``seed`` and
     ``max_hf`` do not apply: one HF episode per level).
 
