@@ -62,8 +62,8 @@ def run_case(data, *, strategy="pas", seed=0, max_hf=DEFAULT_MAX_HF, settings=No
     """Run one strategy on a :class:`CaseData` with the paper's stopping settings.
 
     ``max_hf`` is the HF budget (default 160, as every study; None: none);
-    ``settings`` further keyword settings of the screening run (e.g.
-    ``{"band_marginals": "alternate"}``).
+    ``settings`` further keyword settings of the PAS runs (e.g.
+    ``{"band_marginals": "alternate"}``; AS and the design waves ignore them).
     ``"rcw"``/``"mler"`` run :func:`.episodes.run_rcw_case` (``seed`` and
     ``max_hf`` do not apply: one HF episode per level).
 
@@ -103,7 +103,7 @@ def _run_screening(data, strategy, seed, max_hf, settings):
     return runner(data.lf, data.oracle(), n_waves=data.n_waves, p_exp=data.p_exp,
                   eps1=data.eps1, threshold=data.threshold, seed=seed, max_hf=max_hf,
                   ids=list(data.ids), n_waves_convention="spectral",
-                  **{**PAPER_SETTINGS, **preset, **settings})
+                  **{**PAPER_SETTINGS, **preset, **(settings if strategy != "as" else {})})
 
 
 def summarise(runs: pd.DataFrame, datasets: dict) -> pd.DataFrame:
