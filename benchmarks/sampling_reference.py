@@ -111,8 +111,9 @@ def main(argv=None):
     print("| case | k impacts | truth-estimator: median / p90 \\|error\\| / P(worst of 10 ≤ 25 %) "
           "| empirical quantile: same |")
     print("|---|---|---|---|")
+    data_sets = {c: [generate_case(c, seed=s) for s in range(args.n)] for c in cases}
     for c in cases:
-        data = [generate_case(c, seed=s) for s in range(args.n)]
+        data = data_sets[c]
         for k in ks[c]:
             errs = [reference_errors(d, k, args.subsamples, s) for s, d in enumerate(data)]
             t = np.concatenate([e[0] for e in errs])
@@ -127,8 +128,8 @@ def main(argv=None):
         g = runs[runs.case == c].set_index("seed")
         if not len(g):
             continue
-        errs = np.concatenate([pas_on_random_events(generate_case(c, seed=s), int(g.n_hf[s]), 5, s)
-                               for s in range(args.n) if s in g.index])
+        errs = np.concatenate([pas_on_random_events(d, int(g.n_hf[s]), 5, s)
+                               for s, d in enumerate(data_sets[c]) if s in g.index])
         pas_m2 = g.M2.abs()
         print(f"| {c} | {_row(errs)} | {100 * pas_m2.median():.1f} % / {100 * pas_m2.max():.1f} % |",
               flush=True)
