@@ -191,12 +191,8 @@ def _slope_scattered_force(v, d, c):
     """
     from scipy import special
 
-    from pas.waves import FERRY_190M, GRAVITY
-    from pas.waves.ship import RHO_SEAWATER
-
     v = np.asarray(v, float)
-    k = 0.5 * RHO_SEAWATER * c["C0"] * np.pi * c["panel_area"] / 1000.0
-    v_ochi = c["ochi_factor"] * np.sqrt(GRAVITY * FERRY_190M.length)
+    k, v_ochi = case_impacts.slam_scales(c)
     s = special.ndtri(np.clip(d["u_impulse"], 1e-12, 1 - 1e-12))
     alpha = c["angle0"] * (v / v_ochi) ** c["angle_power"] * s
     beta = np.deg2rad(np.clip(c["beta_flare_deg"] - alpha, 5.0, 85.0))

@@ -214,11 +214,16 @@ def _impact_velocity(peak, rise, c):
     return np.where(ok, 0.5 * np.pi * a / tr * np.sqrt(1.0 - (zp / a) ** 2), 0.0)
 
 
+def slam_scales(c):
+    """Wagner's momentum factor ``½ ρ C0 π A`` (kN s²/m², before ``cot β``) and ``v_Ochi`` (m/s)."""
+    k = 0.5 * RHO_SEAWATER * c["C0"] * np.pi * c["panel_area"] / 1000.0
+    return k, c["ochi_factor"] * np.sqrt(GRAVITY * FERRY_190M.length)
+
+
 def _slamming_force(v, d, c):
     """Case-4 force (kN) of impacts with panel-level relative velocity ``v`` (m/s)."""
     v = np.asarray(v, float)
-    k = 0.5 * RHO_SEAWATER * c["C0"] * np.pi * c["panel_area"] / 1000.0  # kN s^2/m^2
-    v_ochi = c["ochi_factor"] * np.sqrt(GRAVITY * FERRY_190M.length)
+    k, v_ochi = slam_scales(c)
     violent = (d["u_impulse"] < c["slam_impulse_p"]) & (v > c["slam_impulse_gate"] * v_ochi)
     impulse = np.where(violent, c["slam_impulse"] * v / v_ochi * d["e_impulse"], 0.0)
     force = k / np.tan(np.deg2rad(c["beta_flare_deg"])) * v**2 * (1.0 + impulse) \
