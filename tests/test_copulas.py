@@ -155,3 +155,46 @@ def test_student_t_quantile_and_cdf_match_scipy(nu):
     assert np.all(err <= 1e-8 * tail + 1e-15), float(np.max(err / np.maximum(tail, 1e-300)))
     # shapes broadcast through, as the conditional draws use them
     assert t_quantile(nu, p[:6].reshape(2, 3)).shape == (2, 3)
+
+
+def test_weighted_ranks_drawn_are_uniform_order_statistics():
+    # With an rng the steps are Gamma(w) draws (Bayesian bootstrap): the order stays, the
+    # mean is about Hazen's (i - 1/2)/m, and the k-th largest position's exceedance is
+    # k - 1 unit exponentials and half of one over the sum of m: mean (k - 1/2)/m,
+    # coefficient of variation sqrt(k - 3/4)/(k - 1/2)
+    from pas.stats.dependence import weighted_ranks
+
+    m = 400
+    x = np.random.default_rng(3).permutation(m).astype(float)
+    rng = np.random.default_rng(4)
+    draws = np.array([weighted_ranks(x, np.ones(m), rng) for _ in range(3000)])
+    assert np.all(np.argsort(draws, axis=1) == np.argsort(x))
+    hazen = (x + 0.5) / m
+    np.testing.assert_allclose(draws.mean(axis=0), hazen, atol=3e-3)
+    for k in (1, 10):
+        exceed = 1.0 - draws[:, x == m - k][:, 0]
+        assert exceed.mean() == pytest.approx((k - 0.5) / m, rel=0.06)
+        assert exceed.std() / exceed.mean() == pytest.approx(np.sqrt(k - 0.75) / (k - 0.5), rel=0.08)
+    np.testing.assert_array_equal(weighted_ranks(x, np.ones(m)), hazen)
+
+
+def test_gpd_tail_ranks_read_the_top_of_a_rayleigh_sample_closer_to_its_cdf():
+    # The top 30 of 15 000 Rayleigh peaks: the exceedance probability of each against the
+    # exact exp(-x²/2), from Hazen mid-ranks and from the GPD tail over the top 5 %
+    from pas.stats.dependence import gpd_tail_ranks
+
+    for seed in range(5):
+        x = np.random.default_rng(seed).rayleigh(1.0, 15_000)
+        u = (np.argsort(np.argsort(x)) + 0.5) / x.size
+        v, (shape, scale) = gpd_tail_ranks(x, u)
+        assert -0.3 < shape < 0.05          # a Rayleigh tail is light: ξ a little below 0
+        top = np.argsort(x)[-30:]
+        exact = np.exp(-x[top] ** 2 / 2)
+        ranks_err = np.mean(np.abs(np.log((1 - u[top]) / exact)))
+        gpd_err = np.mean(np.abs(np.log((1 - v[top]) / exact)))
+        assert gpd_err < ranks_err
+        assert np.all(np.argsort(v, kind="stable") == np.argsort(x, kind="stable"))
+        below = x < np.sort(x)[-750]
+        np.testing.assert_array_equal(v[below], u[below])
+    small = np.arange(150.0)
+    np.testing.assert_array_equal(gpd_tail_ranks(small, small / 150)[0], small / 150)

@@ -24,15 +24,17 @@ PAPER = dict(estimator="selected", copula_fit="itau", exclude_at_bound=False,
              marginals_from="kept", impact_model=False, common_random_numbers=False)
 
 
-def _problem(seed, *, tau, p_impact=1.0, hf_law=None):
-    """Rayleigh LF, Gaussian copula, Weibull HF (or ``hf_law``); MD-like sample of M events
-    uniform in ln d."""
+def _problem(seed, *, tau, p_impact=1.0, hf_law=None, gumbel=False, lf_ranks=False, m=M):
+    """Rayleigh LF, Gaussian (or Gumbel) copula, Weibull HF (or ``hf_law``); MD-like sample
+    of ``m`` events uniform in ln d.  The copula's LF margin is the Rayleigh CDF, or with
+    ``lf_ranks`` the LF sample's own mid-ranks (what the estimator takes it to be)."""
     hf_law = stats.weibull_min(1.2, scale=1000.0) if hf_law is None else hf_law
     rng = np.random.default_rng(seed)
     lf = rng.rayleigh(1.0, N)
-    u = -np.expm1(-lf**2 / 2)
-    cop = pv.Bicop(family=pv.BicopFamily.gaussian,
-                   parameters=np.array([[np.sin(np.pi * tau / 2)]]))
+    u = (stats.rankdata(lf) - 0.5) / N if lf_ranks else -np.expm1(-lf**2 / 2)
+    cop = (pv.Bicop(family=pv.BicopFamily.gumbel, parameters=np.array([[1 / (1 - tau)]]))
+           if gumbel else pv.Bicop(family=pv.BicopFamily.gaussian,
+                                   parameters=np.array([[np.sin(np.pi * tau / 2)]])))
     v = cop.hinv1(np.column_stack([u, rng.uniform(1e-9, 1 - 1e-9, N)]))
     hf = hf_law.ppf(v) * (rng.uniform(size=N) < p_impact)
 
@@ -45,7 +47,7 @@ def _problem(seed, *, tau, p_impact=1.0, hf_law=None):
         lo, hi = (mid, hi) if expected_exceedances(mid) > P_EXP * N else (lo, mid)
     s = LFSet(lf, n_waves=N, p_exp=P_EXP)
     hs = hf[s.index]
-    pos = np.unique(np.searchsorted(s.ln_d, np.linspace(s.ln_d[0], s.ln_d[-1], M)).clip(0, N - 1))
+    pos = np.unique(np.searchsorted(s.ln_d, np.linspace(s.ln_d[0], s.ln_d[-1], m)).clip(0, N - 1))
     tp, fp = pos[hs[pos] > 0], pos[hs[pos] == 0]
     return s, Pairs(tp, s.lf[tp], hs[tp], s.d[tp], s.lf[fp], fp), np.sqrt(lo * hi)
 
@@ -122,3 +124,40 @@ def test_band_marginals_let_the_bootstrap_choose_or_alternate_the_hf_marginal():
     assert mpms["fitted"] == mpms["alternate"] == mpms["reselected"]
     with pytest.raises(ValueError, match="band_marginals"):
         PAS(band_marginals="lognormal")
+
+
+def test_at_strong_dependence_the_lf_ranks_carry_the_error_and_the_band_holds_it():
+    # Gumbel τ 0.9, 30 pairs.  The estimator puts the copula on the LF sample's ranks; when
+    # the loads follow the LF population CDF instead (as in nature), the ranks at the top
+    # of the record miss it by the spread of the largest order statistics, and that — not
+    # the 30 loads — is most of the MPM error (measured: mean |error| 1.9 % against 0.4 %
+    # with loads that follow the ranks).  A band that keeps the ranks fixed misses the
+    # truth in 4 of 6 data sets; redrawing them in each replicate holds it in 5 of 6.
+    # Reading the top of the LF population from a fitted GPD tail (lf_tail="gpd") halves
+    # the error (measured: 1.9 % → 1.0 %).
+    errors = {False: [], True: [], "gpd": []}
+    covered = {"fixed": 0, "redrawn": 0}
+    for seed in range(6):
+        for lf_ranks in errors:
+            s, pairs, truth = _problem(seed, tau=0.9, gumbel=True, lf_ranks=lf_ranks, m=30)
+            strategy = PAS(n_bootstrap=16, band_marginals="fitted")
+            strategy.reset(0)
+            errors[lf_ranks].append(abs(strategy.predict(pairs, s, np.random.default_rng(0)).mpm
+                                        / truth - 1))
+            if lf_ranks:
+                continue
+            tail = PAS(n_bootstrap=0, lf_tail="gpd")
+            tail.reset(0)
+            errors["gpd"].append(abs(tail.predict(pairs, s, np.random.default_rng(0)).mpm
+                                     / truth - 1))
+            for choice in covered:
+                strategy.band_lf_ranks = choice
+                low, high, _ = strategy.model_band(pairs, s, np.random.default_rng(1))
+                covered[choice] += low <= truth <= high
+    assert np.mean(errors[False]) > 3 * np.mean(errors[True])
+    assert np.mean(errors["gpd"]) < 0.7 * np.mean(errors[False])
+    assert covered["fixed"] <= 3 and covered["redrawn"] >= 5
+    with pytest.raises(ValueError, match="band_lf_ranks"):
+        PAS(band_lf_ranks="drawn")
+    with pytest.raises(ValueError, match="lf_tail"):
+        PAS(lf_tail="weibull")

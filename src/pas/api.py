@@ -141,7 +141,8 @@ def run_pas(lf_peaks, oracle, *, n_waves, p_exp, eps1, eps2=0.1, threshold=None,
         ``delta_aic``, ``exclude_at_bound``, ``upper_tail``, ``outlier_k``,
         ``n_bootstrap``, ``skip_unsplittable``, ``marginals_from``,
         ``impact_model``, ``estimator``, ``copula_fit``,
-        ``common_random_numbers``, ``hf_location``, ``hf_marginal``, ``band_marginals``)
+        ``common_random_numbers``, ``hf_location``, ``hf_marginal``, ``band_marginals``,
+        ``band_lf_ranks``, ``lf_tail``)
         and study settings (``k1``, ``k2``,
         ``max_failures``, ``stop_on_convergence``, ``adaptive_threshold``,
         ``threshold_step``, ``fp_run``: :class:`~pas.study.study.Study`).

@@ -53,6 +53,7 @@ from ..joint import HF_MARGINALS, JOINT_FAMILIES, best_per_family, fit_joint_all
 from ..screening import LFSet
 from ..stats.dependence import (
     empirical_tail_dependence,
+    gpd_tail_ranks,
     kendall_tau,
     pseudo_observations,
 )
@@ -172,6 +173,19 @@ class PAS(Strategy):
         or fits every HF marginal family and keeps the one of higher
         likelihood, as it re-selects the copula family ("reselected"); or
         the replicates take the families in turn, one each ("alternate").
+    lf_tail : {"ranks", "gpd"}, default "ranks"
+        Conditional estimator: the LF population CDF at the peaks is their
+        mid-rank ("ranks"), or with "gpd" the largest 5 % (at least 50) take
+        it from a generalised Pareto tail fitted to them
+        (:func:`pas.stats.dependence.gpd_tail_ranks`): at strong dependence
+        the scatter of the top ranks is most of the MPM's error.
+    band_lf_ranks : {"fixed", "redrawn"}, default "redrawn"
+        Conditional estimator, model band: every bootstrap replicate also
+        draws the LF population CDF at the peaks given their order (a
+        Bayesian bootstrap, :func:`pas.stats.dependence.weighted_ranks`)
+        instead of keeping their mid-ranks ("fixed"), so the band holds
+        what the empirical LF ranks cannot tell about the LF tail — at
+        strong dependence the largest part of the error (``docs/departures.md``).
     """
 
     name = "pas"
@@ -184,7 +198,8 @@ class PAS(Strategy):
                  marginals_from: str = "all", impact_model: bool = True,
                  estimator: str = "conditional", copula_fit: str = "mle",
                  common_random_numbers: bool = True, hf_location: bool = True,
-                 hf_marginal: str = "weibull", band_marginals: str = "reselected"):
+                 hf_marginal: str = "weibull", band_marginals: str = "reselected",
+                 band_lf_ranks: str = "redrawn", lf_tail: str = "ranks"):
         for f in families:
             _family_and_rotation(f)
         if z < 2:
@@ -211,11 +226,14 @@ class PAS(Strategy):
         self.hf_marginal = check_option(hf_marginal, "hf_marginal", {*HF_MARGINALS, "both"})
         self.band_marginals = check_option(band_marginals, "band_marginals",
                                            {"fitted", "reselected", "alternate"})
+        self.band_lf_ranks = check_option(band_lf_ranks, "band_lf_ranks", {"fixed", "redrawn"})
+        self.lf_tail = check_option(lf_tail, "lf_tail", {"ranks", "gpd"})
         self.family_ = None
         self._seed = None
         self._uniforms = None
         self._joint = {}
         self._n_fits = 0
+        self._lf_tail_fits = {}
 
     def reset(self, seed: int | None = None) -> None:
         self.family_ = None
@@ -223,6 +241,7 @@ class PAS(Strategy):
         self._uniforms = None
         self._joint = {}
         self._n_fits = 0
+        self._lf_tail_fits = {}
 
     def propose(self, selected_d, lfset: LFSet, available: np.ndarray,
                 last: Prediction | None, q: int = 1) -> list[int]:
@@ -235,14 +254,17 @@ class PAS(Strategy):
 
     # -- Steps 7–9: the model ------------------------------------------------
     def fit(self, pairs: Pairs, lfset: LFSet, family: str | None = None, *,
-            update: bool = True, hf_marginal: str | None = None) -> FittedModel:
+            update: bool = True, hf_marginal: str | None = None,
+            lf_ranks_rng: np.random.Generator | None = None) -> FittedModel:
         """Steps 7–9: fit the copula, the HF marginal and the impact model to ``pairs``.
 
         With ``family`` only that family is fitted; otherwise all candidates,
         and the selection with hysteresis (§2.2) updates :attr:`family_`.
         With ``update=False`` (bootstrap replicates) nothing the study carries
         changes: the family is the lowest eligible AIC of these pairs.
-        ``hf_marginal`` overrides the setting of that name for this fit.
+        ``hf_marginal`` overrides the setting of that name for this fit;
+        ``lf_ranks_rng`` (conditional estimator) draws the LF population ranks
+        instead of taking their mid-ranks (:meth:`model_band`).
         """
         # Step 7 removes pairs by their HF value: a selection on the response, which
         # the conditional likelihood does not allow (it would drop the largest loads
@@ -254,7 +276,8 @@ class PAS(Strategy):
         impact = impact_probability(pairs.lf, pairs.fp_lf) if self.impact_model else None
         fit = self._fit_conditional if self.estimator == "conditional" else self._fit_selected
         fits, hf_marginals, lf_to_u, n0 = fit(pairs, lfset, keep, families, impact, family,
-                                              update, hf_marginal or self.hf_marginal)
+                                              update, hf_marginal or self.hf_marginal,
+                                              lf_ranks_rng)
         if family is None:
             family = select_family(fits, self.family_ if update else None,
                                    delta_aic=self.delta_aic,
@@ -266,7 +289,8 @@ class PAS(Strategy):
                            np.asarray(lf_to_u(cond), float),
                            None if impact is None else impact(cond), fits, int((~keep).sum()))
 
-    def _fit_selected(self, pairs, lfset, keep, families, impact, family, update, hf_marginal):
+    def _fit_selected(self, pairs, lfset, keep, families, impact, family, update, hf_marginal,
+                      lf_ranks_rng):
         """The paper's fit in selected-sample space (§2.2–2.3, Eq. 5, 15)."""
         lf, hf = pairs.lf[keep], pairs.hf[keep]
         fits = fit_candidates(*pseudo_observations(lf, hf), families, method=self.copula_fit)
@@ -277,11 +301,16 @@ class PAS(Strategy):
         return fits, dict.fromkeys(fits, f_h), f_l.cdf, n0
 
     def _fit_conditional(self, pairs, lfset, keep, families, impact, family, update,
-                         hf_marginal):
+                         hf_marginal, lf_ranks_rng):
         """Population LF ranks and the joint conditional likelihood (:mod:`pas.joint`)."""
         n0 = conditioning_set(lfset.lf, pairs.lf.min()).size
         cond_lf = lfset.lf[:n0]
-        u_cond = population_lf_ranks(cond_lf, impact)
+        u_cond = population_lf_ranks(cond_lf, impact, lf_ranks_rng)
+        if self.lf_tail == "gpd":  # the fit to the LF peaks alone is kept per conditioning set
+            u_cond, tail = gpd_tail_ranks(cond_lf, u_cond, rng=lf_ranks_rng,
+                                          shape_scale=self._lf_tail_fits.get(n0))
+            if lf_ranks_rng is None and tail is not None:
+                self._lf_tail_fits[n0] = tail
         starts = self._joint if family is None else {
             k: v for k, v in self._joint.items() if k[0] == family}
         # a warm start from the previous iteration converges in a few steps; every
@@ -365,13 +394,19 @@ class PAS(Strategy):
         range of the replicate MPMs.  With the conditional estimator,
         ``band_marginals`` lets the replicates choose the HF marginal family
         too ("reselected") or take the families in turn ("alternate"), so
-        that the band holds what the pairs cannot tell apart in the tail.
+        that the band holds what the pairs cannot tell apart in the tail;
+        and ``band_lf_ranks="redrawn"`` gives each replicate its own draw of
+        the LF population CDF at the peaks: the copula is fitted on the LF
+        ranks, and at the top of the record the ranks tell the population
+        CDF only to within the spread of the largest order statistics.
         Returns ``(low, high, mpms)`` or None when off.
         """
         if self.n_bootstrap <= 0 or self.family_ is None:
             return None
         marginals = {"fitted": (None,), "reselected": ("both",),
                      "alternate": HF_MARGINALS}[self.band_marginals]
+        # a stream of its own, so the resampled pairs are those of "fixed"
+        lf_rng = rng.spawn(1)[0] if self.band_lf_ranks == "redrawn" else None
         mpms = []
         m, n_fp = len(pairs), len(pairs.fp_position)
         for i in range(self.n_bootstrap):
@@ -382,7 +417,7 @@ class PAS(Strategy):
                 continue
             try:
                 model = self.fit(b, lfset, update=False,
-                                 hf_marginal=marginals[i % len(marginals)])
+                                 hf_marginal=marginals[i % len(marginals)], lf_ranks_rng=lf_rng)
                 d, mean, _, _ = self._predict_model(model, lfset, rng)
             except (ValueError, np.linalg.LinAlgError):
                 continue

@@ -55,15 +55,17 @@ def impact_probability(lf_true, lf_false):
     return lambda l: model.predict_proba(((np.asarray(l, float) - mu) / sd)[:, None])[:, 1]
 
 
-def population_lf_ranks(lf_pool, impact=None) -> np.ndarray:
+def population_lf_ranks(lf_pool, impact=None, rng=None) -> np.ndarray:
     """LF pseudo-observations of every pool peak in the population of impacts.
 
     ``u_j`` is the weighted mid-rank of ``lf_pool[j]`` with weights
     ``P(impact | l_j)`` (all 1 without an impact model): the LF marginal of the
-    population the copula describes, known without fitting.
+    population the copula describes, known without fitting.  With ``rng``: one
+    Bayesian-bootstrap draw of that CDF at the pool's peaks
+    (:func:`pas.stats.dependence.weighted_ranks`), for the model band.
     """
     from ..stats.dependence import weighted_ranks
 
     lf_pool = np.asarray(lf_pool, float)
     w = np.ones(lf_pool.size) if impact is None else np.maximum(impact(lf_pool), 1e-6)
-    return weighted_ranks(lf_pool, w)
+    return weighted_ranks(lf_pool, w, rng)

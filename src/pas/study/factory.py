@@ -54,6 +54,8 @@ PRESETS = {
         "n_bootstrap": 0,                  # Eq. 10: the sampling band only
         "hf_marginal": "weibull",          # Eq. 15: a Weibull HF marginal
         "band_marginals": "fitted",        # (no model band in the paper; set for completeness)
+        "band_lf_ranks": "fixed",          # (likewise)
+        "lf_tail": "ranks",                # (the selected-space fit has no LF population ranks)
         "stop_measure": "step",            # App. C, Eq. 28: the per-iteration change
         "max_hf": None,                    # no budget (unless max_hf is given)
     },

@@ -71,7 +71,8 @@ CFD runs; ``max_hf=None`` lifts it."""
 LEGACY_SETTINGS = {
     "strategy_settings": {"estimator": "selected", "copula_fit": "mle",
                           "common_random_numbers": False, "hf_location": True,
-                          "hf_marginal": "weibull", "band_marginals": "fitted"},
+                          "hf_marginal": "weibull", "band_marginals": "fitted",
+                          "band_lf_ranks": "fixed", "lf_tail": "ranks"},
     "stop_measure": "step",
     "legacy_md": True,
 }
