@@ -198,3 +198,22 @@ def test_gpd_tail_ranks_read_the_top_of_a_rayleigh_sample_closer_to_its_cdf():
         np.testing.assert_array_equal(v[below], u[below])
     small = np.arange(150.0)
     np.testing.assert_array_equal(gpd_tail_ranks(small, small / 150)[0], small / 150)
+    # bootstrap refits: a resampled bounded tail may not end below the largest value
+    rng = np.random.default_rng(0)
+    for seed in range(40):
+        x = np.random.default_rng(seed).rayleigh(1.0, 1000)
+        u = (np.argsort(np.argsort(x)) + 0.5) / x.size
+        assert gpd_tail_ranks(x, u, rng=rng)[0].max() < 1.0
+
+
+def test_weighted_ranks_drawn_with_tiny_weights_stay_finite():
+    from pas.stats.dependence import weighted_ranks
+
+    x = np.arange(50.0)
+    w = np.r_[np.full(45, 1e-6), np.ones(5)]
+    rng = np.random.default_rng(1)
+    for _ in range(200):
+        u = weighted_ranks(x, w, rng)
+        assert np.all(np.isfinite(u)) and np.all(np.diff(u) >= 0) and u[-1] < 1
+    u = weighted_ranks(x, np.full(50, 1e-300), rng)
+    assert np.all(np.isfinite(u))

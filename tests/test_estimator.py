@@ -138,7 +138,7 @@ def test_at_strong_dependence_the_lf_ranks_carry_the_error_and_the_band_holds_it
     errors = {False: [], True: [], "gpd": []}
     covered = {"fixed": 0, "redrawn": 0}
     for seed in range(6):
-        for lf_ranks in errors:
+        for lf_ranks in (False, True):
             s, pairs, truth = _problem(seed, tau=0.9, gumbel=True, lf_ranks=lf_ranks, m=30)
             strategy = PAS(n_bootstrap=16, band_marginals="fitted")
             strategy.reset(0)
@@ -161,3 +161,5 @@ def test_at_strong_dependence_the_lf_ranks_carry_the_error_and_the_band_holds_it
         PAS(band_lf_ranks="drawn")
     with pytest.raises(ValueError, match="lf_tail"):
         PAS(lf_tail="weibull")
+    with pytest.raises(ValueError, match="lf_tail"):
+        PAS(lf_tail="gpd", estimator="selected")

@@ -51,6 +51,8 @@ def weighted_ranks(x, w, rng: np.random.Generator | None = None) -> np.ndarray:
     x, w = np.asarray(x, float), np.asarray(w, float)
     order = np.argsort(x, kind="stable")
     steps = w[order] if rng is None else rng.gamma(w[order])
+    if not steps.sum() > 0:  # every Gamma draw of tiny weights underflowed
+        steps = w[order]
     cum = np.cumsum(steps)
     mid = cum - steps / 2.0
     _, inv = np.unique(x[order], return_inverse=True)
@@ -72,7 +74,9 @@ def gpd_tail_ranks(x, u, *, rng: np.random.Generator | None = None, shape_scale=
     tail pools the ``k`` largest.  Fewer than ``4 k`` values: ``u`` unchanged.
 
     ``rng``: the GPD is fitted to a bootstrap resample of the excesses (for a
-    model band); ``shape_scale``: a fit already made to these excesses.
+    model band; a resample whose bounded tail ends below the largest excess
+    is replaced by the point fit); ``shape_scale``: the point fit, already
+    made to these excesses.
     Returns ``(positions, (shape, scale) or None)``.
 
     Examples
@@ -90,16 +94,26 @@ def gpd_tail_ranks(x, u, *, rng: np.random.Generator | None = None, shape_scale=
     order = np.argsort(x)[::-1]
     top, at = order[:k], order[k]
     excess = x[top] - x[at]
-    if shape_scale is None or rng is not None:
-        sample = excess if rng is None else excess[rng.integers(0, k, k)]
-        shape, _, scale = stats.genpareto.fit(sample, floc=0.0)
-        if shape < -0.5:  # where the likelihood stops being regular (Smith, 1985)
-            shape, _, scale = stats.genpareto.fit(sample, f0=-0.5, floc=0.0)
-        shape_scale = (float(shape), float(scale))
+    if rng is not None:
+        resampled = _gpd_fit(excess[rng.integers(0, k, k)])
+        # a resample's bounded tail may end below the largest excess: that fit gives the
+        # data zero likelihood, and the point fit stands in for it
+        if resampled[0] >= 0 or -resampled[1] / resampled[0] > excess.max():
+            shape_scale = resampled
+    if shape_scale is None:
+        shape_scale = _gpd_fit(excess)
     out = u.copy()
     out[top] = 1.0 - (1.0 - u[at]) * stats.genpareto.sf(excess, shape_scale[0], 0.0,
                                                          shape_scale[1])
     return out, shape_scale
+
+
+def _gpd_fit(excess):
+    """``(shape, scale)`` of the GPD by maximum likelihood, location 0, shape ≥ −0.5."""
+    shape, _, scale = stats.genpareto.fit(excess, floc=0.0)
+    if shape < -0.5:  # where the likelihood stops being regular (Smith, 1985)
+        shape, _, scale = stats.genpareto.fit(excess, f0=-0.5, floc=0.0)
+    return float(shape), float(scale)
 
 
 def kendall_tau(x, y) -> float:

@@ -228,6 +228,9 @@ class PAS(Strategy):
                                            {"fitted", "reselected", "alternate"})
         self.band_lf_ranks = check_option(band_lf_ranks, "band_lf_ranks", {"fixed", "redrawn"})
         self.lf_tail = check_option(lf_tail, "lf_tail", {"ranks", "gpd"})
+        if self.lf_tail == "gpd" and self.estimator != "conditional":
+            raise ValueError("lf_tail='gpd' reads the LF population ranks of the conditional "
+                             "estimator; estimator='selected' fits an LF Weibull instead")
         self.family_ = None
         self._seed = None
         self._uniforms = None
@@ -307,10 +310,11 @@ class PAS(Strategy):
         cond_lf = lfset.lf[:n0]
         u_cond = population_lf_ranks(cond_lf, impact, lf_ranks_rng)
         if self.lf_tail == "gpd":  # the fit to the LF peaks alone is kept per conditioning set
+            key = (n0, float(cond_lf[0]), float(cond_lf[-1]))
             u_cond, tail = gpd_tail_ranks(cond_lf, u_cond, rng=lf_ranks_rng,
-                                          shape_scale=self._lf_tail_fits.get(n0))
-            if lf_ranks_rng is None and tail is not None:
-                self._lf_tail_fits[n0] = tail
+                                          shape_scale=self._lf_tail_fits.get(key))
+            if tail is not None and lf_ranks_rng is None:
+                self._lf_tail_fits[key] = tail
         starts = self._joint if family is None else {
             k: v for k, v in self._joint.items() if k[0] == family}
         # a warm start from the previous iteration converges in a few steps; every
