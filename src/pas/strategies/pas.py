@@ -53,7 +53,6 @@ from ..joint import HF_MARGINALS, JOINT_FAMILIES, best_per_family, fit_joint_all
 from ..screening import LFSet
 from ..stats.dependence import (
     empirical_tail_dependence,
-    gpd_tail_ranks,
     kendall_tau,
     pseudo_observations,
 )
@@ -308,13 +307,8 @@ class PAS(Strategy):
         """Population LF ranks and the joint conditional likelihood (:mod:`pas.joint`)."""
         n0 = conditioning_set(lfset.lf, pairs.lf.min()).size
         cond_lf = lfset.lf[:n0]
-        u_cond = population_lf_ranks(cond_lf, impact, lf_ranks_rng)
-        if self.lf_tail == "gpd":  # the fit to the LF peaks alone is kept per conditioning set
-            key = (n0, float(cond_lf[0]), float(cond_lf[-1]))
-            u_cond, tail = gpd_tail_ranks(cond_lf, u_cond, rng=lf_ranks_rng,
-                                          shape_scale=self._lf_tail_fits.get(key))
-            if tail is not None and lf_ranks_rng is None:
-                self._lf_tail_fits[key] = tail
+        u_cond = population_lf_ranks(cond_lf, impact, lf_ranks_rng,
+                                     gpd_tail=self.lf_tail == "gpd", tail_fits=self._lf_tail_fits)
         starts = self._joint if family is None else {
             k: v for k, v in self._joint.items() if k[0] == family}
         # a warm start from the previous iteration converges in a few steps; every

@@ -55,17 +55,29 @@ def impact_probability(lf_true, lf_false):
     return lambda l: model.predict_proba(((np.asarray(l, float) - mu) / sd)[:, None])[:, 1]
 
 
-def population_lf_ranks(lf_pool, impact=None, rng=None) -> np.ndarray:
+def population_lf_ranks(lf_pool, impact=None, rng=None, *, gpd_tail: bool = False,
+                        tail_fits: dict | None = None) -> np.ndarray:
     """LF pseudo-observations of every pool peak in the population of impacts.
 
     ``u_j`` is the weighted mid-rank of ``lf_pool[j]`` with weights
     ``P(impact | l_j)`` (all 1 without an impact model): the LF marginal of the
     population the copula describes, known without fitting.  With ``rng``: one
     Bayesian-bootstrap draw of that CDF at the pool's peaks
-    (:func:`pas.stats.dependence.weighted_ranks`), for the model band.
+    (:func:`pas.stats.dependence.weighted_ranks`), for the model band.  With
+    ``gpd_tail``: the largest peaks read from a fitted GPD tail
+    (:func:`pas.stats.dependence.gpd_tail_ranks`); ``tail_fits`` keeps its
+    point fit per pool.
     """
-    from ..stats.dependence import weighted_ranks
+    from ..stats.dependence import gpd_tail_ranks, weighted_ranks
 
     lf_pool = np.asarray(lf_pool, float)
     w = np.ones(lf_pool.size) if impact is None else np.maximum(impact(lf_pool), 1e-6)
-    return weighted_ranks(lf_pool, w, rng)
+    u = weighted_ranks(lf_pool, w, rng)
+    if not gpd_tail:
+        return u
+    key = (lf_pool.size, float(lf_pool.max()), float(lf_pool.min()))
+    known = None if tail_fits is None else tail_fits.get(key)
+    u, fit = gpd_tail_ranks(lf_pool, u, rng=rng, shape_scale=known)
+    if fit is not None and rng is None and tail_fits is not None:
+        tail_fits[key] = fit
+    return u
