@@ -187,6 +187,12 @@ def hf_law(ptype: ProblemType):
     return stats.weibull_min(ptype.hf_shape, scale=HF_SCALE)
 
 
+def copula_loads(ptype: ProblemType, bicop, u, r) -> np.ndarray:
+    """HF loads of a copula-type problem at LF CDF values ``u`` from uniforms ``r``."""
+    v = bicop.hinv1(np.column_stack([u, r]))
+    return hf_law(ptype).ppf(np.clip(v, 1e-12, 1 - 1e-12))
+
+
 def conditional_sf(x, lf, u, ptype: ProblemType, bicop) -> np.ndarray:
     """``P(H > x | l)`` given an impact, before outliers, for every pool peak."""
     if ptype.model == "power":
@@ -237,8 +243,7 @@ def make_problem(ptype: ProblemType, replication: int, *, n_waves=N_WAVES, p_exp
     elif ptype.model == "crest":
         h = HF_SCALE * np.maximum(lf + 0.15 * lf**2 + ptype.sigma * stats.norm.ppf(r), 1e-3)
     else:
-        v = bicop.hinv1(np.column_stack([u, r]))
-        h = hf_law(ptype).ppf(np.clip(v, 1e-12, 1 - 1e-12))
+        h = copula_loads(ptype, bicop, u, r)
     if ptype.outlier_p > 0:
         h = np.where(rng.uniform(size=lf.size) < ptype.outlier_p, h * ptype.outlier_k, h)
     hit = rng.uniform(size=lf.size) < impact_probability(u, ptype.misses)

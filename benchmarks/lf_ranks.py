@@ -35,8 +35,7 @@ import pas
 def _loads(problem, u, rng):
     ptype = problem.type
     bicop = kt._bicop(ptype.family, ptype.tau)
-    v = bicop.hinv1(np.column_stack([u, rng.uniform(1e-9, 1 - 1e-9, u.size)]))
-    h = kt.hf_law(ptype).ppf(np.clip(v, 1e-12, 1 - 1e-12))
+    h = kt.copula_loads(ptype, bicop, u, rng.uniform(1e-9, 1 - 1e-9, u.size))
     truth = kt.truth_mpm(problem.lf, u, problem.n_waves, problem.p_exp, ptype, bicop)
     return replace(problem, hf=h, truth_mpm=truth, eps1=0.015 * truth)
 

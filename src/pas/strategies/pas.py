@@ -230,12 +230,7 @@ class PAS(Strategy):
         if self.lf_tail == "gpd" and self.estimator != "conditional":
             raise ValueError("lf_tail='gpd' reads the LF population ranks of the conditional "
                              "estimator; estimator='selected' fits an LF Weibull instead")
-        self.family_ = None
-        self._seed = None
-        self._uniforms = None
-        self._joint = {}
-        self._n_fits = 0
-        self._lf_tail_fits = {}
+        self.reset()
 
     def reset(self, seed: int | None = None) -> None:
         self.family_ = None
