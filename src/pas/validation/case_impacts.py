@@ -338,7 +338,7 @@ def _collect(out, **arrays):
         out[name].append(v)
 
 
-def generate_green_water(spec, seed, n_seeds, duration, *, coeffs=None):
+def generate_green_water(spec, seed, n_seeds, duration, *, coeffs=None, model_seed=None):
     """Events of case 3a/3b: LF bow RWE peak (m), HF green-water force (kN)."""
     c = _coeffs(coeffs)
     out = {k: [] for k in ("lf", "hf", "seed_no", "t_start", "t_end")}
@@ -351,7 +351,7 @@ def generate_green_water(spec, seed, n_seeds, duration, *, coeffs=None):
         r_hf = sea.synthesise(nl, DT)[1] + c["bow_wave"] * sea.speed**2 / (2.0 * GRAVITY)
         u, t0, t1 = windows(r_lf)
         lf = segment_max(r_lf, u)[0]
-        d = _draws(model_rng(seed, k, _TAG_GW), lf.size, _GW_DRAWS)
+        d = _draws(model_rng(seed if model_seed is None else model_seed, k, _TAG_GW), lf.size, _GW_DRAWS)
         hf = _green_water_force(segment_max(r_hf, u)[0], d, c)
         _collect(out, lf=lf, hf=hf, t_start=t0, t_end=t1, seed_no=np.full(lf.size, k))
     events = {k: np.concatenate(v) for k, v in out.items()}
@@ -371,7 +371,7 @@ def _nonlinear_rise(t, r_hf, u):
     return peak, rise
 
 
-def generate_slamming(spec, seed, n_seeds, duration, *, coeffs=None):
+def generate_slamming(spec, seed, n_seeds, duration, *, coeffs=None, model_seed=None):
     """Events of case 4a/4b: LF RRV at station 19 (m/s), HF slamming force (kN)."""
     c = _coeffs(coeffs)
     out = {k: [] for k in ("lf", "hf", "seed_no", "t_start", "t_end")}
@@ -385,7 +385,7 @@ def generate_slamming(spec, seed, n_seeds, duration, *, coeffs=None):
         u, t0, t1 = windows(r_lf)
         lf = rise_velocities(t, r_lf, u)
         peak, rise = _nonlinear_rise(t, r_hf, u)
-        d = _draws(model_rng(seed, k, _TAG_SLAM), lf.size, _SLAM_DRAWS)
+        d = _draws(model_rng(seed if model_seed is None else model_seed, k, _TAG_SLAM), lf.size, _SLAM_DRAWS)
         hf = _slamming_force(_impact_velocity(peak, rise, c), d, c)
         _collect(out, lf=lf, hf=hf, t_start=t0, t_end=t1, seed_no=np.full(lf.size, k))
     events = {k: np.concatenate(v) for k, v in out.items()}

@@ -91,7 +91,7 @@ COEFFICIENTS = {
     # fixed choices (not tuned)
     "gw_scatter": 0.3, "beta_min_deg": 3.0, "slam_scatter": 0.15,
 }
-def generate_green_water(spec, seed, n_seeds, duration, *, coeffs=None):
+def generate_green_water(spec, seed, n_seeds, duration, *, coeffs=None, model_seed=None):
     """Events of case 3a/3b: LF bow RWE peak, HF green-water force (kN)."""
     c = dict(COEFFICIENTS, **(coeffs or {}))
     out = {k: [] for k in ("lf", "hf", "seed_no", "t_start", "t_end")}
@@ -105,7 +105,7 @@ def generate_green_water(spec, seed, n_seeds, duration, *, coeffs=None):
         u, t0, t1 = windows(r_lf)
         lf = segment_max(r_lf, u)[0]
         peak = segment_max(r_hf, u)[0]
-        rng = model_rng(seed, k, 3)
+        rng = model_rng(seed if model_seed is None else model_seed, k, 3)
         margin = rng.exponential(c["delta_mean"], lf.size)
         scatter = rng.lognormal(0.0, c["gw_scatter"], lf.size)
         h = np.maximum(peak - c["freeboard"] - margin, 0.0)
@@ -119,7 +119,7 @@ def generate_green_water(spec, seed, n_seeds, duration, *, coeffs=None):
                                                  "+ random deflection margin, dam-break load"}
 
 
-def generate_slamming(spec, seed, n_seeds, duration, *, coeffs=None):
+def generate_slamming(spec, seed, n_seeds, duration, *, coeffs=None, model_seed=None):
     """Events of case 4a/4b: LF RRV at station 19 (m/s), HF slamming force (kN)."""
     c = dict(COEFFICIENTS, **(coeffs or {}))
     out = {k: [] for k in ("lf", "hf", "seed_no", "t_start", "t_end")}
@@ -138,7 +138,7 @@ def generate_slamming(spec, seed, n_seeds, duration, *, coeffs=None):
         lf = rise_velocities(t, r_lf, u)
         idx, (v, s) = crossing_values(r_hf, c["panel_height"], v_hf, s_hf)
         beta = np.maximum(b_f - np.arctan(-s), b_min)
-        rng = model_rng(seed, k, 4)
+        rng = model_rng(seed if model_seed is None else model_seed, k, 4)
         force = k_force / np.tan(beta) * np.maximum(v, 0.0) ** 2 \
             * rng.lognormal(0.0, c["slam_scatter"], idx.size)
         win = window_of(idx, u)
