@@ -131,7 +131,7 @@ def test_generation_is_seeded():
     assert a.hf.size != c.hf.size or not np.array_equal(a.hf, c.hf)
 
 
-@pytest.mark.parametrize("case", ["3a", "4a-hard"])
+@pytest.mark.parametrize("case", ["3a", "4a", "3a-hard", "4a-hard"])
 def test_model_seed_redraws_the_hf_model_only(case):
     base = build_case(case, scale=0.05)
     same = build_case(case, scale=0.05, model_seed=0)  # the default is the data seed

@@ -77,8 +77,8 @@ def build_case(case_id, *, seed=0, scale=1.0, model_seed=None) -> CaseData:
 
     ``model_seed`` (impact cases only; default ``seed``) seeds the random parts of the
     HF model alone: another value keeps the sea — the LF peaks and the non-linear
-    response they come from — and redraws only those parts
-    (``benchmarks/sampling_reference.py`` measures how much the truth moves with them).
+    response they come from — and redraws only those parts, so the loads, the
+    number of impacts and the truth change while the LF does not.
     """
     spec = get_case(case_id)
     n_seeds, duration = seed_plan(spec.t_mcs, scale)
