@@ -102,6 +102,16 @@ COPULAS = ("gaussian", "gumbel")
 """Copulas of the known-law + LF reference, each at the data set's Kendall τ."""
 
 
+def copula_at_tau(copula: str, tau: float):
+    """The pyvinecopulib copula of family ``copula`` with Kendall's τ, and its parameter."""
+    import pyvinecopulib as pv
+
+    cop = pv.Bicop(family=getattr(pv.BicopFamily, copula))
+    par = float(np.ravel(cop.tau_to_parameters(tau))[0])
+    cop.parameters = np.array([[par]])
+    return cop, par
+
+
 def known_law_lf_errors(data, k: int, subsamples: int, seed: int, copula: str = "gaussian"):
     """Relative MPM errors of the conditional ML estimator told the law and the copula.
 
@@ -112,7 +122,6 @@ def known_law_lf_errors(data, k: int, subsamples: int, seed: int, copula: str = 
     fitted by the likelihood of HF given LF with θ_W, the copula and the impact rate
     known, started from the fit that ignores the LF.
     """
-    import pyvinecopulib as pv
     from scipy import optimize
 
     from pas.copula_densities import copula_logpdf
@@ -121,8 +130,7 @@ def known_law_lf_errors(data, k: int, subsamples: int, seed: int, copula: str = 
     theta, alpha, beta = w["theta"], w["alpha"], w["beta"]
     n = int(np.sum(np.asarray(data.hf) > 0))
     q = data.p_exp / (n / data.n_waves)
-    par = np.sin(np.pi * data.tau / 2.0) if copula == "gaussian" else 1.0 / (1.0 - data.tau)
-    cop = pv.Bicop(family=getattr(pv.BicopFamily, copula), parameters=np.array([[par]]))
+    cop, par = copula_at_tau(copula, data.tau)
     rng = np.random.default_rng([seed, k, 13, COPULAS.index(copula)])
 
     def nll(x, u_l, y):  # y = h − θ_W
@@ -161,16 +169,12 @@ def top_association(lf, hf) -> float:
 
 def copula_association(copula: str, tau: float, n: int = 200_000) -> float:
     """:func:`top_association` of ``copula`` at Kendall τ (``n`` simulated pairs)."""
-    import pyvinecopulib as pv
-
-    par = np.sin(np.pi * tau / 2.0) if copula == "gaussian" else 1.0 / (1.0 - tau)
-    uv = pv.Bicop(family=getattr(pv.BicopFamily, copula),
-                  parameters=np.array([[par]])).sample(n, seeds=[1, 2, 3])
+    uv = copula_at_tau(copula, tau)[0].sample(n, seeds=[1, 2, 3])
     return top_association(uv[:, 0], uv[:, 1])
 
 
 def targets_met(errors_by_data_set, draws: int = 4000, seed: int = 0) -> float:
-    """P(median |error| ≤ 10 % and worst ≤ 25 % over one run on each data set): issue 10's bar."""
+    """P(median |error| ≤ 10 % and worst ≤ 25 % over one run on each data set)."""
     rng = np.random.default_rng(seed)
     e = np.abs(np.stack([rng.choice(x, draws) for x in errors_by_data_set]))
     return float(np.mean((np.median(e, axis=0) <= 0.10) & (e.max(axis=0) <= 0.25)))

@@ -342,6 +342,7 @@ def generate_green_water(spec, seed, n_seeds, duration, *, coeffs=None, model_se
     """Events of case 3a/3b: LF bow RWE peak (m), HF green-water force (kN)."""
     c = _coeffs(coeffs)
     out = {k: [] for k in ("lf", "hf", "seed_no", "t_start", "t_end")}
+    rseed = seed if model_seed is None else model_seed  # the HF model's random parts
     box = [None]
     for k in range(n_seeds):
         sea, kern = impact_sea(spec, seed, k, duration, box)
@@ -351,7 +352,7 @@ def generate_green_water(spec, seed, n_seeds, duration, *, coeffs=None, model_se
         r_hf = sea.synthesise(nl, DT)[1] + c["bow_wave"] * sea.speed**2 / (2.0 * GRAVITY)
         u, t0, t1 = windows(r_lf)
         lf = segment_max(r_lf, u)[0]
-        d = _draws(model_rng(seed if model_seed is None else model_seed, k, _TAG_GW), lf.size, _GW_DRAWS)
+        d = _draws(model_rng(rseed, k, _TAG_GW), lf.size, _GW_DRAWS)
         hf = _green_water_force(segment_max(r_hf, u)[0], d, c)
         _collect(out, lf=lf, hf=hf, t_start=t0, t_end=t1, seed_no=np.full(lf.size, k))
     events = {k: np.concatenate(v) for k, v in out.items()}
@@ -375,6 +376,7 @@ def generate_slamming(spec, seed, n_seeds, duration, *, coeffs=None, model_seed=
     """Events of case 4a/4b: LF RRV at station 19 (m/s), HF slamming force (kN)."""
     c = _coeffs(coeffs)
     out = {k: [] for k in ("lf", "hf", "seed_no", "t_start", "t_end")}
+    rseed = seed if model_seed is None else model_seed  # the HF model's random parts
     box = [None]
     for k in range(n_seeds):
         sea, kern = impact_sea(spec, seed, k, duration, box)
@@ -385,7 +387,7 @@ def generate_slamming(spec, seed, n_seeds, duration, *, coeffs=None, model_seed=
         u, t0, t1 = windows(r_lf)
         lf = rise_velocities(t, r_lf, u)
         peak, rise = _nonlinear_rise(t, r_hf, u)
-        d = _draws(model_rng(seed if model_seed is None else model_seed, k, _TAG_SLAM), lf.size, _SLAM_DRAWS)
+        d = _draws(model_rng(rseed, k, _TAG_SLAM), lf.size, _SLAM_DRAWS)
         hf = _slamming_force(_impact_velocity(peak, rise, c), d, c)
         _collect(out, lf=lf, hf=hf, t_start=t0, t_end=t1, seed_no=np.full(lf.size, k))
     events = {k: np.concatenate(v) for k, v in out.items()}

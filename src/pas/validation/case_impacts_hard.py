@@ -95,6 +95,7 @@ def generate_green_water(spec, seed, n_seeds, duration, *, coeffs=None, model_se
     """Events of case 3a/3b: LF bow RWE peak, HF green-water force (kN)."""
     c = dict(COEFFICIENTS, **(coeffs or {}))
     out = {k: [] for k in ("lf", "hf", "seed_no", "t_start", "t_end")}
+    rseed = seed if model_seed is None else model_seed  # the HF model's random parts
     box = [None]
     rho_g_w = RHO_SEAWATER * 9.81 * c["accommodation_width"] / 1000.0  # kN/m^2
     for k in range(n_seeds):
@@ -105,7 +106,7 @@ def generate_green_water(spec, seed, n_seeds, duration, *, coeffs=None, model_se
         u, t0, t1 = windows(r_lf)
         lf = segment_max(r_lf, u)[0]
         peak = segment_max(r_hf, u)[0]
-        rng = model_rng(seed if model_seed is None else model_seed, k, 3)
+        rng = model_rng(rseed, k, 3)
         margin = rng.exponential(c["delta_mean"], lf.size)
         scatter = rng.lognormal(0.0, c["gw_scatter"], lf.size)
         h = np.maximum(peak - c["freeboard"] - margin, 0.0)
@@ -123,6 +124,7 @@ def generate_slamming(spec, seed, n_seeds, duration, *, coeffs=None, model_seed=
     """Events of case 4a/4b: LF RRV at station 19 (m/s), HF slamming force (kN)."""
     c = dict(COEFFICIENTS, **(coeffs or {}))
     out = {k: [] for k in ("lf", "hf", "seed_no", "t_start", "t_end")}
+    rseed = seed if model_seed is None else model_seed  # the HF model's random parts
     box = [None]
     x19 = FERRY_190M.station_x(19)
     k_force = 0.5 * RHO_SEAWATER * c["C0"] * np.pi * c["panel_area"] / 1000.0  # kN s^2/m^2
@@ -138,7 +140,7 @@ def generate_slamming(spec, seed, n_seeds, duration, *, coeffs=None, model_seed=
         lf = rise_velocities(t, r_lf, u)
         idx, (v, s) = crossing_values(r_hf, c["panel_height"], v_hf, s_hf)
         beta = np.maximum(b_f - np.arctan(-s), b_min)
-        rng = model_rng(seed if model_seed is None else model_seed, k, 4)
+        rng = model_rng(rseed, k, 4)
         force = k_force / np.tan(beta) * np.maximum(v, 0.0) ** 2 \
             * rng.lognormal(0.0, c["slam_scatter"], idx.size)
         win = window_of(idx, u)
