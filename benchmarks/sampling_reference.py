@@ -79,6 +79,13 @@ def reference_errors(data, k: int, subsamples: int, seed: int):
     return np.asarray(truth_est), np.asarray(empirical)
 
 
+def truth_law(data):
+    """The data set's truth Weibull ``(θ, α, β)``, its number of impacts and ``P_exp / rate``."""
+    w = data.info["weibull"]
+    n = int(np.sum(np.asarray(data.hf) > 0))
+    return w["theta"], w["alpha"], w["beta"], n, data.p_exp / (n / data.n_waves)
+
+
 def known_law_errors(data, k: int, subsamples: int, seed: int):
     """Relative MPM errors of the maximum-likelihood estimator told the truth's family and location.
 
@@ -86,9 +93,7 @@ def known_law_errors(data, k: int, subsamples: int, seed: int):
     scale and shape are fitted by ML with θ known (scipy's ``weibull_min.fit``,
     ``floc=0`` on the loads less θ), and the MPM is read at ``P_exp / rate``.
     """
-    w = data.info["weibull"]
-    theta, alpha, beta = w["theta"], w["alpha"], w["beta"]
-    q = data.p_exp / (np.sum(np.asarray(data.hf) > 0) / data.n_waves)
+    theta, alpha, beta, _, q = truth_law(data)
     rng = np.random.default_rng([seed, k, 11])
     excess = alpha * rng.weibull(beta, size=(subsamples, k))
     errors = []
@@ -126,10 +131,7 @@ def known_law_lf_errors(data, k: int, subsamples: int, seed: int, copula: str = 
 
     from pas.copula_densities import copula_logpdf
 
-    w = data.info["weibull"]
-    theta, alpha, beta = w["theta"], w["alpha"], w["beta"]
-    n = int(np.sum(np.asarray(data.hf) > 0))
-    q = data.p_exp / (n / data.n_waves)
+    theta, alpha, beta, n, q = truth_law(data)
     cop, par = copula_at_tau(copula, data.tau)
     rng = np.random.default_rng([seed, k, 13, COPULAS.index(copula)])
 
