@@ -59,9 +59,9 @@ from ..stats.dependence import (
 from ..stats.exceedance import value_at_exceedance
 from .acquisition import md_select
 from .base import Pairs, Prediction, Strategy
+from .random_numbers import PeakUniforms
 from .selection import impact_probability, population_lf_ranks
 from .steps import (
-    EPS,
     FittedModel,
     conditioning_set,
     draw_conditional_hf,
@@ -83,7 +83,6 @@ __all__ = [
 ]
 
 COLD_EVERY = 10
-CRN_BLOCK = 1024
 
 
 def refit(result) -> "FittedModel":
@@ -234,8 +233,7 @@ class PAS(Strategy):
 
     def reset(self, seed: int | None = None) -> None:
         self.family_ = None
-        self._seed = seed
-        self._uniforms = None
+        self._uniforms = PeakUniforms(self.z, seed, self.common_random_numbers)
         self._joint = {}
         self._n_fits = 0
         self._lf_tail_fits = {}
@@ -323,29 +321,9 @@ class PAS(Strategy):
                 {k: j.hf_marginal for k, j in joint.items()},
                 lambda x: np.interp(x, *ascending), n0)
 
-    def _random_numbers(self, n0: int, rng: np.random.Generator):
-        """Uniforms ``r`` (copula) and ``q`` (impact), shape ``(z, n0)`` each (Eq. 7).
-
-        With common random numbers they belong to the LF peaks (pool
-        positions) for the whole study: block ``k`` of :data:`CRN_BLOCK` peaks
-        draws from its own stream ``(seed, k)``, so a growing conditioning set
-        only appends blocks and no peak's uniforms ever change.
-        """
-        if not self.common_random_numbers:
-            return (rng.uniform(EPS, 1 - EPS, size=(self.z, n0)),
-                    rng.uniform(size=(self.z, n0)))
-        have = 0 if self._uniforms is None else self._uniforms.shape[2]
-        if have < n0:
-            seed = 0 if self._seed is None else self._seed
-            blocks = []
-            for k in range(have // CRN_BLOCK, -(-n0 // CRN_BLOCK)):
-                crn = np.random.default_rng([seed, 0x43524E, k])
-                blocks.append(np.stack([crn.uniform(EPS, 1 - EPS, size=(self.z, CRN_BLOCK)),
-                                        crn.uniform(size=(self.z, CRN_BLOCK))]))
-            new = np.concatenate(blocks, axis=2)
-            self._uniforms = new if self._uniforms is None else np.concatenate(
-                [self._uniforms, new], axis=2)
-        return self._uniforms[0, :, :n0], self._uniforms[1, :, :n0]
+    def _random_numbers(self, n0: int, rng: np.random.Generator | None):
+        """Step 9's uniforms ``r`` and ``q``, shape ``(z, n0)`` each (:class:`PeakUniforms`)."""
+        return self._uniforms.draw(n0, rng)
 
     def _predict_model(self, model: FittedModel, lfset: LFSet, rng):
         r, q = self._random_numbers(model.n0, rng)
