@@ -1,0 +1,104 @@
+"""PAS's final samples on an analogue refitted with other estimator settings, and
+the same studies run to the HF budget without stopping.
+
+For each of ``N`` data sets PAS runs with its defaults; its final sample
+(true and false positives) is then refitted with each setting below and the
+MPM error printed ("censor c": the smallest fraction c of the loads enter the
+joint likelihood left-censored, :func:`pas.joint.fit_joint`), with the median and worst |error| over the data sets.
+``--every-event`` refits the default and the censored settings to every
+event of each data set instead (no sampling: the model's own bias).
+``--to-budget`` instead runs each study to 160 HF (ε1 = 1e-12) and prints the
+error along the way: whether a miss is an early stop or stays.
+
+Run: python benchmarks/final_sample_refits.py CASE [N] [--to-budget | --every-event]
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import functools
+import sys
+import warnings
+
+import numpy as np
+
+import pas.strategies.pas as pas_module
+from pas.screening import LFSet
+from pas.strategies.base import Pairs
+from pas.validation import generate_case
+from pas.validation.reproduce import run_case
+
+# name: (PAS settings, keyword of the joint fit)
+VARIANTS = {
+    "default": ({}, {}),
+    "hf_location=False": ({"hf_location": False}, {}),
+    "hf_marginal=both": ({"hf_marginal": "both"}, {}),
+    "censor 0.2": ({}, {"censor": 0.2}),  # the paper's upper-tail mode (upper 80 %), §2.3
+    "censor 0.3": ({}, {"censor": 0.3}),
+    "censor 0.5": ({}, {"censor": 0.5}),
+    "censor 0.7": ({}, {"censor": 0.7}),  # the truth's top 30 %
+    "bootstrap median": ({"n_bootstrap": 50}, {}),
+}
+
+
+def refit_error(data, res, seed, settings, joint_kw):
+    lfset = LFSet(data.lf, n_waves=data.n_waves, p_exp=data.p_exp, threshold=data.threshold)
+    position = np.full(len(data.lf), -1)
+    position[lfset.index] = np.arange(lfset.n)
+    idx = (np.arange(lfset.n) if res is None  # every event of the data set told
+           else position[res.history["event_index"].dropna().to_numpy(int)])
+    hf = np.asarray(data.hf, float)[lfset.index]
+    tp, fp = idx[hf[idx] > 0], idx[hf[idx] == 0]
+    pairs = Pairs(tp, lfset.lf[tp], hf[tp], lfset.d[tp], lfset.lf[fp], fp)
+    original = pas_module.fit_joint_all
+    pas_module.fit_joint_all = functools.partial(original, **joint_kw)
+    try:
+        strategy = pas_module.PAS(**{"n_bootstrap": 0, **settings})
+        strategy.reset(seed)
+        mpm = strategy.predict(pairs, lfset, np.random.default_rng(seed)).mpm
+        if settings.get("n_bootstrap"):
+            mpm = float(np.median(strategy.model_band(pairs, lfset,
+                                                      np.random.default_rng(seed))[2]))
+    finally:
+        pas_module.fit_joint_all = original
+    return mpm / data.truth_mpm - 1
+
+
+def main(case, n=10, *flags):
+    errors = {name: [] for name in VARIANTS}
+    for seed in range(int(n)):
+        data = generate_case(case, seed=seed)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            if "--every-event" in flags:
+                line = [f"{case} {seed} every event told"]
+                for name, (settings, joint_kw) in VARIANTS.items():
+                    if name.startswith(("default", "censor")):
+                        errors[name].append(refit_error(data, None, seed, settings, joint_kw))
+                        line.append(f"{name} {errors[name][-1]:+.2f}")
+                print(" | ".join(line), flush=True)
+                continue
+            if "--to-budget" in flags:
+                res, row = run_case(dataclasses.replace(data, eps1=1e-12), seed=seed)
+                h = res.history.dropna(subset=["mpm"])
+                err = h["mpm"].to_numpy(float) / data.truth_mpm - 1
+                at = {k: err[np.searchsorted(h["n_hf"].to_numpy(), k, side="right") - 1]
+                      for k in (60, 80, 100, 120, 140)}
+                print(f"{case} {seed} " + " ".join(f"{k}: {v:+.2f}" for k, v in at.items())
+                      + f"  160: {row['M2']:+.2f}", flush=True)
+                errors["default"].append(row["M2"])
+                continue
+            res, row = run_case(data, seed=seed)
+            line = [f"{case} {seed} study {row['M2']:+.2f} ({row['n_hf']} HF)"]
+            for name, (settings, joint_kw) in VARIANTS.items():
+                errors[name].append(refit_error(data, res, seed, settings, joint_kw))
+                line.append(f"{name} {errors[name][-1]:+.2f}")
+        print(" | ".join(line), flush=True)
+    for name, e in errors.items():
+        if e:
+            a = np.abs(e)
+            print(f"{name:20s} median |error| {np.median(a):.3f}  worst {a.max():.3f}")
+
+
+if __name__ == "__main__":
+    main(*sys.argv[1:])
