@@ -41,15 +41,31 @@ VARIANTS = {
 }
 
 
-def refit_error(data, res, seed, settings, joint_kw):
+def pool_of(data):
+    """The data set's LF pool and the HF load of each pool peak (0: no impact)."""
     lfset = LFSet(data.lf, n_waves=data.n_waves, p_exp=data.p_exp, threshold=data.threshold)
+    return lfset, np.asarray(data.hf, float)[lfset.index]
+
+
+def evaluated_positions(data, lfset, res):
+    """Pool positions of the events a study evaluated."""
     position = np.full(len(data.lf), -1)
     position[lfset.index] = np.arange(lfset.n)
+    return position[res.history["event_index"].dropna().to_numpy(int)]
+
+
+def pairs_at(lfset, hf_pool, positions):
+    """The true-positive pairs and false positives of a set of pool positions."""
+    idx = np.unique(positions)
+    tp, fp = idx[hf_pool[idx] > 0], idx[hf_pool[idx] == 0]
+    return Pairs(tp, lfset.lf[tp], hf_pool[tp], lfset.d[tp], lfset.lf[fp], fp)
+
+
+def refit_error(data, res, seed, settings, joint_kw):
+    lfset, hf_pool = pool_of(data)
     idx = (np.arange(lfset.n) if res is None  # every event of the data set told
-           else position[res.history["event_index"].dropna().to_numpy(int)])
-    hf = np.asarray(data.hf, float)[lfset.index]
-    tp, fp = idx[hf[idx] > 0], idx[hf[idx] == 0]
-    pairs = Pairs(tp, lfset.lf[tp], hf[tp], lfset.d[tp], lfset.lf[fp], fp)
+           else evaluated_positions(data, lfset, res))
+    pairs = pairs_at(lfset, hf_pool, idx)
     original = pas_module.fit_joint_all
     pas_module.fit_joint_all = functools.partial(original, **joint_kw)
     try:

@@ -36,10 +36,9 @@ import sys
 import warnings
 
 import numpy as np
+from final_sample_refits import evaluated_positions, pairs_at, pool_of
 
-from pas.screening import LFSet
 from pas.stats.weibull import Weibull3
-from pas.strategies.base import Pairs
 from pas.strategies.pas import PAS
 from pas.validation import generate_case
 from pas.validation.reproduce import run_case
@@ -48,12 +47,10 @@ from pas.validation.reproduce import run_case
 def _error_of(data, lfset, hf_pool, seed):
     """MPM error of the default estimator (no band) fitted to pool positions."""
     def error(positions):
-        idx = np.unique(positions)
-        tp, fp = idx[hf_pool[idx] > 0], idx[hf_pool[idx] == 0]
         strategy = PAS(n_bootstrap=0)
         strategy.reset(seed)
-        pairs = Pairs(tp, lfset.lf[tp], hf_pool[tp], lfset.d[tp], lfset.lf[fp], fp)
-        pred = strategy.predict(pairs, lfset, np.random.default_rng(seed))
+        pred = strategy.predict(pairs_at(lfset, hf_pool, positions), lfset,
+                                np.random.default_rng(seed))
         return pred.mpm / data.truth_mpm - 1
     return error
 
@@ -78,12 +75,8 @@ def main(case="3a", seeds="2,5", k=4, n_random=8):
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
             res, row = run_case(data, seed=seed)
-            lfset = LFSet(data.lf, n_waves=data.n_waves, p_exp=data.p_exp,
-                          threshold=data.threshold)
-            hf_pool = np.asarray(data.hf, float)[lfset.index]
-            position = np.full(len(data.lf), -1)
-            position[lfset.index] = np.arange(lfset.n)
-            evaluated = position[res.history["event_index"].dropna().to_numpy(int)]
+            lfset, hf_pool = pool_of(data)
+            evaluated = evaluated_positions(data, lfset, res)
             error = _error_of(data, lfset, hf_pool, seed)
             base = error(evaluated)
             true_pos = evaluated[hf_pool[evaluated] > 0]

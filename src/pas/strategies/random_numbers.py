@@ -28,13 +28,13 @@ class PeakUniforms:
 
     def __init__(self, z: int, seed: int | None, common: bool = True):
         self.z, self.seed, self.common = int(z), 0 if seed is None else seed, bool(common)
-        self._have = None
+        self._uniforms = None
 
     def draw(self, n0: int, rng: np.random.Generator | None):
         if not self.common:
             return (rng.uniform(EPS, 1 - EPS, size=(self.z, n0)),
                     rng.uniform(size=(self.z, n0)))
-        have = 0 if self._have is None else self._have.shape[2]
+        have = 0 if self._uniforms is None else self._uniforms.shape[2]
         if have < n0:
             blocks = []
             for k in range(have // CRN_BLOCK, -(-n0 // CRN_BLOCK)):
@@ -42,5 +42,5 @@ class PeakUniforms:
                 blocks.append(np.stack([crn.uniform(EPS, 1 - EPS, size=(self.z, CRN_BLOCK)),
                                         crn.uniform(size=(self.z, CRN_BLOCK))]))
             new = np.concatenate(blocks, axis=2)
-            self._have = new if self._have is None else np.concatenate([self._have, new], axis=2)
-        return self._have[0, :, :n0], self._have[1, :, :n0]
+            self._uniforms = new if self._uniforms is None else np.concatenate([self._uniforms, new], axis=2)
+        return self._uniforms[0, :, :n0], self._uniforms[1, :, :n0]
