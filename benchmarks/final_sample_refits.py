@@ -61,11 +61,14 @@ def pairs_at(lfset, hf_pool, positions):
     return Pairs(tp, lfset.lf[tp], hf_pool[tp], lfset.d[tp], lfset.lf[fp], fp)
 
 
-def refit_error(data, res, seed, settings, joint_kw):
-    lfset, hf_pool = pool_of(data)
-    idx = (np.arange(lfset.n) if res is None  # every event of the data set told
-           else evaluated_positions(data, lfset, res))
-    pairs = pairs_at(lfset, hf_pool, idx)
+def error_at(data, lfset, hf_pool, positions, seed, settings=None, joint_kw=None):
+    """MPM error of PAS (``settings``; no band) fitted to the events at pool ``positions``.
+
+    ``joint_kw`` goes to the joint fit (e.g. ``censor``); a setting
+    ``n_bootstrap`` > 0 reads the median of the bootstrap MPMs instead.
+    """
+    settings, joint_kw = settings or {}, joint_kw or {}
+    pairs = pairs_at(lfset, hf_pool, positions)
     original = pas_module.fit_joint_all
     pas_module.fit_joint_all = functools.partial(original, **joint_kw)
     try:
@@ -78,6 +81,13 @@ def refit_error(data, res, seed, settings, joint_kw):
     finally:
         pas_module.fit_joint_all = original
     return mpm / data.truth_mpm - 1
+
+
+def refit_error(data, res, seed, settings, joint_kw):
+    """:func:`error_at` on the events ``res`` evaluated (None: every event of the data set)."""
+    lfset, hf_pool = pool_of(data)
+    idx = np.arange(lfset.n) if res is None else evaluated_positions(data, lfset, res)
+    return error_at(data, lfset, hf_pool, idx, seed, settings, joint_kw)
 
 
 def main(case, n=10, *flags):

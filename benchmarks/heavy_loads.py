@@ -32,27 +32,16 @@ Run: python benchmarks/heavy_loads.py [CASE] [SEEDS] [K]   (default 3a 2,5 4)
 
 from __future__ import annotations
 
+import functools
 import sys
 import warnings
 
 import numpy as np
-from final_sample_refits import evaluated_positions, pairs_at, pool_of
+from final_sample_refits import error_at, evaluated_positions, pool_of
 
 from pas.stats.weibull import Weibull3
-from pas.strategies.pas import PAS
 from pas.validation import generate_case
 from pas.validation.reproduce import run_case
-
-
-def _error_of(data, lfset, hf_pool, seed):
-    """MPM error of the default estimator (no band) fitted to pool positions."""
-    def error(positions):
-        strategy = PAS(n_bootstrap=0)
-        strategy.reset(seed)
-        pred = strategy.predict(pairs_at(lfset, hf_pool, positions), lfset,
-                                np.random.default_rng(seed))
-        return pred.mpm / data.truth_mpm - 1
-    return error
 
 
 def record_maxima(case, n=10):
@@ -77,11 +66,12 @@ def main(case="3a", seeds="2,5", k=4, n_random=8):
             res, row = run_case(data, seed=seed)
             lfset, hf_pool = pool_of(data)
             evaluated = evaluated_positions(data, lfset, res)
-            error = _error_of(data, lfset, hf_pool, seed)
+            error = functools.partial(error_at, data, lfset, hf_pool, seed=seed)
             base = error(evaluated)
             true_pos = evaluated[hf_pool[evaluated] > 0]
             loo = np.array([error(evaluated[evaluated != p]) for p in true_pos])
-            heavy = true_pos[np.argsort(np.abs(loo))[:int(k)]]
+            order = np.argsort(np.abs(loo))[:int(k)]
+            heavy = true_pos[order]
             record = np.asarray(data.hf, float)
             hf_rank = {p: int((record > hf_pool[p]).sum()) + 1 for p in heavy}  # in the record
             top6 = np.sort(record)[::-1][:6]
@@ -93,8 +83,7 @@ def main(case="3a", seeds="2,5", k=4, n_random=8):
             print("  pairs whose removal lowers |error| most (LF rank, rank of the load in "
                   "the record, load / truth MPM, error without it): " + ", ".join(
                       f"({p + 1}, {hf_rank[p]}, {hf_pool[p] / data.truth_mpm:.2f}, {e:+.2f})"
-                      for p, e in zip(heavy, np.sort(np.abs(loo))[:int(k)]
-                                      * np.sign(loo[np.argsort(np.abs(loo))[:int(k)]]))))
+                      for p, e in zip(heavy, loo[order])))
             print(f"  PAS's sample without them: {error(evaluated[~np.isin(evaluated, heavy)]):+.2f}")
             rng = np.random.default_rng(100 + seed)
             ln_d = np.log(lfset.d)
