@@ -55,8 +55,9 @@ def evaluated_positions(data, lfset, res):
 
 
 def pairs_at(lfset, hf_pool, positions):
-    """The true-positive pairs and false positives of a set of pool positions."""
-    idx = np.unique(positions)
+    """The true-positive pairs and false positives of pool ``positions``, in their order
+    (the order decides which pairs a bootstrap replicate draws)."""
+    idx = np.asarray(positions)
     tp, fp = idx[hf_pool[idx] > 0], idx[hf_pool[idx] == 0]
     return Pairs(tp, lfset.lf[tp], hf_pool[tp], lfset.d[tp], lfset.lf[fp], fp)
 
