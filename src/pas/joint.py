@@ -27,7 +27,8 @@ the population the predicted distribution (Eq. 8–12) is about.  Here:
   log-normal ``F_H(h) = Φ((ln(h − θ) − μ)/σ)`` (same location rules), whose
   tail is heavier than a Weibull's with β ≥ 1; :func:`best_per_family` keeps,
   per copula family, the marginal of higher likelihood (the same number of
-  parameters, so also the lower AIC).
+  parameters, so also the lower AIC);
+* a two-component Weibull mixture marginal is in :mod:`pas.joint_mixture`.
 
 AIC (Eq. 13) counts the marginal's parameters with the copula's, so the
 families are compared on the same likelihood.

@@ -1,0 +1,194 @@
+"""The joint conditional fit (:mod:`pas.joint`) with a two-component Weibull mixture HF marginal.
+
+Beyond the paper.  Impact loads are a narrow quasi-static body and a wide
+impulsive tail (:mod:`pas.stats.weibull_mixture`); one Weibull fitted to all
+of them bends its tail towards the body.  The likelihood is that of
+:func:`pas.joint.fit_joint` — ``Σ log c(u, F_H(h)) + log f_H(h)``, the
+smallest load left-censored — with ``F_H`` the mixture: a common location
+``θ``, a weight ``p`` in [0.02, 0.98] and two scales and shapes (β in
+[0.3, 20]).  The optimiser starts from the family's Weibull fit split into
+a narrower, lower and a wider, higher component, and from an earlier mixture
+fit when given.  Seven or eight parameters against the Weibull's four or
+five: :func:`pas.joint.best_per_family` keeps the mixture only by likelihood,
+so callers compare by AIC (:func:`best_by_aic`).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pyvinecopulib as pv
+from scipy import optimize
+
+from ._threads import one_blas_thread
+from .copula_densities import GRADIENT_FAMILIES
+from .copulas import CopulaFit, _at_bound, _family_and_rotation
+from .joint import (
+    JointFit,
+    _copula_parameters,
+    _copula_terms,
+    _gradient_terms,
+    _parameter_slope,
+    _prepare,
+    censoring_level,
+)
+from .stats.weibull_mixture import WeibullMixture
+
+__all__ = ["MIXTURE", "best_by_aic", "fit_joint_mixture", "fit_joint_mixture_all"]
+
+MIXTURE = "weibull_mixture"
+_P_LOW, _P_SPAN = 0.02, 0.96
+_SHAPE = (np.log(0.3), np.log(20.0))
+_TINY = 1e-12
+
+
+def _unpack(x, location, h_c, span):
+    """Optimiser values → ``(θ, p, α1, β1, α2, β2, copula values)``."""
+    k = 1 if location else 0
+    theta = h_c - np.exp(x[0]) * span if location else 0.0
+    sig = 1.0 / (1.0 + np.exp(-x[k]))
+    a1, b1, a2, b2 = np.exp(x[k + 1:k + 5])
+    return theta, _P_LOW + _P_SPAN * sig, a1, b1, a2, b2, x[k + 5:]
+
+
+def mixture_objective(name: str, u, h, *, location: bool = True, censor: float = 0.0):
+    """``(negloglik, negloglik_grad or None, unpack)`` as :func:`pas.joint.joint_objective`."""
+    base, rotation, u, h, h_c, span, density = _prepare(name, u, h, location, censor)
+
+    def unpack(x):
+        return _unpack(x, location, h_c, span)
+
+    def marginal_terms(x):
+        theta, p, a1, b1, a2, b2, _ = unpack(x)
+        w = h - theta
+        parts = []
+        for a, b in ((a1, b1), (a2, b2)):
+            ln_r = np.log(w) - np.log(a)
+            z = np.exp(b * ln_r)
+            parts.append((a, b, ln_r, z, np.log(b / a) + (b - 1.0) * ln_r - z, np.exp(-z)))
+        l1, l2 = np.log(p) + parts[0][4], np.log1p(-p) + parts[1][4]
+        log_f = np.logaddexp(l1, l2)
+        sf = p * parts[0][5] + (1.0 - p) * parts[1][5]
+        return log_f, np.clip(1.0 - sf, _TINY, 1 - _TINY), (w, p, parts, l1 - log_f, l2 - log_f)
+
+    @np.errstate(all="ignore")
+    def negloglik(x):
+        log_f, v, _ = marginal_terms(x)
+        pc = _copula_parameters(base, unpack(x)[6]).ravel()
+        val = _copula_terms(base, rotation, pc, u, v, log_f, density)
+        return -float(val) if np.isfinite(val) else 1e300
+
+    @np.errstate(all="ignore")
+    def negloglik_grad(x):
+        """The same with its exact gradient (one-parameter families, no rotation)."""
+        c = unpack(x)[6]
+        log_f, v, (w, p, parts, ln_r1, ln_r2) = marginal_terms(x)
+        pc = _copula_parameters(base, c).ravel()
+        total, d_v, d_p = _gradient_terms(base, pc, u, v, density)
+        val = float(np.sum(np.where(density, log_f + total, total)))
+        if not np.isfinite(val):
+            return 1e300, np.zeros_like(x)
+        dens = density.astype(float)
+        weights = (p, 1.0 - p)
+        resp = (np.exp(ln_r1), np.exp(ln_r2))  # each component's share of the density
+        g_t = 0.0
+        grad = []
+        for (a, b, ln_r, z, _, s), wk, rk in zip(parts, weights, resp):
+            # ∂ log f_k and ∂S_k by ln α, ln β, θ; F = 1 − Σ w_k S_k
+            dl_a, ds_a = b * (z - 1.0), s * b * z
+            dl_b, ds_b = 1.0 + b * ln_r * (1.0 - z), -s * z * b * ln_r
+            dl_t, ds_t = (b * z - b + 1.0) / w, s * b * z / w
+            grad += [np.sum(dens * rk * dl_a - d_v * wk * ds_a),
+                     np.sum(dens * rk * dl_b - d_v * wk * ds_b)]
+            g_t += np.sum(dens * rk * dl_t - d_v * wk * ds_t)
+        s1, s2 = parts[0][5], parts[1][5]
+        sig = (p - _P_LOW) / _P_SPAN
+        dp_dx = _P_SPAN * sig * (1.0 - sig)
+        g_p = np.sum(dens * (resp[0] / p - resp[1] / (1.0 - p)) - d_v * (s1 - s2)) * dp_dx
+        grad = ([g_t * (-np.exp(x[0]) * span)] if location else []) + [g_p] + grad + [
+            np.sum(d_p) * _parameter_slope(base, c)]
+        g = -np.asarray(grad, float)
+        return (-val, g) if np.all(np.isfinite(g)) else (1e300, np.zeros_like(x))
+
+    grad = negloglik_grad if base in GRADIENT_FAMILIES and rotation == 0 else None
+    return negloglik, grad, unpack
+
+
+def _split_start(weibull: JointFit, location: bool):
+    """Optimiser values that split a Weibull joint fit into a body and a tail component."""
+    x = np.asarray(weibull.x, float)
+    n_marg = 3 if location else 2
+    ln_a, ln_b = x[n_marg - 2], x[n_marg - 1]
+    body = [np.log(0.8) + ln_a, min(ln_b + np.log(2.0), _SHAPE[1] - 0.1)]
+    tail = [np.log(1.6) + ln_a, max(ln_b + np.log(0.7), _SHAPE[0] + 0.1)]
+    return np.r_[x[:1] if location else [], [0.4], body, tail, x[n_marg:]]
+
+
+def fit_joint_mixture(name: str, u, h, weibull: JointFit, *, start=None, location: bool = True,
+                      censor: float = 0.0, cold: bool = True) -> JointFit:
+    """Fit one copula family with the Weibull-mixture HF marginal (module docs).
+
+    ``weibull`` is the same family's :func:`pas.joint.fit_joint` result, split
+    into a body and a tail (the cold start); ``start`` an earlier mixture
+    fit's optimiser values (the warm start; with ``cold=False`` the only one).
+    """
+    family, rotation = _family_and_rotation(name)
+    base = name.partition("_")[0]
+    negloglik, negloglik_grad, unpack = mixture_objective(name, u, h, location=location,
+                                                          censor=censor)
+    h = np.asarray(h, float)
+    h_c = censoring_level(h, censor, location)
+    span = float(np.ptp(h)) or float(h.min())
+    s_max = min(np.log(3.0), np.log(max(h_c, 1e-300) / span))
+    n_cop = 2 if base == "student" else 1
+    bounds = ([(min(np.log(1e-9), s_max - 1.0), s_max)] if location else []) + [
+        (-8.0, 8.0), (None, None), _SHAPE, (None, None), _SHAPE] + [(None, None)] * n_cop
+
+    def minimise(x0):
+        x0 = np.array([np.clip(x, -np.inf if lo is None else lo, np.inf if hi is None else hi)
+                       for x, (lo, hi) in zip(x0, bounds)])
+        fun = negloglik_grad if negloglik_grad is not None else negloglik
+        return optimize.minimize(fun, x0, jac=negloglik_grad is not None, method="L-BFGS-B",
+                                 bounds=bounds)
+
+    warm = start is not None and len(start) == len(bounds)
+    starts = ([_split_start(weibull, location)] if cold or not warm else []) + (
+        [np.asarray(start, float)] if warm else [])
+    res = min((minimise(x0) for x0 in starts), key=lambda r: r.fun)
+    if not np.isfinite(res.fun) or res.fun >= 1e299:
+        raise ValueError(f"joint mixture fit of the {name} copula failed: {res.message}")
+    theta, p, a1, b1, a2, b2, c = unpack(res.x)
+    cop = pv.Bicop(family=family, rotation=rotation, parameters=_copula_parameters(base, c))
+    k = len(bounds) - n_cop + float(cop.npars)
+    loglik = -float(res.fun)
+    fit = CopulaFit(name=name, bicop=cop, loglik=loglik, aic=2.0 * k - 2.0 * loglik,
+                    npars=k, at_bound=_at_bound(cop, name))
+    hf = WeibullMixture(float(theta), float(p), float(a1), float(b1), float(a2), float(b2))
+    return JointFit(fit, hf, np.asarray(res.x), MIXTURE)
+
+
+def fit_joint_mixture_all(u, h, weibull_fits: dict, *, starts=None, location: bool = True,
+                          censor: float = 0.0, cold: bool = True) -> dict[tuple[str, str], JointFit]:
+    """:func:`fit_joint_mixture` for every family of ``weibull_fits`` (keys ``(family, "weibull")``)."""
+    starts = starts or {}
+    out = {}
+    with one_blas_thread():
+        for (name, marginal), weibull in weibull_fits.items():
+            if marginal != "weibull":
+                continue
+            prev = starts.get((name, MIXTURE))
+            try:
+                out[name, MIXTURE] = fit_joint_mixture(
+                    name, u, h, weibull, location=location, censor=censor, cold=cold,
+                    start=None if prev is None else prev.x)
+            except ValueError:
+                continue  # the family keeps its Weibull
+    return out
+
+
+def best_by_aic(fits: dict[tuple[str, str], JointFit]) -> dict[str, JointFit]:
+    """Per copula family, the HF marginal of lowest AIC (ties: the first listed)."""
+    out = {}
+    for (name, _), fit in fits.items():
+        if name not in out or fit.copula.aic < out[name].copula.aic:
+            out[name] = fit
+    return out
