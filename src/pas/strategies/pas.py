@@ -50,6 +50,7 @@ from ..copulas import (
     select_family,
 )
 from ..joint import HF_MARGINALS, JOINT_FAMILIES, best_per_family, fit_joint_all
+from ..joint_mixture import MIXTURE, best_by_aic, fit_joint_mixture_all
 from ..screening import LFSet
 from ..stats.dependence import (
     empirical_tail_dependence,
@@ -83,6 +84,7 @@ __all__ = [
 ]
 
 COLD_EVERY = 10
+_MARGINAL_NAMES = {"Weibull3": "weibull", "LogNormal3": "lognormal"}  # the mixture otherwise
 
 
 def refit(result) -> "FittedModel":
@@ -159,12 +161,14 @@ class PAS(Strategy):
     hf_location : bool, default True
         Conditional estimator: a three-parameter HF marginal (location ≥ 0,
         below the smallest load) or the two-parameter one (location 0).
-    hf_marginal : {"weibull", "lognormal", "both"}, default "weibull"
+    hf_marginal : {"weibull", "lognormal", "both", "weibull_mixture"}, default "weibull"
         Conditional estimator: the HF marginal's family (the paper's Weibull
         by default), or ``"both"``: a Weibull and a log-normal fitted with
         each copula and the one of higher likelihood kept (:mod:`pas.joint`;
-        measured trade-off in ``docs/departures.md``).  The selected-space
-        estimator always fits the paper's Weibull (Eq. 15).
+        measured trade-off in ``docs/departures.md``); or ``"weibull_mixture"``:
+        per copula, a Weibull and a two-component Weibull mixture (a body and a
+        tail, :mod:`pas.joint_mixture`), the one of lower AIC kept.  The
+        selected-space estimator always fits the paper's Weibull (Eq. 15).
     band_marginals : {"fitted", "reselected", "alternate"}, default "reselected"
         Conditional estimator, model band (:meth:`model_band`): every
         bootstrap replicate fits the study's ``hf_marginal`` ("fitted");
@@ -221,7 +225,8 @@ class PAS(Strategy):
         self.copula_fit = check_option(copula_fit, "copula_fit", {"mle", "itau"})
         self.common_random_numbers = bool(common_random_numbers)
         self.hf_location = bool(hf_location)
-        self.hf_marginal = check_option(hf_marginal, "hf_marginal", {*HF_MARGINALS, "both"})
+        self.hf_marginal = check_option(hf_marginal, "hf_marginal",
+                                        {*HF_MARGINALS, "both", MIXTURE})
         self.band_marginals = check_option(band_marginals, "band_marginals",
                                            {"fitted", "reselected", "alternate"})
         self.band_lf_ranks = check_option(band_lf_ranks, "band_lf_ranks", {"fixed", "redrawn"})
@@ -308,14 +313,19 @@ class PAS(Strategy):
         # COLD_EVERY-th fit, and every bootstrap replicate, also starts from the
         # data, so no fit stays trapped in the basin of another sample
         cold = not update or (family is None and self._n_fits % COLD_EVERY == 0)
-        marginals = HF_MARGINALS if hf_marginal == "both" else (hf_marginal,)
-        every = fit_joint_all(u_cond[pairs.position][keep], pairs.hf[keep], families,
-                              marginals=marginals, starts=starts, location=self.hf_location,
-                              cold=cold or not starts)
+        marginals = {"both": HF_MARGINALS, MIXTURE: ("weibull",),
+                     "all": HF_MARGINALS}.get(hf_marginal, (hf_marginal,))
+        u_pairs, h_pairs = u_cond[pairs.position][keep], pairs.hf[keep]
+        every = fit_joint_all(u_pairs, h_pairs, families, marginals=marginals, starts=starts,
+                              location=self.hf_location, cold=cold or not starts)
+        if hf_marginal in (MIXTURE, "all"):
+            every |= fit_joint_mixture_all(u_pairs, h_pairs, every, starts=starts,
+                                           location=self.hf_location, cold=cold or not starts)
         if update and family is None:
             self._joint = every
             self._n_fits += 1
-        joint = best_per_family(every)
+        # the mixture has three parameters more: compared by AIC, not likelihood
+        joint = best_by_aic(every) if hf_marginal in (MIXTURE, "all") else best_per_family(every)
         ascending = cond_lf[::-1], u_cond[::-1]
         return ({k: j.copula for k, j in joint.items()},
                 {k: j.hf_marginal for k, j in joint.items()},
@@ -342,7 +352,7 @@ class PAS(Strategy):
             "ineligible": " ".join(k for k, f in model.fits.items() if f.at_bound)
             if self.exclude_at_bound and not all(f.at_bound for f in model.fits.values()) else "",
             "copula_params": " ".join(f"{x:.4g}" for x in model.copula.parameters),
-            "hf_marginal": type(model.hf_marginal).__name__.rstrip("3").lower(),
+            "hf_marginal": _MARGINAL_NAMES.get(type(model.hf_marginal).__name__, MIXTURE),
             "n_outliers": model.n_outliers,
             "tau": kendall_tau(pairs.lf, pairs.hf),
             "lambda_u": lam_u,
@@ -374,7 +384,8 @@ class PAS(Strategy):
         """
         if self.n_bootstrap <= 0 or self.family_ is None:
             return None
-        marginals = {"fitted": (None,), "reselected": ("both",),
+        reselected = "all" if self.hf_marginal == MIXTURE else "both"
+        marginals = {"fitted": (None,), "reselected": (reselected,),
                      "alternate": HF_MARGINALS}[self.band_marginals]
         # a stream of its own, so the resampled pairs are those of "fixed"
         lf_rng = rng.spawn(1)[0] if self.band_lf_ranks == "redrawn" else None
