@@ -1,0 +1,46 @@
+"""Two settings on the same known-truth data sets, run by run (``runs.csv`` of :mod:`known_truth`).
+
+Pairs the runs of the same problem type and replication (the same data set)
+and prints, per type, the median |error|, median error, U95 coverage, median
+HF count and share converged of each setting, then the overall figures and
+how many runs each setting got closer to the truth.
+
+Run: python benchmarks/known_truth_paired.py BASE.csv[,MORE.csv] OTHER.csv[,MORE.csv]
+"""
+
+from __future__ import annotations
+
+import sys
+
+import pandas as pd
+from known_truth_table import _read
+
+
+def main(argv=None):
+    argv = sys.argv[1:] if argv is None else argv
+    base = _read(argv[0]).drop_duplicates(["type", "replication"], keep="last")
+    other = _read(argv[1]).drop_duplicates(["type", "replication"], keep="last")
+    runs = base.merge(other, on=["type", "replication"], suffixes=("_a", "_b"))
+    for s in "ab":
+        runs[f"abs_{s}"] = runs[f"error_{s}"].abs()
+    per_type = runs.groupby("type", sort=False).agg(
+        **{f"{what}_{s}": (f"{col}_{s}", how) for s in "ab"
+           for what, col, how in (("median_abs", "abs", "median"), ("median_err", "error", "median"),
+                                  ("coverage", "covered", "mean"), ("hf", "n_hf", "median"),
+                                  ("converged", "converged", "mean"))})
+    with pd.option_context("display.width", 250, "display.max_columns", 20):
+        print(per_type.round(3).to_string())
+    a, b = runs["abs_a"], runs["abs_b"]
+    print(f"\n{len(runs)} paired runs (a = {argv[0]}, b = {argv[1]})")
+    for label, fn in (("median |error|", "median"), ("mean |error|", "mean"), ("worst |error|", "max")):
+        print(f"{label}: {getattr(a, fn)():.3f} → {getattr(b, fn)():.3f}")
+    print(f"U95 coverage: {runs['covered_a'].mean():.3f} → {runs['covered_b'].mean():.3f}")
+    print(f"converged: {runs['converged_a'].mean():.3f} → {runs['converged_b'].mean():.3f}")
+    print(f"b closer / farther / the same: {(b < a - 1e-9).sum()} / {(b > a + 1e-9).sum()} / "
+          f"{((b - a).abs() <= 1e-9).sum()}")
+    print(f"run time b / a (median of the pairs): "
+          f"{(runs['seconds_b'] / runs['seconds_a']).median():.2f}")
+
+
+if __name__ == "__main__":
+    main()
