@@ -10,9 +10,12 @@ mixture to every event of each data set instead (no sampling: the model's
 own bias).  ``--only NAME,NAME`` keeps the listed settings.
 ``--to-budget`` instead runs each study to 160 HF (ε1 = 1e-12) and prints the
 error along the way: whether a miss is an early stop or stays.
+``--md-weighted`` fits every event again, each repeated as often as MD's
+design would include it (:func:`md_design_positions`): the fit PAS's samples
+scatter about, without their sampling noise.
 
-Run: python benchmarks/final_sample_refits.py CASE [N] [--to-budget | --every-event]
-     [--only NAME,NAME]
+Run: python benchmarks/final_sample_refits.py CASE [N] [--to-budget | --every-event |
+     --md-weighted] [--only NAME,NAME]
 """
 
 from __future__ import annotations
@@ -87,6 +90,23 @@ def error_at(data, lfset, hf_pool, positions, seed, settings=None, joint_kw=None
     return mpm / data.truth_mpm - 1
 
 
+def md_design_positions(n, k=160, copies=10, seed=0):
+    """Pool positions repeated as MD's design includes them: ``copies · min(1, c / rank)``
+    times (stochastic rounding), with ``c`` such that ``k`` events are expected.
+
+    MD spreads ``k`` events uniformly over ``ln d``, so the event of LF rank ``i``
+    (its ln-d interval ``≈ 1/i`` wide) is included with probability ``≈ min(1, c/i)``.
+    """
+    rank = np.arange(1, n + 1)
+    lo, hi = 1e-3, float(n)
+    for _ in range(100):
+        c = np.sqrt(lo * hi)
+        lo, hi = (c, hi) if np.minimum(1.0, c / rank).sum() < k else (lo, c)
+    weight = copies * np.minimum(1.0, c / rank)
+    times = np.floor(weight + np.random.default_rng(seed).uniform(size=n)).astype(int)
+    return np.repeat(np.arange(n), times)
+
+
 def refit_error(data, res, seed, settings, joint_kw):
     """:func:`error_at` on the events ``res`` evaluated (None: every event of the data set)."""
     lfset, hf_pool = pool_of(data)
@@ -113,6 +133,19 @@ def main(case, n=10, *flags):
                         line.append(f"{name} {errors[name][-1]:+.2f}")
                 print(" | ".join(line), flush=True)
                 continue
+            if "--md-weighted" in flags:
+                lfset, hf_pool = pool_of(data)
+                line = [f"{case} {seed}"]
+                for name, (settings, joint_kw) in variants.items():
+                    every = error_at(data, lfset, hf_pool, np.arange(lfset.n), seed, settings,
+                                     joint_kw)
+                    errors[name].append(error_at(data, lfset, hf_pool,
+                                                 md_design_positions(lfset.n, seed=seed), seed,
+                                                 settings, joint_kw))
+                    line.append(f"{name}: every event {every:+.2f}, weighted as MD includes "
+                                f"events {errors[name][-1]:+.2f}")
+                print(" | ".join(line), flush=True)
+                continue
             if "--to-budget" in flags:
                 res, row = run_case(dataclasses.replace(data, eps1=1e-12), seed=seed)
                 h = res.history.dropna(subset=["mpm"])
@@ -132,7 +165,8 @@ def main(case, n=10, *flags):
     for name, e in errors.items():
         if e:
             a = np.abs(e)
-            print(f"{name:20s} median |error| {np.median(a):.3f}  worst {a.max():.3f}")
+            print(f"{name:20s} median |error| {np.median(a):.3f}  worst {a.max():.3f}  "
+                  f"median error {np.median(e):+.3f}")
 
 
 if __name__ == "__main__":
