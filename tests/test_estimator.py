@@ -127,6 +127,42 @@ def test_a_bore_impulse_hf_law_is_recognised_by_the_weibull_mixture():
     assert kept >= 4
 
 
+def test_weibull_mixture_in_the_band_and_a_failed_mixture_fit_keeps_the_weibull(monkeypatch):
+    import pas.joint_mixture as joint_mixture
+    from pas.stats.weibull_mixture import WeibullMixture
+
+    law = WeibullMixture(theta=0.0, p=0.7, alpha1=1000.0, beta1=2.0, alpha2=2500.0, beta2=0.7)
+    s, pairs, _ = _problem(0, tau=0.6, hf_law=law, m=160)
+    # the band's replicates ("reselected") choose among Weibull, log-normal and mixture
+    strategy = PAS(n_bootstrap=12, hf_marginal="weibull_mixture")
+    strategy.reset(0)
+    strategy.predict(pairs, s, np.random.default_rng(0))
+    fit, kinds = strategy.fit, []
+
+    def spy(*args, **kwargs):
+        model = fit(*args, **kwargs)
+        kinds.append(model.hf_marginal.name)
+        return model
+
+    strategy.fit = spy
+    strategy.model_band(pairs, s, np.random.default_rng(1))
+    assert kinds.count("weibull_mixture") > len(kinds) / 2
+    # every mixture fit failing: each family keeps its Weibull, the default's MPM exactly
+
+    def fail(*args, **kwargs):
+        raise ValueError("no optimum")
+
+    monkeypatch.setattr(joint_mixture, "fit_joint_mixture", fail)
+    strategy = PAS(n_bootstrap=12, hf_marginal="weibull_mixture")
+    strategy.reset(0)
+    prediction = strategy.predict(pairs, s, np.random.default_rng(0))
+    default = PAS(n_bootstrap=0)
+    default.reset(0)
+    assert prediction.record["hf_marginal"] == "weibull"
+    assert prediction.mpm == default.predict(pairs, s, np.random.default_rng(0)).mpm
+    assert strategy.model_band(pairs, s, np.random.default_rng(1)) is not None
+
+
 def test_band_marginals_let_the_bootstrap_choose_or_alternate_the_hf_marginal():
     # the replicates of the model band fit the study's Weibull ("fitted"), the Weibull and
     # the log-normal alternately ("alternate"), or the better of the two by likelihood

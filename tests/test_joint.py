@@ -229,30 +229,35 @@ def test_weibull_mixture_quantiles_invert_its_survival_function():
     np.testing.assert_allclose(d.cdf(d.ppf(1 - q)), 1 - q, rtol=1e-9)
 
 
+@pytest.mark.parametrize(("location", "censor"), [(True, 0.1), (True, 0.0), (False, 0.3)])
 @pytest.mark.parametrize("family", ["gaussian", "clayton", "gumbel", "frank"])
-def test_mixture_objective_gradient_matches_finite_differences(family):
+def test_mixture_objective_gradient_matches_finite_differences(family, location, censor):
     from pas.joint_mixture import mixture_objective
 
     _, u, h = _bore_impulse(200, seed=1)
-    negloglik, negloglik_grad, _ = mixture_objective(family, u, h, censor=0.1)
-    x = np.array([np.log(0.1), 0.3, np.log(140.0), np.log(3.0), np.log(600.0), np.log(1.2), 0.4])
+    negloglik, negloglik_grad, _ = mixture_objective(family, u, h, location=location,
+                                                     censor=censor)
+    x = np.array(([np.log(0.1)] if location else []) + [
+        0.3, np.log(140.0), np.log(3.0), np.log(600.0), np.log(1.2), 0.4])
     value, grad = negloglik_grad(x)
     assert value == pytest.approx(negloglik(x), rel=1e-12)
     step = 1e-6
-    fd = [(negloglik(x + step * e) - negloglik(x - step * e)) / (2 * step) for e in np.eye(7)]
+    fd = [(negloglik(x + step * e) - negloglik(x - step * e)) / (2 * step)
+          for e in np.eye(x.size)]
     np.testing.assert_allclose(grad, fd, rtol=1e-5, atol=1e-4)
 
 
 def test_mixture_fit_recovers_a_bore_impulse_marginal_and_wins_on_aic():
-    from pas.joint import fit_joint_all
-    from pas.joint_mixture import MIXTURE, best_by_aic, fit_joint_mixture_all
+    from pas.joint import best_per_family, fit_joint_all
+    from pas.joint_mixture import MIXTURE, fit_joint_mixture_all
 
     truth, u, h = _bore_impulse(3000, seed=2)
     weibull = fit_joint_all(u, h, ["gaussian"], location=False)
     fits = weibull | fit_joint_mixture_all(u, h, weibull, location=False)
-    best = best_by_aic(fits)["gaussian"]
+    best = best_per_family(fits, by="aic")["gaussian"]
     assert best.marginal == MIXTURE
     m = best.hf_marginal
+    assert m.theta == 0.0  # no location: the two-parameter components
     assert (m.p, m.alpha1, m.beta1, m.alpha2, m.beta2) == pytest.approx(
         (truth.p, truth.alpha1, truth.beta1, truth.alpha2, truth.beta2), rel=0.12)
     assert best.copula.parameters[0] == pytest.approx(0.7, abs=0.03)
@@ -263,4 +268,5 @@ def test_mixture_fit_recovers_a_bore_impulse_marginal_and_wins_on_aic():
     # on a single Weibull the three extra parameters do not pay
     uw, hw = _pairs(stats.weibull_min(1.5, loc=0.5, scale=2.0))
     w = fit_joint_all(uw, hw, ["gaussian"])
-    assert best_by_aic(w | fit_joint_mixture_all(uw, hw, w))["gaussian"].marginal == "weibull"
+    assert best_per_family(w | fit_joint_mixture_all(uw, hw, w),
+                           by="aic")["gaussian"].marginal == "weibull"

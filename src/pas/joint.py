@@ -53,9 +53,11 @@ from .copula_densities import (
 from .copulas import CopulaFit, _at_bound, _family_and_rotation, kendall_tau
 from .stats.lognormal import LogNormal3
 from .stats.weibull import Weibull3, fit_weibull3_ls
+from .stats.weibull_mixture import WeibullMixture
 
 __all__ = ["JOINT_FAMILIES", "HF_MARGINALS", "JointFit", "censoring_level", "fit_joint",
-           "fit_joint_all", "best_per_family"]
+           "fit_joint_all", "best_per_family", "location_bounds", "minimise_bounded",
+           "joint_fit_result"]
 
 HF_MARGINALS = ("weibull", "lognormal")
 """HF marginals the joint fit knows (module docs)."""
@@ -68,10 +70,10 @@ _TINY = 1e-12
 
 @dataclass(frozen=True)
 class JointFit:
-    """A copula and its HF Weibull marginal fitted together (module docs)."""
+    """A copula and its HF marginal fitted together (module docs)."""
 
     copula: CopulaFit
-    hf_marginal: Weibull3 | LogNormal3
+    hf_marginal: Weibull3 | LogNormal3 | WeibullMixture
     x: np.ndarray  # the optimiser's unconstrained parameters, for warm starts
     marginal: str = "weibull"
 
@@ -300,7 +302,6 @@ def fit_joint(name: str, u, h, *, start=None, location: bool = True, censor: flo
         The HF marginal's family (module docs); the location rules are the
         same for both.
     """
-    family, rotation = _family_and_rotation(name)
     base = name.partition("_")[0]
     u = np.clip(np.asarray(u, float), _TINY, 1 - _TINY)
     h = np.asarray(h, float)
@@ -309,24 +310,15 @@ def fit_joint(name: str, u, h, *, start=None, location: bool = True, censor: flo
     lognormal = marginal == "lognormal"
     n_marg = 3 if location else 2
     n_par = n_marg + (2 if base == "student" else 1)
-    # the Weibull may not run off to its Gumbel limit (location → −∞, β → ∞): the
-    # location stays within three load ranges below the smallest load, as in
-    # :func:`pas.stats.weibull.fit_weibull3_ls`, and at or above 0 (loads are
-    # non-negative, so no draw needs clipping); β in [0.05, 50], log-normal σ in [0.02, 10]
-    h_c = censoring_level(h, censor, location)
-    span = float(np.ptp(h)) or float(h.min())
-    s_max = min(np.log(3.0), np.log(max(h_c, 1e-300) / span))
+    # the location within three load ranges below the smallest load and at or above 0
+    # (loads are non-negative, so no draw needs clipping; :func:`location_bounds`);
+    # β in [0.05, 50], log-normal σ in [0.02, 10]
     shape = (np.log(0.02), np.log(10.0)) if lognormal else (np.log(0.05), np.log(50.0))
-    bounds = ([(min(np.log(1e-9), s_max - 1.0), s_max)] if location else []) + [
+    bounds = location_bounds(h, censor, location) + [
         (None, None), shape] + [(None, None)] * (n_par - n_marg)
 
     def minimise(x0):
-        x0 = np.array([np.clip(x, lo if lo is not None else -np.inf, hi if hi is not None else np.inf)
-                       for x, (lo, hi) in zip(x0, bounds)])
-        if negloglik_grad is not None:
-            return optimize.minimize(negloglik_grad, x0, jac=True, method="L-BFGS-B",
-                                     bounds=bounds)
-        return optimize.minimize(negloglik, x0, method="L-BFGS-B", bounds=bounds)
+        return minimise_bounded(negloglik, negloglik_grad, x0, bounds)
 
     res = None
     if start is not None and len(start) == n_par:
@@ -336,15 +328,51 @@ def fit_joint(name: str, u, h, *, start=None, location: bool = True, censor: flo
         start_marginal = _lognormal_start if lognormal else _weibull_start
         fresh = minimise(np.r_[start_marginal(h, location), _copula_start(base, tau)])
         res = fresh if res is None or fresh.fun < res.fun else res
+    theta, a, b, c = unpack(res.x)
+    hf = (LogNormal3 if lognormal else Weibull3)(float(theta), float(a), float(b))
+    return joint_fit_result(name, res, c, n_marg, hf, marginal)
+
+
+def location_bounds(h, censor: float, location: bool) -> list:
+    """The optimiser's bound on the location gap (empty without a location).
+
+    The Weibull may not run off to its Gumbel limit (location → −∞, β → ∞):
+    the location stays within three load ranges below the censoring level, as
+    in :func:`pas.stats.weibull.fit_weibull3_ls`, and at or above 0.
+    """
+    if not location:
+        return []
+    h = np.asarray(h, float)
+    h_c = censoring_level(h, censor, location)
+    span = float(np.ptp(h)) or float(h.min())
+    s_max = min(np.log(3.0), np.log(max(h_c, 1e-300) / span))
+    return [(min(np.log(1e-9), s_max - 1.0), s_max)]
+
+
+def minimise_bounded(negloglik, negloglik_grad, x0, bounds):
+    """L-BFGS-B from ``x0`` clipped into ``bounds``, with the exact gradient when there is one."""
+    x0 = np.array([np.clip(x, lo if lo is not None else -np.inf, hi if hi is not None else np.inf)
+                   for x, (lo, hi) in zip(x0, bounds)])
+    if negloglik_grad is not None:
+        return optimize.minimize(negloglik_grad, x0, jac=True, method="L-BFGS-B", bounds=bounds)
+    return optimize.minimize(negloglik, x0, method="L-BFGS-B", bounds=bounds)
+
+
+def joint_fit_result(name: str, res, c, n_marg: int, hf, marginal: str) -> JointFit:
+    """A :class:`JointFit` from an optimum: the copula, its likelihood and AIC (Eq. 13).
+
+    ``n_marg`` marginal parameters count with the copula's; raises ValueError
+    when the optimiser found no finite optimum.
+    """
     if not np.isfinite(res.fun) or res.fun >= 1e299:
         raise ValueError(f"joint fit of the {name} copula failed: {res.message}")
-    theta, a, b, c = unpack(res.x)
-    cop = pv.Bicop(family=family, rotation=rotation, parameters=_copula_parameters(base, c))
+    family, rotation = _family_and_rotation(name)
+    cop = pv.Bicop(family=family, rotation=rotation,
+                   parameters=_copula_parameters(name.partition("_")[0], c))
     k = n_marg + float(cop.npars)
     loglik = -float(res.fun)
     fit = CopulaFit(name=name, bicop=cop, loglik=loglik, aic=2.0 * k - 2.0 * loglik,
                     npars=k, at_bound=_at_bound(cop, name))
-    hf = (LogNormal3 if lognormal else Weibull3)(float(theta), float(a), float(b))
     return JointFit(fit, hf, np.asarray(res.x), marginal)
 
 
@@ -367,10 +395,13 @@ def fit_joint_all(u, h, families, *, marginals=("weibull",), starts=None,
     return out
 
 
-def best_per_family(fits: dict[tuple[str, str], JointFit]) -> dict[str, JointFit]:
-    """Per copula family, the HF marginal of highest likelihood (ties: the first listed)."""
+def best_per_family(fits: dict[tuple[str, str], JointFit], *,
+                    by: str = "loglik") -> dict[str, JointFit]:
+    """Per copula family, the HF marginal of highest likelihood (``by="aic"``: of lowest
+    AIC, for marginals with different numbers of parameters); ties: the first listed."""
+    score = ((lambda f: f.copula.loglik) if by == "loglik" else (lambda f: -f.copula.aic))
     out = {}
     for (name, _), fit in fits.items():
-        if name not in out or fit.copula.loglik > out[name].copula.loglik:
+        if name not in out or score(fit) > score(out[name]):
             out[name] = fit
     return out

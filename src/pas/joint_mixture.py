@@ -9,19 +9,15 @@ smallest load left-censored — with ``F_H`` the mixture: a common location
 [0.3, 20]).  The optimiser starts from the family's Weibull fit split into
 a narrower, lower and a wider, higher component, and from an earlier mixture
 fit when given.  Seven or eight parameters against the Weibull's four or
-five: :func:`pas.joint.best_per_family` keeps the mixture only by likelihood,
-so callers compare by AIC (:func:`best_by_aic`).
+five, so callers compare by AIC (``pas.joint.best_per_family(..., by="aic")``).
 """
 
 from __future__ import annotations
 
 import numpy as np
-import pyvinecopulib as pv
-from scipy import optimize
 
 from ._threads import one_blas_thread
 from .copula_densities import GRADIENT_FAMILIES
-from .copulas import CopulaFit, _at_bound, _family_and_rotation
 from .joint import (
     JointFit,
     _copula_parameters,
@@ -29,11 +25,13 @@ from .joint import (
     _gradient_terms,
     _parameter_slope,
     _prepare,
-    censoring_level,
+    joint_fit_result,
+    location_bounds,
+    minimise_bounded,
 )
 from .stats.weibull_mixture import WeibullMixture
 
-__all__ = ["MIXTURE", "best_by_aic", "fit_joint_mixture", "fit_joint_mixture_all"]
+__all__ = ["MIXTURE", "fit_joint_mixture", "fit_joint_mixture_all"]
 
 MIXTURE = "weibull_mixture"
 _P_LOW, _P_SPAN = 0.02, 0.96
@@ -130,45 +128,29 @@ def fit_joint_mixture(name: str, u, h, weibull: JointFit, *, start=None, locatio
     ``weibull`` is the same family's :func:`pas.joint.fit_joint` result, split
     into a body and a tail (the cold start); ``start`` an earlier mixture
     fit's optimiser values (the warm start; with ``cold=False`` the only one).
+    Raises ValueError when no start reaches a finite optimum.
     """
-    family, rotation = _family_and_rotation(name)
-    base = name.partition("_")[0]
     negloglik, negloglik_grad, unpack = mixture_objective(name, u, h, location=location,
                                                           censor=censor)
-    h = np.asarray(h, float)
-    h_c = censoring_level(h, censor, location)
-    span = float(np.ptp(h)) or float(h.min())
-    s_max = min(np.log(3.0), np.log(max(h_c, 1e-300) / span))
-    n_cop = 2 if base == "student" else 1
-    bounds = ([(min(np.log(1e-9), s_max - 1.0), s_max)] if location else []) + [
+    n_cop = 2 if name.partition("_")[0] == "student" else 1
+    bounds = location_bounds(h, censor, location) + [
         (-8.0, 8.0), (None, None), _SHAPE, (None, None), _SHAPE] + [(None, None)] * n_cop
-
-    def minimise(x0):
-        x0 = np.array([np.clip(x, -np.inf if lo is None else lo, np.inf if hi is None else hi)
-                       for x, (lo, hi) in zip(x0, bounds)])
-        fun = negloglik_grad if negloglik_grad is not None else negloglik
-        return optimize.minimize(fun, x0, jac=negloglik_grad is not None, method="L-BFGS-B",
-                                 bounds=bounds)
-
     warm = start is not None and len(start) == len(bounds)
     starts = ([_split_start(weibull, location)] if cold or not warm else []) + (
         [np.asarray(start, float)] if warm else [])
-    res = min((minimise(x0) for x0 in starts), key=lambda r: r.fun)
-    if not np.isfinite(res.fun) or res.fun >= 1e299:
-        raise ValueError(f"joint mixture fit of the {name} copula failed: {res.message}")
+    res = min((minimise_bounded(negloglik, negloglik_grad, x0, bounds) for x0 in starts),
+              key=lambda r: r.fun)
     theta, p, a1, b1, a2, b2, c = unpack(res.x)
-    cop = pv.Bicop(family=family, rotation=rotation, parameters=_copula_parameters(base, c))
-    k = len(bounds) - n_cop + float(cop.npars)
-    loglik = -float(res.fun)
-    fit = CopulaFit(name=name, bicop=cop, loglik=loglik, aic=2.0 * k - 2.0 * loglik,
-                    npars=k, at_bound=_at_bound(cop, name))
     hf = WeibullMixture(float(theta), float(p), float(a1), float(b1), float(a2), float(b2))
-    return JointFit(fit, hf, np.asarray(res.x), MIXTURE)
+    return joint_fit_result(name, res, c, len(bounds) - n_cop, hf, MIXTURE)
 
 
 def fit_joint_mixture_all(u, h, weibull_fits: dict, *, starts=None, location: bool = True,
                           censor: float = 0.0, cold: bool = True) -> dict[tuple[str, str], JointFit]:
-    """:func:`fit_joint_mixture` for every family of ``weibull_fits`` (keys ``(family, "weibull")``)."""
+    """:func:`fit_joint_mixture` for every family of ``weibull_fits`` (keys ``(family, "weibull")``).
+
+    A family whose mixture fit fails keeps its Weibull (it gets no mixture entry).
+    """
     starts = starts or {}
     out = {}
     with one_blas_thread():
@@ -181,14 +163,5 @@ def fit_joint_mixture_all(u, h, weibull_fits: dict, *, starts=None, location: bo
                     name, u, h, weibull, location=location, censor=censor, cold=cold,
                     start=None if prev is None else prev.x)
             except ValueError:
-                continue  # the family keeps its Weibull
-    return out
-
-
-def best_by_aic(fits: dict[tuple[str, str], JointFit]) -> dict[str, JointFit]:
-    """Per copula family, the HF marginal of lowest AIC (ties: the first listed)."""
-    out = {}
-    for (name, _), fit in fits.items():
-        if name not in out or fit.copula.aic < out[name].copula.aic:
-            out[name] = fit
+                continue
     return out

@@ -9,6 +9,7 @@ marginal follows into the tail.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import ClassVar
 
 import numpy as np
 from scipy import special, stats
@@ -19,6 +20,8 @@ __all__ = ["LogNormal3"]
 @dataclass(frozen=True)
 class LogNormal3:
     """A fitted three-parameter log-normal distribution (location θ, log-mean μ, log-sd σ)."""
+
+    name: ClassVar[str] = "lognormal"
 
     theta: float
     mu: float

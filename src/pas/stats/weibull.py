@@ -26,6 +26,7 @@ truncated sample.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import ClassVar
 
 import numpy as np
 from scipy import optimize, stats
@@ -38,6 +39,8 @@ __all__ = ["Weibull3", "fit_weibull3_ls", "upper_tail_fraction"]
 @dataclass(frozen=True)
 class Weibull3:
     """A fitted three-parameter Weibull distribution (location θ, scale α, shape β)."""
+
+    name: ClassVar[str] = "weibull"
 
     theta: float
     alpha: float

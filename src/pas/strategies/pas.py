@@ -50,7 +50,7 @@ from ..copulas import (
     select_family,
 )
 from ..joint import HF_MARGINALS, JOINT_FAMILIES, best_per_family, fit_joint_all
-from ..joint_mixture import MIXTURE, best_by_aic, fit_joint_mixture_all
+from ..joint_mixture import MIXTURE, fit_joint_mixture_all
 from ..screening import LFSet
 from ..stats.dependence import (
     empirical_tail_dependence,
@@ -84,7 +84,6 @@ __all__ = [
 ]
 
 COLD_EVERY = 10
-_MARGINAL_NAMES = {"Weibull3": "weibull", "LogNormal3": "lognormal"}  # the mixture otherwise
 
 
 def refit(result) -> "FittedModel":
@@ -172,9 +171,11 @@ class PAS(Strategy):
     band_marginals : {"fitted", "reselected", "alternate"}, default "reselected"
         Conditional estimator, model band (:meth:`model_band`): every
         bootstrap replicate fits the study's ``hf_marginal`` ("fitted");
-        or fits every HF marginal family and keeps the one of higher
-        likelihood, as it re-selects the copula family ("reselected"); or
-        the replicates take the families in turn, one each ("alternate").
+        or fits the Weibull and the log-normal and keeps the one of higher
+        likelihood, as it re-selects the copula family ("reselected"; with
+        ``hf_marginal="weibull_mixture"`` the mixture too, all compared by
+        AIC); or the replicates take the Weibull and the log-normal in turn,
+        one each ("alternate", never the mixture).
     lf_tail : {"ranks", "gpd"}, default "ranks"
         Conditional estimator: the LF population CDF at the peaks is their
         mid-rank ("ranks"), or with "gpd" the largest 5 % (at least 50) take
@@ -325,7 +326,7 @@ class PAS(Strategy):
             self._joint = every
             self._n_fits += 1
         # the mixture has three parameters more: compared by AIC, not likelihood
-        joint = best_by_aic(every) if hf_marginal in (MIXTURE, "all") else best_per_family(every)
+        joint = best_per_family(every, by="aic" if hf_marginal in (MIXTURE, "all") else "loglik")
         ascending = cond_lf[::-1], u_cond[::-1]
         return ({k: j.copula for k, j in joint.items()},
                 {k: j.hf_marginal for k, j in joint.items()},
@@ -352,7 +353,7 @@ class PAS(Strategy):
             "ineligible": " ".join(k for k, f in model.fits.items() if f.at_bound)
             if self.exclude_at_bound and not all(f.at_bound for f in model.fits.values()) else "",
             "copula_params": " ".join(f"{x:.4g}" for x in model.copula.parameters),
-            "hf_marginal": _MARGINAL_NAMES.get(type(model.hf_marginal).__name__, MIXTURE),
+            "hf_marginal": model.hf_marginal.name,
             "n_outliers": model.n_outliers,
             "tau": kendall_tau(pairs.lf, pairs.hf),
             "lambda_u": lam_u,
