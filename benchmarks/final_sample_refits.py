@@ -114,8 +114,13 @@ def refit_error(data, res, seed, settings, joint_kw):
     return error_at(data, lfset, hf_pool, idx, seed, settings, joint_kw)
 
 
-def main(case, n=10, *flags):
+def main(case, n="10", *flags):
+    if n.startswith("--"):
+        n, flags = "10", (n, *flags)
     only = flags[flags.index("--only") + 1].split(",") if "--only" in flags else list(VARIANTS)
+    unknown = [name for name in only if name not in VARIANTS]
+    if unknown:
+        raise SystemExit(f"unknown setting {', '.join(unknown)}; known: {', '.join(VARIANTS)}")
     variants = {name: VARIANTS[name] for name in only}
     errors = {name: [] for name in variants}
     for seed in range(int(n)):

@@ -16,10 +16,19 @@ import pandas as pd
 from known_truth_table import _read
 
 
+def _runs(arg):
+    """The runs of a comma-separated list of files; a run that two files hold must agree."""
+    runs = _read(arg)
+    key = ["type", "replication"]
+    twice = runs[runs.duplicated(key, keep=False)]
+    if not twice.drop(columns="seconds").drop_duplicates().duplicated(key).eq(False).all():
+        raise ValueError(f"{arg}: a run held twice differs between the files")
+    return runs.drop_duplicates(key, keep="last")
+
+
 def main(argv=None):
     argv = sys.argv[1:] if argv is None else argv
-    base = _read(argv[0]).drop_duplicates(["type", "replication"], keep="last")
-    other = _read(argv[1]).drop_duplicates(["type", "replication"], keep="last")
+    base, other = _runs(argv[0]), _runs(argv[1])
     runs = base.merge(other, on=["type", "replication"], suffixes=("_a", "_b"))
     for s in "ab":
         runs[f"abs_{s}"] = runs[f"error_{s}"].abs()
