@@ -76,8 +76,8 @@ def error_at(data, lfset, hf_pool, positions, seed, settings=None, joint_kw=None
     """
     settings, joint_kw = settings or {}, joint_kw or {}
     pairs = pairs_at(lfset, hf_pool, positions)
-    original = pas_module.fit_joint_all
-    pas_module.fit_joint_all = functools.partial(original, **joint_kw)
+    original = pas_module.fit_hf_candidates
+    pas_module.fit_hf_candidates = functools.partial(original, **joint_kw)
     try:
         strategy = pas_module.PAS(**{"n_bootstrap": 0, **settings})
         strategy.reset(seed)
@@ -86,7 +86,7 @@ def error_at(data, lfset, hf_pool, positions, seed, settings=None, joint_kw=None
             mpm = float(np.median(strategy.model_band(pairs, lfset,
                                                       np.random.default_rng(seed))[2]))
     finally:
-        pas_module.fit_joint_all = original
+        pas_module.fit_hf_candidates = original
     return mpm / data.truth_mpm - 1
 
 

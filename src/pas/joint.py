@@ -192,6 +192,22 @@ def _gradient_terms(base, p, u, v, density):
     return total, d_v, d_p
 
 
+def _negloglik(base, rotation, u, density, marginal_terms, unpack):
+    """The negative log-likelihood of optimiser values ``x`` (+1e300 where not finite).
+
+    ``marginal_terms(x)`` gives ``(log f_H(h), F_H(h), …)``; ``unpack(x)`` ends
+    with the copula's optimiser values.
+    """
+    @np.errstate(all="ignore")  # the optimiser's trial steps may overflow: scored as +inf
+    def negloglik(x):
+        log_f, v, _ = marginal_terms(x)
+        p = _copula_parameters(base, unpack(x)[-1]).ravel()
+        val = _copula_terms(base, rotation, p, u, v, log_f, density)
+        return -float(val) if np.isfinite(val) else 1e300
+
+    return negloglik
+
+
 def joint_objective(name: str, u, h, *, location: bool = True, censor: float = 0.0,
                     marginal: str = "weibull"):
     """The negative log-likelihood of :func:`fit_joint` and how to read its parameters.
@@ -225,12 +241,7 @@ def joint_objective(name: str, u, h, *, location: bool = True, censor: float = 0
         log_f = np.log(b / a) + (b - 1.0) * ln_z - zb
         return log_f, np.clip(-np.expm1(-zb), _TINY, 1 - _TINY), (w, ln_z, zb)
 
-    @np.errstate(all="ignore")  # the optimiser's trial steps may overflow: scored as +inf
-    def negloglik(x):
-        log_f, v, _ = marginal_terms(x)
-        p = _copula_parameters(base, unpack(x)[3]).ravel()
-        val = _copula_terms(base, rotation, p, u, v, log_f, density)
-        return -float(val) if np.isfinite(val) else 1e300
+    negloglik = _negloglik(base, rotation, u, density, marginal_terms, unpack)
 
     @np.errstate(all="ignore")
     def negloglik_grad(x):

@@ -19,21 +19,32 @@ import numpy as np
 from ._threads import one_blas_thread
 from .copula_densities import GRADIENT_FAMILIES
 from .joint import (
+    HF_MARGINALS,
     JointFit,
     _copula_parameters,
-    _copula_terms,
     _gradient_terms,
+    _negloglik,
     _parameter_slope,
     _prepare,
+    best_per_family,
+    fit_joint_all,
     joint_fit_result,
     location_bounds,
     minimise_bounded,
 )
 from .stats.weibull_mixture import WeibullMixture
 
-__all__ = ["MIXTURE", "fit_joint_mixture", "fit_joint_mixture_all"]
+__all__ = [
+    "HF_CHOICES",
+    "MIXTURE",
+    "fit_hf_candidates",
+    "fit_joint_mixture",
+    "fit_joint_mixture_all",
+]
 
 MIXTURE = "weibull_mixture"
+HF_CHOICES = (*HF_MARGINALS, "both", MIXTURE)
+"""What ``hf_marginal`` may ask for (:func:`fit_hf_candidates`)."""
 _P_LOW, _P_SPAN = 0.02, 0.96
 _SHAPE = (np.log(0.3), np.log(20.0))
 _TINY = 1e-12
@@ -68,12 +79,7 @@ def mixture_objective(name: str, u, h, *, location: bool = True, censor: float =
         sf = p * parts[0][5] + (1.0 - p) * parts[1][5]
         return log_f, np.clip(1.0 - sf, _TINY, 1 - _TINY), (w, p, parts, l1 - log_f, l2 - log_f)
 
-    @np.errstate(all="ignore")
-    def negloglik(x):
-        log_f, v, _ = marginal_terms(x)
-        pc = _copula_parameters(base, unpack(x)[6]).ravel()
-        val = _copula_terms(base, rotation, pc, u, v, log_f, density)
-        return -float(val) if np.isfinite(val) else 1e300
+    negloglik = _negloglik(base, rotation, u, density, marginal_terms, unpack)
 
     @np.errstate(all="ignore")
     def negloglik_grad(x):
@@ -165,3 +171,25 @@ def fit_joint_mixture_all(u, h, weibull_fits: dict, *, starts=None, location: bo
             except ValueError:
                 continue
     return out
+
+
+def fit_hf_candidates(u, h, families, choice: str, *, starts=None, location: bool = True,
+                      censor: float = 0.0, cold: bool = True):
+    """The joint fits an ``hf_marginal`` choice asks for, and per family the one kept.
+
+    ``choice``: one marginal of :data:`pas.joint.HF_MARGINALS`; ``"both"`` (the
+    Weibull and the log-normal, the higher likelihood kept); :data:`MIXTURE`
+    (the Weibull and the mixture); or ``"all"`` (the three).  With the mixture,
+    which has three parameters more, the lower AIC is kept.
+    ``censor`` goes to every fit (:func:`pas.joint.fit_joint`).
+    Returns ``(every fit by (family, marginal), the kept fit by family)``.
+    """
+    marginals = {"both": HF_MARGINALS, MIXTURE: ("weibull",),
+                 "all": HF_MARGINALS}.get(choice, (choice,))
+    every = fit_joint_all(u, h, families, marginals=marginals, starts=starts,
+                          location=location, censor=censor, cold=cold)
+    mixture = choice in (MIXTURE, "all")
+    if mixture:
+        every |= fit_joint_mixture_all(u, h, every, starts=starts, location=location,
+                                       censor=censor, cold=cold)
+    return every, best_per_family(every, by="aic" if mixture else "loglik")

@@ -49,8 +49,8 @@ from ..copulas import (
     fit_candidates,
     select_family,
 )
-from ..joint import HF_MARGINALS, JOINT_FAMILIES, best_per_family, fit_joint_all
-from ..joint_mixture import MIXTURE, fit_joint_mixture_all
+from ..joint import HF_MARGINALS, JOINT_FAMILIES
+from ..joint_mixture import HF_CHOICES, MIXTURE, fit_hf_candidates
 from ..screening import LFSet
 from ..stats.dependence import (
     empirical_tail_dependence,
@@ -226,8 +226,7 @@ class PAS(Strategy):
         self.copula_fit = check_option(copula_fit, "copula_fit", {"mle", "itau"})
         self.common_random_numbers = bool(common_random_numbers)
         self.hf_location = bool(hf_location)
-        self.hf_marginal = check_option(hf_marginal, "hf_marginal",
-                                        {*HF_MARGINALS, "both", MIXTURE})
+        self.hf_marginal = check_option(hf_marginal, "hf_marginal", set(HF_CHOICES))
         self.band_marginals = check_option(band_marginals, "band_marginals",
                                            {"fitted", "reselected", "alternate"})
         self.band_lf_ranks = check_option(band_lf_ranks, "band_lf_ranks", {"fixed", "redrawn"})
@@ -314,19 +313,12 @@ class PAS(Strategy):
         # COLD_EVERY-th fit, and every bootstrap replicate, also starts from the
         # data, so no fit stays trapped in the basin of another sample
         cold = not update or (family is None and self._n_fits % COLD_EVERY == 0)
-        marginals = {"both": HF_MARGINALS, MIXTURE: ("weibull",),
-                     "all": HF_MARGINALS}.get(hf_marginal, (hf_marginal,))
-        u_pairs, h_pairs = u_cond[pairs.position][keep], pairs.hf[keep]
-        every = fit_joint_all(u_pairs, h_pairs, families, marginals=marginals, starts=starts,
-                              location=self.hf_location, cold=cold or not starts)
-        if hf_marginal in (MIXTURE, "all"):
-            every |= fit_joint_mixture_all(u_pairs, h_pairs, every, starts=starts,
-                                           location=self.hf_location, cold=cold or not starts)
+        every, joint = fit_hf_candidates(u_cond[pairs.position][keep], pairs.hf[keep], families,
+                                         hf_marginal, starts=starts, location=self.hf_location,
+                                         cold=cold or not starts)
         if update and family is None:
             self._joint = every
             self._n_fits += 1
-        # the mixture has three parameters more: compared by AIC, not likelihood
-        joint = best_per_family(every, by="aic" if hf_marginal in (MIXTURE, "all") else "loglik")
         ascending = cond_lf[::-1], u_cond[::-1]
         return ({k: j.copula for k, j in joint.items()},
                 {k: j.hf_marginal for k, j in joint.items()},
