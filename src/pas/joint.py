@@ -192,6 +192,15 @@ def _gradient_terms(base, p, u, v, density):
     return total, d_v, d_p
 
 
+def _loglik_and_copula_gradient(base, c, u, v, log_f, density):
+    """The log-likelihood and the copula part of its gradient, per pair: ``(value, ∂/∂v,
+    ∂/∂parameter)`` (one-parameter families, no rotation; the marginal's chain rule is
+    the caller's)."""
+    p = _copula_parameters(base, c).ravel()
+    total, d_v, d_p = _gradient_terms(base, p, u, v, density)
+    return float(np.sum(np.where(density, log_f + total, total))), d_v, d_p
+
+
 def _negloglik(base, rotation, u, density, marginal_terms, unpack):
     """The negative log-likelihood of optimiser values ``x`` (+1e300 where not finite).
 
@@ -248,9 +257,7 @@ def joint_objective(name: str, u, h, *, location: bool = True, censor: float = 0
         """The same with its exact gradient (one-parameter families, no rotation)."""
         _, _, b, c = unpack(x)
         log_f, v, parts = marginal_terms(x)
-        p = _copula_parameters(base, c).ravel()
-        total, d_v, d_p = _gradient_terms(base, p, u, v, density)
-        val = float(np.sum(np.where(density, log_f + total, total)))
+        val, d_v, d_p = _loglik_and_copula_gradient(base, c, u, v, log_f, density)
         if not np.isfinite(val):
             return 1e300, np.zeros_like(x)
         dens = density.astype(float)

@@ -21,8 +21,7 @@ from .copula_densities import GRADIENT_FAMILIES
 from .joint import (
     HF_MARGINALS,
     JointFit,
-    _copula_parameters,
-    _gradient_terms,
+    _loglik_and_copula_gradient,
     _negloglik,
     _parameter_slope,
     _prepare,
@@ -86,9 +85,7 @@ def mixture_objective(name: str, u, h, *, location: bool = True, censor: float =
         """The same with its exact gradient (one-parameter families, no rotation)."""
         c = unpack(x)[6]
         log_f, v, (w, p, parts, ln_r1, ln_r2) = marginal_terms(x)
-        pc = _copula_parameters(base, c).ravel()
-        total, d_v, d_p = _gradient_terms(base, pc, u, v, density)
-        val = float(np.sum(np.where(density, log_f + total, total)))
+        val, d_v, d_p = _loglik_and_copula_gradient(base, c, u, v, log_f, density)
         if not np.isfinite(val):
             return 1e300, np.zeros_like(x)
         dens = density.astype(float)
