@@ -270,3 +270,39 @@ def test_mixture_fit_recovers_a_bore_impulse_marginal_and_wins_on_aic():
     w = fit_joint_all(uw, hw, ["gaussian"])
     assert best_per_family(w | fit_joint_mixture_all(uw, hw, w),
                            by="aic")["gaussian"].marginal == "weibull"
+
+
+def test_a_failed_warm_mixture_start_goes_cold_as_the_weibull_fit_does():
+    from pas.joint import fit_joint
+    from pas.joint_mixture import fit_joint_mixture
+
+    _, u, h = _bore_impulse(400, seed=3)
+    weibull = fit_joint("gaussian", u, h, location=False)
+    cold = fit_joint_mixture("gaussian", u, h, weibull, location=False)
+    # a start whose objective is not finite (a scale of e^800 overflows every term)
+    bad = np.array([0.0, 800.0, 0.0, 800.0, 0.0, 0.4])
+    warm_only = fit_joint_mixture("gaussian", u, h, weibull, location=False, start=bad, cold=False)
+    assert warm_only.copula.loglik == pytest.approx(cold.copula.loglik, rel=1e-9)
+    # a good warm start alone is kept as it is (no cold start is needed)
+    again = fit_joint_mixture("gaussian", u, h, weibull, location=False, start=cold.x, cold=False)
+    assert again.copula.loglik >= cold.copula.loglik - 1e-6
+
+
+def test_mixture_likelihood_keeps_its_digits_just_above_the_location():
+    # loads a hair above θ, where F = 1 − S would keep only a few digits
+    from pas.joint_mixture import mixture_objective
+    from pas.stats.weibull_mixture import WeibullMixture
+
+    h = np.array([1e-6, 3e-6, 1e-5, 50.0, 300.0])  # F ≈ 1e-10 … 1e-9 at the first three
+    u = np.array([0.01, 0.02, 0.05, 0.5, 0.9])
+    negloglik, _, unpack = mixture_objective("gaussian", u, h, location=False)
+    x = np.array([0.3, np.log(150.0), np.log(3.5), np.log(550.0), np.log(1.1), 0.45])
+    theta, p, a1, b1, a2, b2, c = unpack(x)
+    m = WeibullMixture(theta=theta, p=p, alpha1=a1, beta1=b1, alpha2=a2, beta2=b2)
+    rho = 0.999 * np.tanh(c[0])
+    pdf = p * stats.weibull_min(b1, scale=a1).pdf(h) + (1 - p) * stats.weibull_min(
+        b2, scale=a2).pdf(h)
+    zl, zh = stats.norm.ppf(u), stats.norm.ppf(m.cdf(h))
+    log_c = (stats.multivariate_normal([0, 0], [[1, rho], [rho, 1]]).logpdf(np.c_[zl, zh])
+             - stats.norm.logpdf(zl) - stats.norm.logpdf(zh))
+    assert negloglik(x) == pytest.approx(-np.sum(np.log(pdf) + log_c), rel=1e-10)

@@ -75,8 +75,9 @@ def mixture_objective(name: str, u, h, *, location: bool = True, censor: float =
             parts.append((a, b, ln_r, z, np.log(b / a) + (b - 1.0) * ln_r - z, np.exp(-z)))
         l1, l2 = np.log(p) + parts[0][4], np.log1p(-p) + parts[1][4]
         log_f = np.logaddexp(l1, l2)
-        sf = p * parts[0][5] + (1.0 - p) * parts[1][5]
-        return log_f, np.clip(1.0 - sf, _TINY, 1 - _TINY), (w, p, parts, l1 - log_f, l2 - log_f)
+        # F from each component's −expm1(−z), exact near θ where 1 − S loses digits
+        cdf = -p * np.expm1(-parts[0][3]) - (1.0 - p) * np.expm1(-parts[1][3])
+        return log_f, np.clip(cdf, _TINY, 1 - _TINY), (w, p, parts, l1 - log_f, l2 - log_f)
 
     negloglik = _negloglik(base, rotation, u, density, marginal_terms, unpack)
 
@@ -130,19 +131,25 @@ def fit_joint_mixture(name: str, u, h, weibull: JointFit, *, start=None, locatio
 
     ``weibull`` is the same family's :func:`pas.joint.fit_joint` result, split
     into a body and a tail (the cold start); ``start`` an earlier mixture
-    fit's optimiser values (the warm start; with ``cold=False`` the only one).
-    Raises ValueError when no start reaches a finite optimum.
+    fit's optimiser values (the warm start; with ``cold=False`` the only one,
+    unless it reaches no finite optimum: then the cold start is tried too, as
+    in :func:`pas.joint.fit_joint`).  Raises ValueError when no start reaches a
+    finite optimum.
     """
     negloglik, negloglik_grad, unpack = mixture_objective(name, u, h, location=location,
                                                           censor=censor)
     n_cop = 2 if name.partition("_")[0] == "student" else 1
     bounds = location_bounds(h, censor, location) + [
         (-8.0, 8.0), (None, None), _SHAPE, (None, None), _SHAPE] + [(None, None)] * n_cop
-    warm = start is not None and len(start) == len(bounds)
-    starts = ([_split_start(weibull, location)] if cold or not warm else []) + (
-        [np.asarray(start, float)] if warm else [])
-    res = min((minimise_bounded(negloglik, negloglik_grad, x0, bounds) for x0 in starts),
-              key=lambda r: r.fun)
+    def minimise(x0):
+        return minimise_bounded(negloglik, negloglik_grad, x0, bounds)
+
+    res = None
+    if start is not None and len(start) == len(bounds):
+        res = minimise(np.asarray(start, float))  # an earlier fit
+    if cold or res is None or res.fun >= 1e299:  # as fit_joint: a failed warm start goes cold
+        fresh = minimise(_split_start(weibull, location))
+        res = fresh if res is None or fresh.fun < res.fun else res
     theta, p, a1, b1, a2, b2, c = unpack(res.x)
     hf = WeibullMixture(float(theta), float(p), float(a1), float(b1), float(a2), float(b2))
     return joint_fit_result(name, res, c, len(bounds) - n_cop, hf, MIXTURE)
