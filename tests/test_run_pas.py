@@ -293,3 +293,18 @@ def test_short_range_warns_and_cannot_converge():
         res = pas.run_pas(lf, lambda ev: float(hf[ev.index]), n_waves=n_w, p_exp=0.01,
                           eps1=1e3, threshold=6.0, seed=0, max_hf=40, n_bootstrap=0)
     assert not res.converged and res.history.range_short.any()
+
+
+def test_a_study_stopped_by_its_budget_says_how_far_it_was_from_stopping(table_oracle):
+    lf, hf, n_w, p_exp, truth = monotone_problem()
+    res = pas.run_pas(lf, table_oracle(hf), n_waves=n_w, p_exp=p_exp, eps1=1e-6 * truth,
+                      seed=3, max_hf=15, n_bootstrap=0)
+    assert not res.converged
+    last = res.fitted.iloc[-1]
+    assert np.isfinite(last["E_bar"]) and last["E_bar"] > 1e-6 * truth
+    assert (f"NOT converged (last Ē {last['E_bar']:.3g} against ε1 {1e-6 * truth:.3g}, "
+            f"COV {last['COV']:.2g} against ε2 0.1)") in res.summary()
+    # a converged study keeps the short word
+    done = pas.run_pas(lf, table_oracle(hf), n_waves=n_w, p_exp=p_exp, eps1=0.01 * truth,
+                       seed=3, n_bootstrap=0)
+    assert done.converged and done.summary().endswith("; converged")

@@ -181,7 +181,7 @@ class ScreeningResult:
         ``unit`` (e.g. ``"kN"``) is appended to the MPM and its band.
         """
         fam = f", copula {self.family}" if self.family else ""
-        state = "converged" if self.converged else "NOT converged"
+        state = "converged" if self.converged else f"NOT converged{self._stop_gap()}"
         counts = (f"{self.n_hf} HF evaluations ({self.n_false_positive} false positive, "
                   f"{self.n_failed} failed); {state}")
         if not np.isfinite(self.mpm):
@@ -189,6 +189,18 @@ class ScreeningResult:
         u = f" {unit}" if unit else ""
         return (f"{self.strategy.upper()}: MPM {self.mpm:.4g}{u}, {self.band_text(unit)}{fam}; "
                 f"{counts}")
+
+    def _stop_gap(self) -> str:
+        """How far the last iteration was from stopping: its Ē and COV against ε1, ε2."""
+        settings = self.settings or {}
+        fitted = self.fitted if "mpm" in self.history else pd.DataFrame()
+        if fitted.empty or "eps1" not in settings or "E_bar" not in fitted:
+            return ""
+        last = fitted.iloc[-1]
+        if not np.isfinite(last["E_bar"]):
+            return ""
+        return (f" (last Ē {last['E_bar']:.3g} against ε1 {settings['eps1']:.3g}, "
+                f"COV {last['COV']:.2g} against ε2 {settings.get('eps2', np.nan):.2g})")
 
     def __repr__(self) -> str:
         return f"<ScreeningResult {self.summary()}>"
