@@ -266,3 +266,27 @@ def test_impact_figures_compose_and_write_png(tmp_path):
     fig_alone, _ = plot_qq(ev["load"], table.iloc[0]["dist"])
     assert fig_alone is not fig
     plt.close("all")
+
+
+def test_weibull_mixture_candidate_recovers_bore_impulse_loads_and_leaves_one_law_alone():
+    from pas.stats.weibull_mixture import WeibullMixture, fit_weibull_mixture
+
+    truth = WeibullMixture(100.0, 0.6, 150.0, 3.5, 550.0, 1.1)
+    x = truth.isf(np.random.default_rng(3).uniform(size=3000))
+    ref = 0.6 * stats.weibull_min(3.5, 100.0, 150.0).pdf(x) + 0.4 * stats.weibull_min(
+        1.1, 100.0, 550.0).pdf(x)
+    np.testing.assert_allclose(truth.pdf(x), ref, rtol=1e-12)
+    m = fit_weibull_mixture(x - 100.0, loc=0.0)
+    assert (m.p, m.alpha1, m.beta1, m.alpha2, m.beta2) == pytest.approx(
+        (0.6, 150.0, 3.5, 550.0, 1.1), rel=0.12)
+    table = compare_load_distributions(x)
+    assert table.index[0] == "weibull_mixture"
+    row = table.loc["weibull_mixture"]
+    assert row["n_params"] == 6 and row["distribution"] == "weibull_mixture"
+    q = 0.017
+    assert abs(row["dist"].isf(q) / truth.isf(q) - 1) < 0.05
+    # on one Weibull the three extra parameters do not pay
+    w = stats.weibull_min(1.5, loc=0.0, scale=500.0).rvs(2000, random_state=6)
+    assert compare_load_distributions(w, loc=0.0).index[0] == "weibull"
+    with pytest.raises(ValueError, match="maximum likelihood only"):
+        fit_load_distribution(x, "weibull_mixture", method="binned ls")

@@ -14,7 +14,7 @@ _MODULES = {
         "encounter_period"),
     "weibull": ("Weibull3", "fit_weibull3_ls", "upper_tail_fraction"),
     "lognormal": ("LogNormal3",),
-    "weibull_mixture": ("WeibullMixture",),
+    "weibull_mixture": ("WeibullMixture", "fit_weibull_mixture"),
     "peaks": ("zero_upcrossings", "upcrossing_times", "segment_max", "segment_min",
         "wave_crests", "wave_troughs", "matched_peaks", "rise_times", "rise_velocities",
         "peaks_over_threshold", "mask_near_joins"),

@@ -15,7 +15,10 @@ from typing import ClassVar
 
 import numpy as np
 
-__all__ = ["WeibullMixture"]
+__all__ = ["WeibullMixture", "fit_weibull_mixture"]
+
+_P_LOW, _P_SPAN = 0.02, 0.96
+_LN_SHAPE = (np.log(0.3), np.log(20.0))
 
 
 @dataclass(frozen=True)
@@ -44,6 +47,19 @@ class WeibullMixture:
         w = self._w(x)
         return (-self.p * np.expm1(-(w / self.alpha1) ** self.beta1)
                 - (1.0 - self.p) * np.expm1(-(w / self.alpha2) ** self.beta2))
+
+    def logpdf(self, x):
+        """``ln f(x)``; −∞ at and below the location."""
+        x = np.asarray(x, float)
+        w = np.where(x > self.theta, x - self.theta, 1.0)
+        parts = [np.log(weight * b / a) + (b - 1.0) * np.log(w / a) - (w / a) ** b
+                 for weight, a, b in ((self.p, self.alpha1, self.beta1),
+                                      (1.0 - self.p, self.alpha2, self.beta2))]
+        return np.where(x > self.theta, np.logaddexp(*parts), -np.inf)
+
+    def pdf(self, x):
+        """``f(x)``."""
+        return np.exp(self.logpdf(x))
 
     def _log_sf_and_slope(self, w):
         """``ln S(w)`` and ``d ln S / dw`` (``−f/S``)."""
@@ -86,3 +102,58 @@ class WeibullMixture:
     def ppf(self, p):
         """Inverse of :meth:`cdf`."""
         return self.isf(1.0 - np.asarray(p, float))
+
+
+def fit_weibull_mixture(loads, *, loc=None) -> WeibullMixture:
+    """Maximum-likelihood two-component Weibull mixture of peak loads.
+
+    The weight ``p`` stays in [0.02, 0.98] and both shapes in [0.3, 20].  The
+    start splits a three-parameter Weibull fit (``scipy.stats.weibull_min``)
+    into a narrower, lower and a wider, higher component.  With a free
+    location (``loc=None``) the smallest load enters as ``P(X ≤ x_min)``:
+    with a shape below 1 the density at the location is infinite, and the
+    likelihood would otherwise grow without bound as the location reaches the
+    smallest load (as in :func:`pas.joint.fit_joint`); the location stays
+    within three load ranges below it and at or above 0.  ``loc`` fixes it.
+    Raises ValueError when no finite optimum is found.
+    """
+    from scipy import optimize, stats
+
+    x = np.sort(np.asarray(loads, float))
+    lo, span = x[0], float(np.ptp(x)) or float(x[0])
+    if loc is None:
+        c, theta0, scale = stats.weibull_min.fit(x)
+        theta0 = min(max(theta0, 0.0), lo - 1e-6 * span)
+        gap_max = np.log(min(3.0, lo / span)) if lo > 0 else None
+        bounds = [(None, gap_max)]
+        start = [np.log(max(lo - theta0, 1e-9 * span) / span)]
+    else:
+        if lo <= loc:
+            raise ValueError(f"loads must lie above the fixed location {loc}")
+        c, _, scale = stats.weibull_min.fit(x, floc=loc)
+        bounds, start = [], []
+    ln_c = np.clip(np.log(c), *_LN_SHAPE)
+    bounds += [(-8.0, 8.0), (None, None), _LN_SHAPE, (None, None), _LN_SHAPE]
+    start += [0.4, np.log(0.8 * scale), min(ln_c + np.log(2.0), _LN_SHAPE[1] - 0.1),
+              np.log(1.6 * scale), max(ln_c + np.log(0.7), _LN_SHAPE[0] + 0.1)]
+
+    def mixture(v):
+        theta = float(loc) if loc is not None else lo - np.exp(v[0]) * span
+        k = 0 if loc is not None else 1
+        p = _P_LOW + _P_SPAN / (1.0 + np.exp(-v[k]))
+        a1, b1, a2, b2 = np.exp(v[k + 1:k + 5])
+        return WeibullMixture(float(theta), float(p), float(a1), float(b1), float(a2), float(b2))
+
+    @np.errstate(all="ignore")
+    def negloglik(v):
+        m = mixture(v)
+        if loc is None:
+            val = np.sum(m.logpdf(x[1:])) + np.log(m.cdf(x[0]))
+        else:
+            val = np.sum(m.logpdf(x))
+        return -float(val) if np.isfinite(val) else 1e300
+
+    res = optimize.minimize(negloglik, start, method="L-BFGS-B", bounds=bounds)
+    if not np.isfinite(res.fun) or res.fun >= 1e299:
+        raise ValueError(f"the Weibull mixture fit found no finite optimum: {res.message}")
+    return mixture(res.x)
