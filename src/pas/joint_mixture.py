@@ -31,7 +31,13 @@ from .joint import (
     location_bounds,
     minimise_bounded,
 )
-from .stats.weibull_mixture import WeibullMixture
+from .stats.weibull_mixture import (
+    LN_SHAPE_BOUNDS,
+    WEIGHT_LOW,
+    WEIGHT_SPAN,
+    WeibullMixture,
+    split_start,
+)
 
 __all__ = [
     "HF_CHOICES",
@@ -44,8 +50,6 @@ __all__ = [
 MIXTURE = "weibull_mixture"
 HF_CHOICES = (*HF_MARGINALS, "both", MIXTURE)
 """What ``hf_marginal`` may ask for (:func:`fit_hf_candidates`)."""
-_P_LOW, _P_SPAN = 0.02, 0.96
-_SHAPE = (np.log(0.3), np.log(20.0))
 _TINY = 1e-12
 
 
@@ -55,7 +59,7 @@ def _unpack(x, location, h_c, span):
     theta = h_c - np.exp(x[0]) * span if location else 0.0
     sig = 1.0 / (1.0 + np.exp(-x[k]))
     a1, b1, a2, b2 = np.exp(x[k + 1:k + 5])
-    return theta, _P_LOW + _P_SPAN * sig, a1, b1, a2, b2, x[k + 5:]
+    return theta, WEIGHT_LOW + WEIGHT_SPAN * sig, a1, b1, a2, b2, x[k + 5:]
 
 
 def mixture_objective(name: str, u, h, *, location: bool = True, censor: float = 0.0):
@@ -103,8 +107,8 @@ def mixture_objective(name: str, u, h, *, location: bool = True, censor: float =
                      np.sum(dens * rk * dl_b - d_v * wk * ds_b)]
             g_t += np.sum(dens * rk * dl_t - d_v * wk * ds_t)
         s1, s2 = parts[0][5], parts[1][5]
-        sig = (p - _P_LOW) / _P_SPAN
-        dp_dx = _P_SPAN * sig * (1.0 - sig)
+        sig = (p - WEIGHT_LOW) / WEIGHT_SPAN
+        dp_dx = WEIGHT_SPAN * sig * (1.0 - sig)
         g_p = np.sum(dens * (resp[0] / p - resp[1] / (1.0 - p)) - d_v * (s1 - s2)) * dp_dx
         grad = ([g_t * (-np.exp(x[0]) * span)] if location else []) + [g_p] + grad + [
             np.sum(d_p) * _parameter_slope(base, c)]
@@ -119,10 +123,8 @@ def _split_start(weibull: JointFit, location: bool):
     """Optimiser values that split a Weibull joint fit into a body and a tail component."""
     x = np.asarray(weibull.x, float)
     n_marg = 3 if location else 2
-    ln_a, ln_b = x[n_marg - 2], x[n_marg - 1]
-    body = [np.log(0.8) + ln_a, min(ln_b + np.log(2.0), _SHAPE[1] - 0.1)]
-    tail = [np.log(1.6) + ln_a, max(ln_b + np.log(0.7), _SHAPE[0] + 0.1)]
-    return np.r_[x[:1] if location else [], [0.4], body, tail, x[n_marg:]]
+    return np.r_[x[:1] if location else [], [0.4], split_start(x[n_marg - 2], x[n_marg - 1]),
+                 x[n_marg:]]
 
 
 def fit_joint_mixture(name: str, u, h, weibull: JointFit, *, start=None, location: bool = True,
@@ -140,7 +142,7 @@ def fit_joint_mixture(name: str, u, h, weibull: JointFit, *, start=None, locatio
                                                           censor=censor)
     n_cop = 2 if name.partition("_")[0] == "student" else 1
     bounds = location_bounds(h, censor, location) + [
-        (-8.0, 8.0), (None, None), _SHAPE, (None, None), _SHAPE] + [(None, None)] * n_cop
+        (-8.0, 8.0), (None, None), LN_SHAPE_BOUNDS, (None, None), LN_SHAPE_BOUNDS] + [(None, None)] * n_cop
     def minimise(x0):
         return minimise_bounded(negloglik, negloglik_grad, x0, bounds)
 

@@ -15,10 +15,20 @@ from typing import ClassVar
 
 import numpy as np
 
-__all__ = ["WeibullMixture", "fit_weibull_mixture"]
+__all__ = ["WeibullMixture", "fit_weibull_mixture", "split_start"]
 
-_P_LOW, _P_SPAN = 0.02, 0.96
-_LN_SHAPE = (np.log(0.3), np.log(20.0))
+WEIGHT_LOW, WEIGHT_SPAN = 0.02, 0.96
+"""The body's weight ``p`` is ``WEIGHT_LOW + WEIGHT_SPAN · sigmoid(x)``, in [0.02, 0.98]."""
+LN_SHAPE_BOUNDS = (np.log(0.3), np.log(20.0))
+"""Both components' ``ln β`` lie in [ln 0.3, ln 20]."""
+
+
+def split_start(ln_alpha: float, ln_beta: float) -> list:
+    """``[ln α₁, ln β₁, ln α₂, ln β₂]`` that split one Weibull (scale α, shape β) into a
+    narrower, lower body and a wider, higher tail: the fits' starting point."""
+    lo, hi = LN_SHAPE_BOUNDS
+    return [np.log(0.8) + ln_alpha, min(ln_beta + np.log(2.0), hi - 0.1),
+            np.log(1.6) + ln_alpha, max(ln_beta + np.log(0.7), lo + 0.1)]
 
 
 @dataclass(frozen=True)
@@ -132,25 +142,26 @@ def fit_weibull_mixture(loads, *, loc=None) -> WeibullMixture:
             raise ValueError(f"loads must lie above the fixed location {loc}")
         c, _, scale = stats.weibull_min.fit(x, floc=loc)
         bounds, start = [], []
-    ln_c = np.clip(np.log(c), *_LN_SHAPE)
-    bounds += [(-8.0, 8.0), (None, None), _LN_SHAPE, (None, None), _LN_SHAPE]
-    start += [0.4, np.log(0.8 * scale), min(ln_c + np.log(2.0), _LN_SHAPE[1] - 0.1),
-              np.log(1.6 * scale), max(ln_c + np.log(0.7), _LN_SHAPE[0] + 0.1)]
+    bounds += [(-8.0, 8.0), (None, None), LN_SHAPE_BOUNDS, (None, None), LN_SHAPE_BOUNDS]
+    start += [0.4, *split_start(np.log(scale), np.log(c))]
+    start = [float(np.clip(v, -np.inf if lo_b is None else lo_b, np.inf if hi_b is None else hi_b))
+             for v, (lo_b, hi_b) in zip(start, bounds)]
 
     def mixture(v):
         theta = float(loc) if loc is not None else lo - np.exp(v[0]) * span
         k = 0 if loc is not None else 1
-        p = _P_LOW + _P_SPAN / (1.0 + np.exp(-v[k]))
+        p = WEIGHT_LOW + WEIGHT_SPAN / (1.0 + np.exp(-v[k]))
         a1, b1, a2, b2 = np.exp(v[k + 1:k + 5])
         return WeibullMixture(float(theta), float(p), float(a1), float(b1), float(a2), float(b2))
 
     @np.errstate(all="ignore")
     def negloglik(v):
-        m = mixture(v)
-        if loc is None:
-            val = np.sum(m.logpdf(x[1:])) + np.log(m.cdf(x[0]))
-        else:
-            val = np.sum(m.logpdf(x))
+        try:
+            m = mixture(v)
+            val = (np.sum(m.logpdf(x[1:])) + np.log(m.cdf(x[0])) if loc is None
+                   else np.sum(m.logpdf(x)))
+        except (ZeroDivisionError, OverflowError):  # a trial step past float range
+            return 1e300
         return -float(val) if np.isfinite(val) else 1e300
 
     res = optimize.minimize(negloglik, start, method="L-BFGS-B", bounds=bounds)
