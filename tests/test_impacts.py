@@ -290,3 +290,11 @@ def test_weibull_mixture_candidate_recovers_bore_impulse_loads_and_leaves_one_la
     assert compare_load_distributions(w, loc=0.0).index[0] == "weibull"
     with pytest.raises(ValueError, match="maximum likelihood only"):
         fit_load_distribution(x, "weibull_mixture", method="binned ls")
+    # loads rounded to 100 (11 tied at the smallest): the location may not run into
+    # the ties, where the likelihood has no upper bound once β₂ < 10/11
+    y = np.round(truth.isf(np.random.default_rng(0).uniform(size=400)), -2)
+    y = y[y > 0]
+    assert np.sum(y == y.min()) > 5
+    tied = fit_weibull_mixture(y)
+    assert y.min() - tied.theta > 1.0
+    assert abs(tied.isf(q) / truth.isf(q) - 1) < 0.15

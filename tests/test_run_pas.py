@@ -302,8 +302,15 @@ def test_a_study_stopped_by_its_budget_says_how_far_it_was_from_stopping(table_o
     assert not res.converged
     last = res.fitted.iloc[-1]
     assert np.isfinite(last["E_bar"]) and last["E_bar"] > 1e-6 * truth
-    assert (f"NOT converged (last Ē {last['E_bar']:.3g} against ε1 {1e-6 * truth:.3g}, "
-            f"COV {last['COV']:.2g} against ε2 0.1)") in res.summary()
+    assert last["COV"] < 0.1  # only the measure over its limit is named
+    assert res.summary().endswith(
+        f"NOT converged (last Ē {last['E_bar']:.3g} against ε1 {1e-6 * truth:.3g})")
+    # stopped by its budget before the rule could stop, both measures within their limits
+    early = pas.run_pas(lf, table_oracle(hf), n_waves=n_w, p_exp=p_exp, eps1=10.0 * truth,
+                        seed=3, max_hf=5, n_bootstrap=0)
+    assert not early.converged
+    assert "NOT converged (Ē and COV within ε1 and ε2: too few fitted iterations" in (
+        early.summary())
     # a converged study keeps the short word
     done = pas.run_pas(lf, table_oracle(hf), n_waves=n_w, p_exp=p_exp, eps1=0.01 * truth,
                        seed=3, n_bootstrap=0)

@@ -120,22 +120,25 @@ def fit_weibull_mixture(loads, *, loc=None) -> WeibullMixture:
     The weight ``p`` stays in [0.02, 0.98] and both shapes in [0.3, 20].  The
     start splits a three-parameter Weibull fit (``scipy.stats.weibull_min``)
     into a narrower, lower and a wider, higher component.  With a free
-    location (``loc=None``) the smallest load enters as ``P(X ≤ x_min)``:
-    with a shape below 1 the density at the location is infinite, and the
-    likelihood would otherwise grow without bound as the location reaches the
-    smallest load (as in :func:`pas.joint.fit_joint`); the location stays
-    within three load ranges below it and at or above 0.  ``loc`` fixes it.
+    location (``loc=None``) the smallest load, and every load tied with it,
+    enters as ``P(X ≤ x_min)``: with a shape below 1 the density at the
+    location is infinite, and the likelihood would otherwise grow without
+    bound as the location reaches the smallest load (as in
+    :func:`pas.joint.fit_joint`); the location stays at least 1e-9 load
+    ranges below it, at most three below it, and at or above 0 when the
+    loads are positive.  ``loc`` fixes it.
     Raises ValueError when no finite optimum is found.
     """
     from scipy import optimize, stats
 
     x = np.sort(np.asarray(loads, float))
     lo, span = x[0], float(np.ptp(x)) or float(x[0])
+    n_low = int(np.sum(x == lo))  # ties at the smallest load are all censored
     if loc is None:
         c, theta0, scale = stats.weibull_min.fit(x)
         theta0 = min(max(theta0, 0.0), lo - 1e-6 * span)
-        gap_max = np.log(min(3.0, lo / span)) if lo > 0 else None
-        bounds = [(None, gap_max)]
+        gap_max = np.log(min(3.0, lo / span)) if lo > 0 else np.log(3.0)
+        bounds = [(min(np.log(1e-9), gap_max - 1.0), gap_max)]
         start = [np.log(max(lo - theta0, 1e-9 * span) / span)]
     else:
         if lo <= loc:
@@ -158,7 +161,7 @@ def fit_weibull_mixture(loads, *, loc=None) -> WeibullMixture:
     def negloglik(v):
         try:
             m = mixture(v)
-            val = (np.sum(m.logpdf(x[1:])) + np.log(m.cdf(x[0])) if loc is None
+            val = (np.sum(m.logpdf(x[n_low:])) + n_low * np.log(m.cdf(lo)) if loc is None
                    else np.sum(m.logpdf(x)))
         except (ZeroDivisionError, OverflowError):  # a trial step past float range
             return 1e300

@@ -199,8 +199,14 @@ class ScreeningResult:
         last = fitted.iloc[-1]
         if not np.isfinite(last["E_bar"]):
             return ""
-        return (f" (last Ē {last['E_bar']:.3g} against ε1 {settings['eps1']:.3g}, "
-                f"COV {last['COV']:.2g} against ε2 {settings.get('eps2', np.nan):.2g})")
+        eps2 = settings.get("eps2", np.nan)
+        over = ([f"last Ē {last['E_bar']:.3g} against ε1 {settings['eps1']:.3g}"]
+                if not last["E_bar"] < settings["eps1"] else [])
+        over += [f"COV {last['COV']:.2g} against ε2 {eps2:.2g}"] if not last["COV"] < eps2 else []
+        if not over:
+            return (" (Ē and COV within ε1 and ε2: too few fitted iterations, or a "
+                    "predicted range short of 2·P_exp)")
+        return f" ({', '.join(over)})"
 
     def __repr__(self) -> str:
         return f"<ScreeningResult {self.summary()}>"
