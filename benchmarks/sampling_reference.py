@@ -129,37 +129,52 @@ def known_law_lf_errors(data, k: int, subsamples: int, seed: int, copula: str = 
     """
     from scipy import optimize
 
-    from pas.copula_densities import copula_logpdf
-
     theta, alpha, beta, n, q = truth_law(data)
     cop, par = copula_at_tau(copula, data.tau)
     rng = np.random.default_rng([seed, k, 13, COPULAS.index(copula)])
-
-    def nll(x, u_l, y):  # y = h − θ_W
-        a, b = np.exp(x)
-        log_s = -(y / a) ** b
-        log_f = np.log(b / a) + (b - 1.0) * np.log(y / a) + log_s
-        v = np.clip(-np.expm1(log_s), 1e-300, 1.0 - 1e-15)
-        return -np.sum(log_f + copula_logpdf(copula, (par,), u_l, v))
-
+    nll = lf_reference_nll(copula, par)
     errors = []
     for _ in range(subsamples):
-        uv = cop.sample(n, seeds=[int(x) for x in rng.integers(0, 2**31 - 1, 4)])
-        u_l, v = uv[:, 0], uv[:, 1]
-        y = alpha * (-np.log1p(-v)) ** (1.0 / beta)
-        ranks = np.argsort(-u_l)
-        d = np.exp(rng.uniform(np.log(1.0 / n), 0.0, 20 * k))  # uniform in ln d, d = rank/n
-        idx = np.clip(np.ceil(d * n).astype(int) - 1, 0, n - 1)
-        first = np.sort(np.unique(idx, return_index=True)[1])[:k]  # distinct, in draw order
-        if first.size < k:
-            raise RuntimeError(f"only {first.size} distinct events of {k} drawn")
-        pick = ranks[idx[first]]
+        u_l, y, pick = lf_reference_pool(cop, n, alpha, beta, k, rng)
         shape, _, scale = stats.weibull_min.fit(y[pick], floc=0.0)
         x = optimize.minimize(nll, np.log([scale, shape]), args=(u_l[pick], y[pick]),
                               method="Nelder-Mead", options={"xatol": 1e-8, "fatol": 1e-10}).x
         a, b = np.exp(x)
         errors.append((theta + a * (-np.log(q)) ** (1.0 / b)) / data.truth_mpm - 1.0)
     return np.asarray(errors)
+
+
+def lf_reference_nll(copula: str, par: float):
+    """``nll(ln (α, β), u_l, y)``: the likelihood of loads ``y = h − θ_W`` given LF ranks
+    ``u_l`` under a Weibull (α, β) joined by ``copula`` with parameter ``par``."""
+    from pas.copula_densities import copula_logpdf
+
+    def nll(x, u_l, y):
+        a, b = np.exp(x)
+        log_s = -(y / a) ** b
+        log_f = np.log(b / a) + (b - 1.0) * np.log(y / a) + log_s
+        v = np.clip(-np.expm1(log_s), 1e-300, 1.0 - 1e-15)
+        return -np.sum(log_f + copula_logpdf(copula, (par,), u_l, v))
+
+    return nll
+
+
+def lf_reference_pool(cop, n: int, alpha: float, beta: float, k: int, rng, oversample: int = 20):
+    """A pool of ``n`` events from ``cop`` with Weibull (α, β) loads above θ_W, and ``k``
+    distinct ones drawn uniformly in ln d over the LF ranks, in draw order.
+
+    Returns ``(u_l, y, pick)``: the LF ranks, the loads less θ_W, the picked indices.
+    """
+    uv = cop.sample(n, seeds=[int(x) for x in rng.integers(0, 2**31 - 1, 4)])
+    u_l, v = uv[:, 0], uv[:, 1]
+    y = alpha * (-np.log1p(-v)) ** (1.0 / beta)
+    ranks = np.argsort(-u_l)
+    d = np.exp(rng.uniform(np.log(1.0 / n), 0.0, oversample * k))  # uniform in ln d, d = rank/n
+    idx = np.clip(np.ceil(d * n).astype(int) - 1, 0, n - 1)
+    first = np.sort(np.unique(idx, return_index=True)[1])[:k]  # distinct, in draw order
+    if first.size < k:
+        raise RuntimeError(f"only {first.size} distinct events of {k} drawn")
+    return u_l, y, ranks[idx[first]]
 
 
 def top_association(lf, hf) -> float:

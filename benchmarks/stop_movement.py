@@ -39,7 +39,12 @@ import sys
 import warnings
 
 import numpy as np
-from sampling_reference import copula_at_tau, truth_law
+from sampling_reference import (
+    copula_at_tau,
+    lf_reference_nll,
+    lf_reference_pool,
+    truth_law,
+)
 from scipy import optimize, stats
 
 from pas.validation import generate_case
@@ -90,31 +95,13 @@ def known_law_movement(data, k: int, draws: int, seed: int) -> np.ndarray:
 def known_law_lf_movement(data, k: int, draws: int, seed: int, copula: str = "gumbel"):
     """``move20`` of the known-law + LF estimator as the next 20 ln-d events arrive,
     and its relative error at k."""
-    from pas.copula_densities import copula_logpdf
-
     theta, alpha, beta, n, q = truth_law(data)
     cop, par = copula_at_tau(copula, data.tau)
     rng = np.random.default_rng([seed, k, 19])
-
-    def nll(x, u_l, y):
-        a, b = np.exp(x)
-        log_s = -(y / a) ** b
-        log_f = np.log(b / a) + (b - 1.0) * np.log(y / a) + log_s
-        v = np.clip(-np.expm1(log_s), 1e-300, 1.0 - 1e-15)
-        return -np.sum(log_f + copula_logpdf(copula, (par,), u_l, v))
-
+    nll = lf_reference_nll(copula, par)
     out, errors = [], []
     for _ in range(draws):
-        uv = cop.sample(n, seeds=[int(s) for s in rng.integers(0, 2**31 - 1, 4)])
-        u_l, v = uv[:, 0], uv[:, 1]
-        y = alpha * (-np.log1p(-v)) ** (1.0 / beta)
-        ranks = np.argsort(-u_l)
-        d = np.exp(rng.uniform(np.log(1.0 / n), 0.0, 40 * (k + WINDOW)))
-        idx = np.clip(np.ceil(d * n).astype(int) - 1, 0, n - 1)
-        first = np.sort(np.unique(idx, return_index=True)[1])[:k + WINDOW]
-        if first.size < k + WINDOW:
-            raise RuntimeError(f"only {first.size} distinct events of {k + WINDOW} drawn")
-        pick = ranks[idx[first]]
+        u_l, y, pick = lf_reference_pool(cop, n, alpha, beta, k + WINDOW, rng, oversample=40)
         shape, _, scale = stats.weibull_min.fit(y[pick[:k]], floc=0.0)
         x0, mpms = np.log([scale, shape]), []
         for m in range(k, k + WINDOW + 1):
