@@ -1,0 +1,54 @@
+"""Code blocks of the README and the docs pages, found by their section heading.
+
+Tests that run a documented snippet verbatim locate it by heading, not by line
+number, so the page can be reorganised without the test silently reading
+another block.
+"""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+
+_HEADING = re.compile(r"^(#{1,6})\s+(.*?)\s*$")
+_FENCE = re.compile(r"^```(\w*)\s*$")
+
+
+def section(path, heading: str) -> str:
+    """The text under the first heading whose title contains ``heading``, up to the next
+    heading of the same or a higher level (fenced code is not scanned for headings)."""
+    lines = (ROOT / path).read_text(encoding="utf-8").splitlines()
+    level, out, in_code = None, [], False
+    for line in lines:
+        if _FENCE.match(line):
+            in_code = not in_code
+        m = None if in_code else _HEADING.match(line)
+        if m and level is not None and len(m.group(1)) <= level:
+            break
+        if level is not None:
+            out.append(line)
+        elif m and heading in m.group(2):
+            level = len(m.group(1))
+    if level is None:
+        raise LookupError(f"no heading containing {heading!r} in {path}")
+    return "\n".join(out)
+
+
+def code_blocks(path, heading: str, lang: str | None = None) -> list[str]:
+    """The fenced code blocks of that section, in order (only ``lang`` ones if given)."""
+    blocks, current, block_lang = [], None, ""
+    for line in section(path, heading).splitlines():
+        m = _FENCE.match(line)
+        if m and current is None:
+            current, block_lang = [], m.group(1)
+        elif m:
+            if lang is None or block_lang == lang:
+                blocks.append("\n".join(current) + "\n")
+            current = None
+        elif current is not None:
+            current.append(line)
+    if not blocks:
+        raise LookupError(f"no {lang or ''} code block under {heading!r} in {path}")
+    return blocks
