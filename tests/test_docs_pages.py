@@ -8,6 +8,9 @@ a cluster) carries ``<!-- not run: REASON -->`` just before it.
 
 from __future__ import annotations
 
+import importlib.util
+import re
+
 import numpy as np
 import pandas as pd
 import pytest
@@ -95,3 +98,38 @@ def test_a_marker_applies_to_the_next_block_only(tmp_path):
     blocks = page_blocks(page, "python")
     assert [b["not_run"] for b in blocks] == ["needs your CFD program", None]
     assert [b["code"] for b in blocks] == ["a = 1\n", "b = 2\n"]
+
+
+def load_known_truth_table():
+    spec = importlib.util.spec_from_file_location(
+        "known_truth_table", ROOT / "benchmarks" / "known_truth_table.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+def test_known_truth_table_writes_the_page_between_its_markers(tmp_path):
+    """The script fills both tables of a copy of docs/known-truth.md from runs.csv files
+    and leaves every line outside its markers as it was."""
+    runs = pd.DataFrame({"type": ["a", "a", "b"], "type_tau": [0.7, 0.7, 0.3],
+                         "error": [0.1, -0.2, 0.3], "covered": [True, False, True],
+                         "n_hf": [20, 40, 60], "converged": [True, True, False]})
+    runs.to_csv(tmp_path / "defaults.csv", index=False)
+    runs.assign(error=[0.5, 0.5, -1.0]).to_csv(tmp_path / "paper.csv", index=False)
+    original = (ROOT / "docs" / "known-truth.md").read_text(encoding="utf-8")
+    page = tmp_path / "known-truth.md"
+    page.write_text(original, encoding="utf-8")
+    load_known_truth_table().main([str(tmp_path / "defaults.csv"), str(tmp_path / "paper.csv"),
+                                   "--write", str(page)])
+    written = page.read_text(encoding="utf-8")
+    # |error| 0.1, 0.2, 0.3: median 20 %, worst 30 %; coverage 2 of 3; HF median 40
+    assert "| defaults, all 3 runs | 20.0 % | 28.0 % | 30.0 % | 67 % | 40 | 67 % |" in written
+    assert "| b | 30.0 % | 30.0 % | +30.0 % | 100 % | 60 | 0 % | 100.0 % | 100 % | 60 |" in written
+    inside = re.compile(r"<!-- BEGIN known_truth_table.py (\S+) -->\n.*?<!-- END", re.S)
+    assert inside.sub("", written) == inside.sub("", original)
+
+
+def test_known_truth_table_needs_the_markers(tmp_path):
+    with pytest.raises(ValueError, match="markers"):
+        load_known_truth_table().write_between_markers("no markers here", {"overall": "x"},
+                                                       "known_truth_table.py")
