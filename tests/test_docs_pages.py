@@ -83,7 +83,7 @@ def test_unrun_blocks_say_why():
     ("<!-- not run: -->\n```python\nx = 1\n```\n", "must say why"),
     ("<!-- not run: needs CFD -->\nSome prose.\n```python\nx = 1\n```\n", "just before"),
     ("text\n<!-- not run: needs CFD -->\n", "just before"),
-])
+], ids=["without a reason", "prose before the block", "no block after it"])
 def test_a_bad_marker_is_an_error(tmp_path, text, message):
     page = tmp_path / "page.md"
     page.write_text(text, encoding="utf-8")
