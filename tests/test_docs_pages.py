@@ -17,7 +17,9 @@ import pytest
 
 from _snippets import ROOT, page_blocks
 
-PAGES = sorted(p.relative_to(ROOT).as_posix() for p in (ROOT / "docs").rglob("*.md"))
+# The site's pages: docs/, the case pages it generates from cases/<id>/README.md, the README.
+PAGES = sorted(p.relative_to(ROOT).as_posix()
+               for p in [*(ROOT / "docs").rglob("*.md"), *(ROOT / "cases").glob("*/README.md")])
 PAGES.append("README.md")
 # Pages whose code runs a whole study (tens of seconds on two shared cores).
 SLOW_PAGES = {"README.md", "docs/guide/quickstart.md", "docs/guide/hf-tool.md"}
