@@ -102,12 +102,16 @@ def test_a_marker_applies_to_the_next_block_only(tmp_path):
     assert [b["code"] for b in blocks] == ["a = 1\n", "b = 2\n"]
 
 
-def load_known_truth_table():
-    spec = importlib.util.spec_from_file_location(
-        "known_truth_table", ROOT / "benchmarks" / "known_truth_table.py")
+def load_module(relative_path):
+    path = ROOT / relative_path
+    spec = importlib.util.spec_from_file_location(path.stem, path)
     module = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(module)
     return module
+
+
+def load_known_truth_table():
+    return load_module("benchmarks/known_truth_table.py")
 
 
 def test_known_truth_table_writes_the_page_between_its_markers(tmp_path):
@@ -135,3 +139,11 @@ def test_known_truth_table_needs_the_markers(tmp_path):
     with pytest.raises(ValueError, match="markers"):
         load_known_truth_table().write_between_markers("no markers here", {"overall": "x"},
                                                        "known_truth_table.py")
+
+
+def test_the_site_shows_sphinx_roles_as_plain_code():
+    hook = load_module("docs/hooks/sphinx_roles.py")
+    html = ("see :func:<code>pas.run_pas</code> and :class:<code>~pas.screening.Event</code>, "
+            "not :notarole:<code>x</code>")
+    assert hook.on_page_content(html) == ("see <code>pas.run_pas</code> and <code>Event</code>, "
+                                          "not :notarole:<code>x</code>")
