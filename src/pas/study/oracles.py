@@ -84,6 +84,8 @@ class TableOracle:
     value_column : str, default "hf"
         Column holding the HF peak (0 = no impact).
 
+    Notes
+    -----
     An event missing from the table, or with an empty value, is a failure,
     never 0.
 
