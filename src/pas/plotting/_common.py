@@ -121,6 +121,11 @@ def _legend_below(ax, handles=None, labels=None, *, ncol=1, grow=False):
         Make the figure taller by the legend's height, so the Axes keep their
         size (for a figure the plotting function made itself).
 
+    Notes
+    -----
+    A figure without a layout engine gets matplotlib's constrained layout,
+    which makes room for the legend inside the figure.
+
     Returns
     -------
     matplotlib.legend.Legend
@@ -128,6 +133,9 @@ def _legend_below(ax, handles=None, labels=None, *, ncol=1, grow=False):
     from matplotlib.transforms import offset_copy
 
     fig = ax.figure
+    if fig.get_layout_engine() is None:
+        # without a layout engine a legend under the Axes is cut off at the figure's edge
+        fig.set_layout_engine("constrained")
     if handles is None:
         handles, labels = ax.get_legend_handles_labels()
     # the x axis (ticks, tick labels, label) reaches this far under the Axes, in points
