@@ -137,7 +137,8 @@ def test_convergence_figure_says_where_a_study_converged(converged):
     first = converged.history[converged.history["stop"] == True].iloc[0]  # noqa: E712
     texts = _legend_texts(ax)
     assert any(f"converged at {int(first['n_hf'])} HF samples" in t for t in texts)
-    assert not any("not converged" in t for t in texts) and ax.get_title() == ""
+    assert not any("not converged" in t for t in texts)
+    assert ax.get_title() == f"converged at {int(first['n_hf'])} HF samples"
 
 
 def test_convergence_figure_says_the_failure_limit_stopped_a_study(problem):
@@ -199,7 +200,7 @@ def test_aic_panel_cuts_far_worse_fits_and_says_so(converged):
 def test_distribution_says_the_samples_sit_at_their_lf_exceedance(converged):
     fig, ax = plot_distribution(converged)
     n = len(converged.pairs)
-    label = f"PAS ({converged.family}): HF loads of the {n} evaluated events, at their LF " \
+    label = f"PAS ({converged.family}): HF loads of the {n} true-positive events, at their LF " \
             "exceedance $d$"
     assert label in _legend_texts(ax)
     marks = [ln for ln in ax.get_lines() if ln.get_label() == label][0]

@@ -69,7 +69,8 @@ def plot_mpm_convergence(result, *, truth=None, ax=None, label=None, unit=None,
     convergence point is the first iteration meeting the App. C criterion.
     A study that did not converge gets a dashed line at its last sample and
     says why it ended (:func:`stop_text`: budget, failure limit, or not
-    converged yet), also as the title of a figure made here.  A design-wave
+    converged yet), also as the title of a figure made here (which names
+    the convergence point when there is one).  A design-wave
     result (:func:`pas.run_rcw`) is one point at its number of episodes.
     The legend sits under the x axis label, where it covers no curve.
 
@@ -120,6 +121,8 @@ def plot_mpm_convergence(result, *, truth=None, ax=None, label=None, unit=None,
                 mec="k", mew=0.6, ls="none",
                 label=f"{name}: converged at {int(conv['n_hf'])} HF samples, "
                       f"MPM {_fmt(float(conv['mpm']), unit)}")
+        if own_figure:
+            ax.set_title(f"converged at {int(conv['n_hf'])} HF samples", fontsize=10)
     else:
         stop = stop_text(result)
         ax.axvline(float(hist["n_hf"].max()), color=c, lw=1.2, ls="--",

@@ -151,7 +151,7 @@ def plot_distribution(result, *, lf=None, truth=None, ax=None, label=None, unit=
             and not pairs.empty:
         ax.plot(pairs["d"].to_numpy(dtype=float), pairs["hf"].to_numpy(dtype=float), "o", ms=4,
                 mfc="none", mew=1.0, color=c,
-                label=f"{name}: HF loads of the {len(pairs)} evaluated events, "
+                label=f"{name}: HF loads of the {len(pairs)} true-positive events, "
                       "at their LF exceedance $d$")
     if truth is not None:
         d_t, h_t = _truth_curve(truth)
@@ -169,7 +169,11 @@ def plot_distribution(result, *, lf=None, truth=None, ax=None, label=None, unit=
         seen.append(_truth_curve(truth)[1])
     seen = np.concatenate([np.ravel(x) for x in seen])
     seen = seen[np.isfinite(seen)]
-    if seen.size and np.nanmin(h) < seen.min():
+    # (a sampling band far wider than the data, e.g. an AS GPR between sparse samples,
+    # runs off the bottom instead of squashing the curves)
+    low_band = pd.to_numeric(shown.get("h_low", pd.Series(dtype=float)), errors="coerce").min()
+    if seen.size and min(np.nanmin(h), low_band if np.isfinite(low_band) else np.inf) \
+            < seen.min():
         lo, hi = ax.get_ylim()
         span = hi - min(seen.min(), 0.0)
         ax.set_ylim(max(lo, min(seen.min(), 0.0) - 0.05 * span), hi)
