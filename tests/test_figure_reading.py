@@ -157,13 +157,13 @@ def test_convergence_figure_says_the_failure_limit_stopped_a_study(problem):
     res = info.value.result
     assert res.n_failed == 3
     fig, ax = plot_mpm_convergence(res)
-    assert ax.get_title() == "stopped by the failure limit (3 failed, max_failures = 2) — not converged"
+    assert ax.get_title() == ("stopped by the failure limit (3 failed, max_failures = 2)"
+                              " — not converged")
     assert any("failed HF call ×3" in t for t in _legend_texts(ax))
 
 
 # -- copula selection -------------------------------------------------------------
 def test_aic_panel_draws_delta_aic_to_the_family_selected_at_each_iteration(converged):
-    hist = converged.fitted
     # make the selection change, so the reference family changes between iterations
     hist = converged.history.copy()
     rows = hist.index[hist["mpm"].notna()]

@@ -1,10 +1,11 @@
 """Figures of :func:`pas.validation.reproduce`, drawn with :mod:`pas.plotting.figures`.
 
-Per case ``<case>.png`` with four panels — MPM against the number of HF
+Per case ``case_<case>.png`` with three panels — MPM against the number of HF
 samples with the truth line (paper Fig. 6/7 top), the final exceedance
-distributions with bands and the truth (Fig. 6/7 bottom), the LF–HF scatter
-with τ and tail dependence (Fig. 16) — and ``metrics.png``, the M1/M2/M3 bars
-of all cases (Fig. 8).  With a design-wave result, ``design_<case>.png``: the
+distributions with bands and the truth (Fig. 6/7 bottom; design waves as one
+point per level), the LF–HF scatter with τ and tail dependence (Fig. 16) — and
+``metrics.png``, the M1/M2/M3 bars of all cases (Fig. 8).  Each panel's legend
+sits under it, at 8 pt, covering no curve.  With a design-wave result, ``design_<case>.png``: the
 HF exceedance curves of the truth, PAS and AS with the RCW (and MLER) points
 (Dermatis et al. 2025, Fig. 14) and, where HF and the conditioned linear
 response are the same quantity (cases 1–2), ``f_NL`` against the linear
@@ -72,7 +73,8 @@ def _design_figure(out, cid, data, results) -> Path:
 
     spec = get_case(cid)
     same_quantity = spec.family in "12"
-    fig, axes = plt.subplots(1, 2 if same_quantity else 1, figsize=(13 if same_quantity else 7, 6.5),
+    fig, axes = plt.subplots(1, 2 if same_quantity else 1,
+                             figsize=(13 if same_quantity else 7, 6.5),
                              constrained_layout=True, squeeze=False)
     ax = axes[0, 0]
     truth = (data.truth_d, data.truth_h)
