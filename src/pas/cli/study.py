@@ -324,7 +324,7 @@ def _status(args) -> int:
         used_converged = bool(study.converged)
         waiting = store.unconsumed()
         for idx, hf, err in waiting:
-            study.tell(int(idx), hf, error=err)
+            study.tell(int(idx), hf, error=err, replace=True)
         events = store.events()
         changes = store.get("settings_changes", [])
     pend = events[events["state"] == "pending"]

@@ -142,9 +142,9 @@ class _Loop:
             batch = []
         return study.result()
 
-    def _tell(self, event, value, error):
+    def _tell(self, event, value, error, replace=False):
         """Tell one result; the failure limit's error when it is now exceeded."""
-        row = self.study.tell(event, value, error=error)
+        row = self.study.tell(event, value, error=error, replace=replace)
         if self.callback is not None:
             self.callback(self.study, row)
         return failure_limit(self.study)
@@ -159,9 +159,9 @@ class _Loop:
         return [self.study.lfset.event(self.study.lfset.position_of(r[0])) for r in rows]
 
     def _absorb(self):
-        """Tell results that other processes stored for waiting events (arrival order)."""
+        """Tell results and replacements other processes stored meanwhile (arrival order)."""
         for idx, hf, err in self.store.unconsumed() if self.store is not None else ():
-            if (failure := self._tell(int(idx), hf, err)) is not None:
+            if (failure := self._tell(int(idx), hf, err, replace=True)) is not None:
                 raise failure
 
     def _run_batch(self, batch):
