@@ -105,13 +105,22 @@ def _abandon(pool: ProcessPoolExecutor) -> None:
 
 
 def failure_limit(study) -> OracleFailureLimit | None:
-    """The error to raise when ``study`` saw more failed oracle calls than it allows, else None."""
+    """The error to raise when ``study`` saw more failed oracle calls than it allows, else None.
+
+    Its message ends with how to continue from Python; ``reason`` holds the
+    message without that, for the command-line tools to add their own.
+    """
     if study.n_failed <= study.max_failures:
         return None
     last = next(r for r in reversed(study.rows) if r["status"] == EventState.FAILED)
-    return OracleFailureLimit(
-        f"the HF oracle failed {study.n_failed} times (max_failures={study.max_failures}); "
-        f"last error on event {last['event_id']}: {last['error']}", result=study.result())
+    reason = (f"the HF oracle failed {study.n_failed} times (max_failures={study.max_failures}); "
+              f"last error on event {last['event_id']}: {last['error']}")
+    error = OracleFailureLimit(
+        f"{reason}; fix the cause and retry the failed events (study.retry_failed() or "
+        "run_pas(..., retry_failed=True) on the same study store), or raise max_failures",
+        result=study.result())
+    error.reason = reason
+    return error
 
 
 def _check_picklable(oracle) -> None:
