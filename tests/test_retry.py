@@ -6,6 +6,7 @@ same decisions, so its numbers must agree with that run, not with a constant.
 """
 
 import json
+import logging
 import sqlite3
 import textwrap
 
@@ -46,7 +47,7 @@ def _asks(db):
         return list(store.events()["idx"])
 
 
-def test_retry_after_substitutes_asks_what_an_uninterrupted_run_asks(tmp_path):
+def test_retry_after_substitutes_asks_what_an_uninterrupted_run_asks(tmp_path, caplog):
     """Reproduction: resumed with a larger max_failures the largest events stayed failed."""
     ref_db, db = str(tmp_path / "ref.db"), str(tmp_path / "s.db")
     ref = pas.run_pas(LF, good, study=ref_db, **KW)
@@ -56,7 +57,9 @@ def test_retry_after_substitutes_asks_what_an_uninterrupted_run_asks(tmp_path):
     with StudyStore(db, create=False) as store:
         told_before = {r.idx: r.hf for r in store.events().itertuples() if r.state == "done"}
     oracle.fixed, oracle.calls = True, []
-    res = pas.run_pas(LF, oracle, study=db, max_failures=50, retry_failed=True, **KW)
+    with caplog.at_level(logging.INFO, logger="pas"):
+        res = pas.run_pas(LF, oracle, study=db, max_failures=50, retry_failed=True, **KW)
+    assert f"resuming {db}: {len(first.history)} results reused" in caplog.text
     assert res.n_failed == 0 and res.n_hf == ref.n_hf
     assert res.mpm == pytest.approx(ref.mpm, rel=1e-9)
     assert _asks(db) == _asks(ref_db)

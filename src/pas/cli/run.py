@@ -35,7 +35,13 @@ The output folder receives ``history.csv``, ``distribution.csv``,
 ``pairs.csv``, ``range_curves.csv``, ``lf_curve.csv`` and ``summary.json``
 — everything ``pas plot`` needs to redraw the figures — and, unless
 ``--no-store``, the crash-safe study store ``study.sqlite``: run the same
-command again after a crash and no HF result is lost or re-run.
+command again after a crash and no HF result is lost or re-run (stderr says
+how many results it reused).  On a resumed study ``--eps1``, ``--eps2``,
+``--max-hf`` and ``--max-failures`` change the stored values only when given.
+More than ``--max-failures`` failed HF evaluations stop the run (exit code 1);
+``--retry-failed`` on the same ``--out`` runs the failed events again once
+the oracle is fixed, and the study continues as if they had not failed
+(:meth:`pas.study.study.Study.retry_failed`).
 """
 
 from __future__ import annotations

@@ -171,13 +171,21 @@ def _ask(args) -> int:
         events = study.ask(args.n)
         if initial and len(events) < args.n:
             events += study.ask(args.n - len(events))
+        kept = {r[0] for r in store.outstanding() if r[3]}  # results a retry kept for them
+        reused = [ev for ev in events if ev.index in kept]
+        events = [ev for ev in events if ev.index not in kept]
         if events:
             store.mark_submitted(events)
     store.close()
-    if not events:
+    if reused:
+        print(f"{args.study}: {len(reused)} event(s) asked again after a retry have their kept "
+              f"result ({', '.join(str(ev.id) for ev in reused)}); the next ask uses it",
+              file=sys.stderr)
+    if not events and not reused:
         print(f"{args.study}: nothing to ask ({_why_finished(study)})", file=sys.stderr)
         return 0
-    _emit([_event_row(ev) for ev in events], args.format, args.output)
+    if events:
+        _emit([_event_row(ev) for ev in events], args.format, args.output)
     return 0
 
 

@@ -14,8 +14,8 @@ Replacing (``study.tell(event, value, replace=True)``)
     what the new value would have caused.  The model is refitted (each fit
     draws from ``default_rng([seed, n_told])``, a replaced event counting
     once) and convergence is decided again on that fit.  When the replaced
-    event made the last fit, the refit starts from the model state before
-    that fit (the selected copula of §2.2, warm starts, stopping windows), so
+    event is the last one told and made the last fit, the refit starts from
+    the model state before that fit (the selected copula of §2.2, warm starts, stopping windows), so
     the result is the one the new value would have given had it been told in
     the first place.
 """
