@@ -223,3 +223,45 @@ def test_cli_study_retry(case, capsys):
                          ).fetchone()[0] == 2
     assert main(["study", "retry", db]) == 0
     assert "no failed event to retry" in capsys.readouterr().out
+
+
+SCRIPT = f"""\
+import pathlib, sys
+lf, result = float(sys.argv[1]), sys.argv[2]
+if pathlib.Path(__file__).with_name("broken.flag").exists() and lf > {BROKEN_ABOVE}:
+    sys.exit("mesh file not found")
+pathlib.Path(result).write_text(repr(2.0 * lf ** 1.2))
+"""
+
+
+def test_cli_study_run_stops_at_the_limit_and_continues_after_retry(tmp_path, capsys):
+    import sys
+
+    pd.DataFrame({"lf": LF}).to_csv(tmp_path / "lf.csv", index=False)
+    (tmp_path / "cfd.py").write_text(SCRIPT)
+    (tmp_path / "broken.flag").touch()
+    (tmp_path / "study.toml").write_text(textwrap.dedent(f"""\
+        n_waves = {N}
+        p_exp = 0.01
+        eps1 = 0.001
+        seed = 5
+        preset = "paper"
+        max_hf = 6
+        max_failures = 1
+        [lf]
+        file = "lf.csv"
+        column = "lf"
+        [oracle]
+        command = ["{sys.executable}", "{tmp_path / 'cfd.py'}", "{{lf}}", "{{result}}"]
+        """))
+    db = str(tmp_path / "s.db")
+    assert main(["study", "create", db, "--config", str(tmp_path / "study.toml")]) == 0
+    capsys.readouterr()
+    assert main(["study", "run", db, "--quiet"]) == 1
+    err = capsys.readouterr().err
+    assert "max_failures=1" in err and f"'pas study retry {db}'" in err
+    assert "--max-failures N" in err and "Traceback" not in err
+    (tmp_path / "broken.flag").unlink()
+    assert main(["study", "retry", db]) == 0
+    assert main(["study", "run", db, "--quiet"]) == 0
+    assert "0 failed" in capsys.readouterr().out
