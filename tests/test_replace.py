@@ -164,3 +164,42 @@ def test_a_version_1_store_is_upgraded_and_takes_a_replacement(tmp_path):
     with pytest.raises(StoreError, match="was not asked for"):
         with StudyStore(path, create=False) as store:
             store.tell_by_key("no-such-event", 1.0, replace=True)
+
+
+def _replace_forever(db, key):
+    with StudyStore(db, create=False) as store:
+        for i in range(100_000):
+            store.tell_by_key(key, float(i % 7 + 1), replace=True, source=f"r{i}")
+
+
+@pytest.mark.slow
+def test_sigkill_during_replacements_leaves_a_consistent_trail(tmp_path):
+    import multiprocessing as mp
+    import os
+    import signal
+    import time
+
+    db = str(tmp_path / "s.db")
+    study, ev = _campaign(db, 5)
+    study.store.close()
+    proc = mp.get_context("spawn").Process(target=_replace_forever, args=(db, ev.id))
+    proc.start()
+    deadline = time.time() + 60
+    while time.time() < deadline:
+        with sqlite3.connect(db, timeout=30) as c:
+            if c.execute("SELECT COUNT(*) FROM replacements").fetchone()[0] >= 5:
+                break
+        time.sleep(0.05)
+    os.kill(proc.pid, signal.SIGKILL)
+    proc.join()
+    with StudyStore(db, create=False) as store:
+        trail = store.replacements()
+        row = store.events().set_index("idx").loc[ev.index]
+    assert len(trail) >= 5
+    assert trail[0]["old_hf"] == pytest.approx(good(ev), rel=1e-12)
+    for before, after in zip(trail, trail[1:]):       # every replacement whole, none lost
+        assert after["old_hf"] == before["new_hf"] and after["old_source"] == before["source"]
+    assert (row["hf"], row["source"]) == (trail[-1]["new_hf"], trail[-1]["source"])
+    again = open_study(db)                              # and the study applies the last one
+    assert again.value[again.lfset.position_of(ev.index)] == trail[-1]["new_hf"]
+    again.store.close()
