@@ -223,6 +223,10 @@ def test_cli_study_retry(case, capsys):
                          ).fetchone()[0] == 2
     assert main(["study", "retry", db]) == 0
     assert "no failed event to retry" in capsys.readouterr().out
+    assert main(["study", "status", db, "--events"]) == 0
+    text = capsys.readouterr().out
+    assert ("dropped by a retry: event e295 (retried failure): error 'RuntimeError: input deck "
+            "names a missing mesh' not reused") in text
 
 
 SCRIPT = f"""\
