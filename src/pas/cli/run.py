@@ -35,7 +35,13 @@ The output folder receives ``history.csv``, ``distribution.csv``,
 ``pairs.csv``, ``range_curves.csv``, ``lf_curve.csv`` and ``summary.json``
 — everything ``pas plot`` needs to redraw the figures — and, unless
 ``--no-store``, the crash-safe study store ``study.sqlite``: run the same
-command again after a crash and no HF result is lost or re-run.
+command again after a crash and no HF result is lost or re-run (stderr says
+how many results it reused).  On a resumed study ``--eps1``, ``--eps2``,
+``--max-hf`` and ``--max-failures`` change the stored values only when given.
+More than ``--max-failures`` failed HF evaluations stop the run (exit code 1);
+``--retry-failed`` on the same ``--out`` runs the failed events again once
+the oracle is fixed, and the study continues as if they had not failed
+(:meth:`pas.study.study.Study.retry_failed`).
 """
 
 from __future__ import annotations
@@ -46,7 +52,7 @@ import math
 import sys
 from pathlib import Path
 
-from ..study.schema import DEFAULT_MAX_HF
+from ..study.schema import DEFAULT_MAX_HF, RESUMABLE
 
 __all__ = ["add_parser", "run"]
 
@@ -89,6 +95,24 @@ def _budget(text):
     return None if word == "none" else "default" if word == "default" else _positive_int(text)
 
 
+class _NotGiven:
+    """Default of an option that a resumed study keeps as stored unless it is given."""
+
+    def __init__(self, value):
+        self.value = value
+
+
+def _count(text):
+    """``--max-failures``: an integer >= 0."""
+    try:
+        v = int(text)
+    except ValueError:
+        v = -1
+    if v < 0:
+        raise argparse.ArgumentTypeError(f"expected an integer >= 0, got {text!r}")
+    return v
+
+
 def _positive_int(text):
     try:
         v = int(text)
@@ -129,13 +153,18 @@ def add_parser(sub) -> None:
                    help="target exceedance probability (e.g. T_1/T_exp)")
     p.add_argument("--eps1", required=True, type=float, metavar="E",
                    help="stopping limit on the distribution change, load units (~1-2%% of the max)")
-    p.add_argument("--eps2", type=float, default=0.1, metavar="C",
+    p.add_argument("--eps2", type=float, default=_NotGiven(0.1), metavar="C",
                    help="stopping limit on the COV of the MPM (default 0.1)")
     p.add_argument("--threshold", type=float, metavar="L0", help="LF threshold l0_input")
     p.add_argument("--seed", type=int, help="random seed (default: drawn and reported)")
-    p.add_argument("--max-hf", type=_budget, default="default", metavar="N",
+    p.add_argument("--max-hf", type=_budget, default=_NotGiven("default"), metavar="N",
                    help=f"budget of HF evaluations (default {DEFAULT_MAX_HF}, the most the paper "
                         "needed, or none with --preset paper; 'none': no budget)")
+    p.add_argument("--max-failures", type=_count, default=_NotGiven(None), metavar="N",
+                   help="failed HF evaluations tolerated before the run stops (default 10)")
+    p.add_argument("--retry-failed", action="store_true",
+                   help="run the failed events of the study in --out again (after fixing the "
+                        "oracle): the study continues as if they had not failed")
     p.add_argument("--preset", choices=("default", "paper"), default="default",
                    help="PAS settings: the package's defaults, or 'paper' to run the method as "
                         "van Essen & Seyffert (2026) wrote it (docs/departures.md)")
@@ -184,21 +213,27 @@ def run(args) -> int:
     except (ValueError, FileNotFoundError) as exc:
         raise type(exc)(f"--oracle: {exc}") from None
     store = None if args.no_store else out / "study.sqlite"
+    if args.retry_failed and store is None:
+        raise ValueError("--retry-failed needs the study store of an earlier run: drop --no-store")
     failed = None
-    inputs = {name: getattr(args, name) for name in _INPUTS}
     try:
         stored = {} if store is None else read_settings(store)
         seed = args.seed if args.seed is not None or store is None else stored.get("seed")
+        settings = _resumable_settings(args, stored)
+        inputs = {name: getattr(args, name) for name in _INPUTS}
         study = make_study(args.strategy, lf, n_waves=args.n_waves, p_exp=args.p_exp,
-                           eps1=args.eps1, eps2=args.eps2, threshold=args.threshold, seed=seed,
-                           max_hf=args.max_hf, ids=ids, meta=meta,
+                           threshold=args.threshold, seed=seed, ids=ids, meta=meta,
                            n_waves_convention="spectral",  # checked above, with option names
-                           preset=None if args.strategy != "pas" else args.preset)
+                           preset=None if args.strategy != "pas" else args.preset, **settings)
         if store is not None:  # only now: bad inputs leave no output folder behind
             out.mkdir(parents=True, exist_ok=True)
             for ch in attach(study, store):
                 print(f"pas run: {ch['key']} changed from {ch['old']} to {ch['new']} on resuming "
                       f"(recorded in {store})", file=sys.stderr)
+            if args.retry_failed:
+                print(_retried_line(study.retry_failed()), file=sys.stderr)
+            if stored:
+                print(_resuming_line(study, store), file=sys.stderr)
         try:
             result = study.optimize(oracle, batch_size=args.batch_size, n_workers=args.workers,
                                     callback=Progress(quiet=args.quiet))
@@ -209,7 +244,7 @@ def run(args) -> int:
     except StoreError as exc:
         raise ValueError(f"{exc} (to start a new study use another --out or --no-store)") from None
     except OracleFailureLimit as exc:
-        result, failed = exc.result, str(exc)
+        result, failed = exc.result, getattr(exc, "reason", str(exc))
     summary = result.save(out, inputs={**inputs, "lf_file": str(args.lf_file), "seed": result.seed},
                           lfset=study.lfset)
     if args.json:
@@ -218,9 +253,61 @@ def run(args) -> int:
         print(result.summary(unit=args.unit))
         print(f"results written to {out}/ (draw them with: pas plot {out} --kind all)")
     if failed is not None:
-        print(f"pas run: error: {failed} (partial result written to {out}/)", file=sys.stderr)
+        how = ("fix the oracle and rerun with --retry-failed (same --out)" if store is not None
+               else "fix the oracle and run again")
+        print(f"pas run: error: {failed}; {how}, or raise --max-failures (partial result "
+              f"written to {out}/)", file=sys.stderr)
         return 1
     return 0
+
+
+def _resumable_settings(args, stored: dict) -> dict:
+    """The stopping settings and budgets (:data:`~pas.study.schema.RESUMABLE`) to build with.
+
+    An option given on the command line wins; otherwise a resumed study keeps
+    its stored value (e.g. one changed with ``pas study set``) and a new one
+    gets the option's default.  The options not given are set on ``args`` to
+    the values used, for ``summary.json``.
+    """
+    from ..study.schema import with_legacy_settings
+
+    stored = with_legacy_settings(stored) if stored else {}
+    out = {}
+    for key in RESUMABLE:
+        given = getattr(args, key, _NotGiven(None))
+        if not isinstance(given, _NotGiven):
+            out[key] = given
+        elif key in stored:
+            out[key] = stored[key]
+        elif given.value is not None:
+            out[key] = given.value
+        if hasattr(args, key):
+            setattr(args, key, out.get(key))
+    return out
+
+
+def _retried_line(report: dict) -> str:
+    if not report["retried"]:
+        return "pas run: --retry-failed: the study has no failed event to retry"
+    n = len(report["retried"])
+    return (f"pas run: retrying {n} failed event(s) ({', '.join(report['retried'][:5])}"
+            f"{', ...' if n > 5 else ''}); {report['dropped']} later ask(s) taken out of the "
+            f"study's log, {report['kept']} of their results kept and reused if asked again")
+
+
+def _resuming_line(study, store) -> str:
+    waiting = study.store.outstanding()
+    with_result = sum(r[3] for r in waiting)
+    reused = study.n_told + with_result
+    line = f"pas run: resuming {store}: {reused} results reused"
+    parts = [f"{study.n_failed} failed"] if study.n_failed else []
+    if with_result:
+        parts.append(f"{with_result} stored but not yet used by the study")
+    if parts:
+        line += f" ({', '.join(parts)})"
+    if len(waiting) > with_result:
+        line += f", {len(waiting) - with_result} pending event(s) to run again"
+    return line
 
 
 def _save_partial(study, out, inputs, args):
@@ -244,6 +331,8 @@ def _check_numbers(args) -> None:
         raise ValueError(f"--p-exp must lie in (0, 1), got {args.p_exp:g}")
     for name in ("eps1", "eps2"):
         v = getattr(args, name)
+        if isinstance(v, _NotGiven):
+            continue
         if not (math.isfinite(v) and v > 0):
             raise ValueError(f"--{name} must be a positive number, got {v:g}")
     if args.timeout is not None and not args.timeout > 0:

@@ -14,7 +14,7 @@ __all__ = ["load_config", "load_peaks"]
 
 _TOP = {"n_waves": int, "n_waves_convention": str, "p_exp": float, "eps1": float, "eps2": float,
         "threshold": float, "strategy": str, "preset": str, "seed": int, "max_hf": int,
-        "batch_size": int,
+        "max_failures": int, "batch_size": int,
         "lf": dict, "settings": dict, "oracle": dict}
 _LF = {"file": str, "column": str, "id_column": str, "meta_columns": list}
 _REQUIRED = ("n_waves", "p_exp", "eps1", "lf")
@@ -69,6 +69,8 @@ def load_config(path) -> dict:
         cfg["oracle"] = _oracle_config(cfg["oracle"], path.parent, where)
     if cfg.get("batch_size", 1) < 1:
         raise ValueError(f"{where}: batch_size must be at least 1, got {cfg['batch_size']}")
+    if cfg.get("max_failures", 0) < 0:
+        raise ValueError(f"{where}: max_failures must be an integer >= 0, got {cfg['max_failures']}")
     return cfg
 
 

@@ -105,13 +105,22 @@ def _abandon(pool: ProcessPoolExecutor) -> None:
 
 
 def failure_limit(study) -> OracleFailureLimit | None:
-    """The error to raise when ``study`` saw more failed oracle calls than it allows, else None."""
+    """The error to raise when ``study`` saw more failed oracle calls than it allows, else None.
+
+    Its message ends with how to continue from Python; ``reason`` holds the
+    message without that, for the command-line tools to add their own.
+    """
     if study.n_failed <= study.max_failures:
         return None
     last = next(r for r in reversed(study.rows) if r["status"] == EventState.FAILED)
-    return OracleFailureLimit(
-        f"the HF oracle failed {study.n_failed} times (max_failures={study.max_failures}); "
-        f"last error on event {last['event_id']}: {last['error']}", result=study.result())
+    reason = (f"the HF oracle failed {study.n_failed} times (max_failures={study.max_failures}); "
+              f"last error on event {last['event_id']}: {last['error']}")
+    error = OracleFailureLimit(
+        f"{reason}; fix the cause and retry the failed events (study.retry_failed() or "
+        "run_pas(..., retry_failed=True) on the same study store), or raise max_failures",
+        result=study.result())
+    error.reason = reason
+    return error
 
 
 def _check_picklable(oracle) -> None:
@@ -142,9 +151,9 @@ class _Loop:
             batch = []
         return study.result()
 
-    def _tell(self, event, value, error):
+    def _tell(self, event, value, error, replace=False):
         """Tell one result; the failure limit's error when it is now exceeded."""
-        row = self.study.tell(event, value, error=error)
+        row = self.study.tell(event, value, error=error, replace=replace)
         if self.callback is not None:
             self.callback(self.study, row)
         return failure_limit(self.study)
@@ -159,9 +168,9 @@ class _Loop:
         return [self.study.lfset.event(self.study.lfset.position_of(r[0])) for r in rows]
 
     def _absorb(self):
-        """Tell results that other processes stored for waiting events (arrival order)."""
+        """Tell results and replacements other processes stored meanwhile (arrival order)."""
         for idx, hf, err in self.store.unconsumed() if self.store is not None else ():
-            if (failure := self._tell(int(idx), hf, err)) is not None:
+            if (failure := self._tell(int(idx), hf, err, replace=True)) is not None:
                 raise failure
 
     def _run_batch(self, batch):

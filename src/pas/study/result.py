@@ -97,7 +97,7 @@ class ScreeningResult:
             mpm, band = pred.mpm, pred.mpm_band
             sampling, family = pred.mpm_band, pred.record.get("family")
             if model_band:
-                rng = np.random.default_rng([study.seed, len(study.rows), 1])
+                rng = np.random.default_rng([study.seed, study.n_told, 1])
                 mb = study.strategy.model_band(pairs, study.lfset, rng)
                 if mb is not None:
                     model = (mb[0], mb[1])

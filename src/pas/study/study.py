@@ -20,6 +20,7 @@ from ..screening import Event, LFSet
 from ..strategies.base import Pairs, Prediction, Strategy
 from ..strategies.stopping import StoppingRule, range_grid
 from . import loop
+from .corrections import Corrections
 from .factory import LF_SETTINGS, STUDY_SETTINGS, make_strategy, strategy_parameters
 from .oracles import check_hf_value
 from .replay import attach
@@ -30,8 +31,7 @@ from .store import StudyStore, read_settings
 __all__ = ["Study"]
 
 
-
-class Study:
+class Study(Corrections):
     """One screening campaign.
 
     Parameters
@@ -107,6 +107,7 @@ class Study:
         self.converged = False
         self._initial = None
         self._warned_tau = False
+        self._before_fit = None  # (row, model state before the fit it made) of the last fit
         self._replaying = False  # set by pas.study.replay.attach
         self.store = None
         if store is not None:
@@ -150,8 +151,8 @@ class Study:
         return [p for p, s in self.state.items() if s == status]
 
     def _told(self, *states) -> list[int]:
-        """Positions told with one of ``states``, in evaluation order."""
-        return [r["position"] for r in self.rows if r["status"] in states]
+        """Positions now in one of ``states``, in the order they were first told."""
+        return [p for p in dict.fromkeys(r["position"] for r in self.rows) if self.state[p] in states]
 
     @property
     def _n_pending(self) -> int:
@@ -233,7 +234,7 @@ class Study:
             self.store.record_ask(events)
         return events
 
-    def tell(self, event, value=None, *, error: str | None = None) -> dict:
+    def tell(self, event, value=None, *, error: str | None = None, replace: bool = False) -> dict:
         """Record the HF result of an asked event and update the model.
 
         ``event`` is the :class:`Event` (or its index in ``lf_peaks``);
@@ -241,22 +242,27 @@ class Study:
         Returns the history row written.  ``tell`` only records: the limit
         on failed calls (``max_failures``) is the loop's to enforce
         (:mod:`pas.study.loop`).
+
+        ``replace=True`` corrects a told result (a typo, a re-run basin test,
+        a value for a failure): :class:`~pas.study.corrections.Corrections`
+        says what changes and what stays; for a pending event it is a plain tell.
         """
         idx = event.index if isinstance(event, Event) else int(event)
         pos = self.lfset.position_of(idx)
-        if self.state.get(pos) != EventState.PENDING:
+        state = self.state.get(pos)
+        if state != EventState.PENDING and not (replace and state is not None):
             raise ValueError(f"event {idx} was not asked for or is already told "
-                             f"(state: {self.state.get(pos, 'never asked')})")
+                             f"(state: {state or 'never asked'}); correct a told result "
+                             "with replace=True")
         if error is None:
             value, error = check_hf_value(value)
         ev = self.lfset.event(pos)
+        if state != EventState.PENDING:
+            return self._replace(pos, ev, value, error)
         if self.store is not None:
             self.store.record_result(ev, value, error)
-        state = self.state[pos] = EventState.of_result(value, error)
-        row = {"row": len(self.rows), "position": pos, "event_index": ev.index, "event_id": ev.id,
-               "lf": ev.lf, "d": ev.d, "hf": value, "error": error, "status": state.value}
-        if state.is_evaluated():
-            self.value[pos] = value
+        row = self._row(pos, ev, value, error)
+        state = self.state[pos]
         if state == EventState.TRUE_POSITIVE:
             self.consecutive_fp = 0
         elif state == EventState.FALSE_POSITIVE:
@@ -291,12 +297,13 @@ class Study:
             if not self.legacy_md:
                 self.consecutive_fp = 0
 
-    def _iterate(self, row: dict) -> None:
+    def _iterate(self, row: dict, replacing: bool = False) -> None:
         pairs = self.pairs()
         if len(pairs) < self.strategy.min_pairs or any(
                 self.state[p] == EventState.PENDING for p in self._initial):
             return
-        rng = np.random.default_rng([self.seed, len(self.rows)])
+        rng = np.random.default_rng([self.seed, self.n_told])
+        self._remember_model_state(row)
         try:
             pred = self.strategy.predict(pairs, self.lfset, rng)
         except (ValueError, np.linalg.LinAlgError, RuntimeError) as exc:
@@ -315,7 +322,7 @@ class Study:
         row.update(pred.record)
         row.update(mpm=pred.mpm, mpm_low=pred.mpm_band[0], mpm_high=pred.mpm_band[1],
                    n_pairs=len(pairs), E=e, E_bar=e_bar, COV=cov, stop=stop)
-        self.converged = self.converged or stop
+        self.converged = stop if replacing else self.converged or stop
         tau = pred.record.get("tau", np.nan)
         if (self.strategy.spreads_samples and len(pairs) >= 8 and tau <= 0
                 and not self._warned_tau):
