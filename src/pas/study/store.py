@@ -35,6 +35,7 @@ import numpy as np
 from .._version import __version__
 from .schema import (_SCHEMA, RESUMABLE, with_legacy_settings, SCHEMA_VERSION, STATES, STORED, StoreConflict, StoreError,
                      _now, _pool_hash, _pool_records, dumps)
+from .loads import add_event_loads, put_loads
 from .state import EventState
 
 __all__ = ["StudyStore", "StoreError", "StoreConflict", "SCHEMA_VERSION", "read_settings", "STATES"]
@@ -78,6 +79,7 @@ class StudyStore:
                     c.execute(f"PRAGMA user_version={SCHEMA_VERSION}")
                     for k, v in (("seq", 0), ("op_seq", 0)):
                         c.execute("INSERT INTO meta VALUES (?, ?)", (k, json.dumps(v)))
+                add_event_loads(c)
         except sqlite3.DatabaseError as exc:
             raise StoreError(f"study store {self.path}: {exc}") from None
 
@@ -280,14 +282,16 @@ class StudyStore:
             c.executemany("UPDATE events SET attempts = attempts + 1, submitted_at = ? WHERE idx = ?",
                           [(_now(), ev.index) for ev in events])
 
-    def record_result(self, event, value, error=None, *, source=None) -> None:
+    def record_result(self, event, value, error=None, *, source=None, loads=None) -> None:
         """Store the HF result (``value``) or failure (``error``) of a pending event.
 
         Idempotent for an identical result; refuses to overwrite a different one.
+        ``loads``: its named loads (:func:`pas.study.loads.put_loads`).
         """
         idx = event if isinstance(event, (int, np.integer)) else event.index
         with self.transaction() as c:
             self._put_result(c, int(idx), value, error, source)
+            put_loads(c, int(idx), loads, self.path)
 
     def _put_result(self, c, idx, value, error, source):
         row = c.execute("SELECT key, state, hf, error, result_seq FROM events WHERE idx = ?",
@@ -315,8 +319,8 @@ class StudyStore:
             c.execute("INSERT INTO history VALUES (?, ?, ?, ?)",
                       (row["row"], event.index, dumps(row), _now()))
 
-    def tell_by_key(self, key, value=None, *, error=None, source=None) -> bool:
-        """Record a result for the pending event whose id is ``key`` (any process).
+    def tell_by_key(self, key, value=None, *, error=None, source=None, loads=None) -> bool:
+        """Record a result (and named ``loads``) for the pending event with id ``key`` (any process).
 
         Returns False when the identical result is already stored; a different
         one raises :class:`StoreError`.
@@ -333,6 +337,7 @@ class StudyStore:
                 raise StoreError(f"event {key} is already told ({row[1]}, hf={row[3]}, "
                                  f"error={row[4]!r})")
             self._put_result(c, row[0], value, error, source)
+            put_loads(c, row[0], loads, self.path)
             return True
 
     def ops(self) -> list[tuple]:

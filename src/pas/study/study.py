@@ -21,14 +21,13 @@ from ..strategies.base import Pairs, Prediction, Strategy
 from ..strategies.stopping import StoppingRule, range_grid
 from . import loop
 from .factory import LF_SETTINGS, STUDY_SETTINGS, make_strategy, strategy_parameters
-from .oracles import check_hf_value
+from .answers import check_hf_answer, check_target, lacks_target
 from .replay import attach
 from .result import ScreeningResult
 from .state import EventState
 from .store import StudyStore, read_settings
 
 __all__ = ["Study"]
-
 
 
 class Study:
@@ -62,6 +61,9 @@ class Study:
         ``Ē`` of the stopping rule: the change of the distribution across the
         last ``k1`` iterations, or the mean per-iteration change of App. C,
         Eq. 28 (:class:`~pas.strategies.stopping.StoppingRule`).
+    target : str, optional
+        With an oracle answering several named loads ``{name: load}``: the
+        one to screen on (:func:`~pas.study.answers.check_hf_answer`).
     legacy_md : bool, default False
         MD gaps between true positives only and the earlier reading of the
         threshold rule (pas 0.1): set for study stores written then, so they
@@ -77,7 +79,7 @@ class Study:
     def __init__(self, lfset: LFSet, strategy: Strategy, *, eps1, eps2=0.1, k1=20, k2=20,
                  seed=None, max_hf=None, max_failures=10, stop_on_convergence=True,
                  adaptive_threshold=True, threshold_step=0.02, fp_run=5, stop_measure="window",
-                 legacy_md=False, store=None):
+                 legacy_md=False, target=None, store=None):
         self.lfset = lfset
         self.strategy = strategy
         self.stopping = StoppingRule(eps1=check_positive(eps1, "eps1"),
@@ -96,6 +98,7 @@ class Study:
         self.threshold_step = float(threshold_step)
         self.fp_run = int(fp_run)
         self.legacy_md = bool(legacy_md)
+        self.target = check_target(target)
         self.grid = range_grid(lfset.p_exp)
         self.state: dict[int, EventState] = {}
         self.value: dict[int, float] = {}
@@ -237,7 +240,8 @@ class Study:
         """Record the HF result of an asked event and update the model.
 
         ``event`` is the :class:`Event` (or its index in ``lf_peaks``);
-        ``value`` the HF peak (0 = no impact) or ``error`` a failure message.
+        ``value`` the HF peak (0 = no impact) or named loads ``{name: load}``
+        (the store keeps all), or ``error`` a failure message.
         Returns the history row written.  ``tell`` only records: the limit
         on failed calls (``max_failures``) is the loop's to enforce
         (:mod:`pas.study.loop`).
@@ -247,11 +251,14 @@ class Study:
         if self.state.get(pos) != EventState.PENDING:
             raise ValueError(f"event {idx} was not asked for or is already told "
                              f"(state: {self.state.get(pos, 'never asked')})")
+        loads = None
         if error is None:
-            value, error = check_hf_value(value)
+            value, error, loads = check_hf_answer(value, self.target)
+            if lacks_target(loads, self.target):
+                raise ValueError(error)
         ev = self.lfset.event(pos)
         if self.store is not None:
-            self.store.record_result(ev, value, error)
+            self.store.record_result(ev, value, error, loads=loads)
         state = self.state[pos] = EventState.of_result(value, error)
         row = {"row": len(self.rows), "position": pos, "event_index": ev.index, "event_id": ev.id,
                "lf": ev.lf, "d": ev.d, "hf": value, "error": error, "status": state.value}
@@ -368,7 +375,8 @@ class Study:
                 "seed": self.seed, "max_hf": self.max_hf, "max_failures": self.max_failures,
                 "stop_on_convergence": self.stop_on_convergence,
                 "adaptive_threshold": self.adaptive_threshold,
-                "threshold_step": self.threshold_step, "fp_run": self.fp_run}
+                "threshold_step": self.threshold_step, "fp_run": self.fp_run,
+                **({} if self.target is None else {"target": self.target})}
 
     # -- results -----------------------------------------------------------
     def history(self) -> pd.DataFrame:
