@@ -4,9 +4,10 @@
 
     pas study create STUDY.db --config study.toml
     pas study ask STUDY.db [-n N] [--format table|csv|json] [-o FILE]
-    pas study tell STUDY.db EVENT VALUE | EVENT --error MSG | --csv results.csv
+    pas study tell STUDY.db EVENT VALUE | EVENT --error MSG | EVENT --load N=V ... | --csv FILE
     pas study status STUDY.db [--json]
     pas study set STUDY.db [--eps1 E] [--eps2 C] [--k1 K] [--k2 K] [--max-hf N]
+    pas study refit STUDY.db --target NAME [--out DIR]   (pas.cli.study_loads)
     pas study run STUDY.db [-q Q] [--workers N] [--pending resubmit|wait]
 
 The study file is a :mod:`pas.study.store` (SQLite): ``tell`` only records the
@@ -41,6 +42,7 @@ import sys
 from pathlib import Path
 
 from .study_config import load_config, load_peaks
+from .study_loads import add_parsers as add_load_parsers, refit_command, tell_loads
 
 __all__ = ["add_parser", "run", "load_config", "load_peaks"]
 
@@ -80,6 +82,7 @@ def add_parser(sub) -> None:
     t.add_argument("--id-column", default="id")
     t.add_argument("--value-column", default="hf",
                    help="column of the HF values (default hf, as the table oracle)")
+    add_load_parsers(cmds, t)
     r = cmds.add_parser("run", help="drive the study with the [oracle] of its TOML file")
     r.add_argument("study", metavar="STUDY.db")
     r.add_argument("-q", "--batch-size", type=int, metavar="Q",
@@ -104,7 +107,7 @@ def add_parser(sub) -> None:
 
 def run(args) -> int:
     return {"create": _create, "ask": _ask, "tell": _tell, "status": _status, "run": _drive,
-            "set": _set}[args.study_command](args)
+            "set": _set, "refit": refit_command}[args.study_command](args)
 
 
 # -- actions ----------------------------------------------------------------
@@ -116,7 +119,7 @@ def _create(args) -> int:
         raise ValueError(f"{args.study} already exists (continue it with 'pas study ask')")
     lf, ids, meta = load_peaks(cfg["lf"])
     kw = {k: cfg[k] for k in ("eps2", "threshold", "seed", "max_hf", "n_waves_convention",
-                              "preset") if k in cfg}
+                              "preset", "target") if k in cfg}
     try:
         study = make_study(cfg["strategy"], lf, n_waves=cfg["n_waves"],
                            p_exp=cfg["p_exp"], eps1=cfg["eps1"], ids=ids, meta=meta,
@@ -204,6 +207,8 @@ def _tell(args) -> int:
     from ..io import read_table
     from ..study.store import StudyStore
 
+    if args.load:
+        return tell_loads(args)
     if args.csv:
         if args.event is not None or args.error is not None:
             raise ValueError("give either EVENT VALUE / EVENT --error MSG or --csv FILE, not both")

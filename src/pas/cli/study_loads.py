@@ -1,0 +1,114 @@
+"""Several loads per HF event on the command line: ``pas study tell --load`` and ``pas study refit``.
+
+::
+
+    pas study tell STUDY.db EVENT --load deck_force=812 --load panel_p3=41.2
+    pas study refit STUDY.db --target panel_p3 [--out DIR] [--json]
+
+``tell --load NAME=VALUE`` (repeated) records every load of one HF run; the
+study screens on its ``target``, which must be among them (a missing or
+invalid other load is kept as missing, as from an oracle).  ``refit``
+analyses another stored load on the events the study chose
+(:func:`pas.study.refit.refit`): the summary says the events were chosen for
+the study's target, and ``--out`` receives the files ``pas run`` writes.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from pathlib import Path
+
+__all__ = ["add_parsers", "tell_loads", "refit_command"]
+
+
+def add_parsers(cmds, tell) -> None:
+    """Add ``--load`` to the ``tell`` parser and the ``refit`` action to ``cmds``."""
+    tell.add_argument("--load", action="append", metavar="NAME=VALUE",
+                      help="one named load of the HF run (repeat for each; the study's target "
+                           "among them), instead of VALUE")
+    r = cmds.add_parser("refit", help="analyse another stored load on the same events, no HF run",
+                        description=__doc__.split("\n\n")[0].replace("``", ""))
+    r.add_argument("study", metavar="STUDY.db")
+    r.add_argument("--target", required=True, metavar="NAME", help="the stored load to analyse")
+    r.add_argument("--out", metavar="DIR", help="write the result files (as pas run) to DIR")
+    r.add_argument("--unit", help="unit of the load, for the summary and figures")
+    r.add_argument("--json", action="store_true", help="print the summary as JSON")
+
+
+def _parse(items) -> dict:
+    loads = {}
+    for item in items:
+        name, sep, text = item.partition("=")
+        name = name.strip()
+        if not sep or not name:
+            raise ValueError(f"--load must be NAME=VALUE (e.g. --load deck_force=812), got {item!r}")
+        if name in loads:
+            raise ValueError(f"--load: load {name!r} is given twice")
+        try:
+            loads[name] = float(text)
+        except ValueError:
+            raise ValueError(f"--load {name}: the load must be a number, got {text!r}") from None
+    return loads
+
+
+def tell_loads(args) -> int:
+    """``pas study tell STUDY.db EVENT --load NAME=VALUE ...``: one event's named loads."""
+    from ..study.answers import check_hf_answer
+    from ..study.store import StudyStore
+
+    if args.event is None or args.value is not None or args.error is not None or args.csv:
+        raise ValueError("--load goes with EVENT alone: pas study tell STUDY.db EVENT "
+                         "--load NAME=VALUE [--load NAME=VALUE ...]")
+    loads = _parse(args.load)
+    with StudyStore(args.study, create=False) as store:
+        target = store.settings().get("target")
+        if target is None and len(loads) > 1:
+            raise ValueError(f"{args.study} has no target, so it takes one load per event, got "
+                             f"{len(loads)} ({', '.join(loads)}); tell VALUE")
+        if target is not None and target not in loads:
+            raise ValueError(f"--load: {args.study} screens on {target!r}, which is not among "
+                             f"the loads given ({', '.join(loads)}); add --load {target}=VALUE")
+        value, error, checked = check_hf_answer(loads, target)
+        if error is not None:
+            name = target or next(iter(loads))
+            raise ValueError(f"--load {name}: the screened load must be finite and >= 0 "
+                             f"(0 = no impact), got {loads[name]!r}; record a failed "
+                             "evaluation with --error MSG")
+        new = store.tell_by_key(args.event, value, loads=checked, source="cli")
+    bad = [n for n, (_v, e) in checked.items() if e is not None]
+    print(f"stored {len(loads)} load(s) of event {args.event} in {args.study}"
+          + ("" if new else " (already stored)")
+          + (f"; {', '.join(bad)} invalid, kept as missing" if bad else ""))
+    return 0
+
+
+def refit_command(args) -> int:
+    """``pas study refit``: the result of another stored load on the same events."""
+    import warnings
+
+    from ..study.refit import refit_study
+
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        study, info = refit_study(args.study, args.target)
+        result = study.result()
+    result.refit = info
+    for w in caught:
+        print(f"pas study refit: warning: {w.message}", file=sys.stderr)
+    inputs = {"study": str(args.study), "target": args.target, "unit": args.unit}
+    if args.out:
+        summary = result.save(Path(args.out), inputs=inputs, lfset=study.lfset)
+    else:
+        summary = {**result.to_dict(), "summary": result.summary(unit=args.unit), "inputs": inputs}
+    if args.json:
+        from .._json import json_data
+
+        print(json.dumps(json_data(summary), indent=2))
+    else:
+        print(result.summary(unit=args.unit))
+        if args.out:
+            print(f"results written to {args.out}/ (draw them with: pas plot {args.out} --kind all)")
+    return 0
+
