@@ -103,8 +103,7 @@ def adopt_target(store, settings: dict) -> dict | None:
         if old == new or c.execute("SELECT COUNT(*) FROM events WHERE result_seq IS NOT NULL"
                                    ).fetchone()[0]:
             return None
-        stored = {k: v for k, v in stored.items() if k != "target"}
-        store._set_meta(c, "settings", stored if new is None else {**stored, "target": new})
+        store._set_meta(c, "settings", {**stored, "target": new})
         change = {"key": "target", "old": old, "new": new, "n_told": 0, "at": _now()}
         store._set_meta(c, "settings_changes", store._meta(c, "settings_changes", []) + [change])
     return change

@@ -85,7 +85,7 @@ def _results_of(store, target, chosen_for) -> dict:
     own = {int(r.idx): (None if r.error is not None else r.hf, r.error)
            for r in told.itertuples()}
     loads = stored_loads(store, target)
-    if target == chosen_for or (chosen_for is None and not loads and not load_names(store)):
+    if target == chosen_for:
         return {idx: (v, e, False) for idx, (v, e) in own.items()}
     if not loads:
         names = load_names(store)

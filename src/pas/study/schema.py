@@ -35,6 +35,9 @@ result_seq, tell_seq, attempts, asked_at, submitted_at, result_at, source)``
 ``history(row, idx, data, written_at)``
     The study's history row of each consumed tell (JSON), written in the same
     transaction as the tell.
+``event_loads(idx, name, value, error)``
+    Every named load of an event whose oracle answered several
+    (:mod:`pas.study.loads`); created on opening, also in older stores.
 
 Replay order is the asks (grouped by ``batch``) and the consumed tells
 (``tell_seq``) sorted by sequence number.  Results that arrived but were not

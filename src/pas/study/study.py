@@ -376,7 +376,7 @@ class Study:
                 "stop_on_convergence": self.stop_on_convergence,
                 "adaptive_threshold": self.adaptive_threshold,
                 "threshold_step": self.threshold_step, "fp_run": self.fp_run,
-                **({} if self.target is None else {"target": self.target})}
+                "target": self.target}
 
     # -- results -----------------------------------------------------------
     def history(self) -> pd.DataFrame:
