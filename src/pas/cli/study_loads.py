@@ -29,7 +29,10 @@ def add_parsers(cmds, tell) -> None:
                       help="one named load of the HF run (repeat for each; the study's target "
                            "among them), instead of VALUE")
     r = cmds.add_parser("refit", help="analyse another stored load on the same events, no HF run",
-                        description=__doc__.split("\n\n")[0].replace("``", ""))
+                        description="Analyse another load stored in STUDY.db on the events "
+                                    "the study chose for its target, with no HF run.  The "
+                                    "sample is not adapted to that load, and the summary says "
+                                    "so; --out receives the files of 'pas run'.")
     r.add_argument("study", metavar="STUDY.db")
     r.add_argument("--target", required=True, metavar="NAME", help="the stored load to analyse")
     r.add_argument("--out", metavar="DIR", help="write the result files (as pas run) to DIR")
