@@ -156,7 +156,8 @@ def test_answers_fail_on_a_missing_or_invalid_target_never_as_zero():
         "oracle's answer has no load 'deck' (the target; it has panel)"
     assert study.tell(b, {"deck": float("nan"), "panel": 1.0})["error"] == \
         "load 'deck': oracle returned nan"
-    assert study.tell(c, {"deck": "12 kN"})["error"] == "load 'deck': oracle returned '12 kN', not a number"
+    assert study.tell(c, {"deck": "12 kN"})["error"] == \
+        "load 'deck': oracle returned '12 kN', not a number"
     assert study.tell(d, {"deck": 0.0, "panel": 3.0})["status"] == "false_positive"
     assert (study.n_failed, study.n_false_positive) == (3, 1)
     with pytest.raises(ValueError, match="^target must be the name of one load"):
@@ -188,7 +189,8 @@ def test_table_oracle_with_several_value_columns(tmp_path):
     assert got == {"deck": 812.0, "panel_p3": 41.2}
     assert call_oracle_loads(oracle, ev, "deck") == (
         0.0, None, {"deck": (0.0, None), "panel_p3": (None, "oracle returned nan")})
-    assert call_oracle_loads(oracle, ev, "panel_p3")[:2] == (None, "load 'panel_p3': oracle returned nan")
+    assert call_oracle_loads(oracle, ev, "panel_p3")[:2] == (
+        None, "load 'panel_p3': oracle returned nan")
     assert parse_oracle_spec("table:b.csv:id:deck,panel_p3")["value_column"] == ["deck", "panel_p3"]
     with pytest.raises(ValueError, match="^value_column: give one column or several different"):
         TableOracle(df, value_column=["deck", "deck"])
@@ -227,7 +229,7 @@ def test_tell_with_named_loads_from_the_cli(asked_store, capsys):
     db, events = asked_store
     key = str(events[0].id)
     assert cli("study", "tell", db, key, "--load", "deck=812", "--load", "panel_p3=41.2") == 0
-    assert "stored 2 load(s)" in capsys.readouterr().out
+    assert "stored the loads of 1 event(s)" in capsys.readouterr().out
     with pas.StudyStore(db, create=False) as s:
         assert stored_loads(s)[events[0].index] == {"deck": (812.0, None),
                                                     "panel_p3": (41.2, None)}
@@ -235,12 +237,36 @@ def test_tell_with_named_loads_from_the_cli(asked_store, capsys):
         assert row["state"] == "done" and row["hf"] == pytest.approx(812.0, rel=1e-12)
 
 
+def test_tell_a_results_table_with_several_load_columns(asked_store, tmp_path, capsys):
+    db, events = asked_store
+    pd.DataFrame({"id": [ev.id for ev in events[:3]], "deck": [812.0, 0.0, np.nan],
+                  "panel_p3": [41.2, "broken", 3.0], "error": [None, None, "gauge lost"]}
+                 ).to_csv(tmp_path / "basin.csv", index=False)
+    assert cli("study", "tell", db, "--csv", tmp_path / "basin.csv",
+               "--value-column", "deck,panel_p3") == 0
+    assert "stored the loads of 3 event(s)" in capsys.readouterr().out
+    with pas.StudyStore(db, create=False) as s:
+        loads = stored_loads(s)
+        state = s.events().set_index("idx")["state"]
+    a, b, c = (ev.index for ev in events[:3])
+    assert loads[a] == {"deck": (812.0, None), "panel_p3": (41.2, None)}
+    assert loads[b] == {"deck": (0.0, None),
+                        "panel_p3": (None, "oracle returned 'broken', not a number")}
+    assert c not in loads and (state[a], state[b], state[c]) == ("done", "false_positive", "failed")
+    pd.DataFrame({"id": [events[3].id], "deck": ["12 kN"], "panel_p3": [1.0]}).to_csv(
+        tmp_path / "bad.csv", index=False)
+    assert cli("study", "tell", db, "--csv", tmp_path / "bad.csv",
+               "--value-column", "deck,panel_p3") == 2
+    assert "bad.csv, data row 1: the screened load deck must be finite" in capsys.readouterr().err
+    assert cli("study", "tell", db, "--csv", tmp_path / "bad.csv", "--value-column", "a,b") == 2
+    assert "--value-column: " in capsys.readouterr().err
+
+
 @pytest.mark.parametrize("loads, message", [
     (["deck=abc"], "--load deck: the load must be a number, got 'abc'"),
-    (["panel_p3=41.2"], "screens on 'deck', which is not among the loads given (panel_p3); "
-                        "add --load deck=VALUE"),
+    (["panel_p3=41.2"], "screens on 'deck', which is not among the loads given (panel_p3)"),
     (["deck"], "--load must be NAME=VALUE"),
-    (["deck=-3"], "--load deck: the screened load must be finite and >= 0"),
+    (["deck=-3"], "--load: the screened load deck must be finite and >= 0"),
     (["deck=1", "deck=2"], "--load: load 'deck' is given twice"),
 ])
 def test_bad_named_loads_in_tell_are_one_line_errors(asked_store, capsys, loads, message):

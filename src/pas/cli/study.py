@@ -81,7 +81,8 @@ def add_parser(sub) -> None:
     t.add_argument("--csv", metavar="FILE", help="results table (CSV or Parquet)")
     t.add_argument("--id-column", default="id")
     t.add_argument("--value-column", default="hf",
-                   help="column of the HF values (default hf, as the table oracle)")
+                   help="column of the HF values (default hf, as the table oracle; A,B: one "
+                        "named load per column)")
     add_load_parsers(cmds, t)
     r = cmds.add_parser("run", help="drive the study with the [oracle] of its TOML file")
     r.add_argument("study", metavar="STUDY.db")
@@ -207,7 +208,7 @@ def _tell(args) -> int:
     from ..io import read_table
     from ..study.store import StudyStore
 
-    if args.load:
+    if args.load or "," in args.value_column:
         return tell_loads(args)
     if args.csv:
         if args.event is not None or args.error is not None:

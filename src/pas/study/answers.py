@@ -74,7 +74,7 @@ def check_hf_answer(answer, target=None):
 
 
 def screened_load(loads: dict, target):
-    """``(value, error)`` of the load a study screens on, from checked ``{name: (value, error)}``."""
+    """``(value, error)`` of the screened load, from checked ``{name: (value, error)}``."""
     if lacks_target(loads, target):
         return None, (f"oracle returned {len(loads)} loads ({', '.join(loads)}) and the study "
                       "has no target: name the one to screen on with target= "

@@ -55,7 +55,10 @@ def call_oracle(oracle, event):
 
 
 def call_oracle_loads(oracle, event, target=None):
-    """Call ``oracle(event)`` and validate the answer: ``(value, error, loads)`` (:func:`check_hf_answer`)."""
+    """Call ``oracle(event)``, its answer checked: ``(value, error, loads)``.
+
+    :func:`~pas.study.answers.check_hf_answer` with ``target``.
+    """
     try:
         raw = oracle(event)
     except Exception as exc:  # the oracle is user code: any failure is recorded

@@ -283,10 +283,9 @@ class StudyStore:
                           [(_now(), ev.index) for ev in events])
 
     def record_result(self, event, value, error=None, *, source=None, loads=None) -> None:
-        """Store the HF result (``value``) or failure (``error``) of a pending event.
+        """Store the HF result (``value``) or failure (``error``) of a pending event, and ``loads``.
 
         Idempotent for an identical result; refuses to overwrite a different one.
-        ``loads``: its named loads (:func:`pas.study.loads.put_loads`).
         """
         idx = event if isinstance(event, (int, np.integer)) else event.index
         with self.transaction() as c:
@@ -320,7 +319,7 @@ class StudyStore:
                       (row["row"], event.index, dumps(row), _now()))
 
     def tell_by_key(self, key, value=None, *, error=None, source=None, loads=None) -> bool:
-        """Record a result (and named ``loads``) for the pending event with id ``key`` (any process).
+        """Record a result (and named ``loads``) for the pending event with id ``key``, any process.
 
         Returns False when the identical result is already stored; a different
         one raises :class:`StoreError`.
