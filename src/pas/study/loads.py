@@ -9,9 +9,11 @@ and writes no row.
 
 ``event_loads(idx, name, value, error)``
     One row per named load of an event: ``value`` (NULL when the load was NaN,
-    negative or not a number) and ``error`` (why, else NULL).  Created when a
-    store is opened (:func:`add_event_loads`), so stores written before it
-    existed gain it and still open and replay as they were.
+    negative or not a number) and ``error`` (why, else NULL); the loads of the
+    event's result, so code that resets a result must delete them (deleting
+    the event row does).  Created when a store is opened
+    (:func:`add_event_loads`), so stores written before it existed gain it and
+    still open and replay as they were.
 """
 
 from __future__ import annotations
@@ -24,7 +26,8 @@ __all__ = ["add_event_loads", "put_loads", "record_loads", "stored_loads", "load
 
 EVENT_LOADS = """
 CREATE TABLE IF NOT EXISTS event_loads (
-    idx INTEGER NOT NULL REFERENCES events(idx), name TEXT NOT NULL, value REAL, error TEXT,
+    idx INTEGER NOT NULL REFERENCES events(idx) ON DELETE CASCADE, name TEXT NOT NULL,
+    value REAL, error TEXT,
     PRIMARY KEY (idx, name))
 """
 

@@ -39,9 +39,10 @@ def refit(store, target: str, *, model_band: bool = True):
     -------
     ScreeningResult
         With ``refit = {"target", "chosen_for", "n_missing"}``: events whose
-        ``target`` load is missing or invalid count as failed (``n_missing``
-        of them; their original failures stay failed).  ``pas study refit DB
-        --target NAME`` writes it as ``pas run`` writes its result.
+        ``target`` load is missing or invalid count as failed, ``n_missing``
+        of them beside the events the oracle failed on (which stay failed
+        unless their answer held a valid ``target`` load).  ``pas study refit
+        DB --target NAME`` writes it as ``pas run`` writes its result.
 
     Raises
     ------
