@@ -43,7 +43,8 @@ def make_study(strategy, lf_peaks, *, n_waves, p_exp, eps1, eps2=0.1, threshold=
         Strategy settings (checked against the strategy's constructor;
         unknown names raise ``ValueError``) and study settings (``k1``,
         ``k2``, ``max_failures``, ``stop_on_convergence``,
-        ``adaptive_threshold``, ``threshold_step``, ``fp_run``).
+        ``adaptive_threshold``, ``threshold_step``, ``fp_run``, ``target``: the load to
+        screen on when the oracle answers several, see :func:`run_pas`).
 
     Returns
     -------
@@ -80,6 +81,7 @@ def run_pas(lf_peaks, oracle, *, n_waves, p_exp, eps1, eps2=0.1, threshold=None,
         :class:`~pas.screening.Event` with ``index``, ``id``, ``lf``, ``d``,
         ``meta``); 0.0 means no impact (a false positive).  An exception, NaN,
         inf or a negative value is recorded as a failure, never taken as 0.
+        Or ``-> {name: float}``, several loads of one HF run, with ``target``.
     n_waves : int
         Number of wave encounters ``n_w`` in the LF Monte-Carlo duration.
     p_exp : float
@@ -149,7 +151,10 @@ def run_pas(lf_peaks, oracle, *, n_waves, p_exp, eps1, eps2=0.1, threshold=None,
         ``band_lf_ranks``, ``lf_tail``)
         and study settings (``k1``, ``k2``,
         ``max_failures``, ``stop_on_convergence``, ``adaptive_threshold``,
-        ``threshold_step``, ``fp_run``: :class:`~pas.study.study.Study`).
+        ``threshold_step``, ``fp_run``: :class:`~pas.study.study.Study`), and
+        ``target``: with an oracle answering several named loads ``{name:
+        load}``, the one to screen on (the store keeps all; :func:`pas.refit`
+        analyses another on the same events).
 
     Returns
     -------

@@ -12,7 +12,9 @@ file (a 1-D array, or a structured array with named columns).  The oracle
 ``table:FILE[:ID_COLUMN:VALUE_COLUMN]``
     HF results looked up by event id in a CSV/Parquet table (basin tests, a
     finished HF Monte-Carlo): :class:`pas.study.oracles.TableOracle`;
-    columns default to ``id`` and ``hf``.
+    columns default to ``id`` and ``hf``.  Several value columns,
+    ``table:FILE:ID:COL1,COL2``, answer one named load per column: screen
+    on one with ``--target COL1`` (the store keeps all; ``pas study refit``).
 ``python:MODULE:FUNCTION``
     A Python function ``f(event) -> float``; ``MODULE`` is an importable
     module name or a path to a ``.py`` file.
@@ -21,7 +23,9 @@ file (a 1-D array, or a structured array with named columns).  The oracle
     like a shell would split it but never run through a shell:
     :class:`pas.study.oracles.CommandOracle` with placeholders ``{id}``,
     ``{index}``, ``{lf}``, ``{d}``, ``{workdir}``, ``{result}`` and the
-    ``--meta-columns``; each event runs in ``OUT/hf-runs/<id>/``.
+    ``--meta-columns``; each event runs in ``OUT/hf-runs/<id>/``.  The
+    result file holds a number, or a JSON object of named loads
+    (``{"deck_force": 812.0, "panel_p3": 41.2}``, with ``--target``).
 
 Progress goes to stderr (one line per HF result: iteration, HF count, MPM
 with the sampling part of its band, Ē, COV; with ``--quiet`` only one line
@@ -82,7 +86,7 @@ examples:
 
 _INPUTS = ("lf_file", "lf_column", "id_column", "oracle", "n_waves", "n_waves_convention", "p_exp",
            "eps1", "eps2", "threshold", "strategy", "preset", "max_hf", "batch_size", "unit",
-           "lf_unit")
+           "lf_unit", "target")
 """The options written to ``summary.json`` as the run's ``inputs``."""
 
 _LF_FILE_NAMES = {"file": "LF_FILE", "column": "--lf-column", "id_column": "--id-column",
@@ -170,6 +174,9 @@ def add_parser(sub) -> None:
                         "van Essen & Seyffert (2026) wrote it (docs/departures.md)")
     p.add_argument("--strategy", choices=STRATEGY_NAMES, default="pas",
                    help="PAS (copula, default) or AS (GPR on order statistics)")
+    p.add_argument("--target", metavar="NAME",
+                   help="with an oracle answering several named loads: the one to screen on "
+                        "(the study store keeps all; 'pas study refit' analyses another)")
     p.add_argument("--batch-size", type=_positive_int, default=1, metavar="Q",
                    help="events per iteration (default 1)")
     p.add_argument("--workers", type=_positive_int, metavar="N",
@@ -223,6 +230,7 @@ def run(args) -> int:
         inputs = {name: getattr(args, name) for name in _INPUTS}
         study = make_study(args.strategy, lf, n_waves=args.n_waves, p_exp=args.p_exp,
                            threshold=args.threshold, seed=seed, ids=ids, meta=meta,
+                           target=args.target,
                            n_waves_convention="spectral",  # checked above, with option names
                            preset=None if args.strategy != "pas" else args.preset, **settings)
         if store is not None:  # only now: bad inputs leave no output folder behind

@@ -4,9 +4,11 @@
 
     pas study create STUDY.db --config study.toml
     pas study ask STUDY.db [-n N] [--format table|csv|json] [-o FILE]
-    pas study tell STUDY.db EVENT VALUE | EVENT --error MSG | --csv results.csv [--replace]
+    pas study tell STUDY.db EVENT VALUE | EVENT --error MSG | EVENT --load N=V ... | --csv FILE
+        [--replace]
     pas study status STUDY.db [--json] [--events]
     pas study set STUDY.db [--eps1 E] [--eps2 C] [--k1 K] [--k2 K] [--max-hf N] [--max-failures N]
+    pas study refit STUDY.db --target NAME [--out DIR]   (pas.cli.study_loads)
     pas study run STUDY.db [-q Q] [--workers N] [--pending resubmit|wait]
     pas study retry STUDY.db [EVENT ...]
 
@@ -46,6 +48,7 @@ import sys
 from pathlib import Path
 
 from .study_config import load_config, load_peaks
+from .study_loads import add_parsers as add_load_parsers, refit_command, tell_loads
 
 __all__ = ["add_parser", "run", "load_config", "load_peaks"]
 
@@ -86,9 +89,11 @@ def add_parser(sub) -> None:
     t.add_argument("--csv", metavar="FILE", help="results table (CSV or Parquet)")
     t.add_argument("--id-column", default="id")
     t.add_argument("--value-column", default="hf",
-                   help="column of the HF values (default hf, as the table oracle)")
+                   help="column of the HF values (default hf, as the table oracle; A,B: one "
+                        "named load per column)")
     t.add_argument("--replace", action="store_true",
                    help="replace a result told before (the old one is kept in the audit trail)")
+    add_load_parsers(cmds, t)
     r = cmds.add_parser("run", help="drive the study with the [oracle] of its TOML file")
     r.add_argument("study", metavar="STUDY.db")
     r.add_argument("-q", "--batch-size", type=int, metavar="Q",
@@ -120,7 +125,7 @@ def run(args) -> int:
     from .study_status import status
 
     return {"create": _create, "ask": _ask, "tell": _tell, "status": status, "run": _drive,
-            "set": _set, "retry": _retry}[args.study_command](args)
+            "set": _set, "retry": _retry, "refit": refit_command}[args.study_command](args)
 
 
 # -- actions ----------------------------------------------------------------
@@ -132,7 +137,7 @@ def _create(args) -> int:
         raise ValueError(f"{args.study} already exists (continue it with 'pas study ask')")
     lf, ids, meta = load_peaks(cfg["lf"])
     kw = {k: cfg[k] for k in ("eps2", "threshold", "seed", "max_hf", "max_failures",
-                              "n_waves_convention", "preset") if k in cfg}
+                              "n_waves_convention", "preset", "target") if k in cfg}
     try:
         study = make_study(cfg["strategy"], lf, n_waves=cfg["n_waves"],
                            p_exp=cfg["p_exp"], eps1=cfg["eps1"], ids=ids, meta=meta,
@@ -228,6 +233,8 @@ def _tell(args) -> int:
     from ..io import read_table
     from ..study.store import StudyStore
 
+    if args.load or "," in args.value_column:
+        return tell_loads(args)
     if args.csv:
         if args.event is not None or args.error is not None:
             raise ValueError("give either EVENT VALUE / EVENT --error MSG or --csv FILE, not both")

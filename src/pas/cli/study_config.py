@@ -14,24 +14,30 @@ __all__ = ["load_config", "load_peaks"]
 
 _TOP = {"n_waves": int, "n_waves_convention": str, "p_exp": float, "eps1": float, "eps2": float,
         "threshold": float, "strategy": str, "preset": str, "seed": int, "max_hf": int,
-        "max_failures": int, "batch_size": int,
+        "max_failures": int, "batch_size": int, "target": str,
         "lf": dict, "settings": dict, "oracle": dict}
 _LF = {"file": str, "column": str, "id_column": str, "meta_columns": list}
 _REQUIRED = ("n_waves", "p_exp", "eps1", "lf")
 _ORACLE = {"command": list, "root": str, "timeout": float, "result_name": str, "table": str,
-           "id_column": str, "value_column": str}
+           "id_column": str, "value_column": (str, list)}
 
 
 def _typed(value, kind, field, where):
-    ok = {int: lambda v: isinstance(v, int) and not isinstance(v, bool),
-          float: lambda v: isinstance(v, (int, float)) and not isinstance(v, bool),
-          str: lambda v: isinstance(v, str), dict: lambda v: isinstance(v, dict),
-          list: lambda v: isinstance(v, list) and all(isinstance(x, str) for x in v)}[kind](value)
-    if not ok:
+    if isinstance(kind, tuple):  # one of several kinds: the message names the first
+        ok = [k for k in kind if _typed_ok(value, k)]
+        return _typed(value, (ok or kind)[0], field, where)
+    if not _typed_ok(value, kind):
         what = {int: "an integer", float: "a number", str: "a string", dict: "a table",
                 list: "a list of strings"}[kind]
         raise ValueError(f"{where}: {field} must be {what}, got {value!r}")
     return float(value) if kind is float else value
+
+
+def _typed_ok(value, kind) -> bool:
+    return {int: lambda v: isinstance(v, int) and not isinstance(v, bool),
+          float: lambda v: isinstance(v, (int, float)) and not isinstance(v, bool),
+          str: lambda v: isinstance(v, str), dict: lambda v: isinstance(v, dict),
+          list: lambda v: isinstance(v, list) and all(isinstance(x, str) for x in v)}[kind](value)
 
 
 def load_config(path) -> dict:

@@ -42,7 +42,7 @@ from __future__ import annotations
 from .schema import STORED, StoreError, _now
 from .state import EventState
 
-__all__ = ["rewind_failed", "reuse_dropped", "tell_dropped", "replace_result",
+__all__ = ["rewind_failed", "dropped_index", "reuse_dropped", "tell_dropped", "replace_result",
            "apply_replacement", "REPLACED_AFTER_USE", "REPLACED_BEFORE_USE"]
 
 _EVENT_COLUMNS = ("idx", "key", "state", "hf", "error", "batch", "batch_pos", "result_seq",
@@ -110,10 +110,17 @@ def rewind_failed(store, c, keys=None) -> dict:
     still = c.execute(f"SELECT {cols} FROM events WHERE idx IN ({marks})",
                       tuple(retry_idx)).fetchall()
     _archive(c, still, retry_seq, lambda r: "retried failure", lambda r: False)
+    c.execute(f"DELETE FROM event_loads WHERE idx IN ({marks})", tuple(retry_idx))
     c.execute(f"UPDATE events SET state = ?, hf = NULL, error = NULL, result_seq = NULL, "
               f"tell_seq = NULL, result_at = NULL, source = NULL WHERE idx IN ({marks})",
               (STORED[EventState.PENDING], *retry_idx))
     return report
+
+
+def dropped_index(c, key: str) -> int:
+    """The event index of the latest ask of ``key`` a retry took out of the log."""
+    return c.execute("SELECT idx FROM dropped WHERE key = ? ORDER BY id DESC LIMIT 1",
+                     (key,)).fetchone()[0]
 
 
 def reuse_dropped(store, c, idx: int, seq: int) -> None:

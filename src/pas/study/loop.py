@@ -32,7 +32,9 @@ import pickle
 from concurrent.futures import Executor, ProcessPoolExecutor, as_completed
 
 from .._validation import check_option, check_positive_int
-from .oracles import OracleFailureLimit, call_oracle
+from .answers import lacks_target
+from .loads import answers_from_loads, record_loads
+from .oracles import OracleFailureLimit, call_oracle_loads
 from .state import EventState
 
 __all__ = ["optimize", "PENDING_POLICIES"]
@@ -178,6 +180,8 @@ class _Loop:
         results = {}
         if store is not None:
             results = {r[0]: (r[1], r[2]) for r in store.outstanding() if r[3]}
+            results.update(answers_from_loads(
+                store, [ev.index for ev in batch if ev.index not in results], self.study.target))
         told, failure = 0, None
 
         def tell_ready():
@@ -192,9 +196,11 @@ class _Loop:
         if failure is None and todo:
             if store is not None:
                 store.mark_submitted(todo)
-            for ev, (value, error) in self._execute(todo):
+            for ev, (value, error, loads) in self._execute(todo):
+                if lacks_target(loads, self.study.target):
+                    self._stop_for_target(ev, loads, error)
                 if store is not None:
-                    store.record_result(ev, value, error)
+                    store.record_result(ev, value, error, loads=loads)
                 results[ev.index] = (value, error)
                 tell_ready()
                 if failure is not None and self.executor is None:
@@ -202,16 +208,30 @@ class _Loop:
         if failure is not None:
             raise failure
 
+    def _stop_for_target(self, event, loads, error):
+        """An answer of several loads and no target: keep its loads, stop before the next call.
+
+        The event stays pending; rerun with the target and its stored loads give its
+        result (:func:`pas.study.loads.adopt_target`), no HF run is repeated.
+        """
+        where = ""
+        if self.store is not None:
+            record_loads(self.store, event, loads)
+            where = f"; its loads are kept in {self.store.path}, rerun with the target to use them"
+        raise ValueError(f"event {event.id}: {error}{where}")
+
     def _execute(self, events):
-        """Yield ``(event, (value, error))`` as the oracle calls finish."""
+        """Yield ``(event, (value, error, loads))`` as the oracle calls finish."""
+        target = self.study.target
         if self.executor is None:
             for ev in events:
-                yield ev, call_oracle(self.oracle, ev)
+                yield ev, call_oracle_loads(self.oracle, ev, target)
             return
-        futures = {self.executor.submit(call_oracle, self.oracle, ev): ev for ev in events}
+        futures = {self.executor.submit(call_oracle_loads, self.oracle, ev, target): ev
+                   for ev in events}
         for fut in as_completed(futures):
             try:
                 out = fut.result()
             except Exception as exc:  # the worker died or the call could not be shipped
-                out = (None, f"executor: {type(exc).__name__}: {exc}")
+                out = (None, f"executor: {type(exc).__name__}: {exc}", None)
             yield futures[fut], out

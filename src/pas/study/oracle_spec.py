@@ -21,7 +21,7 @@ def parse_oracle_spec(spec: str) -> dict:
     """The ``[oracle]`` table equivalent to an oracle text spec (``pas run --oracle``).
 
     ``table:FILE[:ID_COLUMN:VALUE_COLUMN]`` gives ``{"table", "id_column",
-    "value_column"}``; ``python:MODULE:FUNCTION`` gives ``{"python"}``;
+    "value_column"}`` (``VALUE_COLUMN`` ``A,B``: a list, one named load per column); ``python:MODULE:FUNCTION`` gives ``{"python"}``;
     ``command:ARGS`` gives ``{"command": [...]}``, the arguments split like a
     shell would split them (never run through one).
 
@@ -29,6 +29,8 @@ def parse_oracle_spec(spec: str) -> dict:
     --------
     >>> parse_oracle_spec("table:basin.csv:event:force")
     {'table': 'basin.csv', 'id_column': 'event', 'value_column': 'force'}
+    >>> parse_oracle_spec("table:basin.csv:event:deck_force,panel_p3")["value_column"]
+    ['deck_force', 'panel_p3']
     >>> parse_oracle_spec("command:python cfd.py --out {result}")
     {'command': ['python', 'cfd.py', '--out', '{result}']}
     """
@@ -41,7 +43,11 @@ def parse_oracle_spec(spec: str) -> dict:
         if len(parts) == 1:
             return {"table": parts[0]}
         if len(parts) == 3 and all(parts):
-            return dict(zip(("table", "id_column", "value_column"), parts))
+            columns = parts[2].split(",")
+            if len(columns) > 1 and not all(columns):
+                raise ValueError(f"{spec!r}: empty name in the value columns {parts[2]!r}")
+            return {"table": parts[0], "id_column": parts[1],
+                    "value_column": columns if len(columns) > 1 else parts[2]}
         raise ValueError(f"{spec!r}: expected table:FILE or table:FILE:ID_COLUMN:VALUE_COLUMN")
     if kind == "python":
         target, sep, func = rest.rpartition(":")

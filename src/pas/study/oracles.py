@@ -1,8 +1,11 @@
 """HF oracles: calling one safely, the built-in ones, and building one from a text spec.
 
 An oracle is any callable ``oracle(event) -> float`` (0 = no impact, a false
-positive).  A failure is an exception with a message; the study records it as
-a failed event and never takes it as 0 (:func:`call_oracle`).  The built-in
+positive), or ``-> {name: float}`` when one HF run gives several loads (panels,
+pressure sensors, forces): the study screens on its ``target`` and the store
+keeps them all (:func:`check_hf_answer`).  A failure is an exception with a
+message; the study records it as a failed event and never takes it as 0
+(:func:`call_oracle`).  The built-in
 oracles, a results table and an external command per event, hold only plain
 data, so they pickle for process pools and Dask workers.
 :func:`pas.study.oracle_spec.oracle_from_spec` builds one from ``pas run
@@ -24,8 +27,10 @@ from pathlib import Path
 import numpy as np
 
 from ..io import read_table
+from .answers import check_hf_answer, check_hf_value, check_target, lacks_target
 
-__all__ = ["OracleError", "OracleFailureLimit", "check_hf_value", "call_oracle", "TableOracle",
+__all__ = ["OracleError", "OracleFailureLimit", "check_hf_value", "check_hf_answer",
+           "lacks_target", "call_oracle", "call_oracle_loads", "check_target", "TableOracle",
            "CommandOracle"]
 
 
@@ -44,32 +49,21 @@ class OracleFailureLimit(RuntimeError):
         self.result = result
 
 
-def check_hf_value(value):
-    """Validate an oracle's answer: ``(float, None)`` or ``(None, error message)``.
-
-    0 is a valid answer (no impact, a false positive); NaN, inf, negative and
-    non-numeric answers are failures, never taken as 0.
-    """
-    if isinstance(value, bool):
-        return None, f"oracle returned a bool ({value!r}), expected a load"
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        return None, f"oracle returned {value!r}, not a number"
-    if not math.isfinite(v):
-        return None, f"oracle returned {v!r}"
-    if v < 0:
-        return None, f"oracle returned a negative load {v!r}"
-    return v, None
-
-
 def call_oracle(oracle, event):
     """Call ``oracle(event)`` and validate the answer: ``(value, error)``."""
+    return call_oracle_loads(oracle, event)[:2]
+
+
+def call_oracle_loads(oracle, event, target=None):
+    """Call ``oracle(event)``, its answer checked: ``(value, error, loads)``.
+
+    :func:`~pas.study.answers.check_hf_answer` with ``target``.
+    """
     try:
         raw = oracle(event)
     except Exception as exc:  # the oracle is user code: any failure is recorded
-        return None, f"{type(exc).__name__}: {exc}"
-    return check_hf_value(raw)
+        return None, f"{type(exc).__name__}: {exc}", None
+    return check_hf_answer(raw, target)
 
 
 class TableOracle:
@@ -81,13 +75,17 @@ class TableOracle:
         CSV or Parquet file, or a DataFrame.
     id_column : str, default "id"
         Column holding the event ids (matched to ``str(event.id)``).
-    value_column : str, default "hf"
-        Column holding the HF peak (0 = no impact).
+    value_column : str or sequence of str, default "hf"
+        Column holding the HF peak (0 = no impact).  Several columns (one per
+        load: panels, sensors, forces) make the oracle answer ``{column:
+        value}`` (a study then screens on its ``target``; ``pas run --oracle
+        table:FILE:ID:COL1,COL2``).
 
     Notes
     -----
     An event missing from the table, or with an empty value, is a failure,
-    never 0.
+    never 0 (with several columns: an empty one is a failure when it is the
+    study's target, else that load is missing, :func:`check_hf_answer`).
 
     Examples
     --------
@@ -105,7 +103,12 @@ class TableOracle:
             name, df = "the table", table
         else:
             name, df = Path(table).name, read_table(table)
-        for field, c in (("id_column", id_column), ("value_column", value_column)):
+        named = not isinstance(value_column, str)
+        columns = list(value_column) if named else [value_column]
+        if not columns or len(set(columns)) < len(columns):
+            raise ValueError(f"value_column: give one column or several different ones, got "
+                             f"{value_column!r}")
+        for field, c in (("id_column", id_column), *(("value_column", c) for c in columns)):
             if c not in df.columns:
                 raise ValueError(f"{field}: column {c!r} is missing from {name} "
                                  f"(columns: {', '.join(map(str, df.columns))})")
@@ -113,18 +116,22 @@ class TableOracle:
         dup = keys[keys.duplicated()]
         if len(dup):
             raise ValueError(f"{id_column}: event id {dup.iloc[0]!r} appears more than once in {name}")
-        values = pd.to_numeric(df[value_column], errors="coerce").to_numpy(dtype=float)
+        values = [pd.to_numeric(df[c], errors="coerce").to_numpy(dtype=float).tolist()
+                  for c in columns]
         self.name = name
-        self.values = dict(zip(keys, values.tolist()))
+        self.columns = columns if named else None
+        self.values = dict(zip(keys, zip(*values)))
 
-    def __call__(self, event) -> float:
+    def __call__(self, event):
         key = str(event.id)
         if key not in self.values:
             raise OracleError(f"event {key} is not in {self.name}")
-        v = self.values[key]
-        if not math.isfinite(v):
+        row = self.values[key]
+        if self.columns is not None:
+            return dict(zip(self.columns, row))
+        if not math.isfinite(row[0]):
             raise OracleError(f"{self.name} has no valid value for event {key}")
-        return v
+        return row[0]
 
 
 _SAFE = re.compile(r"[^A-Za-z0-9._-]")
@@ -135,8 +142,13 @@ def _event_dir(event) -> str:
     return name if name == str(event.id) and name not in (".", "..") else f"{name}-{event.index}"
 
 
-def parse_result(text: str) -> float:
-    """An HF value from a result file: a number, a JSON number or ``{"value": x}``."""
+def parse_result(text: str):
+    """An HF answer from a result file: a number, a JSON number or ``{"value": x}``,
+    or several named loads as a JSON object ``{"deck_force": 812.0, "panel_p3": 41.2}``.
+
+    A JSON object with the one key ``value`` is that number; any other object is
+    a mapping of named loads, checked by :func:`check_hf_answer`.
+    """
     text = text.strip()
     try:
         return float(text)
@@ -146,11 +158,19 @@ def parse_result(text: str) -> float:
         obj = json.loads(text)
     except ValueError:
         obj = None
-    if isinstance(obj, dict) and "value" in obj:
+    if isinstance(obj, dict) and list(obj) == ["value"]:
         obj = obj["value"]
+    if isinstance(obj, dict) and obj:
+        return obj
     if isinstance(obj, (int, float)) and not isinstance(obj, bool):
         return float(obj)
-    raise OracleError(f"result file holds {text[:60]!r}, not a number")
+    raise OracleError(f"result file holds {text[:60]!r}, not a number or a JSON object of "
+                      "named loads")
+
+
+def _reusable(answer) -> bool:
+    """True for a result left by an earlier run that may be taken instead of running again."""
+    return isinstance(answer, dict) or (answer is not None and np.isfinite(answer) and answer >= 0)
 
 
 class CommandOracle:
@@ -174,7 +194,8 @@ class CommandOracle:
         Seconds before the program (and its process group) is killed.
     result_name : str, default "result.txt"
         File the program writes its HF peak to (plain number, JSON number or
-        ``{"value": x}``), relative to the working directory.
+        ``{"value": x}``, or a JSON object of named loads, :func:`parse_result`),
+        relative to the working directory.
     env : dict, optional
         Extra environment variables.
     reuse : bool, default True
@@ -233,7 +254,7 @@ class CommandOracle:
             self._lock(lock, event)
             if self.reuse:
                 value = self._read(result, missing_ok=True)
-                if value is not None and np.isfinite(value) and value >= 0:
+                if _reusable(value):
                     return value
             if os.path.exists(result):
                 os.remove(result)

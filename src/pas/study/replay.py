@@ -26,6 +26,7 @@ import logging
 import math
 import warnings
 
+from .loads import adopt_target
 from .schema import StoreError, dumps
 from .store import StudyStore
 
@@ -60,7 +61,8 @@ def attach(study, store) -> list[dict]:
         if store.is_new:
             store.initialize(settings, study.lfset)
         else:
-            changes = store.check(settings, study.lfset)
+            adopted = adopt_target(store, settings)
+            changes = store.check(settings, study.lfset) + ([adopted] if adopted else [])
     study._replaying = True
     try:
         for n, op in enumerate(store.ops()):

@@ -57,6 +57,11 @@ class ScreeningResult:
         Mean distribution of every fitted iteration on the stopping range
         ``[P_exp/2, 2 P_exp]`` (columns are the probabilities), indexed by
         history row; used by the metrics M2/M3.
+    refit : dict or None
+        For the result of another load on a study's events
+        (:func:`pas.study.refit.refit`): ``target`` (the load analysed),
+        ``chosen_for`` (the load the events were chosen for) and ``n_missing``
+        (events lacking ``target``, counted failed); None for a study's own result.
     """
 
     strategy: str
@@ -77,6 +82,7 @@ class ScreeningResult:
     seed: int
     family: str | None = None
     settings: dict = field(default_factory=dict)
+    refit: dict | None = None
 
     @classmethod
     def from_study(cls, study, *, model_band: bool = True) -> ScreeningResult:
@@ -184,11 +190,25 @@ class ScreeningResult:
         state = "converged" if self.converged else f"NOT converged{self._stop_gap()}"
         counts = (f"{self.n_hf} HF evaluations ({self.n_false_positive} false positive, "
                   f"{self.n_failed} failed); {state}")
+        counts += self._refit_note()
         if not np.isfinite(self.mpm):
             return f"{self.strategy.upper()}: no model fitted yet; {counts}"
         u = f" {unit}" if unit else ""
         return (f"{self.strategy.upper()}: MPM {self.mpm:.4g}{u}, {self.band_text(unit)}{fam}; "
                 f"{counts}")
+
+    def _refit_note(self) -> str:
+        """For a refit: which load, and that its events were chosen for another."""
+        if not self.refit:
+            return ""
+        name, chosen = self.refit["target"], self.refit.get("chosen_for")
+        if name == chosen:
+            return f"; refit of load {name!r}, the one its events were chosen for"
+        chosen = repr(chosen) if chosen else "the study's load"
+        missing = self.refit.get("n_missing", 0)
+        return (f"; refit of load {name!r} on events chosen for {chosen}, so the sample is not "
+                f"adapted to {name!r}" + (f" ({missing} event(s) lack {name!r}, counted failed)"
+                                         if missing else ""))
 
     def _stop_gap(self) -> str:
         """How far the last iteration was from stopping: its Ē and COV against ε1, ε2."""
@@ -221,6 +241,7 @@ class ScreeningResult:
             "n_failed": self.n_failed, "converged": self.converged, "family": self.family,
             "p_exp": self.p_exp, "n_waves": self.n_waves, "seed": self.seed,
             "clipped_from": self.clipped_from, "settings": self.settings,
+            **({} if self.refit is None else {"refit": self.refit}),
         }
 
     def save(self, out, *, inputs=None, lfset=None) -> dict:
@@ -275,7 +296,7 @@ class ScreeningResult:
             distribution=pd.read_csv(path / "distribution.csv"),
             pairs=pd.read_csv(path / "pairs.csv"), range_curves=curves, p_exp=float(s["p_exp"]),
             n_waves=int(s["n_waves"]), seed=s.get("seed"), family=s.get("family"),
-            settings=s.get("settings"),
+            settings=s.get("settings"), refit=s.get("refit"),
         )
 
 

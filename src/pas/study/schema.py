@@ -48,6 +48,9 @@ reused_seq, dropped_at)`` (version 2)
     Asks a retry of failed events (:mod:`pas.study.amend`) took out of the
     log, with their results: nothing told is lost.  ``reusable`` results are
     reused when the study asks that event again (``reused_seq``).
+``event_loads(idx, name, value, error)``
+    Every named load of an event whose oracle answered several
+    (:mod:`pas.study.loads`); created on opening, also in older stores.
 
 Replay order is the asks (grouped by ``batch``) and the consumed tells
 (``tell_seq``) sorted by sequence number.  Results that arrived but were not

@@ -34,6 +34,7 @@ import numpy as np
 
 from .._version import __version__
 from . import amend
+from .loads import add_event_loads, put_loads
 from .schema import (RESUMABLE, with_legacy_settings, SCHEMA_VERSION, STATES, STORED, StoreConflict, StoreError,
                      _now, _pool_hash, _pool_records, create_or_upgrade, dumps)
 from .state import EventState
@@ -75,6 +76,7 @@ class StudyStore(StoreViews):
                         f"up to version {SCHEMA_VERSION}: upgrade pas to open it")
                 if version < SCHEMA_VERSION:
                     create_or_upgrade(c, version)
+                add_event_loads(c)
         except sqlite3.DatabaseError as exc:
             raise StoreError(f"study store {self.path}: {exc}") from None
 
@@ -251,14 +253,15 @@ class StudyStore(StoreViews):
             c.executemany("UPDATE events SET attempts = attempts + 1, submitted_at = ? WHERE idx = ?",
                           [(_now(), ev.index) for ev in events])
 
-    def record_result(self, event, value, error=None, *, source=None) -> None:
-        """Store the HF result (``value``) or failure (``error``) of a pending event.
+    def record_result(self, event, value, error=None, *, source=None, loads=None) -> None:
+        """Store the HF result (``value``) or failure (``error``) of a pending event, and ``loads``.
 
         Idempotent for an identical result; refuses to overwrite a different one.
         """
         idx = event if isinstance(event, (int, np.integer)) else event.index
         with self.transaction() as c:
             self._put_result(c, int(idx), value, error, source)
+            put_loads(c, int(idx), loads, self.path)
 
     def _put_result(self, c, idx, value, error, source):
         row = c.execute("SELECT key, state, hf, error, result_seq FROM events WHERE idx = ?",
@@ -286,9 +289,9 @@ class StudyStore(StoreViews):
             c.execute("INSERT INTO history VALUES (?, ?, ?, ?)",
                       (row["row"], event.index, dumps(row), _now()))
 
-    def tell_by_key(self, key, value=None, *, error=None, source=None,
+    def tell_by_key(self, key, value=None, *, error=None, source=None, loads=None,
                     replace: bool = False) -> bool:
-        """Record a result for the pending event whose id is ``key`` (any process).
+        """Record a result (and named ``loads``) for the pending event with id ``key``, any process.
 
         Returns False when the identical result is already stored; a different
         one raises :class:`StoreError` unless ``replace``: then the new result
@@ -304,17 +307,23 @@ class StudyStore(StoreViews):
             value = None if error is not None else float(value)
             if row is None:
                 if amend.tell_dropped(self, c, str(key), value, error, source):
+                    put_loads(c, amend.dropped_index(c, str(key)), loads, self.path)
                     return True
                 raise StoreError(f"event {key} was not asked for in {self.path}")
             if row[2] is not None:
                 if (row[3], row[4]) == (value, error):
                     return False
+                if replace and loads:
+                    raise StoreError(f"event {key}: --replace takes the screened load alone "
+                                     "(VALUE), not --load NAME=VALUE; named loads cannot be "
+                                     "corrected yet")
                 if replace:
                     return amend.replace_result(self, c, row[0], value, error, source)
                 raise StoreError(f"event {key} is already told ({row[1]}, hf={row[3]}, "
                                  f"error={row[4]!r}); to correct it, tell it again with "
                                  "--replace (replace=True)")
             self._put_result(c, row[0], value, error, source)
+            put_loads(c, row[0], loads, self.path)
             return True
 
     def record_replacement(self, event, row: dict) -> None:

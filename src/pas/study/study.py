@@ -22,7 +22,7 @@ from ..strategies.stopping import StoppingRule, range_grid
 from . import loop
 from .corrections import Corrections
 from .factory import LF_SETTINGS, STUDY_SETTINGS, make_strategy, strategy_parameters
-from .oracles import check_hf_value
+from .answers import check_hf_answer, check_target, lacks_target
 from .replay import attach
 from .result import ScreeningResult
 from .state import EventState
@@ -62,6 +62,9 @@ class Study(Corrections):
         ``Ē`` of the stopping rule: the change of the distribution across the
         last ``k1`` iterations, or the mean per-iteration change of App. C,
         Eq. 28 (:class:`~pas.strategies.stopping.StoppingRule`).
+    target : str, optional
+        With an oracle answering several named loads ``{name: load}``: the
+        one to screen on (:func:`~pas.study.answers.check_hf_answer`).
     legacy_md : bool, default False
         MD gaps between true positives only and the earlier reading of the
         threshold rule (pas 0.1): set for study stores written then, so they
@@ -77,7 +80,7 @@ class Study(Corrections):
     def __init__(self, lfset: LFSet, strategy: Strategy, *, eps1, eps2=0.1, k1=20, k2=20,
                  seed=None, max_hf=None, max_failures=10, stop_on_convergence=True,
                  adaptive_threshold=True, threshold_step=0.02, fp_run=5, stop_measure="window",
-                 legacy_md=False, store=None):
+                 legacy_md=False, target=None, store=None):
         self.lfset = lfset
         self.strategy = strategy
         self.stopping = StoppingRule(eps1=check_positive(eps1, "eps1"),
@@ -96,6 +99,7 @@ class Study(Corrections):
         self.threshold_step = float(threshold_step)
         self.fp_run = int(fp_run)
         self.legacy_md = bool(legacy_md)
+        self.target = check_target(target)
         self.grid = range_grid(lfset.p_exp)
         self.state: dict[int, EventState] = {}
         self.value: dict[int, float] = {}
@@ -238,7 +242,8 @@ class Study(Corrections):
         """Record the HF result of an asked event and update the model.
 
         ``event`` is the :class:`Event` (or its index in ``lf_peaks``);
-        ``value`` the HF peak (0 = no impact) or ``error`` a failure message.
+        ``value`` the HF peak (0 = no impact) or named loads ``{name: load}``
+        (the store keeps all), or ``error`` a failure message.
         Returns the history row written.  ``tell`` only records: the limit
         on failed calls (``max_failures``) is the loop's to enforce
         (:mod:`pas.study.loop`).
@@ -254,13 +259,19 @@ class Study(Corrections):
             raise ValueError(f"event {idx} was not asked for or is already told "
                              f"(state: {state or 'never asked'}); correct a told result "
                              "with replace=True")
+        loads = None
         if error is None:
-            value, error = check_hf_value(value)
+            value, error, loads = check_hf_answer(value, self.target)
+            if lacks_target(loads, self.target):
+                raise ValueError(error)
         ev = self.lfset.event(pos)
         if state != EventState.PENDING:
+            if loads:
+                raise ValueError(f"event {idx}: replace=True takes the screened load alone, not "
+                                 "named loads; named loads cannot be corrected yet")
             return self._replace(pos, ev, value, error)
         if self.store is not None:
-            self.store.record_result(ev, value, error)
+            self.store.record_result(ev, value, error, loads=loads)
         row = self._row(pos, ev, value, error)
         state = self.state[pos]
         if state == EventState.TRUE_POSITIVE:
@@ -375,7 +386,8 @@ class Study(Corrections):
                 "seed": self.seed, "max_hf": self.max_hf, "max_failures": self.max_failures,
                 "stop_on_convergence": self.stop_on_convergence,
                 "adaptive_threshold": self.adaptive_threshold,
-                "threshold_step": self.threshold_step, "fp_run": self.fp_run}
+                "threshold_step": self.threshold_step, "fp_run": self.fp_run,
+                "target": self.target}
 
     # -- results -----------------------------------------------------------
     def history(self) -> pd.DataFrame:
