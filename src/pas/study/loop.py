@@ -32,7 +32,7 @@ import pickle
 from concurrent.futures import Executor, ProcessPoolExecutor, as_completed
 
 from .._validation import check_option, check_positive_int
-from .oracles import OracleFailureLimit, call_oracle
+from .oracles import OracleFailureLimit, call_oracle, check_oracle
 from .state import EventState
 
 __all__ = ["optimize", "PENDING_POLICIES"]
@@ -68,10 +68,13 @@ def optimize(study, oracle, *, batch_size: int = 1, executor: Executor | None = 
 
     Raises
     ------
+    TypeError
+        ``oracle`` is not callable (checked before any call).
     OracleFailureLimit
         When more than ``study.max_failures`` oracle calls failed, with the
         result so far.
     """
+    check_oracle(oracle)
     check_option(pending, "pending", PENDING_POLICIES)
     batch_size = check_positive_int(batch_size, "batch_size")
     own = None
