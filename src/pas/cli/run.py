@@ -238,9 +238,10 @@ def _save_partial(study, out, inputs, args):
     try:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")  # the partial result's own caveats
-            study.result().save(out, inputs={**inputs, "lf_file": str(args.lf_file),
-                                             "seed": study.seed, "stopped_early": True},
-                                lfset=study.lfset)
+            # no bootstrap model band: its refits would hold up Ctrl-C for seconds
+            partial = study.result(model_band=False)
+            partial.save(out, inputs={**inputs, "lf_file": str(args.lf_file), "seed": study.seed,
+                                      "stopped_early": True}, lfset=study.lfset)
     except (OSError, ValueError):
         return None
     return out
