@@ -133,7 +133,8 @@ def test_study_file_command_runs_next_to_the_toml(campaign, monkeypatch, capsys)
     _lf_file(start)
     (start / "study.toml").write_text(
         "n_waves = 600\np_exp = 1e-2\neps1 = 1e-4\nseed = 2\nmax_hf = 5\n"
-        "[settings]\nn_bootstrap = 0\n[lf]\nfile = \"lf.csv\"\ncolumn = \"lf\"\nid_column = \"id\"\n"
+        "[settings]\nn_bootstrap = 0\n"
+        "[lf]\nfile = \"lf.csv\"\ncolumn = \"lf\"\nid_column = \"id\"\n"
         "[oracle]\ncommand = [" + ", ".join(
             f'"{a}"' for a in (sys.executable, "cfd.py", "{lf}", "{cwd}/factor.txt", "{result}"))
         + "]\n")
