@@ -128,7 +128,7 @@ def keep_start_dir(oracle, store):
     if recorded == oracle.cwd:
         return oracle, None
     try:
-        moved = oracle.moved_to(recorded)
+        moved = oracle.with_cwd(recorded)
     except ValueError:  # the first run's folder is gone: use this one, and say so
         return oracle, (f"the study was started in {recorded}, which no longer exists; the "
                         f"command's relative paths resolve against {oracle.cwd}")

@@ -263,7 +263,7 @@ class CommandOracle:
     def __repr__(self) -> str:
         return f"CommandOracle({self.args!r}, root={self.root!r}, cwd={self.cwd!r})"
 
-    def moved_to(self, cwd) -> CommandOracle:
+    def with_cwd(self, cwd) -> CommandOracle:
         """The same oracle with its relative paths resolved against ``cwd`` (``root`` kept)."""
         return CommandOracle(self.template, root=self.root, cwd=cwd, timeout=self.timeout,
                              result_name=self.result_name, env=self.env, reuse=self.reuse)
