@@ -8,6 +8,7 @@ from .screening import check_n_waves
 from .strategies.as_ import AS
 from .strategies.pas import PAS
 from .study.factory import DEFAULT_MAX_HF, apply_preset, split_settings
+from .study.oracles import check_oracle
 from .study.result import ScreeningResult
 from .study.study import Study
 
@@ -176,6 +177,7 @@ def run_pas(lf_peaks, oracle, *, n_waves, p_exp, eps1, eps2=0.1, threshold=None,
     >>> bool(res.converged), res.n_hf < 60
     (True, True)
     """
+    check_oracle(oracle)  # before a study store is written
     built = make_study(PAS, lf_peaks, n_waves=n_waves, p_exp=p_exp, eps1=eps1, eps2=eps2,
                        threshold=threshold, seed=seed, max_hf=max_hf, ids=ids, meta=meta,
                        store=_store_for_retry(study, retry_failed),
@@ -287,6 +289,7 @@ def run_as(lf_peaks, oracle, *, n_waves, p_exp, eps1, eps2=0.1, threshold=None, 
     >>> res.strategy, bool(res.converged)
     ('as', True)
     """
+    check_oracle(oracle)  # before a study store is written
     built = make_study(AS, lf_peaks, n_waves=n_waves, p_exp=p_exp, eps1=eps1, eps2=eps2,
                        threshold=threshold, seed=seed, max_hf=max_hf, ids=ids, meta=meta,
                        store=_store_for_retry(study, retry_failed),

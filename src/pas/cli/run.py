@@ -23,9 +23,12 @@ file (a 1-D array, or a structured array with named columns).  The oracle
     like a shell would split it but never run through a shell:
     :class:`pas.study.oracles.CommandOracle` with placeholders ``{id}``,
     ``{index}``, ``{lf}``, ``{d}``, ``{workdir}``, ``{result}`` and the
-    ``--meta-columns``; each event runs in ``OUT/hf-runs/<id>/``.  The
-    result file holds a number, or a JSON object of named loads
-    (``{"deck_force": 812.0, "panel_p3": 41.2}``, with ``--target``).
+    ``--meta-columns``, and ``{cwd}``, the folder the study was first run
+    from; each event runs in ``OUT/hf-runs/<id>/``, and the program and the
+    arguments that name files or folders in ``{cwd}`` (``python
+    cfd_event.py``) are taken from there, also when the run is resumed from
+    another folder.  The result file holds a number, or a JSON object of
+    named loads (``{"deck_force": 812.0, "panel_p3": 41.2}``, with ``--target``).
 
 Progress goes to stderr (one line per HF result: iteration, HF count, MPM
 with the sampling part of its band, Ē, COV; with ``--quiet`` only one line
@@ -199,7 +202,7 @@ def run(args) -> int:
     from ..api import make_study
     from ..io import read_lf_peaks
     from ..screening import check_n_waves
-    from ..study.oracle_spec import oracle_from_spec
+    from ..study.oracle_spec import keep_start_dir, oracle_from_spec
     from ..study.oracles import OracleFailureLimit
     from ..study.replay import attach
     from ..study.store import StoreError, read_settings
@@ -216,7 +219,8 @@ def run(args) -> int:
         print(f"pas run: warning: {note}", file=sys.stderr)
     out = Path(args.out)
     try:
-        oracle = oracle_from_spec(args.oracle, root=out / "hf-runs", timeout=args.timeout)
+        oracle = oracle_from_spec(args.oracle, root=(out / "hf-runs").resolve(),
+                                  timeout=args.timeout)
     except (ValueError, FileNotFoundError) as exc:
         raise type(exc)(f"--oracle: {exc}") from None
     store = None if args.no_store else out / "study.sqlite"
@@ -238,6 +242,9 @@ def run(args) -> int:
             for ch in attach(study, store):
                 print(f"pas run: {ch['key']} changed from {ch['old']} to {ch['new']} on resuming "
                       f"(recorded in {store})", file=sys.stderr)
+            oracle, note = keep_start_dir(oracle, study.store)
+            if note is not None:
+                print(f"pas run: {note}", file=sys.stderr)
             if args.retry_failed:
                 print(_retried_line(study.retry_failed()), file=sys.stderr)
             if stored:
@@ -325,9 +332,10 @@ def _save_partial(study, out, inputs, args):
     try:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")  # the partial result's own caveats
-            study.result().save(out, inputs={**inputs, "lf_file": str(args.lf_file),
-                                             "seed": study.seed, "stopped_early": True},
-                                lfset=study.lfset)
+            # no bootstrap model band: its refits would hold up Ctrl-C for seconds
+            partial = study.result(model_band=False)
+            partial.save(out, inputs={**inputs, "lf_file": str(args.lf_file), "seed": study.seed,
+                                      "stopped_early": True}, lfset=study.lfset)
     except (OSError, ValueError):
         return None
     return out

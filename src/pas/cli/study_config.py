@@ -93,6 +93,7 @@ def _oracle_config(o: dict, base: Path, where: str) -> dict:
         if not o["command"]:
             raise ValueError(f"{where}: oracle.command must not be empty")
         o["root"] = str((base / o.get("root", "runs")).resolve())
+        o["cwd"] = str(base.resolve())  # the command's relative paths: next to the TOML file
         if o.get("timeout", 1) <= 0:
             raise ValueError(f"{where}: oracle.timeout must be > 0, got {o['timeout']}")
     else:

@@ -28,13 +28,15 @@ results are picked up before each new ask).
 
 from __future__ import annotations
 
+import atexit
+import gc
 import pickle
 from concurrent.futures import Executor, ProcessPoolExecutor, as_completed
 
 from .._validation import check_option, check_positive_int
 from .answers import lacks_target
 from .loads import answers_from_loads, record_loads
-from .oracles import OracleFailureLimit, call_oracle_loads
+from .oracles import OracleFailureLimit, call_oracle_loads, check_oracle
 from .state import EventState
 
 __all__ = ["optimize", "PENDING_POLICIES"]
@@ -70,10 +72,13 @@ def optimize(study, oracle, *, batch_size: int = 1, executor: Executor | None = 
 
     Raises
     ------
+    TypeError
+        ``oracle`` is not callable (checked before any call).
     OracleFailureLimit
         When more than ``study.max_failures`` oracle calls failed, with the
         result so far.
     """
+    check_oracle(oracle)
     check_option(pending, "pending", PENDING_POLICIES)
     batch_size = check_positive_int(batch_size, "batch_size")
     own = None
@@ -83,13 +88,26 @@ def optimize(study, oracle, *, batch_size: int = 1, executor: Executor | None = 
         if isinstance(executor, ProcessPoolExecutor):
             _check_picklable(oracle)
         result = _Loop(study, oracle, executor, callback).run(batch_size, pending)
-    except BaseException:
+    except BaseException as exc:
         if own is not None:
             _abandon(own)
+        if isinstance(exc, KeyboardInterrupt):
+            _exit_quickly()
         raise
     if own is not None:
         own.shutdown()
     return result
+
+
+def _exit_quickly() -> None:
+    """After Ctrl-C: let the interpreter exit without its collections over the whole heap.
+
+    Every result is stored when the interrupt propagates; what remains is the
+    exit, whose collections over the objects numpy, scipy and pandas made took
+    1.5–2.5 s on a loaded 2-core machine.  Freezing the heap at exit skips
+    them (a session that goes on, e.g. Jupyter, is not affected until it ends).
+    """
+    atexit.register(gc.freeze)
 
 
 def _abandon(pool: ProcessPoolExecutor) -> None:

@@ -14,12 +14,10 @@ data, so they pickle for process pools and Dask workers.
 
 from __future__ import annotations
 
-import fcntl
 import json
 import math
 import os
 import re
-import signal
 import subprocess
 import time
 from pathlib import Path
@@ -27,11 +25,12 @@ from pathlib import Path
 import numpy as np
 
 from ..io import read_table
+from ._processes import OWN_SESSION, kill_group, try_lock
 from .answers import check_hf_answer, check_hf_value, check_target, lacks_target
 
 __all__ = ["OracleError", "OracleFailureLimit", "check_hf_value", "check_hf_answer",
-           "lacks_target", "call_oracle", "call_oracle_loads", "check_target", "TableOracle",
-           "CommandOracle"]
+           "lacks_target", "check_oracle", "call_oracle", "call_oracle_loads", "check_target",
+           "TableOracle", "CommandOracle", "resolve_paths"]
 
 
 class OracleError(RuntimeError):
@@ -47,6 +46,14 @@ class OracleFailureLimit(RuntimeError):
     def __init__(self, message, result=None):
         super().__init__(message)
         self.result = result
+
+
+def check_oracle(oracle) -> None:
+    """Raise a one-line :class:`TypeError` naming ``oracle`` unless it can be called."""
+    if not callable(oracle):
+        raise TypeError(f"oracle must be a callable oracle(event) -> float (a function, "
+                        f"pas.TableOracle or pas.CommandOracle), got {type(oracle).__name__} "
+                        f"{oracle!r:.60}")
 
 
 def call_oracle(oracle, event):
@@ -173,6 +180,37 @@ def _reusable(answer) -> bool:
     return isinstance(answer, dict) or (answer is not None and np.isfinite(answer) and answer >= 0)
 
 
+def resolve_paths(args, cwd: str) -> list[str]:
+    """``args`` with the relative paths that name something in ``cwd`` made absolute.
+
+    The rule of :class:`CommandOracle`: the program (``args[0]``) is resolved
+    when it contains a directory separator (``./cfd.sh``, ``bin/cfd``) or
+    names a file in ``cwd``; a bare name otherwise (``python``) is left to
+    the ``PATH``.  A later argument is resolved when it names an existing
+    file or directory relative to ``cwd`` (``cfd_event.py``, ``mesh/``).
+    Absolute paths, ``.`` and ``..``, options (``-x``, ``--out=f``) and
+    arguments with a placeholder are left as they are (write
+    ``{cwd}/case.json`` to be explicit).
+
+    Examples
+    --------
+    >>> resolve_paths(["python", "./missing.py", "--lf", "{lf}"], "/campaign")
+    ['python', './missing.py', '--lf', '{lf}']
+    """
+    def rel(a: str) -> bool:
+        return bool(a) and "{" not in a and not os.path.isabs(a) and not a.startswith("-") \
+            and os.path.normpath(a) not in (".", "..")
+
+    def here(a: str) -> str:
+        return os.path.normpath(os.path.join(cwd, a))
+
+    program, rest = args[0], list(args[1:])
+    seps = tuple(s for s in (os.sep, os.altsep) if s)
+    if rel(program) and (any(s in program for s in seps) or os.path.isfile(here(program))):
+        program = here(program)
+    return [program] + [here(a) if rel(a) and os.path.exists(here(a)) else a for a in rest]
+
+
 class CommandOracle:
     """Run an external program per event (a CFD case, a post-processor), never via a shell.
 
@@ -181,15 +219,23 @@ class CommandOracle:
     args : sequence of str
         Argument-list template, e.g. ``["python", "cfd.py", "--event", "{id}",
         "--lf", "{lf}", "--out", "{result}"]``.  Placeholders: ``{id}``,
-        ``{index}``, ``{lf}``, ``{d}``, ``{workdir}``, ``{result}`` and every
-        key of the event's ``meta`` (``{seed}``, ``{t_start}`` …).  For a
-        design-wave :class:`~pas.waves.episode.Episode` (:func:`pas.run_rcw`)
-        also ``{episode}`` and ``{components}``: CSV files of the episode's
-        time series and wave components, written into the working directory,
-        and its ``{level}``, ``{target}`` and ``{t0}``.
+        ``{index}``, ``{lf}``, ``{d}``, ``{workdir}``, ``{result}``,
+        ``{cwd}`` and every key of the event's ``meta`` (``{seed}``,
+        ``{t_start}`` …).  For a design-wave
+        :class:`~pas.waves.episode.Episode` (:func:`pas.run_rcw`) also
+        ``{episode}`` and ``{components}``: CSV files of the episode's time
+        series and wave components, written into the working directory, and
+        its ``{level}``, ``{target}`` and ``{t0}``.
     root : str or os.PathLike
         Each event runs in its own working directory ``root/<event id>``,
-        with ``stdout.log`` and ``stderr.log``.
+        with ``stdout.log`` and ``stderr.log``; relative to ``cwd``.
+    cwd : str or os.PathLike, optional
+        The directory the campaign is started from (default: the current
+        one when the oracle is made): relative paths in ``args`` and
+        ``root`` mean paths there, not in the working directory
+        (:func:`resolve_paths` says which arguments are taken as paths).
+        It is stored in the oracle, so a Dask worker or a resumed run in
+        another folder runs the same files; ``{cwd}`` gives it.
     timeout : float, optional
         Seconds before the program (and its process group) is killed.
     result_name : str, default "result.txt"
@@ -210,10 +256,13 @@ class CommandOracle:
     While the program runs it holds an ``flock`` on ``root/<id>/.lock``
     (inherited by the program), so a resumed driver waits for a program
     orphaned by a killed driver and reuses its result instead of starting a
-    second copy.
+    second copy.  The program runs in a session (POSIX) or process group
+    (Windows) of its own, so Ctrl-C in the driver does not stop it.  Where
+    ``fcntl`` is missing (Windows) the lock is an ``msvcrt`` lock held by
+    the driver only, so it does not cover an orphaned program.
     """
 
-    def __init__(self, args, *, root, timeout: float | None = None,
+    def __init__(self, args, *, root, cwd=None, timeout: float | None = None,
                  result_name: str = "result.txt", env: dict | None = None, reuse: bool = True):
         if isinstance(args, (str, bytes)) or not all(isinstance(a, str) for a in args) or not args:
             raise ValueError("args must be a non-empty list of strings (an argument list, "
@@ -222,22 +271,32 @@ class CommandOracle:
             raise ValueError(f"timeout must be a positive number of seconds, got {timeout!r}")
         if not isinstance(result_name, str) or not result_name or os.path.isabs(result_name):
             raise ValueError(f"result_name must be a relative file name, got {result_name!r}")
-        self.args = list(args)
-        self.root = os.path.abspath(os.fspath(root))
+        self.cwd = os.path.abspath(os.getcwd() if cwd is None else os.fspath(cwd))
+        if not os.path.isdir(self.cwd):
+            raise ValueError(f"cwd: {self.cwd} is not a directory (give the folder the "
+                             "campaign's files are in)")
+        self.template = list(args)
+        self.args = resolve_paths(self.template, self.cwd)
+        self.root = os.path.normpath(os.path.join(self.cwd, os.fspath(root)))
         self.timeout = None if timeout is None else float(timeout)
         self.result_name = result_name
         self.env = dict(env or {})
         self.reuse = bool(reuse)
 
     def __repr__(self) -> str:
-        return f"CommandOracle({self.args!r}, root={self.root!r})"
+        return f"CommandOracle({self.args!r}, root={self.root!r}, cwd={self.cwd!r})"
+
+    def with_cwd(self, cwd) -> CommandOracle:
+        """The same oracle with its relative paths resolved against ``cwd`` (``root`` kept)."""
+        return CommandOracle(self.template, root=self.root, cwd=cwd, timeout=self.timeout,
+                             result_name=self.result_name, env=self.env, reuse=self.reuse)
 
     def command(self, event, workdir: str, files: dict | None = None) -> list[str]:
         """The argument list for ``event`` (``files``: extra placeholders, e.g. an episode's)."""
         fields = {str(k): v for k, v in event.meta.items()}
         fields.update(files or {})
         fields.update(id=event.id, index=event.index, lf=repr(float(event.lf)),
-                      d=repr(float(event.d)), workdir=workdir,
+                      d=repr(float(event.d)), workdir=workdir, cwd=self.cwd,
                       result=os.path.join(workdir, self.result_name))
         try:
             return [a.format_map(fields) for a in self.args]
@@ -251,7 +310,7 @@ class CommandOracle:
         result = os.path.join(workdir, self.result_name)
         lock = os.open(os.path.join(workdir, ".lock"), os.O_RDWR | os.O_CREAT, 0o644)
         try:
-            self._lock(lock, event)
+            inherited = self._lock(lock, event)
             if self.reuse:
                 value = self._read(result, missing_ok=True)
                 if _reusable(value):
@@ -261,37 +320,35 @@ class CommandOracle:
             # A design-wave episode (pas.waves.Episode) brings its own input files.
             writer = getattr(event, "write_csv", None)
             files = writer(workdir) if callable(writer) else None
-            self._run(self.command(event, workdir, files), workdir, lock)
+            self._run(self.command(event, workdir, files), workdir, (lock,) if inherited else ())
             return self._read(result)
         finally:
             os.close(lock)
 
-    def _lock(self, fd, event) -> None:
+    def _lock(self, fd, event) -> bool:
+        """Wait for the event's lock; True when the program can inherit it (``flock``)."""
         deadline = None if self.timeout is None else time.monotonic() + self.timeout
-        while True:
-            try:
-                fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
-                return
-            except BlockingIOError:
-                if deadline is not None and time.monotonic() > deadline:
-                    raise OracleError(f"event {event.id}: another run of it still holds "
-                                      f"{self.root}/.../.lock after {self.timeout:g} s") from None
-                time.sleep(0.05)
+        while (taken := try_lock(fd)) is False:
+            if deadline is not None and time.monotonic() > deadline:
+                raise OracleError(f"event {event.id}: another run of it still holds "
+                                  f"{self.root}/.../.lock after {self.timeout:g} s")
+            time.sleep(0.05)
+        return taken == "flock"
 
-    def _run(self, cmd, workdir, lock) -> None:
+    def _run(self, cmd, workdir, pass_fds) -> None:
         env = {**os.environ, **{str(k): str(v) for k, v in self.env.items()}}
         with open(os.path.join(workdir, "stdout.log"), "wb") as out, \
                 open(os.path.join(workdir, "stderr.log"), "wb") as err:
             try:
                 proc = subprocess.Popen(cmd, cwd=workdir, env=env, stdin=subprocess.DEVNULL,
-                                        stdout=out, stderr=err, pass_fds=(lock,),
-                                        start_new_session=True)
+                                        stdout=out, stderr=err, pass_fds=pass_fds,
+                                        **OWN_SESSION)
             except OSError as exc:
                 raise OracleError(f"cannot start {cmd[0]!r}: {exc}") from None
             try:
                 code = proc.wait(timeout=self.timeout)
             except subprocess.TimeoutExpired:
-                os.killpg(proc.pid, signal.SIGKILL)
+                kill_group(proc)
                 proc.wait()
                 raise OracleError(f"{cmd[0]} timed out after {self.timeout:g} s") from None
         if code != 0:
