@@ -23,7 +23,6 @@ from .joint import (
     JointFit,
     _loglik_and_copula_gradient,
     _negloglik,
-    _parameter_slope,
     _prepare,
     best_per_family,
     fit_joint_all,
@@ -87,10 +86,10 @@ def mixture_objective(name: str, u, h, *, location: bool = True, censor: float =
 
     @np.errstate(all="ignore")
     def negloglik_grad(x):
-        """The same with its exact gradient (one-parameter families, no rotation)."""
+        """The same with its gradient (exact but in Student-t's ν; no rotation)."""
         c = unpack(x)[6]
         log_f, v, (w, p, parts, ln_r1, ln_r2) = marginal_terms(x)
-        val, d_v, d_p = _loglik_and_copula_gradient(base, c, u, v, log_f, density)
+        val, d_v, g_c = _loglik_and_copula_gradient(base, c, u, v, log_f, density)
         if not np.isfinite(val):
             return 1e300, np.zeros_like(x)
         dens = density.astype(float)
@@ -110,8 +109,7 @@ def mixture_objective(name: str, u, h, *, location: bool = True, censor: float =
         sig = (p - WEIGHT_LOW) / WEIGHT_SPAN
         dp_dx = WEIGHT_SPAN * sig * (1.0 - sig)
         g_p = np.sum(dens * (resp[0] / p - resp[1] / (1.0 - p)) - d_v * (s1 - s2)) * dp_dx
-        grad = ([g_t * (-np.exp(x[0]) * span)] if location else []) + [g_p] + grad + [
-            np.sum(d_p) * _parameter_slope(base, c)]
+        grad = ([g_t * (-np.exp(x[0]) * span)] if location else []) + [g_p] + grad + g_c
         g = -np.asarray(grad, float)
         return (-val, g) if np.all(np.isfinite(g)) else (1e300, np.zeros_like(x))
 
