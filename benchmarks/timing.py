@@ -125,6 +125,95 @@ def part_fit(max_hf):
     return out
 
 
+def final_study(max_hf):
+    """The study of an 80-HF (``max_hf``) run without its band, and the band's generator."""
+    lf, hf = scenario()
+    seen = []
+    pas.run_pas(lf, lambda e: float(hf[e.index]), n_waves=N_W, p_exp=P_EXP, eps1=1e-12, seed=0,
+                max_hf=max_hf, n_bootstrap=0, callback=lambda study, row: seen.append(study))
+    study = seen[-1]
+    study.strategy.n_bootstrap = 50
+    return study, lambda: np.random.default_rng([study.seed, len(study.rows), 1])
+
+
+@contextlib.contextmanager
+def band_path(warm=True, cold_families=None):
+    """The band's starts: warm from the final fits (new) or the study's fits and cold (old);
+    ``cold_families`` overrides which families also start cold in a warm band."""
+    from pas.strategies import band
+
+    saved = band.WARM_BAND, band.COLD_FAMILIES
+    band.WARM_BAND = warm
+    if cold_families is not None:
+        band.COLD_FAMILIES = cold_families
+    try:
+        yield
+    finally:
+        band.WARM_BAND, band.COLD_FAMILIES = saved
+
+
+@contextlib.contextmanager
+def cold_against_warm(record):
+    """Every warm-only joint fit also fitted warm and cold: ``(family, marginal, Δ loglik)``."""
+    original = pas.joint.fit_joint
+
+    def both(name, u, h, *, start=None, cold=True, **kwargs):
+        fit = original(name, u, h, start=start, cold=cold, **kwargs)
+        if start is not None and not cold:
+            best = original(name, u, h, start=start, cold=True, **kwargs)
+            record.append((name, kwargs.get("marginal", "weibull"),
+                           best.copula.loglik - fit.copula.loglik))
+        return fit
+
+    pas.joint.fit_joint = both
+    try:
+        yield
+    finally:
+        pas.joint.fit_joint = original
+
+
+def band_seconds(study, rng, n_jobs):
+    """``(wall s, CPU s of this process, band)`` of the final model band."""
+    t, c = time.perf_counter(), time.process_time()
+    low, high, _ = study.strategy.model_band(study.pairs(), study.lfset, rng(), n_jobs=n_jobs)
+    return time.perf_counter() - t, time.process_time() - c, (low, high)
+
+
+def part_band(max_hf):
+    """Band replicates: old starts (study's fits + cold) vs warm from the final fits; cores."""
+    print("-- final model band (50 replicates): old = study's fits + cold start in every "
+          "replicate, new = warm from the final fits")
+    out = {}
+    for m in (max_hf, 2 * max_hf):
+        study, rng = final_study(m)
+        rows = {}
+        for label, ctx, jobs in (("old 1 core", band_path(False), 1),
+                                 ("new 1 core", band_path(True), 1),
+                                 ("new 2 cores", band_path(True), 2),
+                                 ("all warm, 1 core", band_path(True, ()), 1)):
+            with ctx:
+                rows[label] = band_seconds(study, rng, jobs)
+            wall, cpu, (low, high) = rows[label]
+            print(f"  {m:3d} pairs, {label:>16}: {wall:5.2f} s wall ({cpu:5.2f} s CPU here); "
+                  f"band [{low:.6g}, {high:.6g}]")
+        old, new = rows["old 1 core"], rows["new 1 core"]
+        print(f"  {m:3d} pairs: new/old {new[0] / old[0]:.2f} on one core, 2 cores / 1 core "
+              f"{rows['new 2 cores'][0] / new[0]:.2f}; band identical on 1 and 2 cores: "
+              f"{rows['new 2 cores'][2] == new[2]}; band ends new/old "
+              f"{new[2][0] / old[2][0] - 1:+.2%}, {new[2][1] / old[2][1] - 1:+.2%}")
+        record = []
+        with band_path(True, ()), cold_against_warm(record):
+            band_seconds(study, rng, 1)
+        keys = sorted({r[:2] for r in record})
+        worse = ", ".join(
+            f"{f}/{mg} {sum(d > 1e-6 for k, j, d in record if (k, j) == (f, mg))}"
+            f"/{sum((k, j) == (f, mg) for k, j, _ in record)}" for f, mg in keys)
+        print(f"  {m:3d} pairs: fits where a cold start beats warm by > 1e-6 in loglik: {worse}")
+        out[m] = {k: [v[0], v[1], list(v[2])] for k, v in rows.items()}
+        out[m]["cold_beats_warm"] = record
+    return out
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--max-hf", type=int, default=80)
@@ -132,7 +221,7 @@ def main():
     parser.add_argument("--json", help="write the figures here")
     args = parser.parse_args()
     out = {}
-    parts = {"fit": part_fit}
+    parts = {"fit": part_fit, "band": part_band}
     for part in args.parts.split(","):
         out[part] = parts[part](args.max_hf)
     if args.json:

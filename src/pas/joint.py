@@ -56,7 +56,7 @@ from .stats.weibull import Weibull3, fit_weibull3_ls
 from .stats.weibull_mixture import WeibullMixture
 
 __all__ = ["JOINT_FAMILIES", "HF_MARGINALS", "JointFit", "censoring_level", "fit_joint",
-           "fit_joint_all", "best_per_family", "location_bounds", "minimise_bounded",
+           "fit_joint_all", "best_per_family", "starts_cold", "location_bounds", "minimise_bounded",
            "joint_fit_result"]
 
 HF_MARGINALS = ("weibull", "lognormal")
@@ -418,10 +418,11 @@ def joint_fit_result(name: str, res, c, n_marg: int, hf, marginal: str) -> Joint
 
 def fit_joint_all(u, h, families, *, marginals=("weibull",), starts=None,
                   location: bool = True, censor: float = 0.0,
-                  cold: bool = True) -> dict[tuple[str, str], JointFit]:
+                  cold=True) -> dict[tuple[str, str], JointFit]:
     """:func:`fit_joint` for every copula family and HF marginal, by ``(family, marginal)``.
 
-    ``starts``: earlier fits by the same keys, to warm-start.
+    ``starts``: earlier fits by the same keys, to warm-start; ``cold``: a bool
+    for every family, or the families that also start cold.
     """
     starts = starts or {}
     out = {}
@@ -431,8 +432,13 @@ def fit_joint_all(u, h, families, *, marginals=("weibull",), starts=None,
                 prev = starts.get((name, marginal))
                 out[name, marginal] = fit_joint(name, u, h, location=location, censor=censor,
                                                 start=None if prev is None else prev.x,
-                                                cold=cold, marginal=marginal)
+                                                cold=starts_cold(cold, name), marginal=marginal)
     return out
+
+
+def starts_cold(cold, name: str) -> bool:
+    """Whether family ``name`` also starts cold: ``cold`` is a bool or a collection of names."""
+    return cold if isinstance(cold, bool) else name in cold
 
 
 def best_per_family(fits: dict[tuple[str, str], JointFit], *,

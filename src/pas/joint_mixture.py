@@ -29,6 +29,7 @@ from .joint import (
     joint_fit_result,
     location_bounds,
     minimise_bounded,
+    starts_cold,
 )
 from .stats.weibull_mixture import (
     LN_SHAPE_BOUNDS,
@@ -156,7 +157,7 @@ def fit_joint_mixture(name: str, u, h, weibull: JointFit, *, start=None, locatio
 
 
 def fit_joint_mixture_all(u, h, weibull_fits: dict, *, starts=None, location: bool = True,
-                          censor: float = 0.0, cold: bool = True) -> dict[tuple[str, str], JointFit]:
+                          censor: float = 0.0, cold=True) -> dict[tuple[str, str], JointFit]:
     """:func:`fit_joint_mixture` for every family of ``weibull_fits`` (keys ``(family, "weibull")``).
 
     A family whose mixture fit fails keeps its Weibull (it gets no mixture entry).
@@ -170,7 +171,8 @@ def fit_joint_mixture_all(u, h, weibull_fits: dict, *, starts=None, location: bo
             prev = starts.get((name, MIXTURE))
             try:
                 out[name, MIXTURE] = fit_joint_mixture(
-                    name, u, h, weibull, location=location, censor=censor, cold=cold,
+                    name, u, h, weibull, location=location, censor=censor,
+                    cold=starts_cold(cold, name),
                     start=None if prev is None else prev.x)
             except ValueError:
                 continue
@@ -178,14 +180,15 @@ def fit_joint_mixture_all(u, h, weibull_fits: dict, *, starts=None, location: bo
 
 
 def fit_hf_candidates(u, h, families, choice: str, *, starts=None, location: bool = True,
-                      censor: float = 0.0, cold: bool = True):
+                      censor: float = 0.0, cold=True):
     """The joint fits an ``hf_marginal`` choice asks for, and per family the one kept.
 
     ``choice``: one marginal of :data:`pas.joint.HF_MARGINALS`; ``"both"`` (the
     Weibull and the log-normal, the higher likelihood kept); :data:`MIXTURE`
     (the Weibull and the mixture); or ``"all"`` (the three).  With the mixture,
     which has three parameters more, the lower AIC is kept.
-    ``censor`` goes to every fit (:func:`pas.joint.fit_joint`).
+    ``censor`` and ``cold`` (a bool, or the families that also start cold) go
+    to every fit (:func:`pas.joint.fit_joint`).
     Returns ``(every fit by (family, marginal), the kept fit by family)``.
     """
     marginals = {"both": HF_MARGINALS, MIXTURE: ("weibull",),
