@@ -112,7 +112,7 @@ def _replicate_mpm(i: int) -> float | None:
     try:
         model = strategy.fit(b, lfset, update=False, hf_marginal=marginal,
                              lf_ranks_rng=lf_rngs[i], starts=starts)
-        draws = model.draws(*strategy._random_numbers(model.n0, draw_rng))
+        draws = strategy._draws(model, draw_rng)
     except (ValueError, np.linalg.LinAlgError):
         return None
     return mpm_of_realisations(draws, lfset.n_waves, lfset.p_exp)

@@ -324,9 +324,16 @@ class PAS(Strategy):
         """Step 9's uniforms ``r`` and ``q``, shape ``(z, n0)`` each (:class:`PeakUniforms`)."""
         return self._uniforms.draw(n0, rng)
 
-    def _predict_model(self, model: FittedModel, lfset: LFSet, rng):
+    def _draws(self, model: FittedModel, rng) -> np.ndarray:
+        """Step 9's HF draws, shape ``(z, n0)``; the Gaussian and Student-t draws read the
+        normal scores of the common uniforms, kept from the first time."""
         r, q = self._random_numbers(model.n0, rng)
-        return hf_distribution(model.draws(r, q), lfset.n_waves)
+        scores = (self._uniforms.scores(model.n0)
+                  if model.copula.name.partition("_")[0] in ("gaussian", "student") else None)
+        return model.draws(r, q, scores)
+
+    def _predict_model(self, model: FittedModel, lfset: LFSet, rng):
+        return hf_distribution(self._draws(model, rng), lfset.n_waves)
 
     def predict(self, pairs: Pairs, lfset: LFSet, rng: np.random.Generator) -> Prediction:
         model = self.fit(pairs, lfset)
