@@ -18,15 +18,19 @@ from __future__ import annotations
 import argparse
 import contextlib
 import json
+import resource
 import time
+import tracemalloc
 
 import numpy as np
 import pyvinecopulib as pv
 from scipy import stats
 
 import pas
+import pas.copulas
 import pas.joint
 import pas.joint_mixture
+import pas.stats.exceedance
 
 N, N_W, P_EXP = 15000, 16364, 2.55e-3
 
@@ -53,18 +57,26 @@ def numerical_student():
         pas.joint.GRADIENT_FAMILIES, pas.joint_mixture.GRADIENT_FAMILIES = saved
 
 
+def cpu_seconds():
+    """CPU seconds of this process and of its waited-for children (forked band workers)."""
+    return sum(resource.getrusage(who).ru_utime + resource.getrusage(who).ru_stime
+               for who in (resource.RUSAGE_SELF, resource.RUSAGE_CHILDREN))
+
+
 def run(max_hf, n=N, n_waves=N_W, **settings):
-    """One run with stopping off: ``(result, CPU s per loop iteration, CPU s of the final band)``."""
+    """One run with stopping off: ``(result, CPU s per loop iteration, CPU s of the final
+    band, wall s of the final band)``."""
     lf, hf = scenario(n)
     stamps = []
 
     def callback(study, row):
-        stamps.append(time.process_time())
+        stamps.append((cpu_seconds(), time.perf_counter()))
 
-    t0 = time.process_time()
+    t0 = cpu_seconds()
     res = pas.run_pas(lf, lambda e: float(hf[e.index]), n_waves=n_waves, p_exp=P_EXP,
                       eps1=1e-12, seed=0, max_hf=max_hf, callback=callback, **settings)
-    return res, np.diff(np.r_[t0, stamps]), time.process_time() - stamps[-1]
+    cpu = np.r_[t0, [c for c, _ in stamps]]
+    return res, np.diff(cpu), cpu_seconds() - cpu[-1], time.perf_counter() - stamps[-1][1]
 
 
 def summary(res):
@@ -108,14 +120,14 @@ def part_fit(max_hf):
     out = {}
     for label, ctx in (("old", numerical_student), ("new", contextlib.nullcontext)):
         with ctx():
-            res, loop, band = run(max_hf)
+            res, loop, band, band_wall = run(max_hf)
             st = student_iterations()
         out[label] = summary(res)
         total = loop.sum() + band
-        print(f"  {label}: run_pas {max_hf} HF {1e3 * total / max_hf:6.1f} ms/HF; loop median "
-              f"{1e3 * np.median(loop):5.1f} ms, worst {1e3 * loop.max():6.1f} ms; final band "
-              f"{band:5.2f} s; Student-t alone (80 pairs) median {st[0]:5.1f} ms, "
-              f"worst {st[1]:5.1f} ms")
+        print(f"  {label}: run_pas {max_hf} HF {1e3 * total / max_hf:6.1f} ms/HF (CPU); loop "
+              f"median {1e3 * np.median(loop):5.1f} ms, worst {1e3 * loop.max():6.1f} ms; final "
+              f"band {band:5.2f} s CPU, {band_wall:5.2f} s wall; Student-t alone (80 pairs) "
+              f"median {st[0]:5.1f} ms, worst {st[1]:5.1f} ms")
         out[label]["times"] = [total, float(np.median(loop)), float(loop.max()), band, *st]
     rel, same = largest_change(out["old"], out["new"])
     t_old, t_new = out["old"]["times"], out["new"]["times"]
@@ -173,10 +185,10 @@ def cold_against_warm(record):
 
 
 def band_seconds(study, rng, n_jobs):
-    """``(wall s, CPU s of this process, band)`` of the final model band."""
-    t, c = time.perf_counter(), time.process_time()
+    """``(wall s, CPU s with the workers', band)`` of the final model band."""
+    t, c = time.perf_counter(), cpu_seconds()
     low, high, _ = study.strategy.model_band(study.pairs(), study.lfset, rng(), n_jobs=n_jobs)
-    return time.perf_counter() - t, time.process_time() - c, (low, high)
+    return time.perf_counter() - t, cpu_seconds() - c, (low, high)
 
 
 def part_band(max_hf):
@@ -194,11 +206,12 @@ def part_band(max_hf):
             with ctx:
                 rows[label] = band_seconds(study, rng, jobs)
             wall, cpu, (low, high) = rows[label]
-            print(f"  {m:3d} pairs, {label:>16}: {wall:5.2f} s wall ({cpu:5.2f} s CPU here); "
+            print(f"  {m:3d} pairs, {label:>16}: {wall:5.2f} s wall, {cpu:5.2f} s CPU; "
                   f"band [{low:.6g}, {high:.6g}]")
         old, new = rows["old 1 core"], rows["new 1 core"]
-        print(f"  {m:3d} pairs: new/old {new[0] / old[0]:.2f} on one core, 2 cores / 1 core "
-              f"{rows['new 2 cores'][0] / new[0]:.2f}; band identical on 1 and 2 cores: "
+        print(f"  {m:3d} pairs: new/old CPU {new[1] / old[1]:.2f} (wall {new[0] / old[0]:.2f}) on "
+              f"one core; wall 2 cores / 1 core {rows['new 2 cores'][0] / new[0]:.2f}; band "
+              f"identical on 1 and 2 cores: "
               f"{rows['new 2 cores'][2] == new[2]}; band ends new/old "
               f"{new[2][0] / old[2][0] - 1:+.2%}, {new[2][1] / old[2][1] - 1:+.2%}")
         record = []
@@ -214,6 +227,81 @@ def part_band(max_hf):
     return out
 
 
+@contextlib.contextmanager
+def long_record_path(new):
+    """Old: the LF ranks and the normal scores of the common uniforms recomputed every
+    iteration; new: kept."""
+    from pas.strategies.pas import PAS
+    from pas.strategies.random_numbers import PeakUniforms
+
+    saved = PAS._population_ranks, PeakUniforms.scores
+    if not new:
+        def recomputed(self, lfset, n0, impact, rng):
+            self._ranks = None
+            return saved[0](self, lfset, n0, impact, rng)
+
+        PAS._population_ranks = recomputed
+        PeakUniforms.scores = lambda self, n0: None
+    try:
+        yield
+    finally:
+        PAS._population_ranks, PeakUniforms.scores = saved
+
+
+def long_iterations(n, families, repeats):
+    """``(median CPU ms, peak traced MB of one iteration, MPM)`` at ``n`` LF peaks, 80 pairs."""
+    from pas.screening import LFSet
+    from pas.strategies.base import Pairs
+    from pas.strategies.pas import PAS
+
+    lf, hf = scenario(n)
+    lfset = LFSet(lf, n_waves=int(round(n * N_W / N)), p_exp=P_EXP)
+    pos = np.unique(np.round(np.geomspace(1, lfset.n, 80)).astype(int) - 1)
+    pairs = Pairs(pos, lfset.lf[pos], hf[lfset.index[pos]], lfset.d[pos])
+    strat = PAS(families=families, n_bootstrap=0)
+    strat.reset(0)
+    strat.predict(pairs, lfset, np.random.default_rng(0))  # the first: uniforms drawn
+    times = []
+    for k in range(repeats):
+        t = time.process_time()
+        pred = strat.predict(pairs, lfset, np.random.default_rng(k))
+        times.append(time.process_time() - t)
+    tracemalloc.start()
+    strat.predict(pairs, lfset, np.random.default_rng(0))
+    peak = tracemalloc.get_traced_memory()[1] / 2**20
+    tracemalloc.stop()
+    return 1e3 * float(np.median(times)), peak, pred.mpm
+
+
+def part_long(max_hf):
+    """Per-iteration CPU time and peak memory at n = 15 k / 150 k / 1.5 M, old vs new."""
+    print("-- long records, one iteration at 80 pairs (old: LF ranks and normal scores "
+          "recomputed; new: kept); memory: peak traced during one iteration")
+    out = {}
+    for n, repeats in ((15000, 7), (150000, 5), (1500000, 2)):
+        for label, families in (("default", pas.copulas.PAPER_FAMILIES),
+                                ("gaussian", ("gaussian",))):
+            row = {}
+            for path in ("old", "new"):
+                with long_record_path(path == "new"):
+                    row[path] = long_iterations(n, families, repeats)
+            (t0, m0, v0), (t1, m1, v1) = row["old"], row["new"]
+            print(f"  n = {n:>9,}, {label:>8}: old {t0:7.1f} ms {m0:6.0f} MB, new {t1:7.1f} ms "
+                  f"{m1:6.0f} MB, ratio {t1 / t0:.2f}; MPM change {abs(v1 / v0 - 1):.1e}")
+            out[f"{n}_{label}"] = row
+    sort_n = 10 * 150000
+    h = np.random.default_rng(0).weibull(1.5, (10, sort_n // 10))
+    t = time.process_time()
+    np.sort(h, axis=1)
+    t_full = time.process_time() - t
+    t = time.process_time()
+    pas.stats.exceedance.mean_top_order_statistics(h, int(np.ceil(P_EXP * 16364)) + 1)
+    t_top = time.process_time() - t
+    print(f"  a band replicate's sort, 10 x 150 000 draws: full {1e3 * t_full:.1f} ms, top only "
+          f"(np.partition) {1e3 * t_top:.1f} ms")
+    return out
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--max-hf", type=int, default=80)
@@ -221,7 +309,7 @@ def main():
     parser.add_argument("--json", help="write the figures here")
     args = parser.parse_args()
     out = {}
-    parts = {"fit": part_fit, "band": part_band}
+    parts = {"fit": part_fit, "band": part_band, "long": part_long}
     for part in args.parts.split(","):
         out[part] = parts[part](args.max_hf)
     if args.json:

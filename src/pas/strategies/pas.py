@@ -244,7 +244,8 @@ class PAS(Strategy):
         ``lf_ranks_rng`` (conditional estimator) draws the LF population ranks
         instead of taking their mid-ranks (:meth:`model_band`); ``starts``
         (conditional estimator): joint fits by ``(family, marginal)`` to start
-        from, and only from them (no cold start; :meth:`model_band`).
+        from, and only from them but for the families of
+        :data:`pas.strategies.band.COLD_FAMILIES` (:meth:`model_band`).
         """
         # Step 7 removes pairs by their HF value: a selection on the response, which
         # the conditional likelihood does not allow (it would drop the largest loads
@@ -387,9 +388,10 @@ class PAS(Strategy):
         return band.bootstrap_band(self, pairs, lfset, rng, n_jobs)
 
     def final_joint_fits(self, pairs: Pairs, lfset: LFSet, hf_marginal: str) -> dict:
-        """Joint fits of every family and the marginals of ``hf_marginal`` to ``pairs``, from
-        the study's last fits and from the data (conditional estimator; the band's starts)."""
+        """Joint fits of every family and the marginals of ``hf_marginal`` to ``pairs``
+        (conditional estimator; the band's starts): from the study's last fits, which are
+        of these pairs, as a replicate starts; a marginal the study did not fit, from the data."""
         impact = impact_probability(pairs.lf, pairs.fp_lf) if self.impact_model else None
         self._fit_conditional(pairs, lfset, np.ones(len(pairs), bool), self.families, impact,
-                              None, False, hf_marginal, None, None)
+                              None, False, hf_marginal, None, self._joint)
         return self._last_joint
