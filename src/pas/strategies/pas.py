@@ -61,7 +61,6 @@ from . import band
 from .acquisition import md_select
 from .base import Pairs, Prediction, Strategy
 from .random_numbers import PeakUniforms
-from .refit import refit
 from .selection import impact_probability, population_lf_ranks
 from .steps import (
     FittedModel,
@@ -75,7 +74,6 @@ from .steps import (
 __all__ = [
     "PAS",
     "FittedModel",
-    "refit",
     "remove_outliers",
     "conditioning_set",
     "draw_conditional_hf",

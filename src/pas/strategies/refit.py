@@ -6,6 +6,7 @@ import numpy as np
 
 from ..screening import LFSet
 from .base import Pairs
+from .pas import PAS
 
 __all__ = ["refit"]
 
@@ -23,8 +24,6 @@ def refit(result):
     if "lf" not in dist or not result.family:
         raise ValueError("the result holds no fitted PAS model (no 'lf' column in its "
                          "distribution, or no copula family)")
-    from .pas import PAS
-
     settings = dict((result.settings or {}).get("strategy_settings", {}))
     strategy = PAS(**settings)
     strategy.reset(result.seed)
