@@ -2,15 +2,21 @@
 
 One scenario throughout: 15 000 Rayleigh LF peaks, ``n_w`` 16 364, a Gumbel
 (θ = 3) copula to a Weibull HF load, stopping off, 80 HF (``--max-hf``).
-Every ratio is measured in this one run, the old path beside the new:
+Every ratio is measured in this one run, the old path beside the new (CPU
+time, the forked band workers' included; wall time on a shared machine):
 
-* the Student-t joint fit with numerical differences (scipy's L-BFGS-B
-  default, the old path) against its analytic gradient;
-* the final model band cold-and-warm started (old) against warm started,
-  on 1 and 2 cores (``n_jobs``);
-* the long-record path at n = 15 k / 150 k / 1.5 M (``--long``).
+* ``fit``: the whole run and a Student-t-only run with the Student-t joint
+  fit by numerical differences (scipy's L-BFGS-B default, the old path)
+  against its analytic gradient; the largest change of MPM and band ends
+  and whether the family sequence is the same;
+* ``band``: the final model band of 80 and 160 pairs started from the
+  study's fits and cold in every replicate (old) against warm from the final
+  fits, on 1 and 2 cores, and how often a cold start beats the warm one;
+* ``long``: one iteration at n = 15 k / 150 k / 1.5 M with the LF ranks and
+  the normal scores of the common uniforms recomputed (old) or kept, and a
+  band replicate's full sort against the partial one.
 
-Run: python benchmarks/timing.py [--max-hf 80] [--long] [--json out.json]
+Run: python benchmarks/timing.py [--parts fit,band,long] [--max-hf 80] [--json out.json]
 """
 
 from __future__ import annotations
@@ -95,23 +101,10 @@ def largest_change(a, b):
     return float(np.max(np.abs(x - y) / np.abs(x))), a["families"] == b["families"]
 
 
-def student_iterations(m=80, repeats=9):
-    """CPU ms of one Student-t-only iteration (median over warm-started repeats) at ``m`` pairs."""
-    from pas.screening import LFSet
-    from pas.strategies.base import Pairs
-    from pas.strategies.pas import PAS
-
-    lf, hf = scenario()
-    lfset = LFSet(lf, n_waves=N_W, p_exp=P_EXP)
-    pos = np.unique(np.round(np.geomspace(1, lfset.n, m)).astype(int) - 1)
-    pairs = Pairs(pos, lfset.lf[pos], hf[lfset.index[pos]], lfset.d[pos])
-    strat = PAS(families=("student",))
-    times = []
-    for k in range(repeats):
-        t = time.process_time()
-        strat.predict(pairs, lfset, np.random.default_rng(k))
-        times.append(time.process_time() - t)
-    return 1e3 * float(np.median(times)), 1e3 * float(np.max(times))
+def student_iterations(max_hf):
+    """CPU ms of the loop iterations of a Student-t-only run (no band): median, worst."""
+    _, loop, _, _ = run(max_hf, families=("student",), n_bootstrap=0)
+    return 1e3 * float(np.median(loop)), 1e3 * float(loop.max())
 
 
 def part_fit(max_hf):
@@ -121,12 +114,12 @@ def part_fit(max_hf):
     for label, ctx in (("old", numerical_student), ("new", contextlib.nullcontext)):
         with ctx():
             res, loop, band, band_wall = run(max_hf)
-            st = student_iterations()
+            st = student_iterations(max_hf)
         out[label] = summary(res)
         total = loop.sum() + band
         print(f"  {label}: run_pas {max_hf} HF {1e3 * total / max_hf:6.1f} ms/HF (CPU); loop "
               f"median {1e3 * np.median(loop):5.1f} ms, worst {1e3 * loop.max():6.1f} ms; final "
-              f"band {band:5.2f} s CPU, {band_wall:5.2f} s wall; Student-t alone (80 pairs) "
+              f"band {band:5.2f} s CPU, {band_wall:5.2f} s wall; Student-t-only run: loop "
               f"median {st[0]:5.1f} ms, worst {st[1]:5.1f} ms")
         out[label]["times"] = [total, float(np.median(loop)), float(loop.max()), band, *st]
     rel, same = largest_change(out["old"], out["new"])
