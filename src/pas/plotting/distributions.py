@@ -222,7 +222,7 @@ def conditional_quantile_curves(result, lf_grid, quantiles=(0.05, 0.5, 0.95)):
     """Quantiles of HF given LF (and an impact) in real space from a PAS result's final model.
 
     Refits what the strategy fitted in its last iteration, with the result's
-    own settings (:func:`pas.strategies.pas.refit`); then
+    own settings (:func:`pas.strategies.refit.refit`); then
     ``h_q(l) = F_h⁻¹(C⁻¹_{V|U}(q | u(l)))``.
 
     Parameters
@@ -240,7 +240,7 @@ def conditional_quantile_curves(result, lf_grid, quantiles=(0.05, 0.5, 0.95)):
         One HF curve per quantile, aligned with ``lf_grid``.
     """
     from ..copulas import EXTRA_FAMILIES, PAPER_FAMILIES
-    from ..strategies.pas import refit
+    from ..strategies.refit import refit
 
     family = getattr(result, "family", None)
     if family not in PAPER_FAMILIES + EXTRA_FAMILIES:
