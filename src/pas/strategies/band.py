@@ -24,9 +24,12 @@ replicates select another family and marginal.  The price: the band's CPU
 time is 0.82 (80 pairs) and about 1.0 (160) of the old path's, against
 0.56 and 0.64 with every family warm only.
 
-Worker processes are forked (POSIX), so they inherit the study's state
-instead of receiving it pickled; where fork is not available the replicates
-run in this process.
+Worker processes (``n_jobs`` > 1, or -1 for every core) are forked (POSIX),
+so they inherit the study's state instead of receiving it pickled; where fork
+is not available the replicates run in this process.  The default is one
+process: on the shared 2-core machine the band was measured on, two
+processes gave no wall-clock gain, and forking a driver that runs oracle
+threads or a Dask client is a risk a default should not take.
 """
 
 from __future__ import annotations
@@ -129,12 +132,13 @@ def replicate_mpms(strategy, pairs, lfset, starts, plan, lf_rng=None,
     ``starts``: the joint fits every replicate starts from (None: the
     strategy's own rule); ``lf_rng``: the stream of the LF-rank draws, read
     by the replicates in turn (None: mid-ranks); ``n_jobs``: processes
-    (None: every core; 1: this process).
+    (None or 1: this process; -1: every core).
     """
     global _JOB
-    if n_jobs is not None and int(n_jobs) < 1:
-        raise ValueError(f"n_jobs must be at least 1 (or None for every core), got {n_jobs}")
-    n_jobs = min(default_jobs() if n_jobs is None else int(n_jobs), max(len(plan), 1))
+    if n_jobs is not None and int(n_jobs) != -1 and int(n_jobs) < 1:
+        raise ValueError(f"n_jobs must be at least 1, or -1 for every core, got {n_jobs}")
+    n_jobs = 1 if n_jobs is None else int(n_jobs)
+    n_jobs = min(default_jobs() if n_jobs == -1 else n_jobs, max(len(plan), 1))
     if n_jobs == 1 or "fork" not in multiprocessing.get_all_start_methods():
         n_jobs, lf_rngs = 1, [lf_rng] * len(plan)
     elif lf_rng is None:

@@ -378,7 +378,7 @@ class PAS(Strategy):
         CDF only to within the spread of the largest order statistics.
         The conditional estimator's replicates start their joint fits from the
         final model's (:mod:`pas.strategies.band`); ``n_jobs`` processes fit
-        them (None: every core), with the same band for any ``n_jobs``.
+        them (None: one; -1: every core), with the same band for any ``n_jobs``.
         Returns ``(low, high, mpms)`` or None when off.
         """
         if self.n_bootstrap <= 0 or self.family_ is None:
