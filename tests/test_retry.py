@@ -269,3 +269,34 @@ def test_cli_study_run_stops_at_the_limit_and_continues_after_retry(tmp_path, ca
     assert main(["study", "retry", db]) == 0
     assert main(["study", "run", db, "--quiet"]) == 0
     assert "0 failed" in capsys.readouterr().out
+
+
+def test_retry_keeps_the_named_loads_of_reused_results(tmp_path):
+    """Several loads per event and a retry: a reused result keeps its loads, a retried one gets new."""
+    from pas.study.loads import stored_loads
+
+    def loads(ev):
+        return {"deck": good(ev), "panel": 0.5 * ev.lf ** 1.5}
+
+    class FlakyLoads(Flaky):
+        def __call__(self, ev):
+            return {"deck": super().__call__(ev), "panel": 0.5 * ev.lf ** 1.5}
+
+    ref_db, db = str(tmp_path / "ref.db"), str(tmp_path / "s.db")
+    ref = pas.run_pas(LF, loads, study=ref_db, target="deck", **KW)
+    oracle = FlakyLoads()
+    pas.run_pas(LF, oracle, study=db, target="deck", max_failures=50, **KW)
+    oracle.fixed = True
+    res = pas.run_pas(LF, oracle, study=db, target="deck", max_failures=50, retry_failed=True,
+                      **KW)
+    assert res.n_failed == 0 and res.mpm == pytest.approx(ref.mpm, rel=1e-9)
+    with StudyStore(db, create=False) as store:
+        final = set(store.events()["idx"])
+        kept = stored_loads(store)
+    for idx in final:   # every event of the final log has both loads, as the oracle gave them
+        lf = LF[idx]
+        assert kept[idx]["deck"][0] == pytest.approx(2.0 * lf ** 1.2, rel=1e-12)
+        assert kept[idx]["panel"][0] == pytest.approx(0.5 * lf ** 1.5, rel=1e-12)
+    panel = pas.refit(db, target="panel")
+    panel_ref = pas.refit(ref_db, target="panel")
+    assert panel.mpm == pytest.approx(panel_ref.mpm, rel=1e-9)
