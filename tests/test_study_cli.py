@@ -204,7 +204,7 @@ def test_study_run_with_command_oracle_survives_sigkill(tmp_path, capsys):
     proc.stdout.close()
     capsys.readouterr()
     assert cli("study", "run", db) == 0
-    assert "14 HF evaluations" in capsys.readouterr().out
+    assert "14 evaluated: " in capsys.readouterr().out
     with StudyStore(db, create=False) as store:
         ev = store.events()
     done = Counter(log.read_text().split())

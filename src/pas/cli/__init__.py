@@ -9,6 +9,16 @@ what a shell reports for a process killed by that signal), each after one
 line on stderr; commands that run a study first write what they have and say
 how to resume (:class:`pas.cli._progress.RunStopped`).
 
+Exit codes (:data:`EXIT_CODES`, also printed by ``pas --help``)::
+
+    0    done
+    1    the study stopped at its failure limit (more failed HF evaluations than
+         max_failures; the partial result is written), or no command given
+    2    bad input: a one-line error names the argument and the fix
+    3    done, but failed HF evaluations were left out of the final fit
+    130  interrupted (Ctrl-C); the result so far is written
+    141  the output pipe was closed
+
 Only the standard library is imported here and by ``add_parser``: the
 numerical stack is imported by the command that runs, so ``pas --help`` and
 ``pas study tell`` start fast.
@@ -26,6 +36,18 @@ from ._progress import EXIT_BROKEN_PIPE, EXIT_INTERRUPTED, RunStopped
 
 COMMANDS = ("reproduce", "run", "study", "plot", "impacts")
 
+EXIT_STOPPED = 1
+EXIT_BAD_INPUT = 2
+EXIT_FAILED_LEFT_OUT = 3
+EXIT_CODES = {0: "done",
+              EXIT_STOPPED: "the study stopped at its failure limit (partial result written), "
+                            "or no command given",
+              EXIT_BAD_INPUT: "bad input (a one-line error names the argument)",
+              EXIT_FAILED_LEFT_OUT: "done, but failed HF evaluations were left out of the fit",
+              EXIT_INTERRUPTED: "interrupted (Ctrl-C); the result so far is written",
+              EXIT_BROKEN_PIPE: "the output pipe was closed"}
+"""What each exit code of ``pas`` means."""
+
 
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
@@ -33,7 +55,9 @@ def build_parser() -> argparse.ArgumentParser:
         description="Probabilistic Adaptive Screening: extreme non-linear wave loads from a long "
                     "low-fidelity run and a few high-fidelity events.",
         formatter_class=argparse.RawDescriptionHelpFormatter,
-        epilog="Run 'pas <command> --help' for the options and examples of each command.",
+        epilog="Run 'pas <command> --help' for the options and examples of each command.\n\n"
+               "exit codes:\n" + "\n".join(f"  {code:<4} {text}"
+                                            for code, text in EXIT_CODES.items()),
     )
     from .._version import __version__
 
@@ -86,7 +110,7 @@ def _main(argv) -> int:
         except (ValueError, FileNotFoundError, KeyError) as exc:
             msg = exc.args[0] if isinstance(exc, KeyError) and exc.args else exc
             _say(f"{name}: error: {msg}")
-            return 2
+            return EXIT_BAD_INPUT
 
 
 def _one_line_warning(name):

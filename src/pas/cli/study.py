@@ -274,7 +274,8 @@ def _drive(args) -> int:
     finally:
         store.close()
     print(res.summary())
-    return 0
+    from . import EXIT_FAILED_LEFT_OUT
+    return EXIT_FAILED_LEFT_OUT if res.n_failed else 0
 
 
 def _set(args) -> int:
