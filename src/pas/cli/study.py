@@ -287,11 +287,13 @@ def _set(args) -> int:
     changes = {k: getattr(args, k) for k in names if getattr(args, k) is not None}
     if not changes:
         raise ValueError(f"give at least one of {', '.join(names.values())}")
-    for key, value in changes.items():
-        if isinstance(value, float) and not (math.isfinite(value) and value > 0):
-            raise ValueError(f"{names[key]} must be a positive number, got {value:g}")
-        if isinstance(value, int) and value < (0 if key == "max_failures" else 1):
-            raise ValueError(f"{names[key]} must be a positive integer, got {value}")
+    from .._validation import check_setting
+
+    for key, value in changes.items():  # the rules of the Python API and the study file
+        try:
+            check_setting(key, value)
+        except ValueError as exc:
+            raise ValueError(_option_names(str(exc), names)) from None
     with StudyStore(args.study, create=False) as store:
         old = store.settings()
         try:

@@ -34,7 +34,7 @@ import numpy as np
 
 from .._version import __version__
 from .schema import (_SCHEMA, RESUMABLE, with_legacy_settings, SCHEMA_VERSION, STATES, STORED, StoreConflict, StoreError,
-                     _now, _pool_hash, _pool_records, dumps)
+                     _now, named_errors, _pool_hash, _pool_records, dumps)
 from .state import EventState
 
 __all__ = ["StudyStore", "StoreError", "StoreConflict", "SCHEMA_VERSION", "read_settings", "STATES"]
@@ -58,7 +58,7 @@ class StudyStore:
         if not create and not os.path.exists(self.path):
             raise FileNotFoundError(f"study store {self.path} does not exist "
                                     "(create it with 'pas study create')")
-        try:
+        with named_errors(self.path):
             self._conn = sqlite3.connect(self.path, timeout=timeout, isolation_level=None)
             self._conn.execute("PRAGMA journal_mode=WAL")
             self._conn.execute("PRAGMA synchronous=FULL")
@@ -78,8 +78,6 @@ class StudyStore:
                     c.execute(f"PRAGMA user_version={SCHEMA_VERSION}")
                     for k, v in (("seq", 0), ("op_seq", 0)):
                         c.execute("INSERT INTO meta VALUES (?, ?)", (k, json.dumps(v)))
-        except sqlite3.DatabaseError as exc:
-            raise StoreError(f"study store {self.path}: {exc}") from None
 
     # -- plumbing ----------------------------------------------------------
     def close(self) -> None:
@@ -97,6 +95,10 @@ class StudyStore:
     @contextmanager
     def transaction(self):
         """A ``BEGIN IMMEDIATE`` write transaction; nested calls join the outer one."""
+        with named_errors(self.path):
+            yield from self._transaction()
+
+    def _transaction(self):
         if self._depth:
             self._depth += 1
             try:
@@ -118,14 +120,15 @@ class StudyStore:
     @contextmanager
     def _read(self):
         """A consistent read snapshot (joins a running write transaction)."""
-        if self._depth:
-            yield self._conn
-            return
-        self._conn.execute("BEGIN")
-        try:
-            yield self._conn
-        finally:
-            self._conn.execute("COMMIT")
+        with named_errors(self.path):
+            if self._depth:
+                yield self._conn
+                return
+            self._conn.execute("BEGIN")
+            try:
+                yield self._conn
+            finally:
+                self._conn.execute("COMMIT")
 
     def _meta(self, c, key, default=None):
         row = c.execute("SELECT value FROM meta WHERE key = ?", (key,)).fetchone()
