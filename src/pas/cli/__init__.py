@@ -29,6 +29,7 @@ from __future__ import annotations
 import argparse
 import importlib
 import os
+import re
 import sys
 import warnings
 
@@ -111,6 +112,22 @@ def _main(argv) -> int:
             msg = exc.args[0] if isinstance(exc, KeyError) and exc.args else exc
             _say(f"{name}: error: {msg}")
             return EXIT_BAD_INPUT
+
+
+def plain_text(doc: str) -> str:
+    """A command module's docstring as ``--help`` text: the literal ``::`` usage block
+    left out (argparse prints its own usage) and the reST markup dropped.
+
+    Examples
+    --------
+    >>> plain_text("``pas x``: one line.\n\n::\n\n    pas x A\n\nUses :mod:`pas.stats` (fast).")
+    'pas x: one line.\n\nUses pas.stats (fast).'
+    """
+    paragraphs = [par for par in doc.strip().split("\n\n")
+                  if par.strip() != "::" and not par.startswith((" ", "\t"))]
+    text = "\n\n".join(paragraphs)
+    text = re.sub(r":[a-z]+:`~?([^`]+)`", r"\1", text)
+    return text.replace("``", "")
 
 
 def _one_line_warning(name):

@@ -60,7 +60,7 @@ examples:
 
 def add_parser(sub) -> None:
     p = sub.add_parser("study", help="ask/tell HF campaigns kept in a crash-safe study file",
-                       description=__doc__.split("\n\n")[0],
+                       description=__doc__.split("\n\n")[0].replace("``", ""),
                        formatter_class=argparse.RawDescriptionHelpFormatter, epilog=EPILOG)
     cmds = p.add_subparsers(dest="study_command", metavar="<action>", required=True)
     c = cmds.add_parser("create", help="create STUDY.db from a TOML configuration")
