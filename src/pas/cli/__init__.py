@@ -50,8 +50,21 @@ EXIT_CODES = {0: "done",
 """What each exit code of ``pas`` means."""
 
 
+class OneLineParser(argparse.ArgumentParser):
+    """An argument parser whose usage errors are one line, pointing at ``--help``.
+
+    The sub-command parsers inherit the class, so ``pas run --p-exp x`` says
+    ``pas run: error: argument --p-exp: invalid float value: 'x' (see 'pas run --help')``
+    and exits with code 2, like every other bad input.
+    """
+
+    def error(self, message):
+        _say(f"{self.prog}: error: {message} (see '{self.prog} --help')")
+        self.exit(EXIT_BAD_INPUT)
+
+
 def build_parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(
+    parser = OneLineParser(
         prog="pas",
         description="Probabilistic Adaptive Screening: extreme non-linear wave loads from a long "
                     "low-fidelity run and a few high-fidelity events.",
@@ -108,14 +121,52 @@ def _main(argv) -> int:
             _mute_closed_streams()
             _say(f"{name}: output pipe closed")
             return EXIT_BROKEN_PIPE
-        except (ValueError, FileNotFoundError, KeyError) as exc:
+        except (ValueError, OSError, KeyError) as exc:
             msg = exc.args[0] if isinstance(exc, KeyError) and exc.args else exc
-            _say(f"{name}: error: {msg}")
+            _say(f"{name}: error: {option_named(str(msg), parser, args.command)}")
             return EXIT_BAD_INPUT
 
 
+_POSITIONAL_NAMES = {"run": {"lf_peaks": "LF_FILE"}}
+"""Python argument names a command's errors should call by its positional argument."""
+
+
+def option_named(message: str, parser, command: str) -> str:
+    """``message`` of the Python API with its leading argument named as the command's option.
+
+    ``seed must be ...`` becomes ``--seed must be ...`` when ``--seed`` is an
+    option of ``pas``; ``lf_peaks ...`` of ``pas run`` becomes ``LF_FILE ...``.
+
+    Examples
+    --------
+    >>> option_named("max_hf must be an integer ≥ 4, got 2", build_parser(), "run")
+    '--max-hf must be an integer ≥ 4, got 2'
+    >>> option_named("p_exp=1e-09 lies outside the LF range", build_parser(), "run")
+    '--p-exp=1e-09 lies outside the LF range'
+    """
+    m = re.match(r"([a-z][a-z0-9_]*)(?= must | is |=|: )", message)
+    if m is None:
+        return message
+    word = m.group(1)
+    option = _POSITIONAL_NAMES.get(command, {}).get(word, "--" + word.replace("_", "-"))
+    if option.startswith("--") and option not in _option_strings(parser):
+        return message
+    return option + message[len(word):]
+
+
+def _option_strings(parser) -> set:
+    """Every option string of ``parser`` and of its sub-command parsers."""
+    found = set()
+    for action in parser._actions:
+        found.update(action.option_strings)
+        if isinstance(action, argparse._SubParsersAction):
+            for sub in action.choices.values():
+                found |= _option_strings(sub)
+    return found
+
+
 def plain_text(doc: str) -> str:
-    """A command module's docstring as ``--help`` text: the literal ``::`` usage block
+    r"""A command module's docstring as ``--help`` text: the literal ``::`` usage block
     left out (argparse prints its own usage) and the reST markup dropped.
 
     Examples

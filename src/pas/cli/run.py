@@ -185,6 +185,8 @@ def run(args) -> int:
     if note is not None:
         print(f"pas run: warning: {note}", file=sys.stderr)
     out = Path(args.out)
+    if out.exists() and not out.is_dir():
+        raise ValueError(f"--out {out} is a file; give a folder (it is created when missing)")
     try:
         oracle = oracle_from_spec(args.oracle, root=out / "hf-runs", timeout=args.timeout)
     except (ValueError, FileNotFoundError) as exc:
@@ -199,7 +201,7 @@ def run(args) -> int:
                            eps1=args.eps1, eps2=args.eps2, threshold=args.threshold, seed=seed,
                            max_hf=args.max_hf, ids=ids, meta=meta,
                            n_waves_convention="spectral",  # checked above, with option names
-                           preset=None if args.strategy != "pas" else args.preset)
+                           preset=args.preset)  # 'paper' with AS is an error
         if store is not None:  # only now: bad inputs leave no output folder behind
             out.mkdir(parents=True, exist_ok=True)
             for ch in attach(study, store):
