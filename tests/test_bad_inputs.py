@@ -145,6 +145,8 @@ CASES = [
     toml_case("study file: p_exp = 2", "p_exp_2.toml", "p_exp"),
     toml_case("study file: n_waves = \"16364\"", "n_waves_text.toml", "n_waves"),
     toml_case("study file: unknown top-level key", "top_key.toml", "nwaves"),
+    toml_case("study file: [settings] eps1 (a top-level key)", "eps1_in_settings.toml",
+              "settings.eps1"),
     toml_case("study file: not TOML", "broken.toml", "broken.toml"),
     toml_case("study file: lf.file missing", "lf_missing.toml", "lf.file"),
     Case("study create on an existing store", 2, "s.db",
@@ -169,6 +171,13 @@ CASES = [
     Case("impacts: --exposure-hours without --encounter-period", 2, "--encounter-period",
          ("impacts", "{events.csv}", "--exposure-hours", "3")),
     Case("plot: not a run folder", 2, "pas run", ("plot", "{empty_dir}")),
+    Case("plot: --kind unknown", 2, "--kind", ("plot", "{empty_dir}", "--kind", "pdf")),
+    Case("reproduce: unknown case", 2, "case", ("reproduce", "9z")),
+    Case("reproduce: --scale -1", 2, "--scale", ("reproduce", "1a", "--scale", "-1")),
+    Case("reproduce: --replications 0", 2, "--replications", ("reproduce", "1a", "--replications", "0")),
+    Case("reproduce: unknown strategy", 2, "--strategies", ("reproduce", "1a", "--strategies", "gpr")),
+    Case("study ask -n 0", 2, "-n", ("study", "ask", "{s.db}", "-n", "0")),
+    Case("study tell VALUE nan", 2, "VALUE", ("study", "tell", "{s.db}", "e1", "nan")),
     # -- Python API
     Case("threshold='high'", ValueError, "threshold", call=api(threshold="high")),
     Case("k1=0", ValueError, "k1", call=api(k1=0)),
@@ -201,6 +210,13 @@ CASES = [
     Case("ids of the wrong length", ValueError, "ids", call=api(ids=["a", "b"])),
     Case("duplicate ids", ValueError, "ids", call=api(ids=["a"] * N)),
     Case("meta of the wrong length", ValueError, "meta", call=api(meta=[{}])),
+    Case("strategy 'gpr' in make_study", ValueError, "strategy",
+         call=lambda ws: pas.make_study("gpr", [1.0] * 10, n_waves=10, p_exp=0.5, eps1=1.0)),
+    Case("run_as fidelity='triple'", ValueError, "fidelity",
+         call=lambda ws: pas.run_as([1.0, 2.0, 3.0, 4.0, 5.0], abs, n_waves=5, p_exp=0.5,
+                                    eps1=1.0, fidelity="triple")),
+    Case("p_exp_from_duration with a negative exposure", ValueError, "exposure_s",
+         call=lambda ws: pas.p_exp_from_duration(-3.0, 3 * 3600.0)),
     Case("ScreeningResult.load of a missing folder", FileNotFoundError, "nope",
          call=lambda ws: ScreeningResult.load(ws / "nope")),
     Case("StudyStore of a corrupted file", ValueError, "corrupt.db",
@@ -239,7 +255,8 @@ _TOML = (f"n_waves = {NW}\np_exp = {P}\neps1 = 0.1\nseed = 1\n{{top}}\n"
 
 def _write_study_files(ws: Path) -> None:
     files = {"ok": "", "z_ten": '[settings]\nz = "ten"', "k1_neg": "[settings]\nk1 = -3",
-             "zz": "[settings]\nzz = 1", "top_key": "nwaves = 3"}
+             "zz": "[settings]\nzz = 1", "top_key": "nwaves = 3",
+             "eps1_in_settings": "[settings]\neps1 = 0.2"}
     for name, extra in files.items():
         top, _, tables = extra.partition("[settings]")
         text = _TOML.format(top=top) + (f"[settings]{tables}\n" if tables else "")
@@ -313,3 +330,37 @@ def test_bad_input_gives_one_line_naming_the_argument(case, workspace):
     assert case.names in message
     if case.call is None:
         assert not (workspace / "out").exists()  # a refused run leaves no output folder
+
+
+SAME_RULE = [("k1", -3), ("k1", 0), ("k1", 5), ("k2", 0), ("k2", 30), ("max_failures", -1),
+             ("max_failures", 0), ("eps1", -1.0), ("eps1", 0.2), ("eps2", 0.0), ("eps2", 0.05),
+             ("max_hf", 0), ("max_hf", 30)]
+_TOP_LEVEL = ("eps1", "eps2", "max_hf")
+
+
+@pytest.mark.parametrize("key, value", SAME_RULE)
+def test_a_setting_has_one_rule_in_python_the_study_file_and_study_set(key, value, workspace,
+                                                                       tmp_path):
+    lf = np.asarray(pd.read_csv(workspace / "lf.csv")["lf"])
+    kw = {"n_waves": NW, "p_exp": P, "eps1": 0.1, "seed": 1, key: value}
+    try:
+        pas.make_study("pas", lf, **kw)
+        python_ok = True
+    except ValueError:
+        python_ok = False
+    line = f"{key} = {value}"
+    top, table = (line, "") if key in _TOP_LEVEL else ("", f"[settings]\n{line}\n")
+    text = _TOML.format(top=top) + table
+    if key == "eps1":
+        text = text.replace("eps1 = 0.1\n", "")
+    (tmp_path / "lf.csv").write_bytes((workspace / "lf.csv").read_bytes())
+    (tmp_path / "s.toml").write_text(text)
+    with contextlib.redirect_stdout(io.StringIO()), contextlib.redirect_stderr(io.StringIO()):
+        file_ok = main(["study", "create", str(tmp_path / "s.db"), "--config",
+                        str(tmp_path / "s.toml")]) == 0
+    shutil.copy(workspace / "s.db", tmp_path / "set.db")
+    code, message = outcome(Case("set", 0, key, ("study", "set", str(tmp_path / "set.db"),
+                                                 "--" + key.replace("_", "-"), str(value))),
+                            workspace)
+    assert python_ok == file_ok == (code == 0), message
+    assert python_ok == (value not in (-3, 0, -1, -1.0, 0.0) or (key, value) == ("max_failures", 0))
