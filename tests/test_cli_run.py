@@ -174,7 +174,7 @@ def test_bad_oracle_specs(files, tmp_path, capsys, spec, needle):
 
 @pytest.mark.parametrize("opt, value, needle", [
     ("--p-exp", "1.5", "--p-exp"),
-    ("--p-exp", "1e-9", "p_exp"),     # below the rarest LF event
+    ("--p-exp", "1e-9", "--p-exp"),     # below the rarest LF event
     ("--eps1", "-1", "--eps1"),
     ("--threshold", "100", "threshold"),
 ])
