@@ -86,9 +86,10 @@ def _check_settings(cfg: dict, where: str) -> None:
     for key in sorted(SETTING_CHECKS.keys() & cfg.keys()):
         _in_file(lambda: check_setting(key, cfg[key]), where, "", cfg)
     settings = cfg.get("settings", {})
-    for key in sorted(settings.keys() & _TOP.keys()):
-        raise ValueError(f"{where}: settings.{key}: give {key} at the top of the file, "
-                         "not in [settings]")
+    misplaced = sorted(settings.keys() & _TOP.keys())
+    if misplaced:
+        raise ValueError(f"{where}: settings.{misplaced[0]}: give {misplaced[0]} at the top of "
+                         "the file, not in [settings]")
     for key in sorted(settings.keys() & set(STUDY_SETTINGS)):
         _in_file(lambda: check_setting(key, settings[key]), where, "settings", settings)
     own = {k: v for k, v in settings.items() if k not in STUDY_SETTINGS}
