@@ -38,6 +38,8 @@ its two labelled parts.  ``--n-waves`` below the number of LF peaks over the
 threshold is an error (exceedance probabilities would exceed 1) unless
 ``--n-waves-convention spectral`` says that n_w = T_MCS/T_p,e on purpose.
 Ctrl-C or a closed pipe writes the partial result and says how to resume.
+A run that ends with failed HF evaluations left out of its fit exits with
+code 3, one stopped at the failure limit with 1 (:data:`pas.cli.EXIT_CODES`).
 The output folder receives ``history.csv``, ``distribution.csv``,
 ``pairs.csv``, ``range_curves.csv``, ``lf_curve.csv`` and ``summary.json``
 — everything ``pas plot`` needs to redraw the figures — and, unless
@@ -84,6 +86,9 @@ examples:
 
   # then draw the figures
   pas plot run1 --kind all
+
+exit codes: 0 done; 1 stopped at the failure limit (partial result written); 2 bad input;
+3 done, but failed HF evaluations were left out of the fit; 130 interrupted (see 'pas --help')
 """
 
 
@@ -198,7 +203,8 @@ def add_parser(sub) -> None:
 
 
 def run(args) -> int:
-    """Execute ``pas run``; returns the exit code (0 done, 1 oracle failure limit)."""
+    """Execute ``pas run``; returns the exit code (:data:`pas.cli.EXIT_CODES`)."""
+    from . import EXIT_FAILED_LEFT_OUT, EXIT_STOPPED
     from ..api import make_study
     from ..io import read_lf_peaks
     from ..screening import check_n_waves
@@ -218,6 +224,8 @@ def run(args) -> int:
     if note is not None:
         print(f"pas run: warning: {note}", file=sys.stderr)
     out = Path(args.out)
+    if out.exists() and not out.is_dir():
+        raise ValueError(f"--out {out} is a file; give a folder (it is created when missing)")
     try:
         oracle = oracle_from_spec(args.oracle, root=(out / "hf-runs").resolve(),
                                   timeout=args.timeout)
@@ -236,7 +244,7 @@ def run(args) -> int:
                            threshold=args.threshold, seed=seed, ids=ids, meta=meta,
                            target=args.target,
                            n_waves_convention="spectral",  # checked above, with option names
-                           preset=None if args.strategy != "pas" else args.preset, **settings)
+                           preset=args.preset, **settings)  # 'paper' with AS is an error
         if store is not None:  # only now: bad inputs leave no output folder behind
             out.mkdir(parents=True, exist_ok=True)
             for ch in attach(study, store):
@@ -272,8 +280,8 @@ def run(args) -> int:
                else "fix the oracle and run again")
         print(f"pas run: error: {failed}; {how}, or raise --max-failures (partial result "
               f"written to {out}/)", file=sys.stderr)
-        return 1
-    return 0
+        return EXIT_STOPPED
+    return EXIT_FAILED_LEFT_OUT if result.n_failed else 0
 
 
 def _resumable_settings(args, stored: dict) -> dict:

@@ -70,7 +70,7 @@ examples:
 
 def add_parser(sub) -> None:
     p = sub.add_parser("study", help="ask/tell HF campaigns kept in a crash-safe study file",
-                       description=__doc__.split("\n\n")[0],
+                       description=__doc__.split("\n\n")[0].replace("``", ""),
                        formatter_class=argparse.RawDescriptionHelpFormatter, epilog=EPILOG)
     cmds = p.add_subparsers(dest="study_command", metavar="<action>", required=True)
     c = cmds.add_parser("create", help="create STUDY.db from a TOML configuration")
@@ -315,7 +315,8 @@ def _drive(args) -> int:
     finally:
         store.close()
     print(res.summary())
-    return 0
+    from . import EXIT_FAILED_LEFT_OUT
+    return EXIT_FAILED_LEFT_OUT if res.n_failed else 0
 
 
 def _retry(args) -> int:
@@ -345,11 +346,13 @@ def _set(args) -> int:
     changes = {k: getattr(args, k) for k in names if getattr(args, k) is not None}
     if not changes:
         raise ValueError(f"give at least one of {', '.join(names.values())}")
-    for key, value in changes.items():
-        if isinstance(value, float) and not (math.isfinite(value) and value > 0):
-            raise ValueError(f"{names[key]} must be a positive number, got {value:g}")
-        if isinstance(value, int) and value < (0 if key == "max_failures" else 1):
-            raise ValueError(f"{names[key]} must be a positive integer, got {value}")
+    from .._validation import check_setting
+
+    for key, value in changes.items():  # the rules of the Python API and the study file
+        try:
+            check_setting(key, value)
+        except ValueError as exc:
+            raise ValueError(_option_names(str(exc), names)) from None
     with StudyStore(args.study, create=False) as store:
         old = store.settings()
         try:

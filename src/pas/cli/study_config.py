@@ -70,6 +70,7 @@ def load_config(path) -> dict:
     if strategy not in STRATEGIES:
         raise ValueError(f"{where}: strategy must be {' or '.join(map(repr, STRATEGIES))}, "
                          f"got {strategy!r}")
+    _check_settings(cfg, where)
     cfg["lf"]["file"] = str((path.parent / cfg["lf"]["file"]))
     if "oracle" in cfg:
         cfg["oracle"] = _oracle_config(cfg["oracle"], path.parent, where)
@@ -78,6 +79,45 @@ def load_config(path) -> dict:
     if cfg.get("max_failures", 0) < 0:
         raise ValueError(f"{where}: max_failures must be an integer >= 0, got {cfg['max_failures']}")
     return cfg
+
+
+def _check_settings(cfg: dict, where: str) -> None:
+    """The settings of the file by the rules of the Python API and ``pas study set``.
+
+    Top-level keys and the study settings of ``[settings]`` go through
+    :func:`pas._validation.check_setting`, the strategy settings through the
+    strategy's constructor (:func:`pas.study.factory.make_strategy`).
+    """
+    from .._validation import SETTING_CHECKS, check_setting
+    from ..study.factory import STUDY_SETTINGS, make_strategy
+
+    for key in sorted(SETTING_CHECKS.keys() & cfg.keys()):
+        _in_file(lambda: check_setting(key, cfg[key]), where, "", cfg)
+    settings = cfg.get("settings", {})
+    misplaced = sorted(settings.keys() & _TOP.keys())
+    if misplaced:
+        raise ValueError(f"{where}: settings.{misplaced[0]}: give {misplaced[0]} at the top of "
+                         "the file, not in [settings]")
+    for key in sorted(settings.keys() & set(STUDY_SETTINGS)):
+        _in_file(lambda: check_setting(key, settings[key]), where, "settings", settings)
+    own = {k: v for k, v in settings.items() if k not in STUDY_SETTINGS}
+    _in_file(lambda: make_strategy(cfg["strategy"], own), where, "settings", settings)
+
+
+def _in_file(check, where: str, table: str, keys) -> None:
+    """Run ``check``; its ``ValueError`` is re-raised naming the file and the key's table.
+
+    A message that starts with a key of ``keys`` (``k1 must be ...``) gets
+    that key's full name (``settings.k1 must be ...``).
+    """
+    try:
+        check()
+    except ValueError as exc:
+        msg = str(exc)
+        first = msg.split(" ", 1)[0]
+        if table and first in keys:
+            raise ValueError(f"{where}: {table}.{msg}") from None
+        raise ValueError(f"{where}: {table + ': ' if table else ''}{msg}") from None
 
 
 def _oracle_config(o: dict, base: Path, where: str) -> dict:

@@ -35,7 +35,8 @@ def status(args) -> int:
     info = {
         "study": args.study, "strategy": study.strategy.name, "seed": study.seed,
         "n_hf": study.n_hf, "n_false_positive": study.n_false_positive,
-        "n_failed": study.n_failed, "n_pending": len(pend), "results_not_yet_used": len(waiting),
+        "n_failed": study.n_failed, "n_evaluated": res.n_evaluated, "n_loads": res.n_loads,
+        "n_no_impact": res.n_no_impact, "n_pending": len(pend), "results_not_yet_used": len(waiting),
         "max_hf": study.max_hf, "mpm": res.mpm if fitted else None,
         "mpm_band": list(res.mpm_band) if fitted else None,
         "mpm_band_sampling": list(res.mpm_band_sampling) if fitted else None,
@@ -61,8 +62,7 @@ def status(args) -> int:
         print(dumps(info))
         return 0
     print(f"{args.study}: {info['strategy'].upper()}, seed {info['seed']}")
-    print(f"HF evaluations {info['n_hf']} (false positive {info['n_false_positive']}), failed "
-          f"{info['n_failed']}, pending {info['n_pending']}"
+    print(f"{res.counts_text()}, pending {info['n_pending']}"
           + (f", budget {study.max_hf}" if study.max_hf else ""))
     if waiting:
         print(f"{len(waiting)} result(s) told since the last ask: included below, not yet used "

@@ -42,7 +42,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._validation import check_option
+from .._validation import check_finite, check_int, check_option
 from ..copulas import (
     PAPER_FAMILIES,
     _family_and_rotation,
@@ -178,11 +178,9 @@ class PAS(Strategy):
                  band_lf_ranks: str = "redrawn", lf_tail: str = "ranks"):
         for f in families:
             _family_and_rotation(f)
-        if z < 2:
-            raise ValueError(f"z must be at least 2 to estimate the band, got {z}")
+        self.z = check_int(z, "z", minimum=2)  # 2 draws at least, for the band
         self.families = tuple(families)
-        self.z = int(z)
-        self.delta_aic = float(delta_aic)
+        self.delta_aic = check_finite(delta_aic, "delta_aic")
         self.exclude_at_bound = bool(exclude_at_bound)
         self.upper_tail = upper_tail
         self.outlier_k = None if outlier_k is None else float(outlier_k)

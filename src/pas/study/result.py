@@ -41,9 +41,12 @@ class ScreeningResult:
         resampled pairs, :meth:`pas.strategies.base.Strategy.model_band`);
         None when the strategy has none (then U95 is the sampling part).
     n_hf : int
-        HF evaluations made, false positives included, failures excluded.
+        HF evaluations made, false positives included, failures excluded
+        (kept for compatibility; :attr:`n_evaluated` counts the failures too).
     n_false_positive, n_failed : int
-        False positives (HF = 0) and failed oracle calls.
+        False positives (HF = 0) and failed oracle calls.  A failed event is
+        left out of the fit: :attr:`n_evaluated`, :attr:`n_loads` and
+        :attr:`n_no_impact` (also in ``summary.json``) split the evaluations.
     converged : bool
         Whether the stopping criterion was met.
     history : pandas.DataFrame
@@ -188,8 +191,7 @@ class ScreeningResult:
         """
         fam = f", copula {self.family}" if self.family else ""
         state = "converged" if self.converged else f"NOT converged{self._stop_gap()}"
-        counts = (f"{self.n_hf} HF evaluations ({self.n_false_positive} false positive, "
-                  f"{self.n_failed} failed); {state}")
+        counts = f"{self.counts_text()}; {state}"
         counts += self._refit_note()
         if not np.isfinite(self.mpm):
             return f"{self.strategy.upper()}: no model fitted yet; {counts}"
@@ -209,6 +211,36 @@ class ScreeningResult:
         return (f"; refit of load {name!r} on events chosen for {chosen}, so the sample is not "
                 f"adapted to {name!r}" + (f" ({missing} event(s) lack {name!r}, counted failed)"
                                          if missing else ""))
+
+    @property
+    def n_evaluated(self) -> int:
+        """HF evaluations asked for and answered: loads, no-impact results and failures."""
+        return self.n_hf + self.n_failed
+
+    @property
+    def n_loads(self) -> int:
+        """HF evaluations that gave a load (HF > 0): the true positives the fit uses."""
+        return self.n_hf - self.n_false_positive
+
+    @property
+    def n_no_impact(self) -> int:
+        """HF evaluations that gave no impact (HF = 0, false positives)."""
+        return self.n_false_positive
+
+    def counts_text(self) -> str:
+        """What the HF evaluations gave, failures named as left out of the fit.
+
+        Examples
+        --------
+        >>> r = ScreeningResult("pas", 600.0, (561.0, 668.0), (582.0, 612.0), None,
+        ...                     8, 1, 5, True, *[pd.DataFrame()] * 4, 1e-3, 1000, 1)
+        >>> r.counts_text()
+        '13 evaluated: 7 loads, 1 no impact, 5 failed (left out of the fit)'
+        """
+        failed = (f"{self.n_failed} failed (left out of the fit)" if self.n_failed
+                  else "0 failed")
+        return (f"{self.n_evaluated} evaluated: {self.n_loads} loads, {self.n_no_impact} "
+                f"no impact, {failed}")
 
     def _stop_gap(self) -> str:
         """How far the last iteration was from stopping: its Ē and COV against ε1, ε2."""
@@ -238,7 +270,8 @@ class ScreeningResult:
             "mpm_band_sampling": list(self.mpm_band_sampling),
             "mpm_band_model": None if self.mpm_band_model is None else list(self.mpm_band_model),
             "n_hf": self.n_hf, "n_false_positive": self.n_false_positive,
-            "n_failed": self.n_failed, "converged": self.converged, "family": self.family,
+            "n_failed": self.n_failed, "n_evaluated": self.n_evaluated, "n_loads": self.n_loads,
+            "n_no_impact": self.n_no_impact, "converged": self.converged, "family": self.family,
             "p_exp": self.p_exp, "n_waves": self.n_waves, "seed": self.seed,
             "clipped_from": self.clipped_from, "settings": self.settings,
             **({} if self.refit is None else {"refit": self.refit}),

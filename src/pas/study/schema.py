@@ -62,6 +62,8 @@ drives the study next: :func:`pas.study.loop.optimize` in ask order,
 from __future__ import annotations
 
 import hashlib
+import sqlite3
+from contextlib import contextmanager
 from datetime import datetime, timezone
 
 import numpy as np
@@ -70,7 +72,7 @@ from .._json import dumps
 from .state import EventState
 
 __all__ = ["SCHEMA_VERSION", "UPGRADES", "STATES", "STORED", "RESUMABLE", "LEGACY_SETTINGS", "DEFAULT_MAX_HF",
-           "with_legacy_settings", "StoreError", "StoreConflict",
+           "with_legacy_settings", "StoreError", "StoreConflict", "named_errors",
            "dumps"]
 
 SCHEMA_VERSION = 2
@@ -181,6 +183,16 @@ class StoreError(ValueError):
 
 class StoreConflict(StoreError):
     """Another process consumed tells or asked events since this one read the store."""
+
+
+@contextmanager
+def named_errors(path):
+    """An SQLite error (a corrupted or foreign file) as one :class:`StoreError` naming ``path``."""
+    try:
+        yield
+    except sqlite3.DatabaseError as exc:
+        raise StoreError(f"study store {path}: {exc} (is it an intact study store? restore it "
+                         "from a copy)") from None
 
 
 def _now() -> str:

@@ -36,7 +36,7 @@ from .._version import __version__
 from . import amend
 from .loads import add_event_loads, put_loads
 from .schema import (RESUMABLE, with_legacy_settings, SCHEMA_VERSION, STATES, STORED, StoreConflict, StoreError,
-                     _now, _pool_hash, _pool_records, create_or_upgrade, dumps)
+                     _now, named_errors, _pool_hash, _pool_records, create_or_upgrade, dumps)
 from .state import EventState
 from .store_views import StoreViews
 
@@ -61,7 +61,7 @@ class StudyStore(StoreViews):
         if not create and not os.path.exists(self.path):
             raise FileNotFoundError(f"study store {self.path} does not exist "
                                     "(create it with 'pas study create')")
-        try:
+        with named_errors(self.path):
             self._conn = sqlite3.connect(self.path, timeout=timeout, isolation_level=None)
             self._conn.execute("PRAGMA journal_mode=WAL")
             self._conn.execute("PRAGMA synchronous=FULL")
@@ -77,8 +77,6 @@ class StudyStore(StoreViews):
                 if version < SCHEMA_VERSION:
                     create_or_upgrade(c, version)
                 add_event_loads(c)
-        except sqlite3.DatabaseError as exc:
-            raise StoreError(f"study store {self.path}: {exc}") from None
 
     # -- plumbing ----------------------------------------------------------
     def close(self) -> None:
@@ -96,6 +94,10 @@ class StudyStore(StoreViews):
     @contextmanager
     def transaction(self):
         """A ``BEGIN IMMEDIATE`` write transaction; nested calls join the outer one."""
+        with named_errors(self.path):
+            yield from self._transaction()
+
+    def _transaction(self):
         if self._depth:
             self._depth += 1
             try:
@@ -117,14 +119,15 @@ class StudyStore(StoreViews):
     @contextmanager
     def _read(self):
         """A consistent read snapshot (joins a running write transaction)."""
-        if self._depth:
-            yield self._conn
-            return
-        self._conn.execute("BEGIN")
-        try:
-            yield self._conn
-        finally:
-            self._conn.execute("COMMIT")
+        with named_errors(self.path):
+            if self._depth:
+                yield self._conn
+                return
+            self._conn.execute("BEGIN")
+            try:
+                yield self._conn
+            finally:
+                self._conn.execute("COMMIT")
 
     def _meta(self, c, key, default=None):
         row = c.execute("SELECT value FROM meta WHERE key = ?", (key,)).fetchone()

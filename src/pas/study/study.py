@@ -15,7 +15,7 @@ import warnings
 import numpy as np
 import pandas as pd
 
-from .._validation import check_positive
+from .._validation import SETTING_CHECKS, check_int, check_setting
 from ..screening import Event, LFSet
 from ..strategies.base import Pairs, Prediction, Strategy
 from ..strategies.stopping import StoppingRule, range_grid
@@ -83,22 +83,23 @@ class Study(Corrections):
                  legacy_md=False, target=None, store=None):
         self.lfset = lfset
         self.strategy = strategy
-        self.stopping = StoppingRule(eps1=check_positive(eps1, "eps1"),
-                                     eps2=check_positive(eps2, "eps2"), k1=int(k1), k2=int(k2),
-                                     measure=stop_measure)
+        # the keyword settings above, by the rules the study file and 'pas study set' use
+        given = {k: v for k, v in locals().items() if k in SETTING_CHECKS}
+        ok = {k: check_setting(k, v) for k, v in given.items()}
+        self.stopping = StoppingRule(eps1=ok["eps1"], eps2=ok["eps2"], k1=ok["k1"], k2=ok["k2"],
+                                     measure=ok["stop_measure"])
+        seed = ok["seed"]
         if seed is None:
             seed = int(np.random.SeedSequence().entropy % (2**63))
         self.seed = int(seed)
         strategy.reset(self.seed)
-        if max_hf is not None and (int(max_hf) != max_hf or max_hf < strategy.n_initial):
-            raise ValueError(f"max_hf must be an integer ≥ {strategy.n_initial}, got {max_hf!r}")
-        self.max_hf = None if max_hf is None else int(max_hf)
-        self.max_failures = int(max_failures)
-        self.stop_on_convergence = bool(stop_on_convergence)
-        self.adaptive_threshold = bool(adaptive_threshold)
-        self.threshold_step = float(threshold_step)
-        self.fp_run = int(fp_run)
-        self.legacy_md = bool(legacy_md)
+        self.max_hf = None if max_hf is None else check_int(max_hf, "max_hf", strategy.n_initial)
+        self.max_failures = ok["max_failures"]
+        self.stop_on_convergence = ok["stop_on_convergence"]
+        self.adaptive_threshold = ok["adaptive_threshold"]
+        self.threshold_step = ok["threshold_step"]
+        self.fp_run = ok["fp_run"]
+        self.legacy_md = ok["legacy_md"]
         self.target = check_target(target)
         self.grid = range_grid(lfset.p_exp)
         self.state: dict[int, EventState] = {}
