@@ -201,7 +201,7 @@ CASES = [
          call=api(n_waves_convention="counted")),
     Case("preset='fast'", ValueError, "preset", call=api(preset="fast")),
     Case("unknown setting zz=1", ValueError, "zz", call=api(zz=1)),
-    Case("oracle=3 (not callable)", ValueError, "oracle", call=api(oracle=3)),
+    Case("oracle=3 (not callable)", TypeError, "oracle", call=api(oracle=3)),
     Case("lf_peaks with a NaN", ValueError, "lf_peaks", call=api(lf_peaks=[1.0, np.nan] * 200)),
     Case("lf_peaks of text", ValueError, "lf_peaks", call=api(lf_peaks=["a", "b"] * 200)),
     Case("lf_peaks 2-D", ValueError, "lf_peaks", call=api(lf_peaks=np.ones((20, 20)))),
@@ -335,7 +335,7 @@ def test_bad_input_gives_one_line_naming_the_argument(case, workspace):
 SAME_RULE = [("k1", -3), ("k1", 0), ("k1", 5), ("k2", 0), ("k2", 30), ("max_failures", -1),
              ("max_failures", 0), ("eps1", -1.0), ("eps1", 0.2), ("eps2", 0.0), ("eps2", 0.05),
              ("max_hf", 0), ("max_hf", 30)]
-_TOP_LEVEL = ("eps1", "eps2", "max_hf")
+_TOP_LEVEL = ("eps1", "eps2", "max_hf", "max_failures")
 
 
 @pytest.mark.parametrize("key, value", SAME_RULE)

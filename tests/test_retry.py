@@ -210,7 +210,7 @@ def test_cli_study_retry(case, capsys):
     out = folder / "run"
     (folder / "broken.flag").touch()
     argv = [a if a != "8" else "4" for a in argv]
-    assert _run(capsys, *argv, "--out", out, "--max-failures", "5")[0] == 0
+    assert _run(capsys, *argv, "--out", out, "--max-failures", "5")[0] == 3  # finished, 2 failed events left out of the fit
     db = str(out / "study.sqlite")
     assert main(["study", "retry", db, "nope"]) == 2
     assert "event nope was never asked for" in capsys.readouterr().err
