@@ -83,7 +83,9 @@ def _copula_parameters(base: str, c):
     if base == "gaussian":
         return np.array([[0.999 * np.tanh(c[0])]])
     if base == "student":
-        return np.array([[0.999 * np.tanh(c[0])], [2.0 + 48.0 / (1.0 + np.exp(-c[1]))]])
+        with np.errstate(over="ignore"):  # exp(-c) = inf is ν = 2, its bound
+            nu = 2.0 + 48.0 / (1.0 + np.exp(-c[1]))
+        return np.array([[0.999 * np.tanh(c[0])], [nu]])
     if base == "clayton":
         return np.array([[np.clip(np.exp(c[0]), 1e-6, 28.0)]])
     if base == "gumbel":
