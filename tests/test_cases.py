@@ -182,7 +182,9 @@ def _digest(a):
 # lf, hf, t_start, t_end and of seed_no as int64, and repr(truth_mpm).  The float rounding
 # to 9 digits keeps the check independent of last-bit FFT differences between platforms;
 # on the machine that recorded them the raw arrays were also compared bit for bit
-# (identical at scale 0.1 and 1.0).
+# (identical at scale 0.1 and 1.0).  The truth MPM is a fit, whose optimiser amplifies
+# last-bit differences of libm/BLAS: 3b gave 5336.852321456016 on another machine, 1.6e-9
+# relative off, so it is compared to TRUTH_RTOL (issue 25).
 HARD_REFERENCE = {
     "3a": (1824, "98571e8aa27ef7ff", "ee6a29d9b9d6eeb4", "02fdbeae46c56a23", "40ab1c8dabaca156",
            "422cd57ee7ce77c7", 1964.52241391635),
@@ -195,6 +197,9 @@ HARD_REFERENCE = {
 }
 
 
+TRUTH_RTOL = 1e-7
+
+
 @pytest.mark.parametrize("case", sorted(HARD_REFERENCE))
 def test_hard_variants_reproduce_the_first_release(small, case):
     d = small[f"{case}-hard"]
@@ -202,7 +207,7 @@ def test_hard_variants_reproduce_the_first_release(small, case):
     assert d.scale == 0.1 and d.seed == 0 and d.lf.size == n
     assert (_digest(d.lf), _digest(d.hf), _digest(d.t_start), _digest(d.t_end)) == (lf, hf, t0, t1)
     assert _digest(d.seed_no.astype(np.int64)) == seeds
-    assert d.truth_mpm == pytest.approx(truth, rel=1e-9)
+    assert d.truth_mpm == pytest.approx(truth, rel=TRUTH_RTOL)
     assert d.ids[0].startswith(f"{case}-hard-s000-w")  # documented: the ids carry the new id
 
 
