@@ -45,6 +45,7 @@ def test_registry_has_both_impact_sets():
             (paper.n_waves, paper.p_exp, paper.threshold, paper.eps1, paper.paper_truth)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("case", CASE_IDS)
 def test_case_shapes_ids_and_truth(small, case):
     d = small[case]
@@ -62,6 +63,7 @@ def test_case_shapes_ids_and_truth(small, case):
         assert min(lo, hi) - 1e-9 <= d.truth_mpm <= max(lo, hi) + 1e-9
 
 
+@pytest.mark.slow
 def test_oracle_reveals_the_table(small):
     d = small["2a"]
     oracle = d.oracle()
@@ -70,6 +72,7 @@ def test_oracle_reveals_the_table(small):
     assert d.meta()[7]["seed"] == d.seed_no[7]
 
 
+@pytest.mark.slow
 def test_case1_physics(small):
     d = small["1a"]
     assert d.tau > 0.9  # paper Fig. 16 / SPEC §8: ~0.95
@@ -82,6 +85,7 @@ def test_case1_physics(small):
     assert abs(small["1b"].truth_mpm - d.truth_mpm) < 0.05 * d.truth_mpm
 
 
+@pytest.mark.slow
 def test_case2_hog_sag_asymmetry(small):
     # VERSION 3 (issue 11): the midbody side-flare term outweighs the bow flare, so the
     # non-linear hogging peaks grow and the sagging peaks shrink: the paper's order hog > sag
@@ -91,6 +95,7 @@ def test_case2_hog_sag_asymmetry(small):
     assert hog.truth_mpm > sag.truth_mpm
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("case, rate", [("3a", 0.03), ("3b", 0.08), ("3a-hard", 0.03),
                                         ("3b-hard", 0.08)])
 def test_green_water_false_positives_and_rate(small, case, rate):
@@ -103,6 +108,7 @@ def test_green_water_false_positives_and_rate(small, case, rate):
     assert np.all((d.hf == 0) | (d.hf >= 100.0))  # 100 kN noise threshold
 
 
+@pytest.mark.slow
 def test_slamming_outliers(small):
     d = small["4a-hard"]
     pos = d.hf > 0
@@ -114,6 +120,7 @@ def test_slamming_outliers(small):
     assert np.argmax(d.hf) != np.argmax(d.lf)
 
 
+@pytest.mark.slow
 def test_cache_roundtrip(small, cache):
     d = small["3a"]
     file = cache_path("3a", 0, d.scale, cache)
@@ -151,6 +158,7 @@ def test_bad_scale():
         build_case("1a", scale=0.01)
 
 
+@pytest.mark.slow
 def test_cli_reproduce_writes_table_and_figures(tmp_path, monkeypatch, cache, capsys):
     monkeypatch.setenv("PAS_CACHE", str(cache))
     out = tmp_path / "out"
@@ -200,6 +208,7 @@ HARD_REFERENCE = {
 TRUTH_RTOL = 1e-7
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("case", sorted(HARD_REFERENCE))
 def test_hard_variants_reproduce_the_first_release(small, case):
     d = small[f"{case}-hard"]
@@ -211,6 +220,7 @@ def test_hard_variants_reproduce_the_first_release(small, case):
     assert d.ids[0].startswith(f"{case}-hard-s000-w")  # documented: the ids carry the new id
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("case", ["3a", "3b", "4a", "4b"])
 def test_paper_like_and_hard_share_waves_and_lf(small, case):
     new, hard = small[case], small[f"{case}-hard"]
@@ -221,6 +231,7 @@ def test_paper_like_and_hard_share_waves_and_lf(small, case):
 
 # -- paper-like impact cases -------------------------------------------------------------------
 
+@pytest.mark.slow
 @pytest.mark.parametrize("case", ["3a", "3b"])
 def test_green_water_misses_spread_over_the_lf_range(small, case):
     # Misses (HF = 0 over the 12 m threshold) in every LF tercile, including the top one: a
@@ -277,6 +288,7 @@ def test_slamming_load_of_an_episode_uses_the_panel_level_speed():
         slamming_load(r, 0.0)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("case", ["3a", "4a"])
 def test_episode_functions_reproduce_generated_events(small, case):
     # The per-episode HF functions (for design waves, issue 12) give the generator's HF of an

@@ -50,6 +50,7 @@ def test_help_and_study_tell_import_nothing_heavy(tmp_path):
                    f"'{ev.id}', '2.5']) == 0") == "[]"
 
 
+@pytest.mark.slow
 def test_lazy_package_keeps_its_public_names():
     code = ("import pas\nnames = [n for n in pas.__all__ if getattr(pas, n) is None]\n"
             "from pas import *\nassert callable(run_pas) and callable(pas.metrics)\n"
