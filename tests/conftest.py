@@ -10,14 +10,10 @@ import pytest
 import pyvinecopulib as pv
 from scipy import stats
 
-# Doctests cannot carry a marker.  These examples run a whole PAS study (and draw it), so
-# the fast path (``pytest -m "not slow"``) leaves them out; their functions keep fast tests
-# in tests/.  tests/test_markers.py checks each name still has an example.
-SLOW_DOCTESTS = frozenset({
-    "pas.api.run_pas",
-    "pas.plotting.distributions.plot_distribution",
-    "pas.plotting.convergence.plot_mpm_convergence",
-})
+# Doctests cannot carry a marker.  These examples run a PAS study with its bootstrap band
+# (about 10 s), so the fast path (``pytest -m "not slow"``) leaves them out; their functions
+# keep fast tests in tests/.  tests/test_markers.py checks each name still has an example.
+SLOW_DOCTESTS = frozenset({"pas.api.run_pas"})
 
 
 def pytest_collection_modifyitems(config, items):
