@@ -10,6 +10,7 @@ import sys
 from pathlib import Path
 
 import numpy as np
+import pytest
 
 import pas
 from pas.cli.run import STRATEGY_NAMES
