@@ -342,3 +342,24 @@ def test_green_water_dependence_is_lower_tail_dominant_unlike_the_hard_variant()
     new, hard = build_case("3b", scale=0.3), build_case("3b-hard", scale=0.3)
     assert new.lambda_l >= new.lambda_u
     assert (new.lambda_l - new.lambda_u) - (hard.lambda_l - hard.lambda_u) > 0.3
+
+
+def test_reproduce_of_one_small_case_writes_a_table_that_agrees_with_its_runs(tmp_path):
+    # the fast counterpart of the CLI test above: AS on 2b at scale 0.05 (about 1 s)
+    from pas.validation.reproduce import format_table, parse_strategies, reproduce
+
+    out = reproduce(["2b"], scale=0.05, strategies=["as"], out=tmp_path, cache=False)
+    for name in ("table.csv", "runs.csv", "properties.csv", "case_2b.png", "metrics.png"):
+        assert (tmp_path / name).stat().st_size > 0, name
+    assert sorted(p.name for p in out["files"]) == sorted(p.name for p in tmp_path.iterdir())
+    (run,), (row,) = out["runs"].to_dict("records"), out["table"].to_dict("records")
+    data, spec = out["data"]["2b"], get_case("2b")
+    assert (row["case"], row["strategy"], row["replications"]) == ("2b", "AS", 1)
+    assert row["predicted_mpm"] == run["mpm"] and row["hf_samples"] == run["n_hf"]
+    assert run["M1"] == pytest.approx(run["n_hf"] / data.n_waves, rel=1e-12)
+    assert row["truth_vs_paper"] == pytest.approx(data.truth_mpm / spec.paper_truth - 1, rel=1e-12)
+    assert row["paper_mpm"] == spec.paper_as and row["converged"] in ("0/1", "1/1")
+    text = format_table(out["table"])
+    assert "2b" in text and "AS" in text and f"{100 * row['M2']:+.2f}%" in text
+    with pytest.raises(ValueError, match="strategies: unknown form"):
+        parse_strategies("as,form")
