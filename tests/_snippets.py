@@ -52,3 +52,46 @@ def code_blocks(path, heading: str, lang: str | None = None) -> list[str]:
     if not blocks:
         raise LookupError(f"no {lang or ''} code block under {heading!r} in {path}")
     return blocks
+
+
+_NOT_RUN = re.compile(r"^<!--\s*not run:(.*?)-->\s*$")
+
+
+def page_blocks(path, lang: str | None = None) -> list[dict]:
+    """Every fenced code block of a page, in order (only ``lang`` ones if given).
+
+    Each is a dict with ``code``, ``lang``, ``line`` (1-based line of the
+    opening fence) and ``not_run``: the reason given in an HTML comment
+    ``<!-- not run: REASON -->`` on the line just before the fence (blank
+    lines between them allowed), else None.  A marker without a reason, or
+    one that is not followed by a code block, is a ValueError.
+    """
+    lines = (ROOT / path).read_text(encoding="utf-8").splitlines()
+    blocks, current, pending = [], None, None
+    for number, line in enumerate(lines, start=1):
+        fence = _FENCE.match(line)
+        if current is not None:
+            if fence:
+                if lang is None or current["lang"] == lang:
+                    current["code"] = "\n".join(current["code"]) + "\n"
+                    blocks.append(current)
+                current = None
+            else:
+                current["code"].append(line)
+            continue
+        marker = _NOT_RUN.match(line.strip())
+        if marker:
+            if not marker.group(1).strip():
+                raise ValueError(f"{path}:{number}: a 'not run' marker must say why")
+            pending = (number, marker.group(1).strip())
+        elif fence:
+            current = {"code": [], "lang": fence.group(1), "line": number,
+                       "not_run": pending[1] if pending else None}
+            pending = None
+        elif line.strip() and pending:
+            raise ValueError(f"{path}:{pending[0]}: a 'not run' marker must stand just "
+                             "before a code block")
+    if pending:
+        raise ValueError(f"{path}:{pending[0]}: a 'not run' marker must stand just "
+                         "before a code block")
+    return blocks

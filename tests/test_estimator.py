@@ -147,8 +147,8 @@ def test_weibull_mixture_in_the_band_and_a_failed_mixture_fit_keeps_the_weibull(
         kinds.append(model.hf_marginal.name)
         return model
 
-    strategy.fit = spy
-    strategy.model_band(pairs, s, np.random.default_rng(1))
+    strategy.fit = spy  # seen in this process only: n_jobs=1
+    strategy.model_band(pairs, s, np.random.default_rng(1), n_jobs=1)
     assert kinds.count("weibull_mixture") > len(kinds) / 2
     # every mixture fit failing: each family keeps its Weibull, the default's MPM exactly
 
@@ -184,8 +184,8 @@ def test_band_marginals_let_the_bootstrap_choose_or_alternate_the_hf_marginal():
             kinds.append(type(model.hf_marginal).__name__)
             return model
 
-        strategy.fit = spy
-        low, high, replicates = strategy.model_band(pairs, s, np.random.default_rng(1))
+        strategy.fit = spy  # seen in this process only: n_jobs=1
+        low, high, replicates = strategy.model_band(pairs, s, np.random.default_rng(1), n_jobs=1)
         seen[choice] = kinds
         assert low <= np.median(replicates) <= high
     assert set(seen["fitted"]) == {"Weibull3"}

@@ -51,3 +51,17 @@ def test_quantile_exceedance_worked_example():
 def test_bad_n_waves(bad):
     with pytest.raises(ValueError, match="n_waves"):
         exceedance_probabilities([1.0, 2.0], n_waves=bad)
+
+
+def test_the_mpm_from_the_top_order_statistics_is_that_of_the_whole_distribution():
+    from pas.stats.exceedance import mean_top_order_statistics, mpm_of_realisations
+    from pas.strategies.steps import hf_distribution
+
+    rng = np.random.default_rng(3)
+    draws = rng.weibull(1.3, size=(10, 5000)) * np.where(rng.uniform(size=(10, 5000)) < 0.1, 0, 1)
+    for n_waves, p in ((6000, 2.55e-3), (6000, 1e-5), (5200, 0.9), (5000, 1.0)):
+        d, mean, _, _ = hf_distribution(draws, n_waves)
+        whole = value_at_exceedance(d, mean, p)
+        assert mpm_of_realisations(draws, n_waves, p) == pytest.approx(whole, rel=1e-12)
+    np.testing.assert_allclose(mean_top_order_statistics(draws, 40),
+                               hf_distribution(draws, 6000)[1][:40], rtol=1e-12)

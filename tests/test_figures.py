@@ -114,7 +114,8 @@ def test_distribution(problem, result, tmp_path):
     assert ax.get_xscale() == "log" and ax.xaxis_inverted()
     assert ax.get_ylabel() == "HF load [kN]"
     texts = _legend_texts(ax)
-    for needle in ("mean", "U95", "LF indicator", "HF samples", "truth", "P_{exp}", "MPM"):
+    for needle in ("mean", "U95", "LF indicator", "at their LF exceedance", "truth", "P_{exp}",
+                   "MPM"):
         assert any(needle in t for t in texts), needle
     mean_line = ax.get_lines()[0]
     np.testing.assert_allclose(mean_line.get_ydata(), result.distribution["h_mean"])
@@ -213,8 +214,10 @@ def test_metrics(tmp_path):
         assert len(panel.patches) == 6
         heights = sorted(p.get_height() for p in panel.patches)
         assert heights == pytest.approx(sorted(100 * table[metric]))
-        assert {t.get_text() for t in panel.get_legend().get_texts()} == {"PAS", "AS"}
     assert [t.get_text() for t in axes[-1].get_xticklabels()] == ["1a", "2a", "3a"]
+    # one legend for the three panels, under the last one
+    assert {t.get_text() for t in axes[-1].get_legend().get_texts()} == {"PAS", "AS"}
+    assert axes[0].get_legend() is None and axes[1].get_legend() is None
 
     fig, ax = plt.subplots()
     plot_metrics(table.drop(columns="strategy").iloc[::2], ax=ax)
@@ -278,8 +281,8 @@ def test_aic_says_why_the_lowest_aic_was_not_selected(result):
         other = "student" if hist.at[r, "family"] != "student" else "gaussian"
         hist.at[r, f"aic_{other}"] = hist.loc[r, [c for c in hist if c.startswith("aic_")]].min() - 1
         hist.at[r, "ineligible"] = other if k < 2 else ""
-    fig, (top, _) = plot_aic(dataclasses.replace(result, history=hist))
-    texts = _legend_texts(top)
+    fig, (top, bottom) = plot_aic(dataclasses.replace(result, history=hist))
+    texts = _legend_texts(bottom)  # one legend, under the lower panel
     assert "lowest AIC, not selected: parameter at its bound (not eligible) ×2" in texts
     hysteresis = [t for t in texts if "less than ΔAIC below the current family" in t]
     assert len(hysteresis) == 1 and int(hysteresis[0].rsplit("×", 1)[1]) >= 2

@@ -72,10 +72,12 @@ def test_campaign_through_the_cli(tmp_path, capsys):
     assert cli("study", "status", db, "--json") == 0
     status = json.loads(capsys.readouterr().out)
     assert (status["n_hf"], status["n_failed"], status["n_pending"]) == (13, 1, 0)
+    assert status["n_evaluated"] == 14 and status["n_loads"] + status["n_no_impact"] == 13
     assert status["mpm"] > 0 and status["results_not_yet_used"] == 1
     assert cli("study", "status", db) == 0
     text = capsys.readouterr().out
-    assert "MPM so far" in text and "HF evaluations 13" in text
+    assert "MPM so far" in text and "14 evaluated: " in text
+    assert "1 failed (left out of the fit)" in text
     with StudyStore(db, create=False) as store:
         ev = store.events()
         assert (ev["source"] == "cli").all() and (ev["attempts"] == 1).all()
@@ -207,7 +209,7 @@ def test_study_run_with_command_oracle_survives_sigkill(tmp_path, capsys):
     proc.stdout.close()
     capsys.readouterr()
     assert cli("study", "run", db) == 0
-    assert "14 HF evaluations" in capsys.readouterr().out
+    assert "14 evaluated: " in capsys.readouterr().out
     with StudyStore(db, create=False) as store:
         ev = store.events()
     done = Counter(log.read_text().split())

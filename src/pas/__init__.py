@@ -27,14 +27,14 @@ _EXPORTS = {
     "AS": "strategies.as_", "PAS": "strategies.pas",
     "CommandOracle": "study.oracles", "OracleFailureLimit": "study.oracles",
     "TableOracle": "study.oracles", "ScreeningResult": "study.result", "Study": "study.study",
-    "StudyStore": "study.store",
+    "StudyStore": "study.store", "refit": "study.refit",
 }
 
 __all__ = [
     "run_pas", "make_study", "Study", "ScreeningResult", "OracleFailureLimit", "Event", "LFSet",
     "PAS", "m1", "m2", "m3", "metrics", "p_exp_from_duration", "n_waves_from_duration",
     "mean_period_from_peak_period", "encounter_period", "quantile_exceedance", "__version__",
-    "run_as", "AS", "StudyStore", "TableOracle", "CommandOracle", "run_rcw",
+    "run_as", "AS", "StudyStore", "TableOracle", "CommandOracle", "run_rcw", "refit",
 ]
 
 

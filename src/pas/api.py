@@ -8,6 +8,7 @@ from .screening import check_n_waves
 from .strategies.as_ import AS
 from .strategies.pas import PAS
 from .study.factory import DEFAULT_MAX_HF, apply_preset, split_settings
+from .study.oracles import check_oracle
 from .study.result import ScreeningResult
 from .study.study import Study
 
@@ -43,7 +44,8 @@ def make_study(strategy, lf_peaks, *, n_waves, p_exp, eps1, eps2=0.1, threshold=
         Strategy settings (checked against the strategy's constructor;
         unknown names raise ``ValueError``) and study settings (``k1``,
         ``k2``, ``max_failures``, ``stop_on_convergence``,
-        ``adaptive_threshold``, ``threshold_step``, ``fp_run``).
+        ``adaptive_threshold``, ``threshold_step``, ``fp_run``, ``target``: the load to
+        screen on when the oracle answers several, see :func:`run_pas`).
 
     Returns
     -------
@@ -67,7 +69,7 @@ def make_study(strategy, lf_peaks, *, n_waves, p_exp, eps1, eps2=0.1, threshold=
 def run_pas(lf_peaks, oracle, *, n_waves, p_exp, eps1, eps2=0.1, threshold=None, seed=None,
             max_hf="default", ids=None, meta=None, batch_size=1, callback=None, study=None,
             pending="resubmit", executor=None, n_workers=None, n_waves_convention="count",
-            preset=None,
+            preset=None, retry_failed=False,
             **settings) -> ScreeningResult:
     """Predict the MPM of an HF load with Probabilistic Adaptive Screening.
 
@@ -80,6 +82,7 @@ def run_pas(lf_peaks, oracle, *, n_waves, p_exp, eps1, eps2=0.1, threshold=None,
         :class:`~pas.screening.Event` with ``index``, ``id``, ``lf``, ``d``,
         ``meta``); 0.0 means no impact (a false positive).  An exception, NaN,
         inf or a negative value is recorded as a failure, never taken as 0.
+        Or ``-> {name: float}``, several loads of one HF run, with ``target``.
     n_waves : int
         Number of wave encounters ``n_w`` in the LF Monte-Carlo duration.
     p_exp : float
@@ -117,6 +120,10 @@ def run_pas(lf_peaks, oracle, *, n_waves, p_exp, eps1, eps2=0.1, threshold=None,
     pending : {"resubmit", "wait"}, default "resubmit"
         Events a killed run left without a result: run them again, or leave
         them for ``pas study tell``.
+    retry_failed : bool, default False
+        With ``study``: run the failed events of the stored study again (after
+        fixing their cause), so it continues as if they had not failed
+        (:meth:`Study.retry_failed <pas.study.study.Study.retry_failed>`).
     executor : concurrent.futures.Executor, optional
         Runs the oracle calls of a batch concurrently (e.g.
         ``distributed.Client(...).get_executor()``); results are stored as
@@ -145,7 +152,10 @@ def run_pas(lf_peaks, oracle, *, n_waves, p_exp, eps1, eps2=0.1, threshold=None,
         ``band_lf_ranks``, ``lf_tail``)
         and study settings (``k1``, ``k2``,
         ``max_failures``, ``stop_on_convergence``, ``adaptive_threshold``,
-        ``threshold_step``, ``fp_run``: :class:`~pas.study.study.Study`).
+        ``threshold_step``, ``fp_run``: :class:`~pas.study.study.Study`), and
+        ``target``: with an oracle answering several named loads ``{name:
+        load}``, the one to screen on (the store keeps all; :func:`pas.refit`
+        analyses another on the same events).
 
     Returns
     -------
@@ -167,18 +177,19 @@ def run_pas(lf_peaks, oracle, *, n_waves, p_exp, eps1, eps2=0.1, threshold=None,
     >>> bool(res.converged), res.n_hf < 60
     (True, True)
     """
+    check_oracle(oracle)  # before a study store is written
     built = make_study(PAS, lf_peaks, n_waves=n_waves, p_exp=p_exp, eps1=eps1, eps2=eps2,
                        threshold=threshold, seed=seed, max_hf=max_hf, ids=ids, meta=meta,
-                       store=study, n_waves_convention=n_waves_convention, preset=preset,
-                       **settings)
-    return built.optimize(oracle, batch_size=batch_size, callback=callback, executor=executor,
-                          n_workers=n_workers, pending=pending)
+                       store=_store_for_retry(study, retry_failed),
+                       n_waves_convention=n_waves_convention, preset=preset, **settings)
+    return _optimize(built, oracle, retry_failed, batch_size=batch_size, callback=callback,
+                     executor=executor, n_workers=n_workers, pending=pending)
 
 
 def run_as(lf_peaks, oracle, *, n_waves, p_exp, eps1, eps2=0.1, threshold=None, seed=None,
            max_hf="default", ids=None, meta=None, batch_size=1, callback=None, study=None,
            pending="resubmit", executor=None, n_workers=None, n_waves_convention="count",
-           **settings) -> ScreeningResult:
+           retry_failed=False, **settings) -> ScreeningResult:
     """Predict the MPM of an HF load with Adaptive Screening (paper App. A), the GPR reference.
 
     Runs :class:`~pas.strategies.as_.AS` in the same study loop as
@@ -233,6 +244,10 @@ def run_as(lf_peaks, oracle, *, n_waves, p_exp, eps1, eps2=0.1, threshold=None, 
     pending : {"resubmit", "wait"}, default "resubmit"
         Events a killed run left without a result: run them again, or leave
         them for ``pas study tell``.
+    retry_failed : bool, default False
+        With ``study``: run the failed events of the stored study again (after
+        fixing their cause), so it continues as if they had not failed
+        (:meth:`Study.retry_failed <pas.study.study.Study.retry_failed>`).
     executor : concurrent.futures.Executor, optional
         Runs the oracle calls of a batch concurrently (e.g.
         ``distributed.Client(...).get_executor()``); results are stored as
@@ -274,8 +289,24 @@ def run_as(lf_peaks, oracle, *, n_waves, p_exp, eps1, eps2=0.1, threshold=None, 
     >>> res.strategy, bool(res.converged)
     ('as', True)
     """
+    check_oracle(oracle)  # before a study store is written
     built = make_study(AS, lf_peaks, n_waves=n_waves, p_exp=p_exp, eps1=eps1, eps2=eps2,
                        threshold=threshold, seed=seed, max_hf=max_hf, ids=ids, meta=meta,
-                       store=study, n_waves_convention=n_waves_convention, **settings)
-    return built.optimize(oracle, batch_size=batch_size, callback=callback, executor=executor,
-                          n_workers=n_workers, pending=pending)
+                       store=_store_for_retry(study, retry_failed),
+                       n_waves_convention=n_waves_convention, **settings)
+    return _optimize(built, oracle, retry_failed, batch_size=batch_size, callback=callback,
+                     executor=executor, n_workers=n_workers, pending=pending)
+
+
+def _store_for_retry(study, retry_failed):
+    """``study`` (the store), checked to be there when ``retry_failed`` asks for one."""
+    if retry_failed and study is None:
+        raise ValueError("retry_failed=True needs study=... (the study store of the run whose "
+                         "failed events should run again)")
+    return study
+
+
+def _optimize(built, oracle, retry_failed, **loop_kw) -> ScreeningResult:
+    if retry_failed:
+        built.retry_failed()
+    return built.optimize(oracle, **loop_kw)

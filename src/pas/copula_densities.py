@@ -3,13 +3,15 @@
 The joint fit of :mod:`pas.joint` evaluates these hundreds of times per PAS
 iteration on ≤ 160 pairs, where building a pyvinecopulib object per call
 costs more than the formulas; the derivatives give the optimiser exact
-gradients.  Unrotated families of App. B.2: Gaussian (ρ), Student-t (ρ, ν;
-value only), Clayton, Gumbel and Frank (θ).  Tested against
+gradients.  Unrotated families of App. B.2: Gaussian (ρ), Student-t (ρ, ν),
+Clayton, Gumbel and Frank (θ).  Tested against
 ``pyvinecopulib.Bicop.pdf``/``hfunc1`` and against finite differences.
 
 ``logc_grad(base, p, u, v)`` returns ``(log c, ∂/∂v, ∂/∂p)`` and
 ``logh_grad(base, p, u, v)`` the same for ``log C_{V|U}(v | u)``; the
-derivative in ``p`` is for the one parameter of the family (not Student-t).
+derivative in ``p`` is for the first parameter of the family (Student-t: ρ;
+its ν moves the t quantiles ``t_ν⁻¹(u)``, which have no closed-form
+derivative in ν: :mod:`pas.joint` takes that one by a difference).
 """
 
 from __future__ import annotations
@@ -19,31 +21,60 @@ from scipy import special
 
 __all__ = ["copula_logpdf", "copula_loghfunc", "logc_grad", "logh_grad", "GRADIENT_FAMILIES"]
 
-GRADIENT_FAMILIES = ("gaussian", "clayton", "gumbel", "frank")
-"""Families with analytic derivatives (one parameter each)."""
+GRADIENT_FAMILIES = ("gaussian", "student", "clayton", "gumbel", "frank")
+"""Families with analytic derivatives in ``v`` and their first parameter."""
 
 
 def copula_logpdf(base: str, p, u, v) -> np.ndarray:
     """``log c(u, v)`` of an unrotated family with parameters ``p``, vectorised."""
-    if base == "student":
-        rho, nu = p
-        x, y = special.stdtrit(nu, u), special.stdtrit(nu, v)
-        r2 = 1.0 - rho * rho
-        const = (special.gammaln((nu + 2) / 2) + special.gammaln(nu / 2)
-                 - 2.0 * special.gammaln((nu + 1) / 2) - 0.5 * np.log(r2))
-        return (const - (nu + 2) / 2 * np.log1p((x * x + y * y - 2 * rho * x * y) / (nu * r2))
-                + (nu + 1) / 2 * (np.log1p(x * x / nu) + np.log1p(y * y / nu)))
     return logc_grad(base, p, u, v, grad=False)[0]
 
 
 def copula_loghfunc(base: str, p, u, v) -> np.ndarray:
     """``log C_{V|U}(v | u)`` (the h-function, ``∂C/∂u``) of an unrotated family, vectorised."""
-    if base == "student":
-        rho, nu = p
-        x, y = special.stdtrit(nu, u), special.stdtrit(nu, v)
-        z = (y - rho * x) / np.sqrt((nu + x * x) * (1.0 - rho * rho) / (nu + 1.0))
-        return np.log(special.stdtr(nu + 1.0, z))
     return logh_grad(base, p, u, v, grad=False)[0]
+
+
+def _log_t_pdf(y, nu):
+    """``log f_ν(y)``, the Student-t density."""
+    return (special.gammaln((nu + 1) / 2) - special.gammaln(nu / 2) - 0.5 * np.log(nu * np.pi)
+            - (nu + 1) / 2 * np.log1p(y * y / nu))
+
+
+def _student_logc(p, u, v, grad: bool):
+    """Student-t ``(log c, ∂/∂v, ∂/∂ρ)`` with ``x = t_ν⁻¹(u)``, ``y = t_ν⁻¹(v)``."""
+    rho, nu = p
+    x, y = special.stdtrit(nu, u), special.stdtrit(nu, v)
+    r2 = 1.0 - rho * rho
+    q = x * x + y * y - 2 * rho * x * y
+    const = (special.gammaln((nu + 2) / 2) + special.gammaln(nu / 2)
+             - 2.0 * special.gammaln((nu + 1) / 2) - 0.5 * np.log(r2))
+    val = (const - (nu + 2) / 2 * np.log1p(q / (nu * r2))
+           + (nu + 1) / 2 * (np.log1p(x * x / nu) + np.log1p(y * y / nu)))
+    if not grad:
+        return val, None, None
+    den = nu * r2 + q
+    d_y = -(nu + 2) * (y - rho * x) / den + (nu + 1) * y / (nu + y * y)
+    dv = d_y * np.exp(-_log_t_pdf(y, nu))  # dy/dv = 1 / f_ν(y)
+    drho = rho / r2 + (nu + 2) * ((nu * rho + x * y) / den - rho / r2)
+    return val, dv, drho
+
+
+def _student_logh(p, u, v, grad: bool):
+    """Student-t ``(log h, ∂/∂v, ∂/∂ρ)``: ``h = T_{ν+1}((y − ρx) / s)``,
+    ``s² = (ν + x²)(1 − ρ²)/(ν + 1)``."""
+    rho, nu = p
+    x, y = special.stdtrit(nu, u), special.stdtrit(nu, v)
+    r2 = 1.0 - rho * rho
+    s = np.sqrt((nu + x * x) * r2 / (nu + 1.0))
+    z = (y - rho * x) / s
+    val = np.log(special.stdtr(nu + 1.0, z))
+    if not grad:
+        return val, None, None
+    ratio = np.exp(_log_t_pdf(z, nu + 1.0) - val)  # f_{ν+1}(z) / T_{ν+1}(z)
+    dv = ratio / s * np.exp(-_log_t_pdf(y, nu))
+    drho = ratio * (-x / s + z * rho / r2)
+    return val, dv, drho
 
 
 def _frank_den(th, u, v):
@@ -81,6 +112,8 @@ def _gumbel_slope(th, la, lb, ls, big):
 
 def logc_grad(base: str, p, u, v, *, grad: bool = True):
     """``(log c, ∂ log c/∂v, ∂ log c/∂θ)`` (derivatives None when ``grad`` is False)."""
+    if base == "student":
+        return _student_logc(p, u, v, grad)
     th = p[0]
     if base == "gaussian":
         x, y = special.ndtri(u), special.ndtri(v)
@@ -129,6 +162,8 @@ def logc_grad(base: str, p, u, v, *, grad: bool = True):
 
 def logh_grad(base: str, p, u, v, *, grad: bool = True):
     """``(log h, ∂ log h/∂v, ∂ log h/∂θ)`` of ``h = C_{V|U}(v | u)``."""
+    if base == "student":
+        return _student_logh(p, u, v, grad)
     th = p[0]
     if base == "gaussian":
         x, y = special.ndtri(u), special.ndtri(v)

@@ -204,7 +204,7 @@ def select_family(fits: dict[str, CopulaFit], current: str | None = None, *,
     return current
 
 
-def conditional_quantile(fit: CopulaFit | pv.Bicop, u, r) -> np.ndarray:
+def conditional_quantile(fit: CopulaFit | pv.Bicop, u, r, *, r_scores=None) -> np.ndarray:
     """``v = C⁻¹_{V|U}(r | u)``, the conditional inverse of Eq. 7, vectorised.
 
     ``u`` and ``r`` broadcast against each other (pass ``u`` of shape
@@ -212,30 +212,33 @@ def conditional_quantile(fit: CopulaFit | pv.Bicop, u, r) -> np.ndarray:
     computed once per conditioning peak).  Closed forms for Gaussian,
     Student-t, Clayton, Frank and Gumbel (the latter through the Wright
     omega function) and their 180° rotations; pyvinecopulib's ``hinv1``
-    otherwise.
+    otherwise.  ``r_scores``: ``Φ⁻¹(r)`` when the caller keeps it (common
+    random numbers), read by the Gaussian and Student-t draws.
     """
     bicop = fit.bicop if isinstance(fit, CopulaFit) else fit
     u, r = np.asarray(u, float), np.asarray(r, float)
     fam, rot = bicop.family, int(bicop.rotation)
     p = np.asarray(bicop.parameters, dtype=float).ravel()
     if rot == 180:
-        # survival copula: C̄⁻¹(r | u) = 1 − C⁻¹(1 − r | 1 − u)
+        # survival copula: C̄⁻¹(r | u) = 1 − C⁻¹(1 − r | 1 − u); Φ⁻¹(1 − r) = −Φ⁻¹(r)
         base = pv.Bicop(family=fam, parameters=bicop.parameters, rotation=0)
-        return 1.0 - _hinv1(fam, p, base, 1.0 - u, 1.0 - r)
+        return 1.0 - _hinv1(fam, p, base, 1.0 - u, 1.0 - r,
+                            None if r_scores is None else -r_scores)
     if rot != 0:
         raise ValueError(f"rotation {rot} is not supported for conditional draws")
-    return _hinv1(fam, p, bicop, u, r)
+    return _hinv1(fam, p, bicop, u, r, r_scores)
 
 
-def _hinv1(fam, p, bicop, u, r):
+def _hinv1(fam, p, bicop, u, r, r_scores=None):
     if fam == pv.BicopFamily.gaussian:
         rho = p[0]
-        return special.ndtr(rho * special.ndtri(u) + np.sqrt(1 - rho**2) * special.ndtri(r))
+        scores = special.ndtri(r) if r_scores is None else r_scores
+        return special.ndtr(rho * special.ndtri(u) + np.sqrt(1 - rho**2) * scores)
     if fam == pv.BicopFamily.student:
         rho, nu = p
         x1 = t_quantile(nu, u)
         scale = np.sqrt((nu + x1**2) * (1 - rho**2) / (nu + 1.0))
-        return t_cdf(nu, rho * x1 + scale * t_quantile(nu + 1.0, r))
+        return t_cdf(nu, rho * x1 + scale * t_quantile(nu + 1.0, r, scores=r_scores))
     if fam == pv.BicopFamily.clayton:
         th = p[0]
         if th < 1e-8:
@@ -327,8 +330,10 @@ def _t_cdf_table(nu: float):
     return a[0], h, _hermite_coefficients(z, _t_pdf(np.sinh(a), nu) * np.cosh(a) / _phi(z), h)
 
 
-def t_quantile(nu, p) -> np.ndarray:
+def t_quantile(nu, p, *, scores=None) -> np.ndarray:
     """Student-t quantile ``t_ν⁻¹(p)``, elementwise; scipy's ``stdtrit`` to ~1e-9, faster.
+
+    ``scores``: ``Φ⁻¹(p)`` when the caller has it.
 
     Examples
     --------
@@ -337,7 +342,7 @@ def t_quantile(nu, p) -> np.ndarray:
     >>> bool(np.allclose(t_quantile(3.5, p), special.stdtrit(3.5, p), rtol=1e-8))
     True
     """
-    x = special.ndtri(np.asarray(p, dtype=float))
+    x = special.ndtri(np.asarray(p, dtype=float)) if scores is None else scores
     out = np.asarray(_hermite(x, *_t_quantile_table(float(nu))))
     outside = np.abs(x) > _T_Z
     if outside.any():

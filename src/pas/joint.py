@@ -56,7 +56,7 @@ from .stats.weibull import Weibull3, fit_weibull3_ls
 from .stats.weibull_mixture import WeibullMixture
 
 __all__ = ["JOINT_FAMILIES", "HF_MARGINALS", "JointFit", "censoring_level", "fit_joint",
-           "fit_joint_all", "best_per_family", "location_bounds", "minimise_bounded",
+           "fit_joint_all", "best_per_family", "starts_cold", "location_bounds", "minimise_bounded",
            "joint_fit_result"]
 
 HF_MARGINALS = ("weibull", "lognormal")
@@ -94,8 +94,8 @@ def _copula_parameters(base: str, c):
 
 
 def _parameter_slope(base: str, c) -> float:
-    """``dθ/dc`` of :func:`_copula_parameters` for the one-parameter families."""
-    if base == "gaussian":
+    """``dθ/dc`` of :func:`_copula_parameters` for the first parameter (Student-t: ρ)."""
+    if base in ("gaussian", "student"):
         return 0.999 * (1.0 - np.tanh(c[0]) ** 2)
     if base == "clayton":
         return float(np.exp(c[0])) if 1e-6 < np.exp(c[0]) < 28.0 else 0.0
@@ -192,13 +192,35 @@ def _gradient_terms(base, p, u, v, density):
     return total, d_v, d_p
 
 
+def _copula_sum(base, p, u, v, density) -> float:
+    """``Σ log c`` over the loads with a density and ``Σ log h`` over the censored (no rotation)."""
+    val = np.sum(copula_logpdf(base, p, u[density], v[density]))
+    if not density.all():
+        val += np.sum(copula_loghfunc(base, p, u[~density], v[~density]))
+    return float(val)
+
+
+NU_STEP = 1e-6
+"""Step in Student-t's optimiser value of ν for its one forward difference."""
+
+
 def _loglik_and_copula_gradient(base, c, u, v, log_f, density):
-    """The log-likelihood and the copula part of its gradient, per pair: ``(value, ∂/∂v,
-    ∂/∂parameter)`` (one-parameter families, no rotation; the marginal's chain rule is
-    the caller's)."""
+    """The log-likelihood and the copula part of its gradient: ``(value, ∂/∂v per pair,
+    gradient in the copula's optimiser values c)`` (no rotation; the marginal's chain
+    rule is the caller's).
+
+    Student-t's ν enters through the t quantiles of ``u`` and ``v``, whose
+    derivative in ν has no closed form: its component is a forward difference
+    of the copula terms in ``c[1]`` (the marginal terms do not depend on it).
+    """
     p = _copula_parameters(base, c).ravel()
     total, d_v, d_p = _gradient_terms(base, p, u, v, density)
-    return float(np.sum(np.where(density, log_f + total, total))), d_v, d_p
+    g_c = [np.sum(d_p) * _parameter_slope(base, c)]
+    if base == "student":
+        step = np.array([0.0, NU_STEP])
+        moved = _copula_sum(base, _copula_parameters(base, c + step).ravel(), u, v, density)
+        g_c.append((moved - float(np.sum(total))) / NU_STEP)
+    return float(np.sum(np.where(density, log_f + total, total))), d_v, g_c
 
 
 def _negloglik(base, rotation, u, density, marginal_terms, unpack):
@@ -222,8 +244,8 @@ def joint_objective(name: str, u, h, *, location: bool = True, censor: float = 0
     """The negative log-likelihood of :func:`fit_joint` and how to read its parameters.
 
     Returns ``(negloglik, negloglik_grad, unpack)``: the objective of the
-    optimiser values ``x``; the objective with its exact gradient (None for
-    Student-t and rotated families); and ``x → (θ, α, β, copula values)``
+    optimiser values ``x``; the objective with its gradient (exact, but for
+    Student-t's ν: a difference; None for rotated families); and ``x → (θ, α, β, copula values)``
     (log-normal: ``(θ, μ, σ, copula values)``).
     """
     if marginal not in HF_MARGINALS:
@@ -254,10 +276,10 @@ def joint_objective(name: str, u, h, *, location: bool = True, censor: float = 0
 
     @np.errstate(all="ignore")
     def negloglik_grad(x):
-        """The same with its exact gradient (one-parameter families, no rotation)."""
+        """The same with its gradient (exact but in Student-t's ν; no rotation)."""
         _, _, b, c = unpack(x)
         log_f, v, parts = marginal_terms(x)
-        val, d_v, d_p = _loglik_and_copula_gradient(base, c, u, v, log_f, density)
+        val, d_v, g_c = _loglik_and_copula_gradient(base, c, u, v, log_f, density)
         if not np.isfinite(val):
             return 1e300, np.zeros_like(x)
         dens = density.astype(float)
@@ -273,7 +295,7 @@ def joint_objective(name: str, u, h, *, location: bool = True, censor: float = 0
             g_a = np.sum(dens * b * (zb - 1.0) + d_v * one_v * (-b * zb))
             g_b = np.sum(dens * (1.0 + b * ln_z * (1.0 - zb)) + d_v * one_v * b * zb * ln_z)
             g_t = np.sum(dens * (b * zb - b + 1.0) / w + d_v * one_v * (-b * zb / w))
-        grad = [g_a, g_b, np.sum(d_p) * _parameter_slope(base, c)]
+        grad = [g_a, g_b, *g_c]
         if location:
             grad.insert(0, g_t * (-np.exp(x[0]) * span))
         g = -np.asarray(grad, float)
@@ -396,10 +418,11 @@ def joint_fit_result(name: str, res, c, n_marg: int, hf, marginal: str) -> Joint
 
 def fit_joint_all(u, h, families, *, marginals=("weibull",), starts=None,
                   location: bool = True, censor: float = 0.0,
-                  cold: bool = True) -> dict[tuple[str, str], JointFit]:
+                  cold=True) -> dict[tuple[str, str], JointFit]:
     """:func:`fit_joint` for every copula family and HF marginal, by ``(family, marginal)``.
 
-    ``starts``: earlier fits by the same keys, to warm-start.
+    ``starts``: earlier fits by the same keys, to warm-start; ``cold``: a bool
+    for every family, or the families that also start cold.
     """
     starts = starts or {}
     out = {}
@@ -409,8 +432,13 @@ def fit_joint_all(u, h, families, *, marginals=("weibull",), starts=None,
                 prev = starts.get((name, marginal))
                 out[name, marginal] = fit_joint(name, u, h, location=location, censor=censor,
                                                 start=None if prev is None else prev.x,
-                                                cold=cold, marginal=marginal)
+                                                cold=starts_cold(cold, name), marginal=marginal)
     return out
+
+
+def starts_cold(cold, name: str) -> bool:
+    """Whether family ``name`` also starts cold: ``cold`` is a bool or a collection of names."""
+    return cold if isinstance(cold, bool) else name in cold
 
 
 def best_per_family(fits: dict[tuple[str, str], JointFit], *,

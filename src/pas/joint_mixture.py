@@ -23,13 +23,13 @@ from .joint import (
     JointFit,
     _loglik_and_copula_gradient,
     _negloglik,
-    _parameter_slope,
     _prepare,
     best_per_family,
     fit_joint_all,
     joint_fit_result,
     location_bounds,
     minimise_bounded,
+    starts_cold,
 )
 from .stats.weibull_mixture import (
     LN_SHAPE_BOUNDS,
@@ -87,10 +87,10 @@ def mixture_objective(name: str, u, h, *, location: bool = True, censor: float =
 
     @np.errstate(all="ignore")
     def negloglik_grad(x):
-        """The same with its exact gradient (one-parameter families, no rotation)."""
+        """The same with its gradient (exact but in Student-t's ν; no rotation)."""
         c = unpack(x)[6]
         log_f, v, (w, p, parts, ln_r1, ln_r2) = marginal_terms(x)
-        val, d_v, d_p = _loglik_and_copula_gradient(base, c, u, v, log_f, density)
+        val, d_v, g_c = _loglik_and_copula_gradient(base, c, u, v, log_f, density)
         if not np.isfinite(val):
             return 1e300, np.zeros_like(x)
         dens = density.astype(float)
@@ -110,8 +110,7 @@ def mixture_objective(name: str, u, h, *, location: bool = True, censor: float =
         sig = (p - WEIGHT_LOW) / WEIGHT_SPAN
         dp_dx = WEIGHT_SPAN * sig * (1.0 - sig)
         g_p = np.sum(dens * (resp[0] / p - resp[1] / (1.0 - p)) - d_v * (s1 - s2)) * dp_dx
-        grad = ([g_t * (-np.exp(x[0]) * span)] if location else []) + [g_p] + grad + [
-            np.sum(d_p) * _parameter_slope(base, c)]
+        grad = ([g_t * (-np.exp(x[0]) * span)] if location else []) + [g_p] + grad + g_c
         g = -np.asarray(grad, float)
         return (-val, g) if np.all(np.isfinite(g)) else (1e300, np.zeros_like(x))
 
@@ -158,7 +157,7 @@ def fit_joint_mixture(name: str, u, h, weibull: JointFit, *, start=None, locatio
 
 
 def fit_joint_mixture_all(u, h, weibull_fits: dict, *, starts=None, location: bool = True,
-                          censor: float = 0.0, cold: bool = True) -> dict[tuple[str, str], JointFit]:
+                          censor: float = 0.0, cold=True) -> dict[tuple[str, str], JointFit]:
     """:func:`fit_joint_mixture` for every family of ``weibull_fits`` (keys ``(family, "weibull")``).
 
     A family whose mixture fit fails keeps its Weibull (it gets no mixture entry).
@@ -172,7 +171,8 @@ def fit_joint_mixture_all(u, h, weibull_fits: dict, *, starts=None, location: bo
             prev = starts.get((name, MIXTURE))
             try:
                 out[name, MIXTURE] = fit_joint_mixture(
-                    name, u, h, weibull, location=location, censor=censor, cold=cold,
+                    name, u, h, weibull, location=location, censor=censor,
+                    cold=starts_cold(cold, name),
                     start=None if prev is None else prev.x)
             except ValueError:
                 continue
@@ -180,14 +180,15 @@ def fit_joint_mixture_all(u, h, weibull_fits: dict, *, starts=None, location: bo
 
 
 def fit_hf_candidates(u, h, families, choice: str, *, starts=None, location: bool = True,
-                      censor: float = 0.0, cold: bool = True):
+                      censor: float = 0.0, cold=True):
     """The joint fits an ``hf_marginal`` choice asks for, and per family the one kept.
 
     ``choice``: one marginal of :data:`pas.joint.HF_MARGINALS`; ``"both"`` (the
     Weibull and the log-normal, the higher likelihood kept); :data:`MIXTURE`
     (the Weibull and the mixture); or ``"all"`` (the three).  With the mixture,
     which has three parameters more, the lower AIC is kept.
-    ``censor`` goes to every fit (:func:`pas.joint.fit_joint`).
+    ``censor`` and ``cold`` (a bool, or the families that also start cold) go
+    to every fit (:func:`pas.joint.fit_joint`).
     Returns ``(every fit by (family, marginal), the kept fit by family)``.
     """
     marginals = {"both": HF_MARGINALS, MIXTURE: ("weibull",),

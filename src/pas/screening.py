@@ -104,6 +104,7 @@ LF run (at least 2), or convention='spectral' when n_w = T_MCS/T_p,e on purpose 
                               N_WAVES_CONVENTIONS)
     n_waves = check_positive_int(n_waves, "n_waves")
     lf = check_peaks(lf_peaks, "lf_peaks")
+    threshold = None if threshold is None else check_finite(threshold, "threshold")
     if convention == "spectral":
         return None
     n_over = int(peaks_over_threshold(lf, threshold).sum())
@@ -156,10 +157,13 @@ class LFSet:
         if meta is not None and len(meta) != lf_all.size:
             raise ValueError(f"meta has {len(meta)} entries but lf_peaks has {lf_all.size}")
         keep = np.flatnonzero(peaks_over_threshold(lf_all, self.threshold))
+        if keep.size < min_peaks and self.threshold is None:
+            raise ValueError(f"lf_peaks: only {keep.size} LF peak(s) given; the screening "
+                             f"needs at least {min_peaks}")
         if keep.size < min_peaks:
             raise ValueError(
                 f"threshold: only {keep.size} LF peak(s) lie above threshold={threshold}; "
-                f"the screening needs at least {min_peaks}"
+                f"the screening needs at least {min_peaks}: lower the threshold"
             )
         order = keep[np.argsort(-lf_all[keep], kind="stable")]
         self.index = order

@@ -7,11 +7,12 @@
                 --encounter-period T] [--limit P] [--out DIR]
 
 The table has one row per impact, or one per wave encounter with load 0 for
-none (then ``--n-encounters`` defaults to the number of rows). Prints the impact
+none (then ``--n-encounters`` defaults to the number of rows); a ``seed``
+column, when there is one, keeps gaps from spanning two runs. Prints the impact
 probability per encounter with its interval, the inter-arrival test before and
 after declustering, the ranked peak-load distributions and the exposure
 probability of the best fit (:mod:`pas.stats.impacts`, :mod:`pas.stats.load_fits`).
-``--out`` writes the tables as CSV and the four figures as PNG.
+``--out`` writes the tables as CSV and the figures (inter-arrival times, Q–Q, exposure) as PNG.
 """
 
 from __future__ import annotations
@@ -31,14 +32,16 @@ examples:
 
 
 def add_parser(sub):
+    from . import plain_text
+
     p = sub.add_parser("impacts", help="impact rates, clustering, load distributions, exposure",
-                       description=__doc__.split("::")[0].strip(), epilog=EPILOG,
+                       description=plain_text(__doc__), epilog=EPILOG,
                        formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("events", help="CSV with one row per impact or per wave encounter")
     p.add_argument("--load", default="load", help="peak-load column (default: load)")
     p.add_argument("--time", default="t", help="impact time column, s (default: t)")
-    p.add_argument("--seed", default="seed",
-                   help="seed/run column; 'none' for one continuous record (default: seed)")
+    p.add_argument("--seed", help="seed/run column; 'none' for one continuous record "
+                                  "(default: 'seed' if the table has it, else none)")
     p.add_argument("--n-encounters", type=float,
                    help="wave encounters in the record (default: rows of the table)")
     p.add_argument("--t-min", type=float,
@@ -65,6 +68,36 @@ def _exposure_encounters(args):
     return None
 
 
+def _read_events(path, pd):
+    """The EVENTS table, or a one-line error naming the file."""
+    try:
+        events = pd.read_csv(path)
+    except (pd.errors.EmptyDataError, pd.errors.ParserError, UnicodeDecodeError) as exc:
+        raise ValueError(f"EVENTS {path}: not a readable CSV table ({exc})".splitlines()[0]
+                         ) from None
+    if events.empty:
+        raise ValueError(f"EVENTS {path} has a header but no rows")
+    return events
+
+
+def _need_column(events, column, option, path) -> None:
+    if column not in events.columns:
+        raise ValueError(f"{option}: column {column!r} not found in {path.name}; the table has "
+                         f"{list(events.columns)}")
+
+
+def _seed_column(events, seed, path):
+    """``--seed``: its column, None for one continuous record; by default 'seed' if present."""
+    if seed is None:
+        return "seed" if "seed" in events.columns else None
+    if str(seed).lower() == "none":
+        return None
+    if seed not in events.columns:
+        raise ValueError(f"--seed: column {seed!r} not found in {path.name}; the table has "
+                         f"{list(events.columns)} (--seed none: one continuous record)")
+    return seed
+
+
 def run(args) -> int:
     import numpy as np
     import pandas as pd
@@ -75,8 +108,10 @@ def run(args) -> int:
     path = Path(args.events)
     if not path.exists():
         raise FileNotFoundError(f"EVENTS {path} does not exist")
-    events = pd.read_csv(path)
-    seed = None if str(args.seed).lower() == "none" else args.seed
+    events = _read_events(path, pd)
+    _need_column(events, args.load, "--load", path)
+    _need_column(events, args.time, "--time", path)
+    seed = _seed_column(events, args.seed, path)
     n_w = args.n_encounters if args.n_encounters is not None else len(events)
     rates = imp.impact_rates(events, n_w, value=args.load, levels=args.levels)
     print(f"{path.name}: {int(rates.loc['impact', 'n_events'])} impacts in {int(n_w)} encounters")

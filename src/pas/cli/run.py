@@ -12,7 +12,9 @@ file (a 1-D array, or a structured array with named columns).  The oracle
 ``table:FILE[:ID_COLUMN:VALUE_COLUMN]``
     HF results looked up by event id in a CSV/Parquet table (basin tests, a
     finished HF Monte-Carlo): :class:`pas.study.oracles.TableOracle`;
-    columns default to ``id`` and ``hf``.
+    columns default to ``id`` and ``hf``.  Several value columns,
+    ``table:FILE:ID:COL1,COL2``, answer one named load per column: screen
+    on one with ``--target COL1`` (the store keeps all; ``pas study refit``).
 ``python:MODULE:FUNCTION``
     A Python function ``f(event) -> float``; ``MODULE`` is an importable
     module name or a path to a ``.py`` file.
@@ -21,7 +23,12 @@ file (a 1-D array, or a structured array with named columns).  The oracle
     like a shell would split it but never run through a shell:
     :class:`pas.study.oracles.CommandOracle` with placeholders ``{id}``,
     ``{index}``, ``{lf}``, ``{d}``, ``{workdir}``, ``{result}`` and the
-    ``--meta-columns``; each event runs in ``OUT/hf-runs/<id>/``.
+    ``--meta-columns``, and ``{cwd}``, the folder the study was first run
+    from; each event runs in ``OUT/hf-runs/<id>/``, and the program and the
+    arguments that name files or folders in ``{cwd}`` (``python
+    cfd_event.py``) are taken from there, also when the run is resumed from
+    another folder.  The result file holds a number, or a JSON object of
+    named loads (``{"deck_force": 812.0, "panel_p3": 41.2}``, with ``--target``).
 
 Progress goes to stderr (one line per HF result: iteration, HF count, MPM
 with the sampling part of its band, Ē, COV; with ``--quiet`` only one line
@@ -31,11 +38,19 @@ its two labelled parts.  ``--n-waves`` below the number of LF peaks over the
 threshold is an error (exceedance probabilities would exceed 1) unless
 ``--n-waves-convention spectral`` says that n_w = T_MCS/T_p,e on purpose.
 Ctrl-C or a closed pipe writes the partial result and says how to resume.
+A run that ends with failed HF evaluations left out of its fit exits with
+code 3, one stopped at the failure limit with 1 (:data:`pas.cli.EXIT_CODES`).
 The output folder receives ``history.csv``, ``distribution.csv``,
 ``pairs.csv``, ``range_curves.csv``, ``lf_curve.csv`` and ``summary.json``
 — everything ``pas plot`` needs to redraw the figures — and, unless
 ``--no-store``, the crash-safe study store ``study.sqlite``: run the same
-command again after a crash and no HF result is lost or re-run.
+command again after a crash and no HF result is lost or re-run (stderr says
+how many results it reused).  On a resumed study ``--eps1``, ``--eps2``,
+``--max-hf`` and ``--max-failures`` change the stored values only when given.
+More than ``--max-failures`` failed HF evaluations stop the run (exit code 1);
+``--retry-failed`` on the same ``--out`` runs the failed events again once
+the oracle is fixed, and the study continues as if they had not failed
+(:meth:`pas.study.study.Study.retry_failed`).
 """
 
 from __future__ import annotations
@@ -46,7 +61,7 @@ import math
 import sys
 from pathlib import Path
 
-from ..study.schema import DEFAULT_MAX_HF
+from ..study.schema import DEFAULT_MAX_HF, RESUMABLE
 
 __all__ = ["add_parser", "run"]
 
@@ -71,12 +86,15 @@ examples:
 
   # then draw the figures
   pas plot run1 --kind all
+
+exit codes: 0 done; 1 stopped at the failure limit (partial result written); 2 bad input;
+3 done, but failed HF evaluations were left out of the fit; 130 interrupted (see 'pas --help')
 """
 
 
 _INPUTS = ("lf_file", "lf_column", "id_column", "oracle", "n_waves", "n_waves_convention", "p_exp",
            "eps1", "eps2", "threshold", "strategy", "preset", "max_hf", "batch_size", "unit",
-           "lf_unit")
+           "lf_unit", "target")
 """The options written to ``summary.json`` as the run's ``inputs``."""
 
 _LF_FILE_NAMES = {"file": "LF_FILE", "column": "--lf-column", "id_column": "--id-column",
@@ -87,6 +105,24 @@ def _budget(text):
     """``--max-hf``: a positive integer, ``none`` for no budget, or ``default``."""
     word = str(text).strip().lower()
     return None if word == "none" else "default" if word == "default" else _positive_int(text)
+
+
+class _NotGiven:
+    """Default of an option that a resumed study keeps as stored unless it is given."""
+
+    def __init__(self, value):
+        self.value = value
+
+
+def _count(text):
+    """``--max-failures``: an integer >= 0."""
+    try:
+        v = int(text)
+    except ValueError:
+        v = -1
+    if v < 0:
+        raise argparse.ArgumentTypeError(f"expected an integer >= 0, got {text!r}")
+    return v
 
 
 def _positive_int(text):
@@ -129,18 +165,26 @@ def add_parser(sub) -> None:
                    help="target exceedance probability (e.g. T_1/T_exp)")
     p.add_argument("--eps1", required=True, type=float, metavar="E",
                    help="stopping limit on the distribution change, load units (~1-2%% of the max)")
-    p.add_argument("--eps2", type=float, default=0.1, metavar="C",
+    p.add_argument("--eps2", type=float, default=_NotGiven(0.1), metavar="C",
                    help="stopping limit on the COV of the MPM (default 0.1)")
     p.add_argument("--threshold", type=float, metavar="L0", help="LF threshold l0_input")
     p.add_argument("--seed", type=int, help="random seed (default: drawn and reported)")
-    p.add_argument("--max-hf", type=_budget, default="default", metavar="N",
+    p.add_argument("--max-hf", type=_budget, default=_NotGiven("default"), metavar="N",
                    help=f"budget of HF evaluations (default {DEFAULT_MAX_HF}, the most the paper "
                         "needed, or none with --preset paper; 'none': no budget)")
+    p.add_argument("--max-failures", type=_count, default=_NotGiven(None), metavar="N",
+                   help="failed HF evaluations tolerated before the run stops (default 10)")
+    p.add_argument("--retry-failed", action="store_true",
+                   help="run the failed events of the study in --out again (after fixing the "
+                        "oracle): the study continues as if they had not failed")
     p.add_argument("--preset", choices=("default", "paper"), default="default",
                    help="PAS settings: the package's defaults, or 'paper' to run the method as "
                         "van Essen & Seyffert (2026) wrote it (docs/departures.md)")
     p.add_argument("--strategy", choices=STRATEGY_NAMES, default="pas",
                    help="PAS (copula, default) or AS (GPR on order statistics)")
+    p.add_argument("--target", metavar="NAME",
+                   help="with an oracle answering several named loads: the one to screen on "
+                        "(the study store keeps all; 'pas study refit' analyses another)")
     p.add_argument("--batch-size", type=_positive_int, default=1, metavar="Q",
                    help="events per iteration (default 1)")
     p.add_argument("--workers", type=_positive_int, metavar="N",
@@ -159,11 +203,12 @@ def add_parser(sub) -> None:
 
 
 def run(args) -> int:
-    """Execute ``pas run``; returns the exit code (0 done, 1 oracle failure limit)."""
+    """Execute ``pas run``; returns the exit code (:data:`pas.cli.EXIT_CODES`)."""
+    from . import EXIT_FAILED_LEFT_OUT, EXIT_STOPPED
     from ..api import make_study
     from ..io import read_lf_peaks
     from ..screening import check_n_waves
-    from ..study.oracle_spec import oracle_from_spec
+    from ..study.oracle_spec import keep_start_dir, oracle_from_spec
     from ..study.oracles import OracleFailureLimit
     from ..study.replay import attach
     from ..study.store import StoreError, read_settings
@@ -179,26 +224,39 @@ def run(args) -> int:
     if note is not None:
         print(f"pas run: warning: {note}", file=sys.stderr)
     out = Path(args.out)
+    if out.exists() and not out.is_dir():
+        raise ValueError(f"--out {out} is a file; give a folder (it is created when missing)")
     try:
-        oracle = oracle_from_spec(args.oracle, root=out / "hf-runs", timeout=args.timeout)
+        oracle = oracle_from_spec(args.oracle, root=(out / "hf-runs").resolve(),
+                                  timeout=args.timeout)
     except (ValueError, FileNotFoundError) as exc:
         raise type(exc)(f"--oracle: {exc}") from None
     store = None if args.no_store else out / "study.sqlite"
+    if args.retry_failed and store is None:
+        raise ValueError("--retry-failed needs the study store of an earlier run: drop --no-store")
     failed = None
-    inputs = {name: getattr(args, name) for name in _INPUTS}
     try:
         stored = {} if store is None else read_settings(store)
         seed = args.seed if args.seed is not None or store is None else stored.get("seed")
+        settings = _resumable_settings(args, stored)
+        inputs = {name: getattr(args, name) for name in _INPUTS}
         study = make_study(args.strategy, lf, n_waves=args.n_waves, p_exp=args.p_exp,
-                           eps1=args.eps1, eps2=args.eps2, threshold=args.threshold, seed=seed,
-                           max_hf=args.max_hf, ids=ids, meta=meta,
+                           threshold=args.threshold, seed=seed, ids=ids, meta=meta,
+                           target=args.target,
                            n_waves_convention="spectral",  # checked above, with option names
-                           preset=None if args.strategy != "pas" else args.preset)
+                           preset=args.preset, **settings)  # 'paper' with AS is an error
         if store is not None:  # only now: bad inputs leave no output folder behind
             out.mkdir(parents=True, exist_ok=True)
             for ch in attach(study, store):
                 print(f"pas run: {ch['key']} changed from {ch['old']} to {ch['new']} on resuming "
                       f"(recorded in {store})", file=sys.stderr)
+            oracle, note = keep_start_dir(oracle, study.store)
+            if note is not None:
+                print(f"pas run: {note}", file=sys.stderr)
+            if args.retry_failed:
+                print(_retried_line(study.retry_failed()), file=sys.stderr)
+            if stored:
+                print(_resuming_line(study, store), file=sys.stderr)
         try:
             result = study.optimize(oracle, batch_size=args.batch_size, n_workers=args.workers,
                                     callback=Progress(quiet=args.quiet))
@@ -209,7 +267,7 @@ def run(args) -> int:
     except StoreError as exc:
         raise ValueError(f"{exc} (to start a new study use another --out or --no-store)") from None
     except OracleFailureLimit as exc:
-        result, failed = exc.result, str(exc)
+        result, failed = exc.result, getattr(exc, "reason", str(exc))
     summary = result.save(out, inputs={**inputs, "lf_file": str(args.lf_file), "seed": result.seed},
                           lfset=study.lfset)
     if args.json:
@@ -218,9 +276,61 @@ def run(args) -> int:
         print(result.summary(unit=args.unit))
         print(f"results written to {out}/ (draw them with: pas plot {out} --kind all)")
     if failed is not None:
-        print(f"pas run: error: {failed} (partial result written to {out}/)", file=sys.stderr)
-        return 1
-    return 0
+        how = ("fix the oracle and rerun with --retry-failed (same --out)" if store is not None
+               else "fix the oracle and run again")
+        print(f"pas run: error: {failed}; {how}, or raise --max-failures (partial result "
+              f"written to {out}/)", file=sys.stderr)
+        return EXIT_STOPPED
+    return EXIT_FAILED_LEFT_OUT if result.n_failed else 0
+
+
+def _resumable_settings(args, stored: dict) -> dict:
+    """The stopping settings and budgets (:data:`~pas.study.schema.RESUMABLE`) to build with.
+
+    An option given on the command line wins; otherwise a resumed study keeps
+    its stored value (e.g. one changed with ``pas study set``) and a new one
+    gets the option's default.  The options not given are set on ``args`` to
+    the values used, for ``summary.json``.
+    """
+    from ..study.schema import with_legacy_settings
+
+    stored = with_legacy_settings(stored) if stored else {}
+    out = {}
+    for key in RESUMABLE:
+        given = getattr(args, key, _NotGiven(None))
+        if not isinstance(given, _NotGiven):
+            out[key] = given
+        elif key in stored:
+            out[key] = stored[key]
+        elif given.value is not None:
+            out[key] = given.value
+        if hasattr(args, key):
+            setattr(args, key, out.get(key))
+    return out
+
+
+def _retried_line(report: dict) -> str:
+    if not report["retried"]:
+        return "pas run: --retry-failed: the study has no failed event to retry"
+    n = len(report["retried"])
+    return (f"pas run: retrying {n} failed event(s) ({', '.join(report['retried'][:5])}"
+            f"{', ...' if n > 5 else ''}); {report['dropped']} later ask(s) taken out of the "
+            f"study's log, {report['kept']} of their results kept and reused if asked again")
+
+
+def _resuming_line(study, store) -> str:
+    waiting = study.store.outstanding()
+    with_result = sum(r[3] for r in waiting)
+    reused = study.n_told + with_result
+    line = f"pas run: resuming {store}: {reused} results reused"
+    parts = [f"{study.n_failed} failed"] if study.n_failed else []
+    if with_result:
+        parts.append(f"{with_result} stored but not yet used by the study")
+    if parts:
+        line += f" ({', '.join(parts)})"
+    if len(waiting) > with_result:
+        line += f", {len(waiting) - with_result} pending event(s) to run again"
+    return line
 
 
 def _save_partial(study, out, inputs, args):
@@ -230,9 +340,10 @@ def _save_partial(study, out, inputs, args):
     try:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")  # the partial result's own caveats
-            study.result().save(out, inputs={**inputs, "lf_file": str(args.lf_file),
-                                             "seed": study.seed, "stopped_early": True},
-                                lfset=study.lfset)
+            # no bootstrap model band: its refits would hold up Ctrl-C for seconds
+            partial = study.result(model_band=False)
+            partial.save(out, inputs={**inputs, "lf_file": str(args.lf_file), "seed": study.seed,
+                                      "stopped_early": True}, lfset=study.lfset)
     except (OSError, ValueError):
         return None
     return out
@@ -244,6 +355,8 @@ def _check_numbers(args) -> None:
         raise ValueError(f"--p-exp must lie in (0, 1), got {args.p_exp:g}")
     for name in ("eps1", "eps2"):
         v = getattr(args, name)
+        if isinstance(v, _NotGiven):
+            continue
         if not (math.isfinite(v) and v > 0):
             raise ValueError(f"--{name} must be a positive number, got {v:g}")
     if args.timeout is not None and not args.timeout > 0:

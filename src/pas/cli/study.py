@@ -4,10 +4,13 @@
 
     pas study create STUDY.db --config study.toml
     pas study ask STUDY.db [-n N] [--format table|csv|json] [-o FILE]
-    pas study tell STUDY.db EVENT VALUE | EVENT --error MSG | --csv results.csv
-    pas study status STUDY.db [--json]
-    pas study set STUDY.db [--eps1 E] [--eps2 C] [--k1 K] [--k2 K] [--max-hf N]
+    pas study tell STUDY.db EVENT VALUE | EVENT --error MSG | EVENT --load N=V ... | --csv FILE
+        [--replace]
+    pas study status STUDY.db [--json] [--events]
+    pas study set STUDY.db [--eps1 E] [--eps2 C] [--k1 K] [--k2 K] [--max-hf N] [--max-failures N]
+    pas study refit STUDY.db --target NAME [--out DIR]   (pas.cli.study_loads)
     pas study run STUDY.db [-q Q] [--workers N] [--pending resubmit|wait]
+    pas study retry STUDY.db [EVENT ...]
 
 The study file is a :mod:`pas.study.store` (SQLite): ``tell`` only records the
 result (any number of processes at once), ``ask`` replays the study, uses the
@@ -28,7 +31,11 @@ The TOML file (paths relative to it; every key in ``docs/study-file.md``)::
 arrives; kill it at any time and run it again to continue (same ``-q``; the
 batch size of the first run is the default).  ``pas study set`` changes the
 stopping limits or the budget of a study, converged or not (recorded in the
-store; no decision taken so far depends on them).
+store; no decision taken so far depends on them).  ``pas study retry`` runs
+failed events again once their cause is fixed: the study continues as if they
+had not failed (:mod:`pas.study.amend`; no told result is lost).  ``tell
+--replace`` corrects a told value or a failure; the old one stays in the
+store's audit trail (``pas study status --events``).
 """
 
 from __future__ import annotations
@@ -41,6 +48,7 @@ import sys
 from pathlib import Path
 
 from .study_config import load_config, load_peaks
+from .study_loads import add_parsers as add_load_parsers, refit_command, tell_loads
 
 __all__ = ["add_parser", "run", "load_config", "load_peaks"]
 
@@ -55,12 +63,14 @@ examples:
   pas study status campaign.db                       # MPM so far, convergence, pending
   pas study set campaign.db --eps1 10 --max-hf 80    # tighter limit, bigger budget
   pas study run campaign.db -q 4 --workers 4         # drive it with the TOML's [oracle]
+  pas study tell campaign.db 1532 120.5 --replace    # correct a typo (old value kept)
+  pas study retry campaign.db                        # failed events run again
 """
 
 
 def add_parser(sub) -> None:
     p = sub.add_parser("study", help="ask/tell HF campaigns kept in a crash-safe study file",
-                       description=__doc__.split("\n\n")[0],
+                       description=__doc__.split("\n\n")[0].replace("``", ""),
                        formatter_class=argparse.RawDescriptionHelpFormatter, epilog=EPILOG)
     cmds = p.add_subparsers(dest="study_command", metavar="<action>", required=True)
     c = cmds.add_parser("create", help="create STUDY.db from a TOML configuration")
@@ -79,7 +89,11 @@ def add_parser(sub) -> None:
     t.add_argument("--csv", metavar="FILE", help="results table (CSV or Parquet)")
     t.add_argument("--id-column", default="id")
     t.add_argument("--value-column", default="hf",
-                   help="column of the HF values (default hf, as the table oracle)")
+                   help="column of the HF values (default hf, as the table oracle; A,B: one "
+                        "named load per column)")
+    t.add_argument("--replace", action="store_true",
+                   help="replace a result told before (the old one is kept in the audit trail)")
+    add_load_parsers(cmds, t)
     r = cmds.add_parser("run", help="drive the study with the [oracle] of its TOML file")
     r.add_argument("study", metavar="STUDY.db")
     r.add_argument("-q", "--batch-size", type=int, metavar="Q",
@@ -91,6 +105,8 @@ def add_parser(sub) -> None:
     s = cmds.add_parser("status", help="convergence, MPM so far, counts and pending events")
     s.add_argument("study", metavar="STUDY.db")
     s.add_argument("--json", action="store_true")
+    s.add_argument("--events", action="store_true",
+                   help="also every event asked, replaced results and asks dropped by a retry")
     c = cmds.add_parser("set", help="change the stopping limits or the budget of a study")
     c.add_argument("study", metavar="STUDY.db")
     c.add_argument("--eps1", type=float, metavar="E", help="limit on the distribution change")
@@ -99,12 +115,17 @@ def add_parser(sub) -> None:
     c.add_argument("--k2", type=int, metavar="K", help="window of the MPM COV")
     c.add_argument("--max-hf", type=int, metavar="N", help="budget of HF evaluations")
     c.add_argument("--max-failures", type=int, metavar="N", help="failed calls tolerated")
+    y = cmds.add_parser("retry", help="run failed events again (after fixing their cause)")
+    y.add_argument("study", metavar="STUDY.db")
+    y.add_argument("events", nargs="*", metavar="EVENT", help="event ids (default: every failed one)")
     p.set_defaults(func=run)
 
 
 def run(args) -> int:
-    return {"create": _create, "ask": _ask, "tell": _tell, "status": _status, "run": _drive,
-            "set": _set}[args.study_command](args)
+    from .study_status import status
+
+    return {"create": _create, "ask": _ask, "tell": _tell, "status": status, "run": _drive,
+            "set": _set, "retry": _retry, "refit": refit_command}[args.study_command](args)
 
 
 # -- actions ----------------------------------------------------------------
@@ -115,8 +136,8 @@ def _create(args) -> int:
     if os.path.exists(args.study):
         raise ValueError(f"{args.study} already exists (continue it with 'pas study ask')")
     lf, ids, meta = load_peaks(cfg["lf"])
-    kw = {k: cfg[k] for k in ("eps2", "threshold", "seed", "max_hf", "n_waves_convention",
-                              "preset") if k in cfg}
+    kw = {k: cfg[k] for k in ("eps2", "threshold", "seed", "max_hf", "max_failures",
+                              "n_waves_convention", "preset", "target") if k in cfg}
     try:
         study = make_study(cfg["strategy"], lf, n_waves=cfg["n_waves"],
                            p_exp=cfg["p_exp"], eps1=cfg["eps1"], ids=ids, meta=meta,
@@ -155,13 +176,21 @@ def _ask(args) -> int:
         events = study.ask(args.n)
         if initial and len(events) < args.n:
             events += study.ask(args.n - len(events))
+        kept = {r[0] for r in store.outstanding() if r[3]}  # results a retry kept for them
+        reused = [ev for ev in events if ev.index in kept]
+        events = [ev for ev in events if ev.index not in kept]
         if events:
             store.mark_submitted(events)
     store.close()
-    if not events:
+    if reused:
+        print(f"{args.study}: {len(reused)} event(s) asked again after a retry have their kept "
+              f"result ({', '.join(str(ev.id) for ev in reused)}); the next ask uses it",
+              file=sys.stderr)
+    if not events and not reused:
         print(f"{args.study}: nothing to ask ({_why_finished(study)})", file=sys.stderr)
         return 0
-    _emit([_event_row(ev) for ev in events], args.format, args.output)
+    if events:
+        _emit([_event_row(ev) for ev in events], args.format, args.output)
     return 0
 
 
@@ -204,6 +233,8 @@ def _tell(args) -> int:
     from ..io import read_table
     from ..study.store import StudyStore
 
+    if args.load or "," in args.value_column:
+        return tell_loads(args)
     if args.csv:
         if args.event is not None or args.error is not None:
             raise ValueError("give either EVENT VALUE / EVENT --error MSG or --csv FILE, not both")
@@ -233,9 +264,12 @@ def _tell(args) -> int:
     with StudyStore(args.study, create=False) as store:
         with store.transaction():
             for key, val, err in told:
-                new += bool(store.tell_by_key(_key(key), val, error=err, source="cli"))
+                new += bool(store.tell_by_key(_key(key), val, error=err, source="cli",
+                                              replace=args.replace))
     print(f"stored {new} result(s) in {args.study}"
-          + (f" ({len(told) - new} already stored)" if new < len(told) else ""))
+          + (f" ({len(told) - new} already stored)" if new < len(told) else "")
+          + ("; replaced results are listed by 'pas study status --events'" if args.replace
+             else ""))
     return 0
 
 
@@ -247,6 +281,7 @@ def _key(x) -> str:
 
 def _drive(args) -> int:
     from ..study.oracle_spec import oracle_from_spec
+    from ..study.oracles import OracleFailureLimit
     from ..study.store import StudyStore
     from ..study.resume import open_study
     from ._progress import Progress
@@ -271,9 +306,34 @@ def _drive(args) -> int:
 
         raise stopped("pas study run", exc, study, store=args.study,
                       resume=f"'pas study run {args.study}'") from None
+    except OracleFailureLimit as exc:
+        print(exc.result.summary())
+        print(f"pas study run: error: {getattr(exc, 'reason', exc)}; fix the oracle, then "
+              f"'pas study retry {args.study}' and run again, or raise the limit with "
+              f"'pas study set {args.study} --max-failures N'", file=sys.stderr)
+        return 1
     finally:
         store.close()
     print(res.summary())
+    from . import EXIT_FAILED_LEFT_OUT
+    return EXIT_FAILED_LEFT_OUT if res.n_failed else 0
+
+
+def _retry(args) -> int:
+    from ..study.store import StudyStore
+
+    with StudyStore(args.study, create=False) as store:
+        if store.is_new:
+            raise ValueError(f"{args.study} holds no study")
+        report = store.retry_failed(args.events or None)
+    if not report["retried"]:
+        print(f"{args.study}: no failed event to retry")
+        return 0
+    print(f"{args.study}: {len(report['retried'])} failed event(s) will run again "
+          f"({', '.join(report['retried'])}); {report['dropped']} later ask(s) taken out of the "
+          f"log, {report['kept']} of their results kept and reused if asked again; "
+          f"'pas study run {args.study}' runs them, or run them yourself and 'pas study tell' "
+          "their results")
     return 0
 
 
@@ -286,11 +346,13 @@ def _set(args) -> int:
     changes = {k: getattr(args, k) for k in names if getattr(args, k) is not None}
     if not changes:
         raise ValueError(f"give at least one of {', '.join(names.values())}")
-    for key, value in changes.items():
-        if isinstance(value, float) and not (math.isfinite(value) and value > 0):
-            raise ValueError(f"{names[key]} must be a positive number, got {value:g}")
-        if isinstance(value, int) and value < (0 if key == "max_failures" else 1):
-            raise ValueError(f"{names[key]} must be a positive integer, got {value}")
+    from .._validation import check_setting
+
+    for key, value in changes.items():  # the rules of the Python API and the study file
+        try:
+            check_setting(key, value)
+        except ValueError as exc:
+            raise ValueError(_option_names(str(exc), names)) from None
     with StudyStore(args.study, create=False) as store:
         old = store.settings()
         try:
@@ -312,79 +374,3 @@ def _option_names(msg: str, names: dict) -> str:
         if msg.startswith(key + " "):
             return opt + msg[len(key):]
     return msg
-
-
-def _status(args) -> int:
-    from ..study.store import StudyStore
-    from ..study.resume import open_study
-
-    with StudyStore(args.study, create=False) as store:
-        study = open_study(store, consume=False)
-        study.store = None
-        used_converged = bool(study.converged)
-        waiting = store.unconsumed()
-        for idx, hf, err in waiting:
-            study.tell(int(idx), hf, error=err)
-        events = store.events()
-        changes = store.get("settings_changes", [])
-    pend = events[events["state"] == "pending"]
-    res = study.result()
-    fitted = [r for r in study.rows if r.get("mpm") is not None]
-    last = fitted[-1] if fitted else {}
-    at = next((r["n_hf"] for r in fitted if r.get("stop")), None)
-    info = {
-        "study": args.study, "strategy": study.strategy.name, "seed": study.seed,
-        "n_hf": study.n_hf, "n_false_positive": study.n_false_positive,
-        "n_failed": study.n_failed, "n_pending": len(pend), "results_not_yet_used": len(waiting),
-        "max_hf": study.max_hf, "mpm": res.mpm if fitted else None,
-        "mpm_band": list(res.mpm_band) if fitted else None,
-        "mpm_band_sampling": list(res.mpm_band_sampling) if fitted else None,
-        "mpm_band_model": None if res.mpm_band_model is None else list(res.mpm_band_model),
-        "family": res.family, "E_bar": last.get("E_bar"), "COV": last.get("COV"),
-        "eps1": study.stopping.eps1, "eps2": study.stopping.eps2,
-        "k1": study.stopping.k1, "k2": study.stopping.k2,
-        # convergence is decided on the results the study has used: with results waiting
-        # it is open until an ask or run uses them ('converged_with_waiting' says how it
-        # would come out, the numbers above include them)
-        "converged": None if waiting else used_converged,
-        "converged_with_waiting": bool(study.converged) if waiting else None,
-        "converged_at_n_hf": at, "finished": bool(study.finished) if not waiting else None,
-        "settings_changes": changes,
-        "pending": [{"id": r.event_id, "index": int(r.idx), "lf": r.lf, "d": r.d,
-                     "asked_at": r.asked_at} for r in pend.itertuples()],
-    }
-    if args.json:
-        from .._json import dumps
-        print(dumps(info))
-        return 0
-    print(f"{args.study}: {info['strategy'].upper()}, seed {info['seed']}")
-    print(f"HF evaluations {info['n_hf']} (false positive {info['n_false_positive']}), failed "
-          f"{info['n_failed']}, pending {info['n_pending']}"
-          + (f", budget {study.max_hf}" if study.max_hf else ""))
-    if waiting:
-        print(f"{len(waiting)} result(s) told since the last ask: included below, not yet used "
-              f"by the study ('pas study ask' or 'pas study run' uses them)")
-    if fitted:
-        fam = f", copula {info['family']}" if info["family"] else ""
-        print(f"MPM so far {res.mpm:.5g}, {res.band_text()}{fam}")
-        verdict = ("converged" + (f" (at {at} HF evaluations)" if at is not None else "")
-                   if used_converged else "not converged")
-        if waiting:
-            verdict = ("open until the waiting results are used (with them: "
-                       + ("converged" if study.converged else "not converged") + ")")
-        print(f"convergence: E_bar {_fmt(info['E_bar'])} (limit eps1 {info['eps1']:g}), COV "
-              f"{_fmt(info['COV'])} (limit eps2 {info['eps2']:g}): {verdict}")
-    else:
-        print("no model fitted yet")
-    for ch in changes:
-        print(f"setting changed: {ch['key']} {ch['old']} -> {ch['new']} "
-              f"(after {ch['n_told']} results, {ch['at']})")
-    if info["pending"]:
-        print("pending:")
-        for p in info["pending"]:
-            print(f"  {p['id']}  (index {p['index']}, lf {p['lf']:.5g}, asked {p['asked_at']})")
-    return 0
-
-
-def _fmt(x) -> str:
-    return "n/a" if x is None or (isinstance(x, float) and math.isnan(x)) else f"{x:.3g}"

@@ -14,24 +14,30 @@ __all__ = ["load_config", "load_peaks"]
 
 _TOP = {"n_waves": int, "n_waves_convention": str, "p_exp": float, "eps1": float, "eps2": float,
         "threshold": float, "strategy": str, "preset": str, "seed": int, "max_hf": int,
-        "batch_size": int,
+        "max_failures": int, "batch_size": int, "target": str,
         "lf": dict, "settings": dict, "oracle": dict}
 _LF = {"file": str, "column": str, "id_column": str, "meta_columns": list}
 _REQUIRED = ("n_waves", "p_exp", "eps1", "lf")
 _ORACLE = {"command": list, "root": str, "timeout": float, "result_name": str, "table": str,
-           "id_column": str, "value_column": str}
+           "id_column": str, "value_column": (str, list)}
 
 
 def _typed(value, kind, field, where):
-    ok = {int: lambda v: isinstance(v, int) and not isinstance(v, bool),
-          float: lambda v: isinstance(v, (int, float)) and not isinstance(v, bool),
-          str: lambda v: isinstance(v, str), dict: lambda v: isinstance(v, dict),
-          list: lambda v: isinstance(v, list) and all(isinstance(x, str) for x in v)}[kind](value)
-    if not ok:
+    if isinstance(kind, tuple):  # one of several kinds: the message names the first
+        ok = [k for k in kind if _typed_ok(value, k)]
+        return _typed(value, (ok or kind)[0], field, where)
+    if not _typed_ok(value, kind):
         what = {int: "an integer", float: "a number", str: "a string", dict: "a table",
                 list: "a list of strings"}[kind]
         raise ValueError(f"{where}: {field} must be {what}, got {value!r}")
     return float(value) if kind is float else value
+
+
+def _typed_ok(value, kind) -> bool:
+    return {int: lambda v: isinstance(v, int) and not isinstance(v, bool),
+          float: lambda v: isinstance(v, (int, float)) and not isinstance(v, bool),
+          str: lambda v: isinstance(v, str), dict: lambda v: isinstance(v, dict),
+          list: lambda v: isinstance(v, list) and all(isinstance(x, str) for x in v)}[kind](value)
 
 
 def load_config(path) -> dict:
@@ -64,12 +70,54 @@ def load_config(path) -> dict:
     if strategy not in STRATEGIES:
         raise ValueError(f"{where}: strategy must be {' or '.join(map(repr, STRATEGIES))}, "
                          f"got {strategy!r}")
+    _check_settings(cfg, where)
     cfg["lf"]["file"] = str((path.parent / cfg["lf"]["file"]))
     if "oracle" in cfg:
         cfg["oracle"] = _oracle_config(cfg["oracle"], path.parent, where)
     if cfg.get("batch_size", 1) < 1:
         raise ValueError(f"{where}: batch_size must be at least 1, got {cfg['batch_size']}")
+    if cfg.get("max_failures", 0) < 0:
+        raise ValueError(f"{where}: max_failures must be an integer >= 0, got {cfg['max_failures']}")
     return cfg
+
+
+def _check_settings(cfg: dict, where: str) -> None:
+    """The settings of the file by the rules of the Python API and ``pas study set``.
+
+    Top-level keys and the study settings of ``[settings]`` go through
+    :func:`pas._validation.check_setting`, the strategy settings through the
+    strategy's constructor (:func:`pas.study.factory.make_strategy`).
+    """
+    from .._validation import SETTING_CHECKS, check_setting
+    from ..study.factory import STUDY_SETTINGS, make_strategy
+
+    for key in sorted(SETTING_CHECKS.keys() & cfg.keys()):
+        _in_file(lambda: check_setting(key, cfg[key]), where, "", cfg)
+    settings = cfg.get("settings", {})
+    misplaced = sorted(settings.keys() & _TOP.keys())
+    if misplaced:
+        raise ValueError(f"{where}: settings.{misplaced[0]}: give {misplaced[0]} at the top of "
+                         "the file, not in [settings]")
+    for key in sorted(settings.keys() & set(STUDY_SETTINGS)):
+        _in_file(lambda: check_setting(key, settings[key]), where, "settings", settings)
+    own = {k: v for k, v in settings.items() if k not in STUDY_SETTINGS}
+    _in_file(lambda: make_strategy(cfg["strategy"], own), where, "settings", settings)
+
+
+def _in_file(check, where: str, table: str, keys) -> None:
+    """Run ``check``; its ``ValueError`` is re-raised naming the file and the key's table.
+
+    A message that starts with a key of ``keys`` (``k1 must be ...``) gets
+    that key's full name (``settings.k1 must be ...``).
+    """
+    try:
+        check()
+    except ValueError as exc:
+        msg = str(exc)
+        first = msg.split(" ", 1)[0]
+        if table and first in keys:
+            raise ValueError(f"{where}: {table}.{msg}") from None
+        raise ValueError(f"{where}: {table + ': ' if table else ''}{msg}") from None
 
 
 def _oracle_config(o: dict, base: Path, where: str) -> dict:
@@ -85,6 +133,7 @@ def _oracle_config(o: dict, base: Path, where: str) -> dict:
         if not o["command"]:
             raise ValueError(f"{where}: oracle.command must not be empty")
         o["root"] = str((base / o.get("root", "runs")).resolve())
+        o["cwd"] = str(base.resolve())  # the command's relative paths: next to the TOML file
         if o.get("timeout", 1) <= 0:
             raise ValueError(f"{where}: oracle.timeout must be > 0, got {o['timeout']}")
     else:

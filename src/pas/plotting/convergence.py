@@ -10,10 +10,10 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from ._common import _fitted, _fmt, _history, _new_axes, _plot_with_band, _strategy_name, \
-    _with_unit
+from ._common import (_fitted, _fmt, _has_band, _history, _is_design, _legend_below,
+                      _new_axes, _plot_with_band, _strategy_name, _with_unit)
 
-__all__ = ["plot_mpm_convergence", "plot_aic"]
+__all__ = ["plot_mpm_convergence", "plot_aic", "stop_text", "aic_to_selected"]
 
 _FP_COLOR = "tab:red"
 _FAIL_COLOR = "0.45"
@@ -67,6 +67,12 @@ def plot_mpm_convergence(result, *, truth=None, ax=None, label=None, unit=None,
     sampling and model parts together).  False positives (HF = 0)
     are marked at the MPM of the iteration they interrupted; the
     convergence point is the first iteration meeting the App. C criterion.
+    A study that did not converge gets a dashed line at its last sample and
+    says why it ended (:func:`stop_text`: budget, failure limit, or not
+    converged yet), also as the title of a figure made here (which names
+    the convergence point when there is one).  A design-wave
+    result (:func:`pas.run_rcw`) is one point at its number of episodes.
+    The legend sits under the x axis label, where it covers no curve.
 
     Examples
     --------
@@ -83,12 +89,17 @@ def plot_mpm_convergence(result, *, truth=None, ax=None, label=None, unit=None,
     fitted = _fitted(hist)
     if fitted.empty:
         raise ValueError("result: no fitted iteration yet, nothing to plot")
+    own_figure = ax is None
     fig, ax = _new_axes(ax)
     name = _strategy_name(result, label)
+    if _is_design(result):
+        _design_wave_mpm(ax, result, name, color, unit)
+        return _finish_convergence_axes(ax, quantity, unit, truth, own_figure)
     n = fitted["n_hf"].to_numpy(dtype=float)
+    banded = _has_band(fitted, "mpm_low", "mpm_high")
     c = _plot_with_band(ax, n, fitted, "mpm", "mpm_low", "mpm_high", "-o", name=name,
-                        label="MPM, shaded: sampling band (Eq. 10)", color=color, ms=2.5,
-                        lw=1.3, band_label=None)
+                        label="MPM, shaded: sampling band (Eq. 10)" if banded else "MPM",
+                        color=color, ms=2.5, lw=1.3, band_label=None)
     lo, hi = (float(x) for x in getattr(result, "mpm_band", (np.nan, np.nan)))
     mpm = float(getattr(result, "mpm", np.nan))
     if np.isfinite(mpm) and np.isfinite(lo) and np.isfinite(hi):
@@ -110,13 +121,53 @@ def plot_mpm_convergence(result, *, truth=None, ax=None, label=None, unit=None,
                 mec="k", mew=0.6, ls="none",
                 label=f"{name}: converged at {int(conv['n_hf'])} HF samples, "
                       f"MPM {_fmt(float(conv['mpm']), unit)}")
+        if own_figure:
+            ax.set_title(f"converged at {int(conv['n_hf'])} HF samples", fontsize=10)
+    else:
+        stop = stop_text(result)
+        ax.axvline(float(hist["n_hf"].max()), color=c, lw=1.2, ls="--",
+                   label=f"{name}: {stop}")
+        if own_figure:
+            ax.set_title(stop, color=_FP_COLOR, fontsize=10)
+    return _finish_convergence_axes(ax, quantity, unit, truth, own_figure)
+
+
+def stop_text(result) -> str:
+    """Why a study that did not converge ended where it did, for the convergence figure.
+
+    ``"budget reached (max_hf = 20) — not converged"``, ``"stopped by the failure
+    limit (11 failed, max_failures = 10) — not converged"``, or ``"not converged at
+    N HF samples"`` (a study still running, or stopped by its user or an empty pool).
+    """
+    settings = getattr(result, "settings", None) or {}
+    n_failed, max_failures = int(getattr(result, "n_failed", 0)), settings.get("max_failures")
+    if max_failures is not None and n_failed > int(max_failures):
+        return (f"stopped by the failure limit ({n_failed} failed, "
+                f"max_failures = {int(max_failures)}) — not converged")
+    max_hf = settings.get("max_hf")
+    if max_hf is not None and int(result.n_hf) >= int(max_hf):
+        return f"budget reached (max_hf = {int(max_hf)}) — not converged"
+    return f"not converged at {int(result.n_hf)} HF samples"
+
+
+def _design_wave_mpm(ax, result, name, color, unit):
+    """A design-wave MPM: one point at the episodes it took, with no band to draw."""
+    ax.plot([float(result.n_hf)], [float(result.mpm)], "D", ms=7, color=color, mec="k", mew=0.6,
+            ls="none", label=f"{name}: MPM {_fmt(float(result.mpm), unit)}, HF of the $P_{{exp}}$ "
+                             f"design wave ({int(result.n_hf)} episodes, one per level; no band)")
+
+
+def _finish_convergence_axes(ax, quantity, unit, truth, own_figure):
     if truth is not None:
-        ax.axhline(float(truth), color="k", lw=1.2, ls="--", label=f"true MPM {_fmt(float(truth), unit)}")
+        label = f"true MPM {_fmt(float(truth), unit)}"
+        if label in ax.get_legend_handles_labels()[1]:
+            label = "_" + label
+        ax.axhline(float(truth), color="k", lw=1.2, ls="--", label=label)
     ax.set_xlabel("number of HF samples $n_c$ [-]")
     ax.set_ylabel(_with_unit(quantity, unit))
     ax.grid(True, lw=0.3, alpha=0.5)
-    ax.legend(fontsize=7, loc="best")
-    return fig, ax
+    _legend_below(ax, grow=own_figure)
+    return ax.figure, ax
 
 
 def _passed_over(fitted, families, selected, aic):
@@ -141,23 +192,31 @@ def _passed_over(fitted, families, selected, aic):
 
 # -- copula selection (paper Fig. 17 and 18) --------------------------------
 def plot_aic(result, *, ax=None, axes=None):
-    """AIC of every copula candidate per iteration and the family selected (Fig. 17/18).
+    """ΔAIC of every copula candidate per iteration and the family selected (Fig. 17/18).
 
     Parameters
     ----------
     result : ScreeningResult
         A PAS result: its history has ``aic_<family>`` and ``family`` columns.
     ax : matplotlib.axes.Axes, optional
-        Draw a single panel: the AIC curves, the selected family marked by
-        filled markers on its curve.
+        Draw a single panel: the ΔAIC curves, the selected family marked by
+        filled markers at 0.
     axes : sequence of two Axes, optional
-        Draw two panels: AIC curves (top) and the selected family per
+        Draw two panels: ΔAIC curves (top) and the selected family per
         iteration (bottom).  When neither ``ax`` nor ``axes`` is given, a new
         two-panel figure is made.
 
     Notes
     -----
-    Where the family with the lowest AIC is not the one selected, its AIC is
+    The paper's Fig. 17 draws raw AIC; the curves then lie close together
+    (AIC grows with the number of pairs) and hide the few units that decide
+    the selection.  Here each candidate is drawn as its AIC minus that of the
+    family selected at the same iteration (:func:`aic_to_selected`), so the
+    selected one sits at 0 and a dashed line marks ``−delta_aic``, the
+    study's hysteresis threshold: a family below it replaces the selected
+    one.  The axis ends at 8 ``delta_aic`` above 0; far worse fits run off
+    its top (the legend says so).
+    Where the family with the lowest AIC is not the one selected, its ΔAIC is
     marked and the legend says why: its fit sat on a parameter bound (e.g.
     Student-t ν = 2), which PAS's ``exclude_at_bound`` makes ineligible, or
     it was less than ΔAIC = 4 below the current family (§2.2 hysteresis).
@@ -175,6 +234,7 @@ def plot_aic(result, *, ax=None, axes=None):
         raise ValueError("result: no AIC in the history (plot_aic needs a fitted PAS result)")
     if ax is not None and axes is not None:
         raise ValueError("give ax (one panel) or axes (two panels), not both")
+    own_figure = ax is None and axes is None
     if ax is not None:
         fig, top, bottom = ax.figure, ax, None
     elif axes is not None:
@@ -188,25 +248,29 @@ def plot_aic(result, *, ax=None, axes=None):
     n = fitted["n_hf"].to_numpy(dtype=float)
     families = [c[4:] for c in aic_cols]
     selected = fitted["family"].astype(str).to_numpy()
-    aic = fitted[aic_cols].to_numpy(dtype=float)
+    delta = aic_to_selected(fitted, families)
+    threshold = _delta_aic_setting(result)
     colors = {}
     for k, fam in enumerate(families):
-        (line,) = top.plot(n, aic[:, k], "-", lw=1.2, label=f"{fam}")
+        (line,) = top.plot(n, delta[:, k], "-", lw=1.2, label=f"{fam}")
         colors[fam] = line.get_color()
         chosen = selected == fam
         if chosen.any():
-            top.plot(n[chosen], aic[chosen, k], "o", ms=3.5, color=line.get_color())
-    top.plot([], [], "o", ms=3.5, color="0.3", label="selected family (switches at ΔAIC ≥ 4)")
-    for why, marker, text in _passed_over(fitted, families, selected, aic):
+            top.plot(n[chosen], delta[chosen, k], "o", ms=3.5, color=line.get_color())
+    top.plot([], [], "o", ms=3.5, color="0.3", label="selected family (ΔAIC = 0)")
+    top.axhline(-threshold, color="k", lw=1.0, ls="--",
+                label=f"ΔAIC = −{threshold:g}: a family this far below replaces the selected one")
+    for why, marker, text in _passed_over(fitted, families, selected, delta):
         if why.any():
-            k = np.nanargmin(np.where(np.isnan(aic), np.inf, aic), axis=1)[why]
-            top.plot(n[why], aic[why, k], marker, ms=6, mfc="none", mew=1.1, color="k",
+            k = np.nanargmin(np.where(np.isnan(delta), np.inf, delta), axis=1)[why]
+            top.plot(n[why], delta[why, k], marker, ms=6, mfc="none", mew=1.1, color="k",
                      ls="none", label=f"lowest AIC, not selected: {text} ×{int(why.sum())}")
-    top.set_ylabel("AIC [-] (lower is better)")
+    _cut_far_worse(top, delta, threshold)
+    top.set_ylabel("ΔAIC to the selected family [-]\n(AIC − AIC$_{selected}$; lower is better)")
     top.grid(True, lw=0.3, alpha=0.5)
-    top.legend(fontsize=7, ncol=2, loc="best")
     if bottom is None:
         top.set_xlabel("number of HF samples $n_c$ [-]")
+        _legend_below(top, ncol=2, grow=own_figure)
         return fig, top
     idx = {f: i for i, f in enumerate(families)}
     for fam in families:
@@ -219,4 +283,49 @@ def plot_aic(result, *, ax=None, axes=None):
     bottom.set_ylabel("selected copula")
     bottom.set_xlabel("number of HF samples $n_c$ [-]")
     bottom.grid(True, axis="x", lw=0.3, alpha=0.5)
+    _legend_below(bottom, *top.get_legend_handles_labels(), ncol=2, grow=own_figure)
     return fig, np.array([top, bottom])
+
+
+_FAR_WORSE = 8.0
+"""ΔAIC axis ends at this many hysteresis thresholds above 0 (far worse fits are cut)."""
+
+
+def _cut_far_worse(ax, delta, threshold):
+    """Keep the ΔAIC axis on the few units around 0 and the threshold that decide."""
+    finite = delta[np.isfinite(delta)]
+    top = _FAR_WORSE * threshold
+    if finite.size and finite.max() > top:
+        low = min(float(finite.min()), -threshold)
+        ax.set_ylim(low - 0.08 * (top - low), top)
+        ax.plot([], [], " ", label=f"ΔAIC above {top:g} cut off at the top (far worse fits)")
+
+
+def aic_to_selected(fitted, families) -> np.ndarray:
+    """ΔAIC of every candidate to the family selected at each fitted iteration.
+
+    Parameters
+    ----------
+    fitted : pandas.DataFrame
+        Fitted history rows with ``family`` and ``aic_<family>`` columns.
+    families : sequence of str
+        The candidates, in the column order of the result.
+
+    Returns
+    -------
+    ndarray, shape (n_rows, n_families)
+        ``AIC_family − AIC_selected``: 0 for the selected family, negative for
+        a family that fits better but was not taken (hysteresis or a bound).
+    """
+    aic = fitted[[f"aic_{f}" for f in families]].to_numpy(dtype=float)
+    index = {f: k for k, f in enumerate(families)}
+    rows = np.array([index.get(str(f), -1) for f in fitted["family"]])
+    ref = np.where(rows >= 0, aic[np.arange(len(rows)), np.maximum(rows, 0)], np.nan)
+    return aic - ref[:, None]
+
+
+def _delta_aic_setting(result) -> float:
+    """The study's hysteresis threshold ΔAIC (PAS ``delta_aic``, §2.2), 4 when unrecorded."""
+    settings = getattr(result, "settings", None) or {}
+    value = (settings.get("strategy_settings") or {}).get("delta_aic", 4.0)
+    return float(value) if value is not None else 4.0

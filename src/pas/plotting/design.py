@@ -7,7 +7,8 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from ._common import _exceedance_axes, _new_axes, _strategy_name, _with_unit
+from ._common import _exceedance_axes, _legend_below, _new_axes, _p_exp_line, _strategy_name, \
+    _with_unit
 
 __all__ = ["plot_design_points", "plot_nonlinear_factor"]
 
@@ -41,7 +42,7 @@ def plot_design_points(result, *, ax=None, label=None, unit=None, quantity="HF l
         Also draw the linear targets (useful when HF and target are the same
         quantity).
     show_p_exp : bool, default True
-        Draw the ``P_exp`` line (off when the Axes already has one).
+        Draw the ``P_exp`` line (labelled once per Axes).
 
     Returns
     -------
@@ -61,6 +62,7 @@ def plot_design_points(result, *, ax=None, label=None, unit=None, quantity="HF l
     2
     """
     dist = _design_table(result)
+    own_figure = ax is None
     fig, ax = _new_axes(ax)
     name = _strategy_name(result, label)
     d = dist["exceedance_probability"].to_numpy(dtype=float)
@@ -69,10 +71,9 @@ def plot_design_points(result, *, ax=None, label=None, unit=None, quantity="HF l
     if show_linear:
         ax.plot(d, dist["linear"].to_numpy(dtype=float), marker, ls="none", ms=6, mfc="none",
                 color=pts.get_color(), label=f"{name}: linear target")
-    p_exp = float(result.p_exp)
     if show_p_exp:
-        ax.axvline(p_exp, color="0.3", lw=0.8, ls=":", label=f"$P_{{exp}}$ = {p_exp:.3g}")
-    _exceedance_axes(ax, quantity, unit)
+        _p_exp_line(ax, result.p_exp)
+    _exceedance_axes(ax, quantity, unit, grow=own_figure)
     return fig, ax
 
 
@@ -105,6 +106,7 @@ def plot_nonlinear_factor(result=None, *, lf=None, truth=None, ax=None, label=No
     """
     if result is None and (lf is None or truth is None):
         raise ValueError("give a design-wave result, or both lf and truth curves")
+    own_figure = ax is None
     fig, ax = _new_axes(ax)
     dist = _design_table(result) if result is not None else None
     if lf is not None and truth is not None:
@@ -128,5 +130,5 @@ def plot_nonlinear_factor(result=None, *, lf=None, truth=None, ax=None, label=No
     ax.set_xlabel(_with_unit("linear response", unit))
     ax.set_ylabel("non-linear factor $f_{NL}$ [-]")
     ax.grid(True, lw=0.3, alpha=0.5)
-    ax.legend(fontsize=7, loc="best")
+    _legend_below(ax, grow=own_figure)
     return fig, ax

@@ -13,8 +13,8 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from ._common import (_exceedance_axes, _fmt, _new_axes, _plot_with_band, _strategy_name,
-                      _with_unit)
+from ._common import (_exceedance_axes, _fmt, _has_band, _is_design, _legend_below, _new_axes,
+                      _p_exp_line, _plot_with_band, _strategy_name, _with_unit)
 
 __all__ = ["plot_distribution", "plot_scatter", "conditional_quantile_curves"]
 
@@ -79,8 +79,13 @@ def plot_distribution(result, *, lf=None, truth=None, ax=None, label=None, unit=
         Unit of the LF indicator, for its axis label.
     color : color, optional
     show_samples : bool, default True
-        Draw the HF samples at the LF exceedance probability of their event
-        (the order-statistics position AS assumes; PAS does not).
+        Draw the HF load of every evaluated event (true positives) at the LF
+        exceedance probability ``d`` of that event, and say so in the legend:
+        the HF exceedance of a sample is unknown (it is what the study
+        estimates), and the LF position is the one AS assumes for its order
+        statistics; PAS does not.  A sample above the curve at small ``d``
+        is a large load of a rare LF event, not a point of an empirical HF
+        distribution.
 
     Returns
     -------
@@ -96,7 +101,11 @@ def plot_distribution(result, *, lf=None, truth=None, ax=None, label=None, unit=
     as a thin error bar, with its sampling part as a thick bar inside it.
     Where the mean distribution is exactly 0 although no evaluated event
     gave 0, the draws fell below the HF marginal's support and were clipped;
-    that part is not drawn and the legend says from where.
+    that part is not drawn and the legend says from where.  A design-wave
+    result (:func:`pas.run_rcw`) is drawn by
+    :func:`~pas.plotting.design.plot_design_points`: one HF episode per level,
+    no curve and no band.  The legend sits under the x axis label, where it
+    covers no curve.
 
     Examples
     --------
@@ -112,15 +121,22 @@ def plot_distribution(result, *, lf=None, truth=None, ax=None, label=None, unit=
     dist = getattr(result, "distribution", None)
     if not isinstance(dist, pd.DataFrame) or dist.empty:
         raise ValueError("result: no predicted distribution (no fitted iteration yet)")
+    if _is_design(result):
+        from .design import plot_design_points
+
+        return plot_design_points(result, ax=ax, label=label, unit=unit, quantity=quantity,
+                                  color=color)
+    own_figure = ax is None
     fig, ax = _new_axes(ax)
     name = _strategy_name(result, label)
     d = dist["exceedance_probability"].to_numpy(dtype=float)
     h = dist["h_mean"].to_numpy(dtype=float)
     clipped = _clipped(result, h)
     shown = dist.mask(pd.Series(clipped, index=dist.index), np.nan) if clipped.any() else dist
+    banded = _has_band(shown, "h_low", "h_high")
     c = _plot_with_band(ax, d, shown, "h_mean", "h_low", "h_high", "-", name=name,
-                        label="mean $h^*(d)$, shaded: sampling band (Eq. 10)", color=color,
-                        lw=1.6, band_label=None)
+                        label="mean $h^*(d)$" + (", shaded: sampling band (Eq. 10)" if banded
+                                                 else ""), color=color, lw=1.6, band_label=None)
     if clipped.any():
         ax.plot([], [], " ", label=f"{name}: not drawn for d ≥ {d[clipped].min():.2g}: "
                                    "draws clipped at 0 (below the HF marginal)")
@@ -135,15 +151,12 @@ def plot_distribution(result, *, lf=None, truth=None, ax=None, label=None, unit=
             and not pairs.empty:
         ax.plot(pairs["d"].to_numpy(dtype=float), pairs["hf"].to_numpy(dtype=float), "o", ms=4,
                 mfc="none", mew=1.0, color=c,
-                label=f"{name}: HF samples at their LF exceedance ({len(pairs)})")
+                label=f"{name}: HF loads of the {len(pairs)} true-positive events, "
+                      "at their LF exceedance $d$")
     if truth is not None:
         d_t, h_t = _truth_curve(truth)
         ax.plot(d_t, h_t, "k--", lw=1.2, label="truth (HF Monte-Carlo)")
-    p_exp = float(result.p_exp)
-    pexp_label = f"$P_{{exp}}$ = {p_exp:.3g}"
-    if pexp_label in ax.get_legend_handles_labels()[1]:
-        pexp_label = "_" + pexp_label  # drawn by an earlier call on this Axes
-    ax.axvline(p_exp, color="0.3", lw=0.8, ls=":", label=pexp_label)
+    p_exp = _p_exp_line(ax, result.p_exp)
     mpm = float(result.mpm)
     if np.isfinite(mpm):
         _mpm_marker(ax, result, p_exp, mpm, c, name, unit)
@@ -156,11 +169,15 @@ def plot_distribution(result, *, lf=None, truth=None, ax=None, label=None, unit=
         seen.append(_truth_curve(truth)[1])
     seen = np.concatenate([np.ravel(x) for x in seen])
     seen = seen[np.isfinite(seen)]
-    if seen.size and np.nanmin(h) < seen.min():
+    # (a sampling band far wider than the data, e.g. an AS GPR between sparse samples,
+    # runs off the bottom instead of squashing the curves)
+    low_band = pd.to_numeric(shown.get("h_low", pd.Series(dtype=float)), errors="coerce").min()
+    if seen.size and min(np.nanmin(h), low_band if np.isfinite(low_band) else np.inf) \
+            < seen.min():
         lo, hi = ax.get_ylim()
         span = hi - min(seen.min(), 0.0)
         ax.set_ylim(max(lo, min(seen.min(), 0.0) - 0.05 * span), hi)
-    _exceedance_axes(ax, quantity, unit)
+    _exceedance_axes(ax, quantity, unit, grow=own_figure)
     return fig, ax
 
 
@@ -205,7 +222,7 @@ def conditional_quantile_curves(result, lf_grid, quantiles=(0.05, 0.5, 0.95)):
     """Quantiles of HF given LF (and an impact) in real space from a PAS result's final model.
 
     Refits what the strategy fitted in its last iteration, with the result's
-    own settings (:func:`pas.strategies.pas.refit`); then
+    own settings (:func:`pas.strategies.refit.refit`); then
     ``h_q(l) = F_h⁻¹(C⁻¹_{V|U}(q | u(l)))``.
 
     Parameters
@@ -223,7 +240,7 @@ def conditional_quantile_curves(result, lf_grid, quantiles=(0.05, 0.5, 0.95)):
         One HF curve per quantile, aligned with ``lf_grid``.
     """
     from ..copulas import EXTRA_FAMILIES, PAPER_FAMILIES
-    from ..strategies.pas import refit
+    from ..strategies.refit import refit
 
     family = getattr(result, "family", None)
     if family not in PAPER_FAMILIES + EXTRA_FAMILIES:
@@ -273,8 +290,8 @@ def plot_scatter(lf, hf, *, result=None, ax=None, lf_unit=None, unit=None,
 
     Notes
     -----
-    τ, λU and λL are computed on all the given pairs and shown in the title
-    and the legend.  λU and λL are fractions of the pairs beyond ``q_tail``;
+    τ, λU and λL are computed on all the given pairs and shown in the
+    title; the legend sits under the x axis label.  λU and λL are fractions of the pairs beyond ``q_tail``;
     with fewer than 10 such pairs (fewer than 100 pairs at q = 0.9) they
     would be 0, 0.5 or 1 from a handful of points and are not shown.  Large
     samples are rasterised in vector output.
@@ -288,6 +305,7 @@ def plot_scatter(lf, hf, *, result=None, ax=None, lf_unit=None, unit=None,
     x, y = x[ok], y[ok]
     if x.size < 3:
         raise ValueError(f"lf, hf: need at least 3 finite pairs, got {x.size}")
+    own_figure = ax is None
     fig, ax = _new_axes(ax, figsize=(6.0, 5.0))
     tau = kendall_tau(x, y)
     n_tail = int(np.sum(np.arange(1, x.size + 1) / (x.size + 1) > q_tail))  # pairs with u > q
@@ -300,7 +318,7 @@ def plot_scatter(lf, hf, *, result=None, ax=None, lf_unit=None, unit=None,
     many = x.size > 2000
     ax.scatter(x, y, s=4 if many else 14, color="0.6" if many else "0.45", alpha=0.5 if many else 0.8,
                lw=0, rasterized=many,
-               label=f"{label} (n = {x.size}); {stats_txt}")
+               label=f"{label} (n = {x.size})")
     if result is not None:
         pairs = result.pairs
         ax.plot(pairs["lf"], pairs["hf"], "o", ms=5, mfc="none", mew=1.2, color="tab:red",
@@ -319,5 +337,5 @@ def plot_scatter(lf, hf, *, result=None, ax=None, lf_unit=None, unit=None,
     ax.set_ylabel(_with_unit(hf_label, unit))
     ax.set_title(stats_txt, fontsize=9)
     ax.grid(True, lw=0.3, alpha=0.5)
-    ax.legend(fontsize=7, loc="upper left")  # data rise to the right: upper left is freest
+    _legend_below(ax, grow=own_figure)
     return fig, ax

@@ -3,14 +3,16 @@
 Occurrence probability against Hm0 with its interval, inter-arrival
 histogram with the exponential fit before and after declustering, Q–Q plots
 of fitted peak-load distributions, and the exposure probability against the
-load limit. Each takes ``ax=None`` and returns ``(fig, ax)``.
+load limit. Each takes ``ax=None`` and returns ``(fig, ax)``; the legend sits
+under the x axis label, where it covers no curve (compose panels with
+``layout="constrained"`` to keep the legends clear of each other).
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-from ._common import _new_axes, _with_unit
+from ._common import _legend_below, _new_axes, _with_unit
 
 __all__ = ["plot_occurrence", "plot_inter_arrival", "plot_qq", "plot_exposure"]
 
@@ -30,6 +32,7 @@ def plot_occurrence(fit, *, hm0=None, ax=None):
     -------
     fig, ax
     """
+    own_figure = ax is None
     fig, ax = _new_axes(ax)
     data = fit.data
     h = np.linspace(0.6 * data["hm0"].min(), 1.3 * data["hm0"].max(), 200) if hm0 is None \
@@ -48,7 +51,7 @@ def plot_occurrence(fit, *, hm0=None, ax=None):
     ax.set_xlabel("Hm0 [m]")
     ax.set_ylabel("impact probability per encounter")
     ax.grid(True, lw=0.3, alpha=0.5)
-    ax.legend(fontsize=7)
+    _legend_below(ax, grow=own_figure)
     return fig, ax
 
 
@@ -87,6 +90,7 @@ def plot_inter_arrival(gaps, *, declustered=None, t_min=0.0, bins=40, log=True, 
     -------
     fig, ax
     """
+    own_figure = ax is None
     fig, ax = _new_axes(ax)
     g = np.asarray(gaps, dtype=float)
     top = max(g.max(), np.max(declustered) if declustered is not None else 0.0)
@@ -99,7 +103,7 @@ def plot_inter_arrival(gaps, *, declustered=None, t_min=0.0, bins=40, log=True, 
     ax.set_xlabel("time between impacts [s]")
     ax.set_ylabel("probability density [1/s]")
     ax.grid(True, lw=0.3, alpha=0.5)
-    ax.legend(fontsize=7)
+    _legend_below(ax, grow=own_figure)
     return fig, ax
 
 
@@ -122,6 +126,7 @@ def plot_qq(loads, fits, *, unit="kN", ax=None):
     """
     from ..stats.load_fits import qq_points
 
+    own_figure = ax is None
     fig, ax = _new_axes(ax)
     if hasattr(fits, "columns"):
         fits = {f"{name} (ΔAIC {row['delta_aic']:.3g})": row["dist"]
@@ -137,7 +142,7 @@ def plot_qq(loads, fits, *, unit="kN", ax=None):
     ax.set_xlabel(_with_unit("fitted quantile", unit))
     ax.set_ylabel(_with_unit("measured peak load", unit))
     ax.grid(True, lw=0.3, alpha=0.5)
-    ax.legend(fontsize=7)
+    _legend_below(ax, grow=own_figure)
     return fig, ax
 
 
@@ -164,6 +169,7 @@ def plot_exposure(limits, probability, distribution, n_encounters, *, mpm=None, 
     """
     from ..stats.impacts import exposure_load, exposure_probability
 
+    own_figure = ax is None
     fig, ax = _new_axes(ax)
     lim = np.asarray(limits, dtype=float)
     ax.semilogy(lim, exposure_probability(lim, probability, distribution, n_encounters), "-",
@@ -179,5 +185,5 @@ def plot_exposure(limits, probability, distribution, n_encounters, *, mpm=None, 
     ax.set_xlabel(_with_unit("load limit", unit))
     ax.set_ylabel("P(exposure maximum > limit)")
     ax.grid(True, which="both", lw=0.3, alpha=0.5)
-    ax.legend(fontsize=7)
+    _legend_below(ax, grow=own_figure)
     return fig, ax

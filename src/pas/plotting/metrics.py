@@ -5,6 +5,8 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
+from ._common import LEGEND_FONTSIZE, _legend_below
+
 __all__ = ["plot_metrics"]
 
 # -- validation metrics (paper Fig. 8) --------------------------------------
@@ -42,6 +44,11 @@ def plot_metrics(table, *, ax=None, axes=None, percent=True):
     -------
     fig : matplotlib.figure.Figure
     ax : matplotlib.axes.Axes or ndarray of three Axes
+
+    Notes
+    -----
+    The legend (one for the three panels) sits under the x axis label, so it
+    covers no bar and no bar label.
     """
     if not isinstance(table, pd.DataFrame):
         table = pd.DataFrame(table)
@@ -88,8 +95,9 @@ def plot_metrics(table, *, ax=None, axes=None, percent=True):
         ax.set_xlabel("validation case")
         ax.set_ylabel("metric [%]" if percent else "metric [-]")
         ax.grid(True, axis="y", lw=0.3, alpha=0.5)
-        ax.legend(fontsize=7, ncol=len(strategies))
+        _legend_below(ax, ncol=len(strategies))
         return fig, ax
+    own_figure = axes is None
     if axes is None:
         import matplotlib.pyplot as plt
 
@@ -113,10 +121,11 @@ def plot_metrics(table, *, ax=None, axes=None, percent=True):
         label = _METRIC_LABEL[m] if percent else _METRIC_LABEL[m].replace("[%]", "[-]")
         panel.set_ylabel(label, fontsize=8)
         panel.grid(True, axis="y", lw=0.3, alpha=0.5)
-        if any(strategies):
-            panel.legend(fontsize=7, ncol=len(strategies))
     axes[-1].set_xticks(x, cases)
     axes[-1].set_xlabel("validation case")
+    if any(strategies):  # one legend for the three panels, under them, off the bars
+        _legend_below(axes[-1], *axes[0].get_legend_handles_labels(), ncol=len(strategies),
+                      grow=own_figure)
     return fig, np.asarray(axes)
 
 
@@ -124,4 +133,4 @@ def _label_bars(ax, bars, values, unit, n_bars):
     """Write each bar's value on it when the panel has few bars (a one-case figure)."""
     if n_bars <= _MAX_LABELLED:
         ax.bar_label(bars, labels=["" if not np.isfinite(v) else f"{v:.3g}{unit}"
-                                   for v in values], fontsize=7, padding=2)
+                                   for v in values], fontsize=LEGEND_FONTSIZE, padding=2)

@@ -1,23 +1,16 @@
 """Figures for record analysis: exceedance of pooled peaks and seed maxima, R(N).
 
 Both functions follow pyextremes: they take ``ax=None`` (a new figure is made
-when omitted) and return ``(fig, ax)``.
+when omitted) and return ``(fig, ax)``; the legend sits under the x axis label.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
+from ._common import _legend_below, _new_axes
+
 __all__ = ["plot_record_exceedance", "plot_convergence"]
-
-
-def _axes(ax):
-    import matplotlib.pyplot as plt
-
-    if ax is None:
-        fig, ax = plt.subplots(figsize=(7.0, 4.5))
-        return fig, ax
-    return ax.figure, ax
 
 
 def _unit(units):
@@ -61,7 +54,8 @@ def plot_record_exceedance(d, values, *, maxima=None, fit=None, fit_scale=1.0, f
     -------
     fig, ax
     """
-    fig, ax = _axes(ax)
+    own_figure = ax is None
+    fig, ax = _new_axes(ax)
     d = np.asarray(d, dtype=float)
     v = np.asarray(values, dtype=float)
     if d.shape != v.shape or d.ndim != 1:
@@ -89,7 +83,7 @@ def plot_record_exceedance(d, values, *, maxima=None, fit=None, fit_scale=1.0, f
     lo_p = min(d.min(), p_target or 1.0) / 3.0
     ax.set_ylim(lo_p, 1.5)
     ax.grid(True, which="both", lw=0.3, alpha=0.5)
-    ax.legend(fontsize=7, loc="lower left")
+    _legend_below(ax, grow=own_figure)
     return fig, ax
 
 
@@ -117,7 +111,8 @@ def plot_convergence(n, rms, *, criterion=None, bias=None, band=None, units="m",
     -------
     fig, ax
     """
-    fig, ax = _axes(ax)
+    own_figure = ax is None
+    fig, ax = _new_axes(ax)
     n = np.asarray(n)
     curves = rms if isinstance(rms, dict) else {"R(N)": rms}
     for i, (label, r) in enumerate(curves.items()):
@@ -139,5 +134,5 @@ def plot_convergence(n, rms, *, criterion=None, bias=None, band=None, units="m",
     ax.set_xlabel("number of seeds N")
     ax.set_ylabel(f"RMS difference of {variable}{_unit(units)}")
     ax.grid(True, lw=0.3, alpha=0.5)
-    ax.legend(fontsize=7)
+    _legend_below(ax, grow=own_figure)
     return fig, ax

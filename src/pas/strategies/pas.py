@@ -42,22 +42,22 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._validation import check_option
+from .._validation import check_finite, check_int, check_option
 from ..copulas import (
     PAPER_FAMILIES,
     _family_and_rotation,
     fit_candidates,
     select_family,
 )
-from ..joint import HF_MARGINALS, JOINT_FAMILIES
-from ..joint_mixture import HF_CHOICES, MIXTURE, fit_hf_candidates
+from ..joint import JOINT_FAMILIES
+from ..joint_mixture import HF_CHOICES, fit_hf_candidates
 from ..screening import LFSet
 from ..stats.dependence import (
     empirical_tail_dependence,
     kendall_tau,
     pseudo_observations,
 )
-from ..stats.exceedance import value_at_exceedance
+from . import band
 from .acquisition import md_select
 from .base import Pairs, Prediction, Strategy
 from .random_numbers import PeakUniforms
@@ -74,7 +74,6 @@ from .steps import (
 __all__ = [
     "PAS",
     "FittedModel",
-    "refit",
     "remove_outliers",
     "conditioning_set",
     "draw_conditional_hf",
@@ -84,32 +83,6 @@ __all__ = [
 ]
 
 COLD_EVERY = 10
-
-
-def refit(result) -> "FittedModel":
-    """The final model of a PAS result, fitted again from what the result holds.
-
-    Uses the result's settings, pairs, false positives (history), selected
-    family and the LF peaks it conditioned on (``distribution["lf"]``), so a
-    saved result can be redrawn (:func:`pas.plotting.conditional_quantile_curves`)
-    without the LF Monte-Carlo run.
-    """
-    dist = result.distribution
-    if "lf" not in dist or not result.family:
-        raise ValueError("the result holds no fitted PAS model (no 'lf' column in its "
-                         "distribution, or no copula family)")
-    settings = dict((result.settings or {}).get("strategy_settings", {}))
-    strategy = PAS(**settings)
-    strategy.reset(result.seed)
-    lfset = LFSet(dist["lf"].to_numpy(float), n_waves=result.n_waves, p_exp=result.p_exp,
-                  threshold=(result.settings or {}).get("threshold"))
-    lf = result.pairs["lf"].to_numpy(float)
-    pos = np.clip(lfset.n - np.searchsorted(lfset.lf[::-1], lf, side="right"), 0, lfset.n - 1)
-    hist = result.history
-    fp_lf = hist.loc[hist["status"] == "false_positive", "lf"].to_numpy(float)
-    pairs = Pairs(pos, lf, result.pairs["hf"].to_numpy(float), lfset.d[pos], fp_lf,
-                  np.zeros(fp_lf.size, dtype=int))
-    return strategy.fit(pairs, lfset, family=result.family)
 
 
 class PAS(Strategy):
@@ -205,11 +178,9 @@ class PAS(Strategy):
                  band_lf_ranks: str = "redrawn", lf_tail: str = "ranks"):
         for f in families:
             _family_and_rotation(f)
-        if z < 2:
-            raise ValueError(f"z must be at least 2 to estimate the band, got {z}")
+        self.z = check_int(z, "z", minimum=2)  # 2 draws at least, for the band
         self.families = tuple(families)
-        self.z = int(z)
-        self.delta_aic = float(delta_aic)
+        self.delta_aic = check_finite(delta_aic, "delta_aic")
         self.exclude_at_bound = bool(exclude_at_bound)
         self.upper_tail = upper_tail
         self.outlier_k = None if outlier_k is None else float(outlier_k)
@@ -242,6 +213,8 @@ class PAS(Strategy):
         self._joint = {}
         self._n_fits = 0
         self._lf_tail_fits = {}
+        self._last_joint = {}
+        self._ranks = None
 
     def propose(self, selected_d, lfset: LFSet, available: np.ndarray,
                 last: Prediction | None, q: int = 1) -> list[int]:
@@ -255,7 +228,8 @@ class PAS(Strategy):
     # -- Steps 7–9: the model ------------------------------------------------
     def fit(self, pairs: Pairs, lfset: LFSet, family: str | None = None, *,
             update: bool = True, hf_marginal: str | None = None,
-            lf_ranks_rng: np.random.Generator | None = None) -> FittedModel:
+            lf_ranks_rng: np.random.Generator | None = None,
+            starts: dict | None = None) -> FittedModel:
         """Steps 7–9: fit the copula, the HF marginal and the impact model to ``pairs``.
 
         With ``family`` only that family is fitted; otherwise all candidates,
@@ -264,7 +238,10 @@ class PAS(Strategy):
         changes: the family is the lowest eligible AIC of these pairs.
         ``hf_marginal`` overrides the setting of that name for this fit;
         ``lf_ranks_rng`` (conditional estimator) draws the LF population ranks
-        instead of taking their mid-ranks (:meth:`model_band`).
+        instead of taking their mid-ranks (:meth:`model_band`); ``starts``
+        (conditional estimator): joint fits by ``(family, marginal)`` to start
+        from, and only from them but for the families of
+        :data:`pas.strategies.band.COLD_FAMILIES` (:meth:`model_band`).
         """
         # Step 7 removes pairs by their HF value: a selection on the response, which
         # the conditional likelihood does not allow (it would drop the largest loads
@@ -277,7 +254,7 @@ class PAS(Strategy):
         fit = self._fit_conditional if self.estimator == "conditional" else self._fit_selected
         fits, hf_marginals, lf_to_u, n0 = fit(pairs, lfset, keep, families, impact, family,
                                               update, hf_marginal or self.hf_marginal,
-                                              lf_ranks_rng)
+                                              lf_ranks_rng, starts)
         if family is None:
             family = select_family(fits, self.family_ if update else None,
                                    delta_aic=self.delta_aic,
@@ -290,7 +267,7 @@ class PAS(Strategy):
                            None if impact is None else impact(cond), fits, int((~keep).sum()))
 
     def _fit_selected(self, pairs, lfset, keep, families, impact, family, update, hf_marginal,
-                      lf_ranks_rng):
+                      lf_ranks_rng, starts):
         """The paper's fit in selected-sample space (§2.2–2.3, Eq. 5, 15)."""
         lf, hf = pairs.lf[keep], pairs.hf[keep]
         fits = fit_candidates(*pseudo_observations(lf, hf), families, method=self.copula_fit)
@@ -301,21 +278,24 @@ class PAS(Strategy):
         return fits, dict.fromkeys(fits, f_h), f_l.cdf, n0
 
     def _fit_conditional(self, pairs, lfset, keep, families, impact, family, update,
-                         hf_marginal, lf_ranks_rng):
+                         hf_marginal, lf_ranks_rng, starts):
         """Population LF ranks and the joint conditional likelihood (:mod:`pas.joint`)."""
         n0 = conditioning_set(lfset.lf, pairs.lf.min()).size
         cond_lf = lfset.lf[:n0]
-        u_cond = population_lf_ranks(cond_lf, impact, lf_ranks_rng,
-                                     gpd_tail=self.lf_tail == "gpd", tail_fits=self._lf_tail_fits)
-        starts = self._joint if family is None else {
-            k: v for k, v in self._joint.items() if k[0] == family}
-        # a warm start from the previous iteration converges in a few steps; every
-        # COLD_EVERY-th fit, and every bootstrap replicate, also starts from the
-        # data, so no fit stays trapped in the basin of another sample
-        cold = not update or (family is None and self._n_fits % COLD_EVERY == 0)
+        u_cond = self._population_ranks(lfset, n0, impact, lf_ranks_rng)
+        if starts is not None:  # a band replicate from the final fits (model_band)
+            cold = band.COLD_FAMILIES
+        else:
+            starts = self._joint if family is None else {
+                k: v for k, v in self._joint.items() if k[0] == family}
+            # a warm start from the previous iteration converges in a few steps; every
+            # COLD_EVERY-th fit, and every other fit with update=False, also starts from
+            # the data, so no fit stays trapped in the basin of another sample
+            cold = not update or (family is None and self._n_fits % COLD_EVERY == 0)
         every, joint = fit_hf_candidates(u_cond[pairs.position][keep], pairs.hf[keep], families,
                                          hf_marginal, starts=starts, location=self.hf_location,
                                          cold=cold or not starts)
+        self._last_joint = every
         if update and family is None:
             self._joint = every
             self._n_fits += 1
@@ -324,13 +304,33 @@ class PAS(Strategy):
                 {k: j.hf_marginal for k, j in joint.items()},
                 lambda x: np.interp(x, *ascending), n0)
 
+    def _population_ranks(self, lfset: LFSet, n0: int, impact, rng):
+        """:func:`population_lf_ranks` of the top ``n0`` LF peaks; without an impact model or
+        a draw the same every iteration, so kept for the latest ``n0`` of this ``lfset``."""
+        fixed = impact is None and rng is None
+        cached = self._ranks
+        if fixed and cached is not None and cached[0] is lfset.lf and cached[1] == n0:
+            return cached[2]
+        u = population_lf_ranks(lfset.lf[:n0], impact, rng, gpd_tail=self.lf_tail == "gpd",
+                                tail_fits=self._lf_tail_fits)
+        if fixed:
+            self._ranks = (lfset.lf, n0, u)
+        return u
+
     def _random_numbers(self, n0: int, rng: np.random.Generator | None):
         """Step 9's uniforms ``r`` and ``q``, shape ``(z, n0)`` each (:class:`PeakUniforms`)."""
         return self._uniforms.draw(n0, rng)
 
-    def _predict_model(self, model: FittedModel, lfset: LFSet, rng):
+    def _draws(self, model: FittedModel, rng) -> np.ndarray:
+        """Step 9's HF draws, shape ``(z, n0)``; the Gaussian and Student-t draws read the
+        normal scores of the common uniforms, kept from the first time."""
         r, q = self._random_numbers(model.n0, rng)
-        return hf_distribution(model.draws(r, q), lfset.n_waves)
+        scores = (self._uniforms.scores(model.n0)
+                  if model.copula.name.partition("_")[0] in ("gaussian", "student") else None)
+        return model.draws(r, q, scores)
+
+    def _predict_model(self, model: FittedModel, lfset: LFSet, rng):
+        return hf_distribution(self._draws(model, rng), lfset.n_waves)
 
     def predict(self, pairs: Pairs, lfset: LFSet, rng: np.random.Generator) -> Prediction:
         model = self.fit(pairs, lfset)
@@ -357,7 +357,8 @@ class PAS(Strategy):
             columns["p_impact"] = model.impact
         return Prediction.read_at(lfset.p_exp, d, mean, low, high, record, columns)
 
-    def model_band(self, pairs: Pairs, lfset: LFSet, rng: np.random.Generator):
+    def model_band(self, pairs: Pairs, lfset: LFSet, rng: np.random.Generator, *,
+                   n_jobs: int | None = None):
         """U95 of the MPM over a bootstrap of the evaluated events (beyond the paper).
 
         Each replicate resamples the true and false positives with
@@ -373,31 +374,20 @@ class PAS(Strategy):
         the LF population CDF at the peaks: the copula is fitted on the LF
         ranks, and at the top of the record the ranks tell the population
         CDF only to within the spread of the largest order statistics.
+        The conditional estimator's replicates start their joint fits from the
+        final model's (:mod:`pas.strategies.band`); ``n_jobs`` processes fit
+        them (None: one; -1: every core), with the same band for any ``n_jobs``.
         Returns ``(low, high, mpms)`` or None when off.
         """
         if self.n_bootstrap <= 0 or self.family_ is None:
             return None
-        reselected = "all" if self.hf_marginal == MIXTURE else "both"
-        marginals = {"fitted": (None,), "reselected": (reselected,),
-                     "alternate": HF_MARGINALS}[self.band_marginals]
-        # a stream of its own, so the resampled pairs are those of "fixed"
-        lf_rng = rng.spawn(1)[0] if self.band_lf_ranks == "redrawn" else None
-        mpms = []
-        m, n_fp = len(pairs), len(pairs.fp_position)
-        for i in range(self.n_bootstrap):
-            idx = rng.integers(0, m + n_fp, m + n_fp)
-            tp, fp = idx[idx < m], idx[idx >= m] - m
-            b = pairs.take(tp, fp)
-            if tp.size < 4 or np.ptp(b.lf) == 0 or np.ptp(b.hf) == 0:
-                continue
-            try:
-                model = self.fit(b, lfset, update=False,
-                                 hf_marginal=marginals[i % len(marginals)], lf_ranks_rng=lf_rng)
-                d, mean, _, _ = self._predict_model(model, lfset, rng)
-            except (ValueError, np.linalg.LinAlgError):
-                continue
-            mpms.append(float(value_at_exceedance(d, mean, lfset.p_exp)))
-        if len(mpms) < 10:
-            return None
-        mpms = np.asarray(mpms)
-        return float(np.percentile(mpms, 2.5)), float(np.percentile(mpms, 97.5)), mpms
+        return band.bootstrap_band(self, pairs, lfset, rng, n_jobs)
+
+    def final_joint_fits(self, pairs: Pairs, lfset: LFSet, hf_marginal: str) -> dict:
+        """Joint fits of every family and the marginals of ``hf_marginal`` to ``pairs``
+        (conditional estimator; the band's starts): from the study's last fits, which are
+        of these pairs, as a replicate starts; a marginal the study did not fit, from the data."""
+        impact = impact_probability(pairs.lf, pairs.fp_lf) if self.impact_model else None
+        self._fit_conditional(pairs, lfset, np.ones(len(pairs), bool), self.families, impact,
+                              None, False, hf_marginal, None, self._joint)
+        return self._last_joint

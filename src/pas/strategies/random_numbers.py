@@ -11,6 +11,7 @@ model (``docs/departures.md``, ``common_random_numbers``).
 from __future__ import annotations
 
 import numpy as np
+from scipy import special
 
 from .steps import EPS
 
@@ -29,6 +30,20 @@ class PeakUniforms:
     def __init__(self, z: int, seed: int | None, common: bool = True):
         self.z, self.seed, self.common = int(z), 0 if seed is None else seed, bool(common)
         self._uniforms = None
+        self._scores = None
+
+    def scores(self, n0: int):
+        """``Φ⁻¹(r)`` of the common copula uniforms of :meth:`draw`, computed once per peak
+        (None when the uniforms are redrawn every call)."""
+        if not self.common:
+            return None
+        have = 0 if self._scores is None else self._scores.shape[1]
+        if have < n0:
+            r, _ = self.draw(n0, None)
+            new = special.ndtri(r[:, have:])
+            self._scores = new if self._scores is None else np.concatenate([self._scores, new],
+                                                                           axis=1)
+        return self._scores[:, :n0]
 
     def draw(self, n0: int, rng: np.random.Generator | None):
         if not self.common:

@@ -43,13 +43,15 @@ def conditioning_set(lf_sorted, l0: float) -> np.ndarray:
     return lf_sorted[lf_sorted >= l0]
 
 
-def draw_conditional_hf(fit: CopulaFit, u_cond, hf_marginal, r, *, eps: float = EPS):
+def draw_conditional_hf(fit: CopulaFit, u_cond, hf_marginal, r, *, eps: float = EPS,
+                        r_scores=None):
     """Step 9: HF values given each conditioning peak's LF rank ``u`` (Eq. 7).
 
-    ``r`` holds the uniforms, shape ``(z, n0)``; returns HF draws of that shape.
+    ``r`` holds the uniforms, shape ``(z, n0)`` (``r_scores``: their ``Φ⁻¹``,
+    when kept); returns HF draws of that shape.
     """
     u = np.clip(np.asarray(u_cond, float), eps, 1 - eps)
-    v = np.clip(conditional_quantile(fit, u[None, :], r), eps, 1 - eps)
+    v = np.clip(conditional_quantile(fit, u[None, :], r, r_scores=r_scores), eps, 1 - eps)
     # HF loads are non-negative by the oracle's contract; a Weibull location
     # below zero must not produce negative loads in the bulk
     return np.maximum(hf_marginal.ppf(v), 0.0)
@@ -101,9 +103,10 @@ class FittedModel:
     def n0(self) -> int:
         return int(self.u_cond.size)
 
-    def draws(self, r, q=None) -> np.ndarray:
-        """HF draws for uniforms ``r`` (and impact uniforms ``q``), shape ``(z, n0)``."""
-        h = draw_conditional_hf(self.copula, self.u_cond, self.hf_marginal, r)
+    def draws(self, r, q=None, r_scores=None) -> np.ndarray:
+        """HF draws for uniforms ``r`` (and impact uniforms ``q``; ``r_scores``: ``Φ⁻¹(r)``
+        when kept), shape ``(z, n0)``."""
+        h = draw_conditional_hf(self.copula, self.u_cond, self.hf_marginal, r, r_scores=r_scores)
         if self.impact is not None:
             h = np.where(q < self.impact[None, :], h, 0.0)
         return h

@@ -13,12 +13,12 @@ _EXPORTS = {
     "CommandOracle": "oracles", "OracleError": "oracles", "OracleFailureLimit": "oracles",
     "TableOracle": "oracles", "check_hf_value": "oracles", "ScreeningResult": "result",
     "EventState": "state", "StoreError": "store", "StudyStore": "store", "Study": "study",
-    "open_study": "resume",
+    "open_study": "resume", "refit": "refit", "check_hf_answer": "answers",
 }
 
 __all__ = ["Study", "ScreeningResult", "OracleFailureLimit", "check_hf_value", "StudyStore",
            "StoreError", "open_study", "TableOracle", "CommandOracle", "OracleError",
-           "EventState"]
+           "EventState", "refit", "check_hf_answer"]
 
 
 def __getattr__(name):

@@ -36,7 +36,7 @@ LF_SETTINGS = ("n_waves", "p_exp", "threshold")
 
 STUDY_SETTINGS = ("eps1", "eps2", "k1", "k2", "stop_measure", "seed", "max_hf", "max_failures",
                   "stop_on_convergence", "adaptive_threshold", "threshold_step", "fp_run",
-                  "legacy_md")
+                  "legacy_md", "target")
 """Keyword settings of :class:`~pas.study.study.Study` (its constructor takes them all)."""
 
 

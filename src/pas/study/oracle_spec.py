@@ -2,6 +2,11 @@
 
 ``table:FILE[:ID_COLUMN:VALUE_COLUMN]``, ``command:ARGS ...`` and
 ``python:FILE.py:FUNCTION`` (:func:`parse_oracle_spec`), or the same as a dict.
+A command's relative paths mean paths in the directory the study was started
+from (:func:`~pas.study.oracles.resolve_paths`): the spec's ``cwd``, which
+``pas study create`` sets to the study file's folder, and which
+:func:`keep_start_dir` records in a ``pas run`` study store, so a resumed
+run in another folder runs the same files.
 """
 
 from __future__ import annotations
@@ -14,14 +19,17 @@ from pathlib import Path
 
 from .oracles import CommandOracle, TableOracle
 
-__all__ = ["oracle_from_spec", "parse_oracle_spec"]
+__all__ = ["oracle_from_spec", "parse_oracle_spec", "keep_start_dir", "START_DIR_KEY"]
+
+START_DIR_KEY = "oracle_cwd"
+"""Meta key of a study store holding the directory its command oracle was first started from."""
 
 
 def parse_oracle_spec(spec: str) -> dict:
     """The ``[oracle]`` table equivalent to an oracle text spec (``pas run --oracle``).
 
     ``table:FILE[:ID_COLUMN:VALUE_COLUMN]`` gives ``{"table", "id_column",
-    "value_column"}``; ``python:MODULE:FUNCTION`` gives ``{"python"}``;
+    "value_column"}`` (``VALUE_COLUMN`` ``A,B``: a list, one named load per column); ``python:MODULE:FUNCTION`` gives ``{"python"}``;
     ``command:ARGS`` gives ``{"command": [...]}``, the arguments split like a
     shell would split them (never run through one).
 
@@ -29,6 +37,8 @@ def parse_oracle_spec(spec: str) -> dict:
     --------
     >>> parse_oracle_spec("table:basin.csv:event:force")
     {'table': 'basin.csv', 'id_column': 'event', 'value_column': 'force'}
+    >>> parse_oracle_spec("table:basin.csv:event:deck_force,panel_p3")["value_column"]
+    ['deck_force', 'panel_p3']
     >>> parse_oracle_spec("command:python cfd.py --out {result}")
     {'command': ['python', 'cfd.py', '--out', '{result}']}
     """
@@ -41,7 +51,11 @@ def parse_oracle_spec(spec: str) -> dict:
         if len(parts) == 1:
             return {"table": parts[0]}
         if len(parts) == 3 and all(parts):
-            return dict(zip(("table", "id_column", "value_column"), parts))
+            columns = parts[2].split(",")
+            if len(columns) > 1 and not all(columns):
+                raise ValueError(f"{spec!r}: empty name in the value columns {parts[2]!r}")
+            return {"table": parts[0], "id_column": parts[1],
+                    "value_column": columns if len(columns) > 1 else parts[2]}
         raise ValueError(f"{spec!r}: expected table:FILE or table:FILE:ID_COLUMN:VALUE_COLUMN")
     if kind == "python":
         target, sep, func = rest.rpartition(":")
@@ -59,14 +73,14 @@ def parse_oracle_spec(spec: str) -> dict:
     raise ValueError(f"unknown kind {kind!r} (use table:, python: or command:)")
 
 
-def oracle_from_spec(spec, *, root=None, timeout=None):
+def oracle_from_spec(spec, *, root=None, timeout=None, cwd=None):
     """Build an HF oracle from a text spec or an ``[oracle]`` table.
 
     Parameters
     ----------
     spec : str or dict
         Text as for :func:`parse_oracle_spec`, or a table with exactly one of
-        ``command`` (with ``root``, ``timeout``, ``result_name``: see
+        ``command`` (with ``root``, ``timeout``, ``result_name``, ``cwd``: see
         :class:`CommandOracle`), ``table`` (with ``id_column``,
         ``value_column``: see :class:`TableOracle`) or ``python``
         (``"MODULE:FUNCTION"``, ``MODULE`` an importable name or a ``.py`` file).
@@ -75,6 +89,9 @@ def oracle_from_spec(spec, *, root=None, timeout=None):
         names none (default ``hf-runs``).
     timeout : float, optional
         Seconds per event of a command oracle when ``spec`` names none.
+    cwd : path, optional
+        Directory a command oracle's relative paths (and ``root``) resolve
+        against when ``spec`` names none (default: the current directory).
 
     Returns
     -------
@@ -84,7 +101,7 @@ def oracle_from_spec(spec, *, root=None, timeout=None):
     o = parse_oracle_spec(spec) if isinstance(spec, str) else dict(spec)
     if "command" in o:
         return CommandOracle(o["command"], root=o.get("root", root or "hf-runs"),
-                             timeout=o.get("timeout", timeout),
+                             cwd=o.get("cwd", cwd), timeout=o.get("timeout", timeout),
                              result_name=o.get("result_name", "result.txt"))
     if "table" in o:
         return TableOracle(o["table"], id_column=o.get("id_column", "id"),
@@ -93,6 +110,36 @@ def oracle_from_spec(spec, *, root=None, timeout=None):
         target, _, func = o["python"].rpartition(":")
         return _python_function(target, func)
     raise ValueError(f"an oracle needs one of command, table or python, got {sorted(o)}")
+
+
+def keep_start_dir(oracle, store):
+    """``oracle`` resolved against the directory its study was first started from.
+
+    A :class:`CommandOracle` bound to a new study store records its ``cwd``
+    there (under :data:`START_DIR_KEY`); on a store holding another one it is
+    rebuilt with that one (its ``root`` kept), so relative script paths keep
+    meaning the files of the first run.  Other oracles are returned as they are.
+
+    Returns
+    -------
+    (oracle, note)
+        ``note`` is None, or one line saying the recorded directory is used.
+    """
+    if not isinstance(oracle, CommandOracle) or store is None:
+        return oracle, None
+    recorded = store.get(START_DIR_KEY)
+    if recorded is None:
+        store.put(START_DIR_KEY, oracle.cwd)
+        return oracle, None
+    if recorded == oracle.cwd:
+        return oracle, None
+    try:
+        moved = oracle.with_cwd(recorded)
+    except ValueError:  # the first run's folder is gone: use this one, and say so
+        return oracle, (f"the study was started in {recorded}, which no longer exists; the "
+                        f"command's relative paths resolve against {oracle.cwd}")
+    return moved, (f"the command's relative paths resolve against {recorded}, where the study "
+                   "was started")
 
 
 def _python_function(target: str, func: str):

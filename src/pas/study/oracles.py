@@ -1,8 +1,11 @@
 """HF oracles: calling one safely, the built-in ones, and building one from a text spec.
 
 An oracle is any callable ``oracle(event) -> float`` (0 = no impact, a false
-positive).  A failure is an exception with a message; the study records it as
-a failed event and never takes it as 0 (:func:`call_oracle`).  The built-in
+positive), or ``-> {name: float}`` when one HF run gives several loads (panels,
+pressure sensors, forces): the study screens on its ``target`` and the store
+keeps them all (:func:`check_hf_answer`).  A failure is an exception with a
+message; the study records it as a failed event and never takes it as 0
+(:func:`call_oracle`).  The built-in
 oracles, a results table and an external command per event, hold only plain
 data, so they pickle for process pools and Dask workers.
 :func:`pas.study.oracle_spec.oracle_from_spec` builds one from ``pas run
@@ -11,12 +14,10 @@ data, so they pickle for process pools and Dask workers.
 
 from __future__ import annotations
 
-import fcntl
 import json
 import math
 import os
 import re
-import signal
 import subprocess
 import time
 from pathlib import Path
@@ -24,9 +25,12 @@ from pathlib import Path
 import numpy as np
 
 from ..io import read_table
+from ._processes import OWN_SESSION, kill_group, try_lock
+from .answers import check_hf_answer, check_hf_value, check_target, lacks_target
 
-__all__ = ["OracleError", "OracleFailureLimit", "check_hf_value", "call_oracle", "TableOracle",
-           "CommandOracle"]
+__all__ = ["OracleError", "OracleFailureLimit", "check_hf_value", "check_hf_answer",
+           "lacks_target", "check_oracle", "call_oracle", "call_oracle_loads", "check_target",
+           "TableOracle", "CommandOracle", "resolve_paths"]
 
 
 class OracleError(RuntimeError):
@@ -44,32 +48,29 @@ class OracleFailureLimit(RuntimeError):
         self.result = result
 
 
-def check_hf_value(value):
-    """Validate an oracle's answer: ``(float, None)`` or ``(None, error message)``.
-
-    0 is a valid answer (no impact, a false positive); NaN, inf, negative and
-    non-numeric answers are failures, never taken as 0.
-    """
-    if isinstance(value, bool):
-        return None, f"oracle returned a bool ({value!r}), expected a load"
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        return None, f"oracle returned {value!r}, not a number"
-    if not math.isfinite(v):
-        return None, f"oracle returned {v!r}"
-    if v < 0:
-        return None, f"oracle returned a negative load {v!r}"
-    return v, None
+def check_oracle(oracle) -> None:
+    """Raise a one-line :class:`TypeError` naming ``oracle`` unless it can be called."""
+    if not callable(oracle):
+        raise TypeError(f"oracle must be a callable oracle(event) -> float (a function, "
+                        f"pas.TableOracle or pas.CommandOracle), got {type(oracle).__name__} "
+                        f"{oracle!r:.60}")
 
 
 def call_oracle(oracle, event):
     """Call ``oracle(event)`` and validate the answer: ``(value, error)``."""
+    return call_oracle_loads(oracle, event)[:2]
+
+
+def call_oracle_loads(oracle, event, target=None):
+    """Call ``oracle(event)``, its answer checked: ``(value, error, loads)``.
+
+    :func:`~pas.study.answers.check_hf_answer` with ``target``.
+    """
     try:
         raw = oracle(event)
     except Exception as exc:  # the oracle is user code: any failure is recorded
-        return None, f"{type(exc).__name__}: {exc}"
-    return check_hf_value(raw)
+        return None, f"{type(exc).__name__}: {exc}", None
+    return check_hf_answer(raw, target)
 
 
 class TableOracle:
@@ -81,11 +82,17 @@ class TableOracle:
         CSV or Parquet file, or a DataFrame.
     id_column : str, default "id"
         Column holding the event ids (matched to ``str(event.id)``).
-    value_column : str, default "hf"
-        Column holding the HF peak (0 = no impact).
+    value_column : str or sequence of str, default "hf"
+        Column holding the HF peak (0 = no impact).  Several columns (one per
+        load: panels, sensors, forces) make the oracle answer ``{column:
+        value}`` (a study then screens on its ``target``; ``pas run --oracle
+        table:FILE:ID:COL1,COL2``).
 
+    Notes
+    -----
     An event missing from the table, or with an empty value, is a failure,
-    never 0.
+    never 0 (with several columns: an empty one is a failure when it is the
+    study's target, else that load is missing, :func:`check_hf_answer`).
 
     Examples
     --------
@@ -103,7 +110,12 @@ class TableOracle:
             name, df = "the table", table
         else:
             name, df = Path(table).name, read_table(table)
-        for field, c in (("id_column", id_column), ("value_column", value_column)):
+        named = not isinstance(value_column, str)
+        columns = list(value_column) if named else [value_column]
+        if not columns or len(set(columns)) < len(columns):
+            raise ValueError(f"value_column: give one column or several different ones, got "
+                             f"{value_column!r}")
+        for field, c in (("id_column", id_column), *(("value_column", c) for c in columns)):
             if c not in df.columns:
                 raise ValueError(f"{field}: column {c!r} is missing from {name} "
                                  f"(columns: {', '.join(map(str, df.columns))})")
@@ -111,18 +123,22 @@ class TableOracle:
         dup = keys[keys.duplicated()]
         if len(dup):
             raise ValueError(f"{id_column}: event id {dup.iloc[0]!r} appears more than once in {name}")
-        values = pd.to_numeric(df[value_column], errors="coerce").to_numpy(dtype=float)
+        values = [pd.to_numeric(df[c], errors="coerce").to_numpy(dtype=float).tolist()
+                  for c in columns]
         self.name = name
-        self.values = dict(zip(keys, values.tolist()))
+        self.columns = columns if named else None
+        self.values = dict(zip(keys, zip(*values)))
 
-    def __call__(self, event) -> float:
+    def __call__(self, event):
         key = str(event.id)
         if key not in self.values:
             raise OracleError(f"event {key} is not in {self.name}")
-        v = self.values[key]
-        if not math.isfinite(v):
+        row = self.values[key]
+        if self.columns is not None:
+            return dict(zip(self.columns, row))
+        if not math.isfinite(row[0]):
             raise OracleError(f"{self.name} has no valid value for event {key}")
-        return v
+        return row[0]
 
 
 _SAFE = re.compile(r"[^A-Za-z0-9._-]")
@@ -133,8 +149,13 @@ def _event_dir(event) -> str:
     return name if name == str(event.id) and name not in (".", "..") else f"{name}-{event.index}"
 
 
-def parse_result(text: str) -> float:
-    """An HF value from a result file: a number, a JSON number or ``{"value": x}``."""
+def parse_result(text: str):
+    """An HF answer from a result file: a number, a JSON number or ``{"value": x}``,
+    or several named loads as a JSON object ``{"deck_force": 812.0, "panel_p3": 41.2}``.
+
+    A JSON object with the one key ``value`` is that number; any other object is
+    a mapping of named loads, checked by :func:`check_hf_answer`.
+    """
     text = text.strip()
     try:
         return float(text)
@@ -144,11 +165,50 @@ def parse_result(text: str) -> float:
         obj = json.loads(text)
     except ValueError:
         obj = None
-    if isinstance(obj, dict) and "value" in obj:
+    if isinstance(obj, dict) and list(obj) == ["value"]:
         obj = obj["value"]
+    if isinstance(obj, dict) and obj:
+        return obj
     if isinstance(obj, (int, float)) and not isinstance(obj, bool):
         return float(obj)
-    raise OracleError(f"result file holds {text[:60]!r}, not a number")
+    raise OracleError(f"result file holds {text[:60]!r}, not a number or a JSON object of "
+                      "named loads")
+
+
+def _reusable(answer) -> bool:
+    """True for a result left by an earlier run that may be taken instead of running again."""
+    return isinstance(answer, dict) or (answer is not None and np.isfinite(answer) and answer >= 0)
+
+
+def resolve_paths(args, cwd: str) -> list[str]:
+    """``args`` with the relative paths that name something in ``cwd`` made absolute.
+
+    The rule of :class:`CommandOracle`: the program (``args[0]``) is resolved
+    when it contains a directory separator (``./cfd.sh``, ``bin/cfd``) or
+    names a file in ``cwd``; a bare name otherwise (``python``) is left to
+    the ``PATH``.  A later argument is resolved when it names an existing
+    file or directory relative to ``cwd`` (``cfd_event.py``, ``mesh/``).
+    Absolute paths, ``.`` and ``..``, options (``-x``, ``--out=f``) and
+    arguments with a placeholder are left as they are (write
+    ``{cwd}/case.json`` to be explicit).
+
+    Examples
+    --------
+    >>> resolve_paths(["python", "./missing.py", "--lf", "{lf}"], "/campaign")
+    ['python', './missing.py', '--lf', '{lf}']
+    """
+    def rel(a: str) -> bool:
+        return bool(a) and "{" not in a and not os.path.isabs(a) and not a.startswith("-") \
+            and os.path.normpath(a) not in (".", "..")
+
+    def here(a: str) -> str:
+        return os.path.normpath(os.path.join(cwd, a))
+
+    program, rest = args[0], list(args[1:])
+    seps = tuple(s for s in (os.sep, os.altsep) if s)
+    if rel(program) and (any(s in program for s in seps) or os.path.isfile(here(program))):
+        program = here(program)
+    return [program] + [here(a) if rel(a) and os.path.exists(here(a)) else a for a in rest]
 
 
 class CommandOracle:
@@ -159,20 +219,29 @@ class CommandOracle:
     args : sequence of str
         Argument-list template, e.g. ``["python", "cfd.py", "--event", "{id}",
         "--lf", "{lf}", "--out", "{result}"]``.  Placeholders: ``{id}``,
-        ``{index}``, ``{lf}``, ``{d}``, ``{workdir}``, ``{result}`` and every
-        key of the event's ``meta`` (``{seed}``, ``{t_start}`` …).  For a
-        design-wave :class:`~pas.waves.episode.Episode` (:func:`pas.run_rcw`)
-        also ``{episode}`` and ``{components}``: CSV files of the episode's
-        time series and wave components, written into the working directory,
-        and its ``{level}``, ``{target}`` and ``{t0}``.
+        ``{index}``, ``{lf}``, ``{d}``, ``{workdir}``, ``{result}``,
+        ``{cwd}`` and every key of the event's ``meta`` (``{seed}``,
+        ``{t_start}`` …).  For a design-wave
+        :class:`~pas.waves.episode.Episode` (:func:`pas.run_rcw`) also
+        ``{episode}`` and ``{components}``: CSV files of the episode's time
+        series and wave components, written into the working directory, and
+        its ``{level}``, ``{target}`` and ``{t0}``.
     root : str or os.PathLike
         Each event runs in its own working directory ``root/<event id>``,
-        with ``stdout.log`` and ``stderr.log``.
+        with ``stdout.log`` and ``stderr.log``; relative to ``cwd``.
+    cwd : str or os.PathLike, optional
+        The directory the campaign is started from (default: the current
+        one when the oracle is made): relative paths in ``args`` and
+        ``root`` mean paths there, not in the working directory
+        (:func:`resolve_paths` says which arguments are taken as paths).
+        It is stored in the oracle, so a Dask worker or a resumed run in
+        another folder runs the same files; ``{cwd}`` gives it.
     timeout : float, optional
         Seconds before the program (and its process group) is killed.
     result_name : str, default "result.txt"
         File the program writes its HF peak to (plain number, JSON number or
-        ``{"value": x}``), relative to the working directory.
+        ``{"value": x}``, or a JSON object of named loads, :func:`parse_result`),
+        relative to the working directory.
     env : dict, optional
         Extra environment variables.
     reuse : bool, default True
@@ -187,10 +256,13 @@ class CommandOracle:
     While the program runs it holds an ``flock`` on ``root/<id>/.lock``
     (inherited by the program), so a resumed driver waits for a program
     orphaned by a killed driver and reuses its result instead of starting a
-    second copy.
+    second copy.  The program runs in a session (POSIX) or process group
+    (Windows) of its own, so Ctrl-C in the driver does not stop it.  Where
+    ``fcntl`` is missing (Windows) the lock is an ``msvcrt`` lock held by
+    the driver only, so it does not cover an orphaned program.
     """
 
-    def __init__(self, args, *, root, timeout: float | None = None,
+    def __init__(self, args, *, root, cwd=None, timeout: float | None = None,
                  result_name: str = "result.txt", env: dict | None = None, reuse: bool = True):
         if isinstance(args, (str, bytes)) or not all(isinstance(a, str) for a in args) or not args:
             raise ValueError("args must be a non-empty list of strings (an argument list, "
@@ -199,22 +271,32 @@ class CommandOracle:
             raise ValueError(f"timeout must be a positive number of seconds, got {timeout!r}")
         if not isinstance(result_name, str) or not result_name or os.path.isabs(result_name):
             raise ValueError(f"result_name must be a relative file name, got {result_name!r}")
-        self.args = list(args)
-        self.root = os.path.abspath(os.fspath(root))
+        self.cwd = os.path.abspath(os.getcwd() if cwd is None else os.fspath(cwd))
+        if not os.path.isdir(self.cwd):
+            raise ValueError(f"cwd: {self.cwd} is not a directory (give the folder the "
+                             "campaign's files are in)")
+        self.template = list(args)
+        self.args = resolve_paths(self.template, self.cwd)
+        self.root = os.path.normpath(os.path.join(self.cwd, os.fspath(root)))
         self.timeout = None if timeout is None else float(timeout)
         self.result_name = result_name
         self.env = dict(env or {})
         self.reuse = bool(reuse)
 
     def __repr__(self) -> str:
-        return f"CommandOracle({self.args!r}, root={self.root!r})"
+        return f"CommandOracle({self.args!r}, root={self.root!r}, cwd={self.cwd!r})"
+
+    def with_cwd(self, cwd) -> CommandOracle:
+        """The same oracle with its relative paths resolved against ``cwd`` (``root`` kept)."""
+        return CommandOracle(self.template, root=self.root, cwd=cwd, timeout=self.timeout,
+                             result_name=self.result_name, env=self.env, reuse=self.reuse)
 
     def command(self, event, workdir: str, files: dict | None = None) -> list[str]:
         """The argument list for ``event`` (``files``: extra placeholders, e.g. an episode's)."""
         fields = {str(k): v for k, v in event.meta.items()}
         fields.update(files or {})
         fields.update(id=event.id, index=event.index, lf=repr(float(event.lf)),
-                      d=repr(float(event.d)), workdir=workdir,
+                      d=repr(float(event.d)), workdir=workdir, cwd=self.cwd,
                       result=os.path.join(workdir, self.result_name))
         try:
             return [a.format_map(fields) for a in self.args]
@@ -228,47 +310,45 @@ class CommandOracle:
         result = os.path.join(workdir, self.result_name)
         lock = os.open(os.path.join(workdir, ".lock"), os.O_RDWR | os.O_CREAT, 0o644)
         try:
-            self._lock(lock, event)
+            inherited = self._lock(lock, event)
             if self.reuse:
                 value = self._read(result, missing_ok=True)
-                if value is not None and np.isfinite(value) and value >= 0:
+                if _reusable(value):
                     return value
             if os.path.exists(result):
                 os.remove(result)
             # A design-wave episode (pas.waves.Episode) brings its own input files.
             writer = getattr(event, "write_csv", None)
             files = writer(workdir) if callable(writer) else None
-            self._run(self.command(event, workdir, files), workdir, lock)
+            self._run(self.command(event, workdir, files), workdir, (lock,) if inherited else ())
             return self._read(result)
         finally:
             os.close(lock)
 
-    def _lock(self, fd, event) -> None:
+    def _lock(self, fd, event) -> bool:
+        """Wait for the event's lock; True when the program can inherit it (``flock``)."""
         deadline = None if self.timeout is None else time.monotonic() + self.timeout
-        while True:
-            try:
-                fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
-                return
-            except BlockingIOError:
-                if deadline is not None and time.monotonic() > deadline:
-                    raise OracleError(f"event {event.id}: another run of it still holds "
-                                      f"{self.root}/.../.lock after {self.timeout:g} s") from None
-                time.sleep(0.05)
+        while (taken := try_lock(fd)) is False:
+            if deadline is not None and time.monotonic() > deadline:
+                raise OracleError(f"event {event.id}: another run of it still holds "
+                                  f"{self.root}/.../.lock after {self.timeout:g} s")
+            time.sleep(0.05)
+        return taken == "flock"
 
-    def _run(self, cmd, workdir, lock) -> None:
+    def _run(self, cmd, workdir, pass_fds) -> None:
         env = {**os.environ, **{str(k): str(v) for k, v in self.env.items()}}
         with open(os.path.join(workdir, "stdout.log"), "wb") as out, \
                 open(os.path.join(workdir, "stderr.log"), "wb") as err:
             try:
                 proc = subprocess.Popen(cmd, cwd=workdir, env=env, stdin=subprocess.DEVNULL,
-                                        stdout=out, stderr=err, pass_fds=(lock,),
-                                        start_new_session=True)
+                                        stdout=out, stderr=err, pass_fds=pass_fds,
+                                        **OWN_SESSION)
             except OSError as exc:
                 raise OracleError(f"cannot start {cmd[0]!r}: {exc}") from None
             try:
                 code = proc.wait(timeout=self.timeout)
             except subprocess.TimeoutExpired:
-                os.killpg(proc.pid, signal.SIGKILL)
+                kill_group(proc)
                 proc.wait()
                 raise OracleError(f"{cmd[0]} timed out after {self.timeout:g} s") from None
         if code != 0:

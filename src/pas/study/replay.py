@@ -11,16 +11,22 @@ would have made.  The stopping settings and budgets
 decide when a study stops asking, never which events it asks for, so the
 stored asks are replayed whatever they say now, and the continued study asks
 for what an uninterrupted one with the new settings would have asked for
-(unless those settings would have stopped it before the stored asks).  :func:`pas.study.resume.open_study` builds the study from
-the stored settings first.
+(unless those settings would have stopped it before the stored asks).
+Replacements of told results (``tell --replace``) are steps of the log too,
+replayed where the study applied them; a retry of failed events rewinds the
+log (:mod:`pas.study.amend`).  :func:`pas.study.resume.open_study` builds the
+study from the stored settings first.  A resumed study logs
+``resuming STORE: N results reused`` at INFO level on the ``pas`` logger.
 """
 
 from __future__ import annotations
 
 import json
+import logging
 import math
 import warnings
 
+from .loads import adopt_target
 from .schema import StoreError, dumps
 from .store import StudyStore
 
@@ -55,7 +61,8 @@ def attach(study, store) -> list[dict]:
         if store.is_new:
             store.initialize(settings, study.lfset)
         else:
-            changes = store.check(settings, study.lfset)
+            adopted = adopt_target(store, settings)
+            changes = store.check(settings, study.lfset) + ([adopted] if adopted else [])
     study._replaying = True
     try:
         for n, op in enumerate(store.ops()):
@@ -66,7 +73,7 @@ def attach(study, store) -> list[dict]:
                         f"study store {store.path} does not replay: ask #{n} gives events {got} "
                         f"but the store holds {op[1]} (written by another pas version?)")
             else:
-                study.tell(op[1], op[2], error=op[3])
+                study.tell(op[1], op[2], error=op[3], replace=op[0] == "replace")
     finally:
         study._replaying = False
     stored = store.history()
@@ -76,4 +83,6 @@ def attach(study, store) -> list[dict]:
             warnings.warn(f"replaying {store.path} gives MPM {replayed} where the store recorded "
                           f"{stored[-1]['mpm']}: library versions changed?", stacklevel=3)
     study.store = store
+    if study.rows:
+        logging.getLogger("pas").info("resuming %s: %d results reused", store.path, study.n_told)
     return changes

@@ -41,9 +41,12 @@ class ScreeningResult:
         resampled pairs, :meth:`pas.strategies.base.Strategy.model_band`);
         None when the strategy has none (then U95 is the sampling part).
     n_hf : int
-        HF evaluations made, false positives included, failures excluded.
+        HF evaluations made, false positives included, failures excluded
+        (kept for compatibility; :attr:`n_evaluated` counts the failures too).
     n_false_positive, n_failed : int
-        False positives (HF = 0) and failed oracle calls.
+        False positives (HF = 0) and failed oracle calls.  A failed event is
+        left out of the fit: :attr:`n_evaluated`, :attr:`n_loads` and
+        :attr:`n_no_impact` (also in ``summary.json``) split the evaluations.
     converged : bool
         Whether the stopping criterion was met.
     history : pandas.DataFrame
@@ -57,6 +60,11 @@ class ScreeningResult:
         Mean distribution of every fitted iteration on the stopping range
         ``[P_exp/2, 2 P_exp]`` (columns are the probabilities), indexed by
         history row; used by the metrics M2/M3.
+    refit : dict or None
+        For the result of another load on a study's events
+        (:func:`pas.study.refit.refit`): ``target`` (the load analysed),
+        ``chosen_for`` (the load the events were chosen for) and ``n_missing``
+        (events lacking ``target``, counted failed); None for a study's own result.
     """
 
     strategy: str
@@ -77,6 +85,7 @@ class ScreeningResult:
     seed: int
     family: str | None = None
     settings: dict = field(default_factory=dict)
+    refit: dict | None = None
 
     @classmethod
     def from_study(cls, study, *, model_band: bool = True) -> ScreeningResult:
@@ -97,7 +106,7 @@ class ScreeningResult:
             mpm, band = pred.mpm, pred.mpm_band
             sampling, family = pred.mpm_band, pred.record.get("family")
             if model_band:
-                rng = np.random.default_rng([study.seed, len(study.rows), 1])
+                rng = np.random.default_rng([study.seed, study.n_told, 1])
                 mb = study.strategy.model_band(pairs, study.lfset, rng)
                 if mb is not None:
                     model = (mb[0], mb[1])
@@ -182,13 +191,56 @@ class ScreeningResult:
         """
         fam = f", copula {self.family}" if self.family else ""
         state = "converged" if self.converged else f"NOT converged{self._stop_gap()}"
-        counts = (f"{self.n_hf} HF evaluations ({self.n_false_positive} false positive, "
-                  f"{self.n_failed} failed); {state}")
+        counts = f"{self.counts_text()}; {state}"
+        counts += self._refit_note()
         if not np.isfinite(self.mpm):
             return f"{self.strategy.upper()}: no model fitted yet; {counts}"
         u = f" {unit}" if unit else ""
         return (f"{self.strategy.upper()}: MPM {self.mpm:.4g}{u}, {self.band_text(unit)}{fam}; "
                 f"{counts}")
+
+    def _refit_note(self) -> str:
+        """For a refit: which load, and that its events were chosen for another."""
+        if not self.refit:
+            return ""
+        name, chosen = self.refit["target"], self.refit.get("chosen_for")
+        if name == chosen:
+            return f"; refit of load {name!r}, the one its events were chosen for"
+        chosen = repr(chosen) if chosen else "the study's load"
+        missing = self.refit.get("n_missing", 0)
+        return (f"; refit of load {name!r} on events chosen for {chosen}, so the sample is not "
+                f"adapted to {name!r}" + (f" ({missing} event(s) lack {name!r}, counted failed)"
+                                         if missing else ""))
+
+    @property
+    def n_evaluated(self) -> int:
+        """HF evaluations asked for and answered: loads, no-impact results and failures."""
+        return self.n_hf + self.n_failed
+
+    @property
+    def n_loads(self) -> int:
+        """HF evaluations that gave a load (HF > 0): the true positives the fit uses."""
+        return self.n_hf - self.n_false_positive
+
+    @property
+    def n_no_impact(self) -> int:
+        """HF evaluations that gave no impact (HF = 0, false positives)."""
+        return self.n_false_positive
+
+    def counts_text(self) -> str:
+        """What the HF evaluations gave, failures named as left out of the fit.
+
+        Examples
+        --------
+        >>> r = ScreeningResult("pas", 600.0, (561.0, 668.0), (582.0, 612.0), None,
+        ...                     8, 1, 5, True, *[pd.DataFrame()] * 4, 1e-3, 1000, 1)
+        >>> r.counts_text()
+        '13 evaluated: 7 loads, 1 no impact, 5 failed (left out of the fit)'
+        """
+        failed = (f"{self.n_failed} failed (left out of the fit)" if self.n_failed
+                  else "0 failed")
+        return (f"{self.n_evaluated} evaluated: {self.n_loads} loads, {self.n_no_impact} "
+                f"no impact, {failed}")
 
     def _stop_gap(self) -> str:
         """How far the last iteration was from stopping: its Ē and COV against ε1, ε2."""
@@ -218,9 +270,11 @@ class ScreeningResult:
             "mpm_band_sampling": list(self.mpm_band_sampling),
             "mpm_band_model": None if self.mpm_band_model is None else list(self.mpm_band_model),
             "n_hf": self.n_hf, "n_false_positive": self.n_false_positive,
-            "n_failed": self.n_failed, "converged": self.converged, "family": self.family,
+            "n_failed": self.n_failed, "n_evaluated": self.n_evaluated, "n_loads": self.n_loads,
+            "n_no_impact": self.n_no_impact, "converged": self.converged, "family": self.family,
             "p_exp": self.p_exp, "n_waves": self.n_waves, "seed": self.seed,
             "clipped_from": self.clipped_from, "settings": self.settings,
+            **({} if self.refit is None else {"refit": self.refit}),
         }
 
     def save(self, out, *, inputs=None, lfset=None) -> dict:
@@ -275,7 +329,7 @@ class ScreeningResult:
             distribution=pd.read_csv(path / "distribution.csv"),
             pairs=pd.read_csv(path / "pairs.csv"), range_curves=curves, p_exp=float(s["p_exp"]),
             n_waves=int(s["n_waves"]), seed=s.get("seed"), family=s.get("family"),
-            settings=s.get("settings"),
+            settings=s.get("settings"), refit=s.get("refit"),
         )
 
 

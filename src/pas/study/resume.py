@@ -16,7 +16,8 @@ def open_study(store, *, consume: bool = True, changes: dict | None = None) -> S
     The stored settings and LF pool build the study (:meth:`Study.from_settings`),
     which then replays the stored asks and tells (:func:`pas.study.replay.attach`).
     With ``consume`` the results told by other processes and not used yet are
-    told to the study in arrival order (written to the store only when the
+    told to the study in arrival order (replacements of used
+    results applied as such) (written to the store only when the
     caller holds its write transaction; see ``pas study ask``).  ``changes``
     sets new stopping settings or budgets (:data:`~pas.study.schema.RESUMABLE`,
     e.g. ``{"eps1": 10.0}``), recorded in the store (``pas study set``).
@@ -38,5 +39,5 @@ def open_study(store, *, consume: bool = True, changes: dict | None = None) -> S
     study = Study.from_settings(s, lf_all, ids=all_ids, meta=all_meta, store=store)
     if consume:
         for i, hf, err in store.unconsumed():
-            study.tell(int(i), hf, error=err)
+            study.tell(int(i), hf, error=err, replace=True)
     return study

@@ -3,11 +3,12 @@
 :class:`~pas.study.store.StudyStore` writes and reads these tables;
 :mod:`pas.study.replay` rebuilds a study from them.
 
-Schema (version 1)
+Schema (version 2)
 ------------------
 ``schema_version(version)``
     One row, also ``PRAGMA user_version``.  A store written by a newer schema
-    is refused with an error asking to upgrade pas.
+    is refused with an error asking to upgrade pas; an older one is upgraded
+    when opened, one step per version (:data:`UPGRADES`).
 ``meta(key, value)``
     JSON values: ``settings`` (strategy name and settings, ``n_waves``,
     ``p_exp``, ``threshold``, ``eps1`` …, ``seed``, ``max_hf``),
@@ -33,8 +34,23 @@ result_seq, tell_seq, attempts, asked_at, submitted_at, result_at, source)``
     ``attempts`` counts hand-overs to an HF tool (a resubmitted pending event
     has 2).
 ``history(row, idx, data, written_at)``
-    The study's history row of each consumed tell (JSON), written in the same
-    transaction as the tell.
+    The study's history row of each consumed tell or replacement (JSON),
+    written in the same transaction.
+``replacements(id, idx, key, old_hf, old_error, old_source, old_result_at, new_hf,
+new_error, source, seq, consumed_seq, replaced_at, note)`` (version 2)
+    The audit trail of ``tell --replace``: one row per replaced result.
+    ``seq`` is when it arrived; ``consumed_seq`` when a study applied it
+    (an op of the replay log), 0 when the study had not used the old value
+    (no op needed), NULL until a study applies it.
+``dropped(id, idx, key, state, hf, error, batch, batch_pos, result_seq, tell_seq,
+attempts, asked_at, submitted_at, result_at, source, retry_seq, reason, reusable,
+reused_seq, dropped_at)`` (version 2)
+    Asks a retry of failed events (:mod:`pas.study.amend`) took out of the
+    log, with their results: nothing told is lost.  ``reusable`` results are
+    reused when the study asks that event again (``reused_seq``).
+``event_loads(idx, name, value, error)``
+    Every named load of an event whose oracle answered several
+    (:mod:`pas.study.loads`); created on opening, also in older stores.
 
 Replay order is the asks (grouped by ``batch``) and the consumed tells
 (``tell_seq``) sorted by sequence number.  Results that arrived but were not
@@ -46,6 +62,8 @@ drives the study next: :func:`pas.study.loop.optimize` in ask order,
 from __future__ import annotations
 
 import hashlib
+import sqlite3
+from contextlib import contextmanager
 from datetime import datetime, timezone
 
 import numpy as np
@@ -53,11 +71,11 @@ import numpy as np
 from .._json import dumps
 from .state import EventState
 
-__all__ = ["SCHEMA_VERSION", "STATES", "STORED", "RESUMABLE", "LEGACY_SETTINGS", "DEFAULT_MAX_HF",
-           "with_legacy_settings", "StoreError", "StoreConflict",
+__all__ = ["SCHEMA_VERSION", "UPGRADES", "STATES", "STORED", "RESUMABLE", "LEGACY_SETTINGS", "DEFAULT_MAX_HF",
+           "with_legacy_settings", "StoreError", "StoreConflict", "named_errors",
            "dumps"]
 
-SCHEMA_VERSION = 1
+SCHEMA_VERSION = 2
 #: How each :class:`~pas.study.state.EventState` is written in ``events.state`` (schema 1).
 STORED = {EventState.PENDING: "pending", EventState.TRUE_POSITIVE: "done",
           EventState.FALSE_POSITIVE: "false_positive", EventState.FAILED: "failed"}
@@ -116,12 +134,65 @@ CREATE TABLE IF NOT EXISTS history (
 """
 
 
+_SCHEMA_2 = """
+CREATE TABLE IF NOT EXISTS replacements (
+    id INTEGER PRIMARY KEY, idx INTEGER NOT NULL, key TEXT NOT NULL,
+    old_hf REAL, old_error TEXT, old_source TEXT, old_result_at TEXT,
+    new_hf REAL, new_error TEXT, source TEXT, seq INTEGER NOT NULL, consumed_seq INTEGER,
+    replaced_at TEXT NOT NULL, note TEXT NOT NULL);
+CREATE TABLE IF NOT EXISTS dropped (
+    id INTEGER PRIMARY KEY, idx INTEGER NOT NULL, key TEXT NOT NULL, state TEXT NOT NULL,
+    hf REAL, error TEXT, batch INTEGER, batch_pos INTEGER, result_seq INTEGER,
+    tell_seq INTEGER, attempts INTEGER, asked_at TEXT, submitted_at TEXT, result_at TEXT,
+    source TEXT, retry_seq INTEGER NOT NULL, reason TEXT NOT NULL,
+    reusable INTEGER NOT NULL, reused_seq INTEGER, dropped_at TEXT NOT NULL);
+"""
+
+
+def _run_script(c, script: str) -> None:
+    for stmt in filter(str.strip, script.split(";")):
+        c.execute(stmt)
+
+
+def upgrade_to_2(c) -> None:
+    """Schema 1 -> 2: the audit trail of replaced results and the asks a retry dropped."""
+    _run_script(c, _SCHEMA_2)
+
+
+#: One function per schema version, taking a store from the version before to this one.
+UPGRADES = {2: upgrade_to_2}
+
+
+def create_or_upgrade(c, version: int) -> None:
+    """Create the tables of a new store (``version`` 0) or upgrade an older one."""
+    if version == 0:
+        _run_script(c, _SCHEMA)
+        c.execute("INSERT INTO schema_version VALUES (1)")
+        for k, v in (("seq", 0), ("op_seq", 0)):
+            c.execute("INSERT INTO meta VALUES (?, ?)", (k, dumps(v)))
+        version = 1
+    for to in range(version + 1, SCHEMA_VERSION + 1):
+        UPGRADES[to](c)
+    c.execute("UPDATE schema_version SET version = ?", (SCHEMA_VERSION,))
+    c.execute(f"PRAGMA user_version={SCHEMA_VERSION}")
+
+
 class StoreError(ValueError):
     """The store cannot be used as asked (version, settings, state); the message says why."""
 
 
 class StoreConflict(StoreError):
     """Another process consumed tells or asked events since this one read the store."""
+
+
+@contextmanager
+def named_errors(path):
+    """An SQLite error (a corrupted or foreign file) as one :class:`StoreError` naming ``path``."""
+    try:
+        yield
+    except sqlite3.DatabaseError as exc:
+        raise StoreError(f"study store {path}: {exc} (is it an intact study store? restore it "
+                         "from a copy)") from None
 
 
 def _now() -> str:

@@ -33,14 +33,17 @@ from contextlib import contextmanager
 import numpy as np
 
 from .._version import __version__
-from .schema import (_SCHEMA, RESUMABLE, with_legacy_settings, SCHEMA_VERSION, STATES, STORED, StoreConflict, StoreError,
-                     _now, _pool_hash, _pool_records, dumps)
+from . import amend
+from .loads import add_event_loads, put_loads
+from .schema import (RESUMABLE, with_legacy_settings, SCHEMA_VERSION, STATES, STORED, StoreConflict, StoreError,
+                     _now, named_errors, _pool_hash, _pool_records, create_or_upgrade, dumps)
 from .state import EventState
+from .store_views import StoreViews
 
 __all__ = ["StudyStore", "StoreError", "StoreConflict", "SCHEMA_VERSION", "read_settings", "STATES"]
 
 
-class StudyStore:
+class StudyStore(StoreViews):
     """One study's SQLite file (:mod:`pas.study.schema` for the tables).
 
     Parameters
@@ -58,7 +61,7 @@ class StudyStore:
         if not create and not os.path.exists(self.path):
             raise FileNotFoundError(f"study store {self.path} does not exist "
                                     "(create it with 'pas study create')")
-        try:
+        with named_errors(self.path):
             self._conn = sqlite3.connect(self.path, timeout=timeout, isolation_level=None)
             self._conn.execute("PRAGMA journal_mode=WAL")
             self._conn.execute("PRAGMA synchronous=FULL")
@@ -71,15 +74,9 @@ class StudyStore:
                     raise StoreError(
                         f"study store {self.path} has schema version {version}; this pas reads "
                         f"up to version {SCHEMA_VERSION}: upgrade pas to open it")
-                if version == 0:
-                    for stmt in filter(str.strip, _SCHEMA.split(";")):
-                        c.execute(stmt)
-                    c.execute("INSERT INTO schema_version VALUES (?)", (SCHEMA_VERSION,))
-                    c.execute(f"PRAGMA user_version={SCHEMA_VERSION}")
-                    for k, v in (("seq", 0), ("op_seq", 0)):
-                        c.execute("INSERT INTO meta VALUES (?, ?)", (k, json.dumps(v)))
-        except sqlite3.DatabaseError as exc:
-            raise StoreError(f"study store {self.path}: {exc}") from None
+                if version < SCHEMA_VERSION:
+                    create_or_upgrade(c, version)
+                add_event_loads(c)
 
     # -- plumbing ----------------------------------------------------------
     def close(self) -> None:
@@ -97,6 +94,10 @@ class StudyStore:
     @contextmanager
     def transaction(self):
         """A ``BEGIN IMMEDIATE`` write transaction; nested calls join the outer one."""
+        with named_errors(self.path):
+            yield from self._transaction()
+
+    def _transaction(self):
         if self._depth:
             self._depth += 1
             try:
@@ -118,14 +119,15 @@ class StudyStore:
     @contextmanager
     def _read(self):
         """A consistent read snapshot (joins a running write transaction)."""
-        if self._depth:
-            yield self._conn
-            return
-        self._conn.execute("BEGIN")
-        try:
-            yield self._conn
-        finally:
-            self._conn.execute("COMMIT")
+        with named_errors(self.path):
+            if self._depth:
+                yield self._conn
+                return
+            self._conn.execute("BEGIN")
+            try:
+                yield self._conn
+            finally:
+                self._conn.execute("COMMIT")
 
     def _meta(self, c, key, default=None):
         row = c.execute("SELECT value FROM meta WHERE key = ?", (key,)).fetchone()
@@ -228,41 +230,13 @@ class StudyStore:
         with self.transaction() as c:
             self._set_meta(c, key, value)
 
-    def pool(self):
-        """``(idx, ids, lf, meta)`` of the stored LF pool, ordered by ``idx``."""
-        with self._read() as c:
-            rows = c.execute("SELECT idx, event_id, lf, meta FROM lf_peaks ORDER BY idx").fetchall()
-        return (np.array([r[0] for r in rows], dtype=int), [json.loads(r[1]) for r in rows],
-                np.array([r[2] for r in rows], dtype=float), [json.loads(r[3]) for r in rows])
-
-    def lf_inputs(self):
-        """``(lf_peaks, ids, meta)`` as given when the study was created, as far as stored.
-
-        Peaks below the threshold were not stored: they come back as the
-        threshold value (never sampled), with placeholder ids.  ``ids`` and
-        ``meta`` are None when the study had none.
-        """
-        idx, ids, lf, meta = self.pool()
-        threshold = self.settings()["threshold"]
-        n = int(idx[-1]) + 1
-        if threshold is None and idx.size != n:
-            raise StoreError(f"study store {self.path}: LF pool has gaps but no threshold")
-        lf_all = np.full(n, np.nan if threshold is None else threshold)
-        lf_all[idx] = lf
-        all_ids = all_meta = None
-        if any(i != j for i, j in zip(ids, idx.tolist())):
-            all_ids = [f"\x00below-threshold-{i}" for i in range(n)]
-            for i, e in zip(idx, ids):
-                all_ids[i] = e
-        if any(meta):
-            all_meta = [{} for _ in range(n)]
-            for i, m in zip(idx, meta):
-                all_meta[i] = m
-        return lf_all, all_ids, all_meta
-
     # -- the log -----------------------------------------------------------
     def record_ask(self, events) -> int:
-        """Store a study's ask: ``events`` become pending, in this order."""
+        """Store a study's ask: ``events`` become pending, in this order.
+
+        An event a retry took out of the log gets its kept result back
+        (:func:`pas.study.amend.reuse_dropped`), so it is not run again.
+        """
         with self.transaction() as c:
             seq = self._claim_op(c)
             now = _now()
@@ -272,6 +246,8 @@ class StudyStore:
                 [(ev.index, str(ev.id), dumps(ev.id), ev.lf, ev.d, STORED[EventState.PENDING],
                   seq, i, now)
                  for i, ev in enumerate(events)])
+            for ev in events:
+                amend.reuse_dropped(self, c, ev.index, seq)
         return seq
 
     def mark_submitted(self, events) -> None:
@@ -280,14 +256,15 @@ class StudyStore:
             c.executemany("UPDATE events SET attempts = attempts + 1, submitted_at = ? WHERE idx = ?",
                           [(_now(), ev.index) for ev in events])
 
-    def record_result(self, event, value, error=None, *, source=None) -> None:
-        """Store the HF result (``value``) or failure (``error``) of a pending event.
+    def record_result(self, event, value, error=None, *, source=None, loads=None) -> None:
+        """Store the HF result (``value``) or failure (``error``) of a pending event, and ``loads``.
 
         Idempotent for an identical result; refuses to overwrite a different one.
         """
         idx = event if isinstance(event, (int, np.integer)) else event.index
         with self.transaction() as c:
             self._put_result(c, int(idx), value, error, source)
+            put_loads(c, int(idx), loads, self.path)
 
     def _put_result(self, c, idx, value, error, source):
         row = c.execute("SELECT key, state, hf, error, result_seq FROM events WHERE idx = ?",
@@ -315,77 +292,82 @@ class StudyStore:
             c.execute("INSERT INTO history VALUES (?, ?, ?, ?)",
                       (row["row"], event.index, dumps(row), _now()))
 
-    def tell_by_key(self, key, value=None, *, error=None, source=None) -> bool:
-        """Record a result for the pending event whose id is ``key`` (any process).
+    def tell_by_key(self, key, value=None, *, error=None, source=None, loads=None,
+                    replace: bool = False) -> bool:
+        """Record a result (and named ``loads``) for the pending event with id ``key``, any process.
 
         Returns False when the identical result is already stored; a different
-        one raises :class:`StoreError`.
+        one raises :class:`StoreError` unless ``replace``: then the new result
+        replaces the old one, which is kept with the time and the source in
+        the audit trail (:meth:`replacements`); a study that used the old
+        value applies the new one when it is next driven
+        (:mod:`pas.study.amend`).  A result for an event a retry took out of
+        the log is kept there and used if the study asks for it again.
         """
         with self.transaction() as c:
             row = c.execute("SELECT idx, state, result_seq, hf, error FROM events WHERE key = ?",
                             (str(key),)).fetchone()
-            if row is None:
-                raise StoreError(f"event {key} was not asked for in {self.path}")
             value = None if error is not None else float(value)
+            if row is None:
+                if amend.tell_dropped(self, c, str(key), value, error, source):
+                    put_loads(c, amend.dropped_index(c, str(key)), loads, self.path)
+                    return True
+                raise StoreError(f"event {key} was not asked for in {self.path}")
             if row[2] is not None:
                 if (row[3], row[4]) == (value, error):
                     return False
+                if replace and loads:
+                    raise StoreError(f"event {key}: --replace takes the screened load alone "
+                                     "(VALUE), not --load NAME=VALUE; named loads cannot be "
+                                     "corrected yet")
+                if replace:
+                    return amend.replace_result(self, c, row[0], value, error, source)
                 raise StoreError(f"event {key} is already told ({row[1]}, hf={row[3]}, "
-                                 f"error={row[4]!r})")
+                                 f"error={row[4]!r}); to correct it, tell it again with "
+                                 "--replace (replace=True)")
             self._put_result(c, row[0], value, error, source)
+            put_loads(c, row[0], loads, self.path)
             return True
 
-    def ops(self) -> list[tuple]:
-        """The replay log: ``("ask", [idx, ...])`` and ``("tell", idx, hf, error)`` in order.
+    def record_replacement(self, event, row: dict) -> None:
+        """Store that the study applied a replacement of ``event``'s result, with its history row."""
+        with self.transaction() as c:
+            amend.apply_replacement(self, c, event.index, row.get("hf"), row.get("error"))
+            c.execute("INSERT INTO history VALUES (?, ?, ?, ?)",
+                      (row["row"], event.index, dumps(row), _now()))
 
-        Also remembers the last op so later writes can detect another driver.
+    def retry_failed(self, keys=None) -> dict:
+        """Rewind the log so failed events run again (:func:`pas.study.amend.rewind_failed`)."""
+        with self.transaction() as c:
+            return amend.rewind_failed(self, c, keys)
+
+    def ops(self) -> list[tuple]:
+        """The replay log in order: ``("ask", [idx, ...])``, ``("tell", idx, hf, error)``
+        and ``("replace", idx, hf, error)``.
+
+        A tell replays the value the study used then: the old value of the
+        first replacement it applied later, if any.  Also remembers the last
+        op so later writes can detect another driver.
         """
         with self._read() as c:
             asks = c.execute("SELECT batch, idx FROM events ORDER BY batch, batch_pos").fetchall()
             tells = c.execute("SELECT tell_seq, idx, hf, error FROM events "
                               "WHERE tell_seq IS NOT NULL").fetchall()
+            replaced = c.execute("SELECT consumed_seq, idx, old_hf, old_error, new_hf, new_error "
+                                 "FROM replacements WHERE consumed_seq IS NOT 0 ORDER BY id"
+                                 ).fetchall()
             self._op_seq = self._meta(c, "op_seq")
         ops: dict[int, tuple] = {}
         for batch, idx in asks:
             ops.setdefault(batch, ("ask", []))[1].append(idx)
+        first_old = {}
+        for seq, idx, old_hf, old_err, new_hf, new_err in replaced:
+            first_old.setdefault(idx, (old_hf, old_err))
+            if seq is not None:
+                ops[seq] = ("replace", idx, new_hf, new_err)
         for seq, idx, hf, err in tells:
-            ops[seq] = ("tell", idx, hf, err)
+            ops[seq] = ("tell", idx, *first_old.get(idx, (hf, err)))
         return [ops[k] for k in sorted(ops)]
-
-    def unconsumed(self) -> list[tuple]:
-        """``(idx, hf, error)`` of results not yet consumed by a study, in arrival order."""
-        with self._read() as c:
-            return c.execute("SELECT idx, hf, error FROM events WHERE result_seq IS NOT NULL "
-                             "AND tell_seq IS NULL ORDER BY result_seq").fetchall()
-
-    def outstanding(self) -> list[tuple]:
-        """``(idx, hf, error, has_result)`` of events not consumed yet, in ask order."""
-        with self._read() as c:
-            return [(r[0], r[1], r[2], r[3] is not None) for r in c.execute(
-                "SELECT idx, hf, error, result_seq FROM events WHERE tell_seq IS NULL "
-                "ORDER BY batch, batch_pos")]
-
-    def events(self):
-        """All events sent to the HF tool as a :class:`pandas.DataFrame`, in ask order.
-
-        Columns as in the ``events`` table; ``state`` as stored (:data:`~pas.study.schema.STORED`).
-        """
-        import pandas as pd
-
-        with self._read() as c:
-            cur = c.execute("SELECT e.*, p.meta FROM events e JOIN lf_peaks p USING (idx) "
-                            "ORDER BY batch, batch_pos")
-            cols = [d[0] for d in cur.description]
-            df = pd.DataFrame(cur.fetchall(), columns=cols)
-        df["event_id"] = [json.loads(x) for x in df["event_id"]]
-        df["meta"] = [json.loads(x) for x in df["meta"]]
-        return df
-
-    def history(self) -> list[dict]:
-        """The stored history rows, in order."""
-        with self._read() as c:
-            return [json.loads(r[0]) for r in c.execute("SELECT data FROM history ORDER BY row")]
-
 
 def read_settings(path) -> dict:
     """Stored settings of the study at ``path`` (``{}`` when there is no store yet)."""

@@ -15,13 +15,14 @@ import warnings
 import numpy as np
 import pandas as pd
 
-from .._validation import check_positive
+from .._validation import SETTING_CHECKS, check_int, check_setting
 from ..screening import Event, LFSet
 from ..strategies.base import Pairs, Prediction, Strategy
 from ..strategies.stopping import StoppingRule, range_grid
 from . import loop
+from .corrections import Corrections
 from .factory import LF_SETTINGS, STUDY_SETTINGS, make_strategy, strategy_parameters
-from .oracles import check_hf_value
+from .answers import check_hf_answer, check_target, lacks_target
 from .replay import attach
 from .result import ScreeningResult
 from .state import EventState
@@ -30,8 +31,7 @@ from .store import StudyStore, read_settings
 __all__ = ["Study"]
 
 
-
-class Study:
+class Study(Corrections):
     """One screening campaign.
 
     Parameters
@@ -62,6 +62,9 @@ class Study:
         ``Ē`` of the stopping rule: the change of the distribution across the
         last ``k1`` iterations, or the mean per-iteration change of App. C,
         Eq. 28 (:class:`~pas.strategies.stopping.StoppingRule`).
+    target : str, optional
+        With an oracle answering several named loads ``{name: load}``: the
+        one to screen on (:func:`~pas.study.answers.check_hf_answer`).
     legacy_md : bool, default False
         MD gaps between true positives only and the earlier reading of the
         threshold rule (pas 0.1): set for study stores written then, so they
@@ -77,25 +80,27 @@ class Study:
     def __init__(self, lfset: LFSet, strategy: Strategy, *, eps1, eps2=0.1, k1=20, k2=20,
                  seed=None, max_hf=None, max_failures=10, stop_on_convergence=True,
                  adaptive_threshold=True, threshold_step=0.02, fp_run=5, stop_measure="window",
-                 legacy_md=False, store=None):
+                 legacy_md=False, target=None, store=None):
         self.lfset = lfset
         self.strategy = strategy
-        self.stopping = StoppingRule(eps1=check_positive(eps1, "eps1"),
-                                     eps2=check_positive(eps2, "eps2"), k1=int(k1), k2=int(k2),
-                                     measure=stop_measure)
+        # the keyword settings above, by the rules the study file and 'pas study set' use
+        given = {k: v for k, v in locals().items() if k in SETTING_CHECKS}
+        ok = {k: check_setting(k, v) for k, v in given.items()}
+        self.stopping = StoppingRule(eps1=ok["eps1"], eps2=ok["eps2"], k1=ok["k1"], k2=ok["k2"],
+                                     measure=ok["stop_measure"])
+        seed = ok["seed"]
         if seed is None:
             seed = int(np.random.SeedSequence().entropy % (2**63))
         self.seed = int(seed)
         strategy.reset(self.seed)
-        if max_hf is not None and (int(max_hf) != max_hf or max_hf < strategy.n_initial):
-            raise ValueError(f"max_hf must be an integer ≥ {strategy.n_initial}, got {max_hf!r}")
-        self.max_hf = None if max_hf is None else int(max_hf)
-        self.max_failures = int(max_failures)
-        self.stop_on_convergence = bool(stop_on_convergence)
-        self.adaptive_threshold = bool(adaptive_threshold)
-        self.threshold_step = float(threshold_step)
-        self.fp_run = int(fp_run)
-        self.legacy_md = bool(legacy_md)
+        self.max_hf = None if max_hf is None else check_int(max_hf, "max_hf", strategy.n_initial)
+        self.max_failures = ok["max_failures"]
+        self.stop_on_convergence = ok["stop_on_convergence"]
+        self.adaptive_threshold = ok["adaptive_threshold"]
+        self.threshold_step = ok["threshold_step"]
+        self.fp_run = ok["fp_run"]
+        self.legacy_md = ok["legacy_md"]
+        self.target = check_target(target)
         self.grid = range_grid(lfset.p_exp)
         self.state: dict[int, EventState] = {}
         self.value: dict[int, float] = {}
@@ -107,6 +112,7 @@ class Study:
         self.converged = False
         self._initial = None
         self._warned_tau = False
+        self._before_fit = None  # (row, model state before the fit it made) of the last fit
         self._replaying = False  # set by pas.study.replay.attach
         self.store = None
         if store is not None:
@@ -150,8 +156,8 @@ class Study:
         return [p for p, s in self.state.items() if s == status]
 
     def _told(self, *states) -> list[int]:
-        """Positions told with one of ``states``, in evaluation order."""
-        return [r["position"] for r in self.rows if r["status"] in states]
+        """Positions now in one of ``states``, in the order they were first told."""
+        return [p for p in dict.fromkeys(r["position"] for r in self.rows) if self.state[p] in states]
 
     @property
     def _n_pending(self) -> int:
@@ -233,30 +239,42 @@ class Study:
             self.store.record_ask(events)
         return events
 
-    def tell(self, event, value=None, *, error: str | None = None) -> dict:
+    def tell(self, event, value=None, *, error: str | None = None, replace: bool = False) -> dict:
         """Record the HF result of an asked event and update the model.
 
         ``event`` is the :class:`Event` (or its index in ``lf_peaks``);
-        ``value`` the HF peak (0 = no impact) or ``error`` a failure message.
+        ``value`` the HF peak (0 = no impact) or named loads ``{name: load}``
+        (the store keeps all), or ``error`` a failure message.
         Returns the history row written.  ``tell`` only records: the limit
         on failed calls (``max_failures``) is the loop's to enforce
         (:mod:`pas.study.loop`).
+
+        ``replace=True`` corrects a told result (a typo, a re-run basin test,
+        a value for a failure): :class:`~pas.study.corrections.Corrections`
+        says what changes and what stays; for a pending event it is a plain tell.
         """
         idx = event.index if isinstance(event, Event) else int(event)
         pos = self.lfset.position_of(idx)
-        if self.state.get(pos) != EventState.PENDING:
+        state = self.state.get(pos)
+        if state != EventState.PENDING and not (replace and state is not None):
             raise ValueError(f"event {idx} was not asked for or is already told "
-                             f"(state: {self.state.get(pos, 'never asked')})")
+                             f"(state: {state or 'never asked'}); correct a told result "
+                             "with replace=True")
+        loads = None
         if error is None:
-            value, error = check_hf_value(value)
+            value, error, loads = check_hf_answer(value, self.target)
+            if lacks_target(loads, self.target):
+                raise ValueError(error)
         ev = self.lfset.event(pos)
+        if state != EventState.PENDING:
+            if loads:
+                raise ValueError(f"event {idx}: replace=True takes the screened load alone, not "
+                                 "named loads; named loads cannot be corrected yet")
+            return self._replace(pos, ev, value, error)
         if self.store is not None:
-            self.store.record_result(ev, value, error)
-        state = self.state[pos] = EventState.of_result(value, error)
-        row = {"row": len(self.rows), "position": pos, "event_index": ev.index, "event_id": ev.id,
-               "lf": ev.lf, "d": ev.d, "hf": value, "error": error, "status": state.value}
-        if state.is_evaluated():
-            self.value[pos] = value
+            self.store.record_result(ev, value, error, loads=loads)
+        row = self._row(pos, ev, value, error)
+        state = self.state[pos]
         if state == EventState.TRUE_POSITIVE:
             self.consecutive_fp = 0
         elif state == EventState.FALSE_POSITIVE:
@@ -291,12 +309,13 @@ class Study:
             if not self.legacy_md:
                 self.consecutive_fp = 0
 
-    def _iterate(self, row: dict) -> None:
+    def _iterate(self, row: dict, replacing: bool = False) -> None:
         pairs = self.pairs()
         if len(pairs) < self.strategy.min_pairs or any(
                 self.state[p] == EventState.PENDING for p in self._initial):
             return
-        rng = np.random.default_rng([self.seed, len(self.rows)])
+        rng = np.random.default_rng([self.seed, self.n_told])
+        self._remember_model_state(row)
         try:
             pred = self.strategy.predict(pairs, self.lfset, rng)
         except (ValueError, np.linalg.LinAlgError, RuntimeError) as exc:
@@ -315,7 +334,7 @@ class Study:
         row.update(pred.record)
         row.update(mpm=pred.mpm, mpm_low=pred.mpm_band[0], mpm_high=pred.mpm_band[1],
                    n_pairs=len(pairs), E=e, E_bar=e_bar, COV=cov, stop=stop)
-        self.converged = self.converged or stop
+        self.converged = stop if replacing else self.converged or stop
         tau = pred.record.get("tau", np.nan)
         if (self.strategy.spreads_samples and len(pairs) >= 8 and tau <= 0
                 and not self._warned_tau):
@@ -368,7 +387,8 @@ class Study:
                 "seed": self.seed, "max_hf": self.max_hf, "max_failures": self.max_failures,
                 "stop_on_convergence": self.stop_on_convergence,
                 "adaptive_threshold": self.adaptive_threshold,
-                "threshold_step": self.threshold_step, "fp_run": self.fp_run}
+                "threshold_step": self.threshold_step, "fp_run": self.fp_run,
+                "target": self.target}
 
     # -- results -----------------------------------------------------------
     def history(self) -> pd.DataFrame:

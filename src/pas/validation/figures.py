@@ -1,10 +1,11 @@
 """Figures of :func:`pas.validation.reproduce`, drawn with :mod:`pas.plotting.figures`.
 
-Per case ``<case>.png`` with four panels — MPM against the number of HF
+Per case ``case_<case>.png`` with three panels — MPM against the number of HF
 samples with the truth line (paper Fig. 6/7 top), the final exceedance
-distributions with bands and the truth (Fig. 6/7 bottom), the LF–HF scatter
-with τ and tail dependence (Fig. 16) — and ``metrics.png``, the M1/M2/M3 bars
-of all cases (Fig. 8).  With a design-wave result, ``design_<case>.png``: the
+distributions with bands and the truth (Fig. 6/7 bottom; design waves as one
+point per level), the LF–HF scatter with τ and tail dependence (Fig. 16) — and
+``metrics.png``, the M1/M2/M3 bars of all cases (Fig. 8).  Each panel's legend
+sits under it, at 8 pt, covering no curve.  With a design-wave result, ``design_<case>.png``: the
 HF exceedance curves of the truth, PAS and AS with the RCW (and MLER) points
 (Dermatis et al. 2025, Fig. 14) and, where HF and the conditioned linear
 response are the same quantity (cases 1–2), ``f_NL`` against the linear
@@ -19,6 +20,9 @@ import numpy as np
 
 __all__ = ["write_figures"]
 
+_DPI = 100
+"""Pixels per inch of the PNG files: the 8 pt legend text is 11 px high at 100 % zoom."""
+
 
 def write_figures(out, datasets, results, table) -> list[Path]:
     """Write the figures into ``out``; returns the paths."""
@@ -32,7 +36,7 @@ def write_figures(out, datasets, results, table) -> list[Path]:
     files = []
     for cid, data in datasets.items():
         spec = get_case(cid)
-        fig, axes = plt.subplots(1, 3, figsize=(17, 5), constrained_layout=True)
+        fig, axes = plt.subplots(1, 3, figsize=(17, 7.5), constrained_layout=True)
         strat = [(s, r) for (c, s), r in results.items() if c == cid]
         for s, res in strat:
             plot_mpm_convergence(res, truth=data.truth_mpm if s == strat[0][0] else None,
@@ -46,14 +50,14 @@ def write_figures(out, datasets, results, table) -> list[Path]:
                      f"{spec.lf_indicator}; truth MPM {data.truth_mpm:.4g} {data.unit}, "
                      f"paper {spec.paper_truth:.4g}")
         path = out / f"case_{cid}.png"
-        fig.savefig(path, dpi=90)
+        fig.savefig(path, dpi=_DPI)
         plt.close(fig)
         files.append(path)
         if any(s in ("rcw", "mler") for s, _ in strat):
             files.append(_design_figure(out, cid, data, dict(strat)))
     fig, _ = plot_metrics(table.assign(strategy=table["strategy"].str.lower()))
     path = out / "metrics.png"
-    fig.savefig(path, dpi=90)
+    fig.savefig(path, dpi=_DPI)
     plt.close(fig)
     return files + [path]
 
@@ -69,7 +73,8 @@ def _design_figure(out, cid, data, results) -> Path:
 
     spec = get_case(cid)
     same_quantity = spec.family in "12"
-    fig, axes = plt.subplots(1, 2 if same_quantity else 1, figsize=(13 if same_quantity else 7, 5),
+    fig, axes = plt.subplots(1, 2 if same_quantity else 1,
+                             figsize=(13 if same_quantity else 7, 6.5),
                              constrained_layout=True, squeeze=False)
     ax = axes[0, 0]
     truth = (data.truth_d, data.truth_h)
@@ -95,7 +100,6 @@ def _design_figure(out, cid, data, results) -> Path:
     seen = seen[np.isfinite(seen)]
     span = seen.max() - seen.min()
     ax.set_ylim(seen.min() - 0.08 * span, seen.max() + 0.08 * span)
-    ax.legend(fontsize=6, loc="upper left")
     ax.set_title("HF exceedance: truth, PAS, AS and one design wave per level")
     if same_quantity:
         lf = exceedance_probabilities(data.lf, data.n_waves)
@@ -106,6 +110,6 @@ def _design_figure(out, cid, data, results) -> Path:
         axes[0, 1].set_title("non-linear factor against the linear response")
     fig.suptitle(f"Case {cid} (synthetic analogue): design waves beside PAS and AS")
     path = Path(out) / f"design_{cid}.png"
-    fig.savefig(path, dpi=90)
+    fig.savefig(path, dpi=_DPI)
     plt.close(fig)
     return path

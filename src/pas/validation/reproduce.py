@@ -98,11 +98,7 @@ def run_case(data, *, strategy="pas", seed=0, max_hf=DEFAULT_MAX_HF, settings=No
 def _run_screening(data, strategy, seed, max_hf, settings):
     runner = {"pas": pas.run_pas, "pas-paper": pas.run_pas, "as": pas.run_as}[strategy]
     preset = {"preset": "paper"} if strategy == "pas-paper" else {}
-    # n_w = T_MCS / T_p,e as in the paper's Table 2; cases 1 and 4 have more LF peaks
-    # than that n_w, so it is stated, not counted
-    return runner(data.lf, data.oracle(), n_waves=data.n_waves, p_exp=data.p_exp,
-                  eps1=data.eps1, threshold=data.threshold, seed=seed, max_hf=max_hf,
-                  ids=list(data.ids), n_waves_convention="spectral",
+    return runner(data.lf, data.oracle(), **data.run_kwargs(), seed=seed, max_hf=max_hf,
                   **{**PAPER_SETTINGS, **preset, **(settings if strategy != "as" else {})})
 
 

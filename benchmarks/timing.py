@@ -1,0 +1,314 @@
+"""Benchmark: where a PAS run spends its time, each figure beside its baseline (issue 27).
+
+One scenario throughout: 15 000 Rayleigh LF peaks, ``n_w`` 16 364, a Gumbel
+(θ = 3) copula to a Weibull HF load, stopping off, 80 HF (``--max-hf``).
+Every ratio is measured in this one run, the old path beside the new (CPU
+time, the forked band workers' included; wall time on a shared machine):
+
+* ``fit``: the whole run and a Student-t-only run with the Student-t joint
+  fit by numerical differences (scipy's L-BFGS-B default, the old path)
+  against its analytic gradient; the largest change of MPM and band ends
+  and whether the family sequence is the same;
+* ``band``: the final model band of 80 and 160 pairs started from the
+  study's fits and cold in every replicate (old) against warm from the final
+  fits, on 1 and 2 cores, and how often a cold start beats the warm one;
+* ``long``: one iteration at n = 15 k / 150 k / 1.5 M with the LF ranks and
+  the normal scores of the common uniforms recomputed (old) or kept, and a
+  band replicate's full sort against the partial one.
+
+Run: python benchmarks/timing.py [--parts fit,band,long] [--max-hf 80] [--json out.json]
+"""
+
+from __future__ import annotations
+
+import argparse
+import contextlib
+import json
+import resource
+import time
+import tracemalloc
+
+import numpy as np
+import pyvinecopulib as pv
+from scipy import stats
+
+import pas
+import pas.copulas
+import pas.joint
+import pas.joint_mixture
+import pas.stats.exceedance
+
+N, N_W, P_EXP = 15000, 16364, 2.55e-3
+
+
+def scenario(n=N, seed=1):
+    """LF peaks and the oracle's HF value for each (a Gumbel copula, Weibull HF)."""
+    rng = np.random.default_rng(seed)
+    lf = rng.rayleigh(2.5, n)
+    u = stats.rankdata(lf) / (n + 1.0)
+    cop = pv.Bicop(family=pv.BicopFamily.gumbel, parameters=np.array([[3.0]]))
+    v = cop.hinv1(np.column_stack([u, rng.uniform(size=n)]))
+    return lf, stats.weibull_min(1.5, scale=5.0).ppf(np.clip(v, 1e-12, 1 - 1e-12))
+
+
+@contextlib.contextmanager
+def numerical_student():
+    """The old path: the Student-t joint fit by scipy's numerical differences."""
+    saved = pas.joint.GRADIENT_FAMILIES, pas.joint_mixture.GRADIENT_FAMILIES
+    old = tuple(f for f in saved[0] if f != "student")
+    pas.joint.GRADIENT_FAMILIES = pas.joint_mixture.GRADIENT_FAMILIES = old
+    try:
+        yield
+    finally:
+        pas.joint.GRADIENT_FAMILIES, pas.joint_mixture.GRADIENT_FAMILIES = saved
+
+
+def cpu_seconds():
+    """CPU seconds of this process and of its waited-for children (forked band workers)."""
+    return sum(resource.getrusage(who).ru_utime + resource.getrusage(who).ru_stime
+               for who in (resource.RUSAGE_SELF, resource.RUSAGE_CHILDREN))
+
+
+def run(max_hf, n=N, n_waves=N_W, **settings):
+    """One run with stopping off: ``(result, CPU s per loop iteration, CPU s of the final
+    band, wall s of the final band)``."""
+    lf, hf = scenario(n)
+    stamps = []
+
+    def callback(study, row):
+        stamps.append((cpu_seconds(), time.perf_counter()))
+
+    t0 = cpu_seconds()
+    res = pas.run_pas(lf, lambda e: float(hf[e.index]), n_waves=n_waves, p_exp=P_EXP,
+                      eps1=1e-12, seed=0, max_hf=max_hf, callback=callback, **settings)
+    cpu = np.r_[t0, [c for c, _ in stamps]]
+    return res, np.diff(cpu), cpu_seconds() - cpu[-1], time.perf_counter() - stamps[-1][1]
+
+
+def summary(res):
+    """What must not change: MPM, band ends and the family sequence."""
+    return {"mpm": float(res.mpm), "band": [float(x) for x in res.mpm_band],
+            "model_band": None if res.mpm_band_model is None else
+            [float(x) for x in res.mpm_band_model],
+            "families": [str(f) for f in res.history["family"].fillna("")]}
+
+
+def largest_change(a, b):
+    """Largest relative change between two summaries' MPM and band ends, and whether the
+    family sequences are the same."""
+    x = np.r_[a["mpm"], a["band"], a["model_band"] or []]
+    y = np.r_[b["mpm"], b["band"], b["model_band"] or []]
+    return float(np.max(np.abs(x - y) / np.abs(x))), a["families"] == b["families"]
+
+
+def student_iterations(max_hf):
+    """CPU ms of the loop iterations of a Student-t-only run (no band): median, worst."""
+    _, loop, _, _ = run(max_hf, families=("student",), n_bootstrap=0)
+    return 1e3 * float(np.median(loop)), 1e3 * float(loop.max())
+
+
+def part_fit(max_hf):
+    """The Student-t gradient: the whole run and Student-t alone, numerical vs analytic."""
+    print(f"-- Student-t joint fit: numerical differences (old) vs analytic gradient (new)")
+    out = {}
+    for label, ctx in (("old", numerical_student), ("new", contextlib.nullcontext)):
+        with ctx():
+            res, loop, band, band_wall = run(max_hf)
+            st = student_iterations(max_hf)
+        out[label] = summary(res)
+        total = loop.sum() + band
+        print(f"  {label}: run_pas {max_hf} HF {1e3 * total / max_hf:6.1f} ms/HF (CPU); loop "
+              f"median {1e3 * np.median(loop):5.1f} ms, worst {1e3 * loop.max():6.1f} ms; final "
+              f"band {band:5.2f} s CPU, {band_wall:5.2f} s wall; Student-t-only run: loop "
+              f"median {st[0]:5.1f} ms, worst {st[1]:5.1f} ms")
+        out[label]["times"] = [total, float(np.median(loop)), float(loop.max()), band, *st]
+    rel, same = largest_change(out["old"], out["new"])
+    t_old, t_new = out["old"]["times"], out["new"]["times"]
+    print(f"  ratio new/old: run {t_new[0] / t_old[0]:.2f}, loop median {t_new[1] / t_old[1]:.2f}, "
+          f"Student-t alone {t_new[4] / t_old[4]:.2f}; largest relative change of MPM and band "
+          f"ends {rel:.1e}; family sequence {'the same' if same else 'DIFFERENT'}")
+    return out
+
+
+def final_study(max_hf):
+    """The study of an 80-HF (``max_hf``) run without its band, and the band's generator."""
+    lf, hf = scenario()
+    seen = []
+    pas.run_pas(lf, lambda e: float(hf[e.index]), n_waves=N_W, p_exp=P_EXP, eps1=1e-12, seed=0,
+                max_hf=max_hf, n_bootstrap=0, callback=lambda study, row: seen.append(study))
+    study = seen[-1]
+    study.strategy.n_bootstrap = 50
+    return study, lambda: np.random.default_rng([study.seed, len(study.rows), 1])
+
+
+@contextlib.contextmanager
+def band_path(warm=True, cold_families=None):
+    """The band's starts: warm from the final fits (new) or the study's fits and cold (old);
+    ``cold_families`` overrides which families also start cold in a warm band."""
+    from pas.strategies import band
+
+    saved = band.WARM_BAND, band.COLD_FAMILIES
+    band.WARM_BAND = warm
+    if cold_families is not None:
+        band.COLD_FAMILIES = cold_families
+    try:
+        yield
+    finally:
+        band.WARM_BAND, band.COLD_FAMILIES = saved
+
+
+@contextlib.contextmanager
+def cold_against_warm(record):
+    """Every warm-only joint fit also fitted warm and cold: ``(family, marginal, Δ loglik)``."""
+    original = pas.joint.fit_joint
+
+    def both(name, u, h, *, start=None, cold=True, **kwargs):
+        fit = original(name, u, h, start=start, cold=cold, **kwargs)
+        if start is not None and not cold:
+            best = original(name, u, h, start=start, cold=True, **kwargs)
+            record.append((name, kwargs.get("marginal", "weibull"),
+                           best.copula.loglik - fit.copula.loglik))
+        return fit
+
+    pas.joint.fit_joint = both
+    try:
+        yield
+    finally:
+        pas.joint.fit_joint = original
+
+
+def band_seconds(study, rng, n_jobs):
+    """``(wall s, CPU s with the workers', band)`` of the final model band."""
+    t, c = time.perf_counter(), cpu_seconds()
+    low, high, _ = study.strategy.model_band(study.pairs(), study.lfset, rng(), n_jobs=n_jobs)
+    return time.perf_counter() - t, cpu_seconds() - c, (low, high)
+
+
+def part_band(max_hf):
+    """Band replicates: old starts (study's fits + cold) vs warm from the final fits; cores."""
+    print("-- final model band (50 replicates): old = study's fits + cold start in every "
+          "replicate, new = warm from the final fits")
+    out = {}
+    for m in (max_hf, 2 * max_hf):
+        study, rng = final_study(m)
+        rows = {}
+        for label, ctx, jobs in (("old 1 core", band_path(False), 1),
+                                 ("new 1 core", band_path(True), 1),
+                                 ("new 2 cores", band_path(True), 2),
+                                 ("all warm, 1 core", band_path(True, ()), 1)):
+            with ctx:
+                rows[label] = band_seconds(study, rng, jobs)
+            wall, cpu, (low, high) = rows[label]
+            print(f"  {m:3d} pairs, {label:>16}: {wall:5.2f} s wall, {cpu:5.2f} s CPU; "
+                  f"band [{low:.6g}, {high:.6g}]")
+        old, new = rows["old 1 core"], rows["new 1 core"]
+        print(f"  {m:3d} pairs: new/old CPU {new[1] / old[1]:.2f} (wall {new[0] / old[0]:.2f}) on "
+              f"one core; wall 2 cores / 1 core {rows['new 2 cores'][0] / new[0]:.2f}; band "
+              f"identical on 1 and 2 cores: "
+              f"{rows['new 2 cores'][2] == new[2]}; band ends new/old "
+              f"{new[2][0] / old[2][0] - 1:+.2%}, {new[2][1] / old[2][1] - 1:+.2%}")
+        record = []
+        with band_path(True, ()), cold_against_warm(record):
+            band_seconds(study, rng, 1)
+        keys = sorted({r[:2] for r in record})
+        worse = ", ".join(
+            f"{f}/{mg} {sum(d > 1e-6 for k, j, d in record if (k, j) == (f, mg))}"
+            f"/{sum((k, j) == (f, mg) for k, j, _ in record)}" for f, mg in keys)
+        print(f"  {m:3d} pairs: fits where a cold start beats warm by > 1e-6 in loglik: {worse}")
+        out[m] = {k: [v[0], v[1], list(v[2])] for k, v in rows.items()}
+        out[m]["cold_beats_warm"] = record
+    return out
+
+
+@contextlib.contextmanager
+def long_record_path(new):
+    """Old: the LF ranks and the normal scores of the common uniforms recomputed every
+    iteration; new: kept."""
+    from pas.strategies.pas import PAS
+    from pas.strategies.random_numbers import PeakUniforms
+
+    saved = PAS._population_ranks, PeakUniforms.scores
+    if not new:
+        def recomputed(self, lfset, n0, impact, rng):
+            self._ranks = None
+            return saved[0](self, lfset, n0, impact, rng)
+
+        PAS._population_ranks = recomputed
+        PeakUniforms.scores = lambda self, n0: None
+    try:
+        yield
+    finally:
+        PAS._population_ranks, PeakUniforms.scores = saved
+
+
+def long_iterations(n, families, repeats):
+    """``(median CPU ms, peak traced MB of one iteration, MPM)`` at ``n`` LF peaks, 80 pairs."""
+    from pas.screening import LFSet
+    from pas.strategies.base import Pairs
+    from pas.strategies.pas import PAS
+
+    lf, hf = scenario(n)
+    lfset = LFSet(lf, n_waves=int(round(n * N_W / N)), p_exp=P_EXP)
+    pos = np.unique(np.round(np.geomspace(1, lfset.n, 80)).astype(int) - 1)
+    pairs = Pairs(pos, lfset.lf[pos], hf[lfset.index[pos]], lfset.d[pos])
+    strat = PAS(families=families, n_bootstrap=0)
+    strat.reset(0)
+    strat.predict(pairs, lfset, np.random.default_rng(0))  # the first: uniforms drawn
+    times = []
+    for k in range(repeats):
+        t = time.process_time()
+        pred = strat.predict(pairs, lfset, np.random.default_rng(k))
+        times.append(time.process_time() - t)
+    tracemalloc.start()
+    strat.predict(pairs, lfset, np.random.default_rng(0))
+    peak = tracemalloc.get_traced_memory()[1] / 2**20
+    tracemalloc.stop()
+    return 1e3 * float(np.median(times)), peak, pred.mpm
+
+
+def part_long(max_hf):
+    """Per-iteration CPU time and peak memory at n = 15 k / 150 k / 1.5 M, old vs new."""
+    print("-- long records, one iteration at 80 pairs (old: LF ranks and normal scores "
+          "recomputed; new: kept); memory: peak traced during one iteration")
+    out = {}
+    for n, repeats in ((15000, 7), (150000, 5), (1500000, 2)):
+        for label, families in (("default", pas.copulas.PAPER_FAMILIES),
+                                ("gaussian", ("gaussian",))):
+            row = {}
+            for path in ("old", "new"):
+                with long_record_path(path == "new"):
+                    row[path] = long_iterations(n, families, repeats)
+            (t0, m0, v0), (t1, m1, v1) = row["old"], row["new"]
+            print(f"  n = {n:>9,}, {label:>8}: old {t0:7.1f} ms {m0:6.0f} MB, new {t1:7.1f} ms "
+                  f"{m1:6.0f} MB, ratio {t1 / t0:.2f}; MPM change {abs(v1 / v0 - 1):.1e}")
+            out[f"{n}_{label}"] = row
+    sort_n = 10 * 150000
+    h = np.random.default_rng(0).weibull(1.5, (10, sort_n // 10))
+    t = time.process_time()
+    np.sort(h, axis=1)
+    t_full = time.process_time() - t
+    t = time.process_time()
+    pas.stats.exceedance.mean_top_order_statistics(h, int(np.ceil(P_EXP * 16364)) + 1)
+    t_top = time.process_time() - t
+    print(f"  a band replicate's sort, 10 x 150 000 draws: full {1e3 * t_full:.1f} ms, top only "
+          f"(np.partition) {1e3 * t_top:.1f} ms")
+    return out
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--max-hf", type=int, default=80)
+    parser.add_argument("--parts", default="fit", help="comma-separated: fit, band, long")
+    parser.add_argument("--json", help="write the figures here")
+    args = parser.parse_args()
+    out = {}
+    parts = {"fit": part_fit, "band": part_band, "long": part_long}
+    for part in args.parts.split(","):
+        out[part] = parts[part](args.max_hf)
+    if args.json:
+        with open(args.json, "w") as fh:
+            json.dump(out, fh)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,113 @@
+"""Several loads per HF event in the study store: the ``event_loads`` table.
+
+One CFD run or basin test gives many signals; an oracle answering ``{name:
+load}`` (:func:`pas.study.answers.check_hf_answer`) has every named load kept
+here, in the transaction that stores the event's result, so nothing it gave is
+lost and :func:`pas.study.refit.refit` can analyse another load on the same
+events.  An answer of one bare number is the screened load only (``events.hf``)
+and writes no row.
+
+``event_loads(idx, name, value, error)``
+    One row per named load of an event: ``value`` (NULL when the load was NaN,
+    negative or not a number) and ``error`` (why, else NULL); the loads of the
+    event's result, kept by event index also when a retry takes the event's
+    ask out of the log (its result, and so its loads, may be reused); a retried
+    failure's loads are deleted with its result.  Created when a store is opened
+    (:func:`add_event_loads`), so stores written before it existed gain it and
+    still open and replay as they were.
+"""
+
+from __future__ import annotations
+
+from .answers import screened_load
+from .schema import StoreError, _now
+
+__all__ = ["add_event_loads", "put_loads", "record_loads", "stored_loads", "load_names",
+           "answers_from_loads", "adopt_target"]
+
+EVENT_LOADS = """
+CREATE TABLE IF NOT EXISTS event_loads (
+    idx INTEGER NOT NULL, name TEXT NOT NULL,
+    value REAL, error TEXT,
+    PRIMARY KEY (idx, name))
+"""
+
+
+def add_event_loads(c) -> None:
+    """Create the ``event_loads`` table when missing (new stores and older ones alike).
+
+    Idempotent; run in the opening transaction of
+    :class:`~pas.study.store.StudyStore`, so it needs no schema version of its own.
+    """
+    c.execute(EVENT_LOADS)
+
+
+def put_loads(c, idx: int, loads, path) -> None:
+    """Store ``loads`` (``{name: (value, error)}``) of event ``idx`` in transaction ``c``.
+
+    Identical rows are left as they are; a different value for a stored load
+    raises :class:`~pas.study.schema.StoreError` (as a second, different result does).
+    """
+    for name, (value, error) in (loads or {}).items():
+        row = c.execute("SELECT value, error FROM event_loads WHERE idx = ? AND name = ?",
+                        (idx, name)).fetchone()
+        if row is None:
+            c.execute("INSERT INTO event_loads VALUES (?, ?, ?, ?)", (idx, name, value, error))
+        elif tuple(row) != (value, error):
+            raise StoreError(f"load {name!r} of event index {idx} is already stored in {path} "
+                             f"(value={row[0]}, error={row[1]!r}); refusing to overwrite it")
+
+
+def record_loads(store, event, loads) -> None:
+    """Store the named loads of ``event`` alone, its result still to come (no target yet)."""
+    with store.transaction() as c:
+        put_loads(c, int(event.index), loads, store.path)
+
+
+def stored_loads(store, name=None) -> dict:
+    """``{idx: {name: (value, error)}}`` of the stored loads (of load ``name`` only if given)."""
+    sql, args = "SELECT idx, name, value, error FROM event_loads", ()
+    if name is not None:
+        sql, args = sql + " WHERE name = ?", (name,)
+    out: dict = {}
+    with store._read() as c:
+        for idx, n, value, error in c.execute(sql + " ORDER BY idx, rowid", args):
+            out.setdefault(int(idx), {})[n] = (value, error)
+    return out
+
+
+def load_names(store) -> list[str]:
+    """Names of the loads stored in ``store``, in order of first appearance."""
+    with store._read() as c:
+        return [r[0] for r in c.execute(
+            "SELECT name FROM event_loads GROUP BY name ORDER BY MIN(rowid)")]
+
+
+def answers_from_loads(store, indices, target) -> dict:
+    """``{idx: (value, error)}`` for events of ``indices`` whose loads are stored but not
+    their result (a run stopped for want of a ``target``), screened on ``target``."""
+    if target is None:
+        return {}
+    loads = stored_loads(store)
+    return {idx: screened_load(loads[idx], target) for idx in indices if idx in loads}
+
+
+def adopt_target(store, settings: dict) -> dict | None:
+    """Let a study given a ``target`` take over a store that has no result yet.
+
+    A run whose oracle answered several loads without a ``target`` stops at the
+    first answer (its loads stored, :func:`record_loads`); the same run given
+    the target must then continue that store.  While no event has a result the
+    target decided nothing, so the stored one is replaced and the change
+    logged in ``meta.settings_changes``.  Returns the change, or None.
+    """
+    with store.transaction() as c:
+        stored = store._meta(c, "settings") or {}
+        old, new = stored.get("target"), settings.get("target")
+        if old == new or c.execute("SELECT COUNT(*) FROM events WHERE result_seq IS NOT NULL"
+                                   ).fetchone()[0]:
+            return None
+        store._set_meta(c, "settings", {**stored, "target": new})
+        change = {"key": "target", "old": old, "new": new, "n_told": 0, "at": _now()}
+        store._set_meta(c, "settings_changes", store._meta(c, "settings_changes", []) + [change])
+    return change
