@@ -282,7 +282,9 @@ def test_failed_evaluations_give_one_stderr_line_each_even_quiet(files, tmp_path
     assert code == 3  # done, with a failed event left out of the fit (pas.cli.EXIT_CODES)
     n_failed = json.loads((tmp_path / "q" / "summary.json").read_text())["n_failed"]
     assert n_failed == 1 and "1 failed" in stdout
-    (line,) = stderr.splitlines()
+    lines = stderr.splitlines()
+    assert len(lines) == 1, lines
+    (line,) = lines
     assert line.startswith(f"pas run: HF evaluation failed for event {ids[top]}, LF rank 1 of ")
     assert "the largest LF peak" in line and "not in" in line
     # with progress on, the failure is in its progress line, still once

@@ -43,14 +43,9 @@ import pyvinecopulib as pv
 from scipy import optimize, special
 
 from ._threads import one_blas_thread
-from .copula_densities import (
-    GRADIENT_FAMILIES,
-    copula_loghfunc,
-    copula_logpdf,
-    logc_grad,
-    logh_grad,
-)
+from .copula_densities import GRADIENT_FAMILIES
 from .copulas import CopulaFit, _at_bound, _family_and_rotation, kendall_tau
+from .joint_likelihood import copula_parameters, loglik_and_copula_gradient, negloglik_closure
 from .stats.lognormal import LogNormal3
 from .stats.weibull import Weibull3, fit_weibull3_ls
 from .stats.weibull_mixture import WeibullMixture
@@ -76,32 +71,6 @@ class JointFit:
     hf_marginal: Weibull3 | LogNormal3 | WeibullMixture
     x: np.ndarray  # the optimiser's unconstrained parameters, for warm starts
     marginal: str = "weibull"
-
-
-def _copula_parameters(base: str, c):
-    """Unconstrained optimiser values → the family's parameter matrix (inside its bounds)."""
-    if base == "gaussian":
-        return np.array([[0.999 * np.tanh(c[0])]])
-    if base == "student":
-        return np.array([[0.999 * np.tanh(c[0])], [2.0 + 48.0 / (1.0 + np.exp(-c[1]))]])
-    if base == "clayton":
-        return np.array([[np.clip(np.exp(c[0]), 1e-6, 28.0)]])
-    if base == "gumbel":
-        return np.array([[min(1.0 + np.exp(c[0]), 50.0)]])
-    if base == "frank":
-        return np.array([[35.0 * np.tanh(c[0] / 35.0)]])
-    raise ValueError(f"no joint fit for the copula family {base!r}")
-
-
-def _parameter_slope(base: str, c) -> float:
-    """``dθ/dc`` of :func:`_copula_parameters` for the first parameter (Student-t: ρ)."""
-    if base in ("gaussian", "student"):
-        return 0.999 * (1.0 - np.tanh(c[0]) ** 2)
-    if base == "clayton":
-        return float(np.exp(c[0])) if 1e-6 < np.exp(c[0]) < 28.0 else 0.0
-    if base == "gumbel":
-        return float(np.exp(c[0])) if 1.0 + np.exp(c[0]) < 50.0 else 0.0
-    return 1.0 - np.tanh(c[0] / 35.0) ** 2  # frank
 
 
 def _copula_start(base: str, tau: float):
@@ -170,75 +139,6 @@ def _prepare(name: str, u, h, location: bool, censor: float):
     return name.partition("_")[0], rotation, u, h, h_c, span, density
 
 
-def _copula_terms(base, rotation, p, u, v, log_f, density) -> float:
-    """``Σ log f + log c`` over the loads with a density, ``Σ log P(H ≤ h_c | u)`` over the rest."""
-    uu, vv = (1.0 - u, 1.0 - v) if rotation == 180 else (u, v)
-    val = np.sum((log_f + copula_logpdf(base, p, uu, vv))[density])
-    if not density.all():  # the censored loads: P(H ≤ h_c | u)
-        lh = copula_loghfunc(base, p, uu[~density], vv[~density])
-        val += np.sum(np.log(-np.expm1(lh)) if rotation == 180 else lh)
-    return val
-
-
-def _gradient_terms(base, p, u, v, density):
-    """``(log c or log h, ∂/∂v, ∂/∂parameter)`` per pair (densities and censored loads)."""
-    lc, dc_dv, dc_dp = logc_grad(base, p, u, v)
-    d_v = np.where(density, dc_dv, 0.0)
-    d_p = np.where(density, dc_dp, 0.0)
-    total = np.where(density, lc, 0.0)
-    if not density.all():
-        lh, dh_dv, dh_dp = logh_grad(base, p, u[~density], v[~density])
-        total[~density], d_v[~density], d_p[~density] = lh, dh_dv, dh_dp
-    return total, d_v, d_p
-
-
-def _copula_sum(base, p, u, v, density) -> float:
-    """``Σ log c`` over the loads with a density and ``Σ log h`` over the censored (no rotation)."""
-    val = np.sum(copula_logpdf(base, p, u[density], v[density]))
-    if not density.all():
-        val += np.sum(copula_loghfunc(base, p, u[~density], v[~density]))
-    return float(val)
-
-
-NU_STEP = 1e-6
-"""Step in Student-t's optimiser value of ν for its one forward difference."""
-
-
-def _loglik_and_copula_gradient(base, c, u, v, log_f, density):
-    """The log-likelihood and the copula part of its gradient: ``(value, ∂/∂v per pair,
-    gradient in the copula's optimiser values c)`` (no rotation; the marginal's chain
-    rule is the caller's).
-
-    Student-t's ν enters through the t quantiles of ``u`` and ``v``, whose
-    derivative in ν has no closed form: its component is a forward difference
-    of the copula terms in ``c[1]`` (the marginal terms do not depend on it).
-    """
-    p = _copula_parameters(base, c).ravel()
-    total, d_v, d_p = _gradient_terms(base, p, u, v, density)
-    g_c = [np.sum(d_p) * _parameter_slope(base, c)]
-    if base == "student":
-        step = np.array([0.0, NU_STEP])
-        moved = _copula_sum(base, _copula_parameters(base, c + step).ravel(), u, v, density)
-        g_c.append((moved - float(np.sum(total))) / NU_STEP)
-    return float(np.sum(np.where(density, log_f + total, total))), d_v, g_c
-
-
-def _negloglik(base, rotation, u, density, marginal_terms, unpack):
-    """The negative log-likelihood of optimiser values ``x`` (+1e300 where not finite).
-
-    ``marginal_terms(x)`` gives ``(log f_H(h), F_H(h), …)``; ``unpack(x)`` ends
-    with the copula's optimiser values.
-    """
-    @np.errstate(all="ignore")  # the optimiser's trial steps may overflow: scored as +inf
-    def negloglik(x):
-        log_f, v, _ = marginal_terms(x)
-        p = _copula_parameters(base, unpack(x)[-1]).ravel()
-        val = _copula_terms(base, rotation, p, u, v, log_f, density)
-        return -float(val) if np.isfinite(val) else 1e300
-
-    return negloglik
-
-
 def joint_objective(name: str, u, h, *, location: bool = True, censor: float = 0.0,
                     marginal: str = "weibull"):
     """The negative log-likelihood of :func:`fit_joint` and how to read its parameters.
@@ -272,14 +172,14 @@ def joint_objective(name: str, u, h, *, location: bool = True, censor: float = 0
         log_f = np.log(b / a) + (b - 1.0) * ln_z - zb
         return log_f, np.clip(-np.expm1(-zb), _TINY, 1 - _TINY), (w, ln_z, zb)
 
-    negloglik = _negloglik(base, rotation, u, density, marginal_terms, unpack)
+    negloglik = negloglik_closure(base, rotation, u, density, marginal_terms, unpack)
 
     @np.errstate(all="ignore")
     def negloglik_grad(x):
         """The same with its gradient (exact but in Student-t's ν; no rotation)."""
         _, _, b, c = unpack(x)
         log_f, v, parts = marginal_terms(x)
-        val, d_v, g_c = _loglik_and_copula_gradient(base, c, u, v, log_f, density)
+        val, d_v, g_c = loglik_and_copula_gradient(base, c, u, v, log_f, density)
         if not np.isfinite(val):
             return 1e300, np.zeros_like(x)
         dens = density.astype(float)
@@ -408,7 +308,7 @@ def joint_fit_result(name: str, res, c, n_marg: int, hf, marginal: str) -> Joint
         raise ValueError(f"joint fit of the {name} copula failed: {res.message}")
     family, rotation = _family_and_rotation(name)
     cop = pv.Bicop(family=family, rotation=rotation,
-                   parameters=_copula_parameters(name.partition("_")[0], c))
+                   parameters=copula_parameters(name.partition("_")[0], c))
     k = n_marg + float(cop.npars)
     loglik = -float(res.fun)
     fit = CopulaFit(name=name, bicop=cop, loglik=loglik, aic=2.0 * k - 2.0 * loglik,

@@ -21,8 +21,6 @@ from .copula_densities import GRADIENT_FAMILIES
 from .joint import (
     HF_MARGINALS,
     JointFit,
-    _loglik_and_copula_gradient,
-    _negloglik,
     _prepare,
     best_per_family,
     fit_joint_all,
@@ -31,6 +29,7 @@ from .joint import (
     minimise_bounded,
     starts_cold,
 )
+from .joint_likelihood import loglik_and_copula_gradient, negloglik_closure
 from .stats.weibull_mixture import (
     LN_SHAPE_BOUNDS,
     WEIGHT_LOW,
@@ -83,14 +82,14 @@ def mixture_objective(name: str, u, h, *, location: bool = True, censor: float =
         cdf = -p * np.expm1(-parts[0][3]) - (1.0 - p) * np.expm1(-parts[1][3])
         return log_f, np.clip(cdf, _TINY, 1 - _TINY), (w, p, parts, l1 - log_f, l2 - log_f)
 
-    negloglik = _negloglik(base, rotation, u, density, marginal_terms, unpack)
+    negloglik = negloglik_closure(base, rotation, u, density, marginal_terms, unpack)
 
     @np.errstate(all="ignore")
     def negloglik_grad(x):
         """The same with its gradient (exact but in Student-t's ν; no rotation)."""
         c = unpack(x)[6]
         log_f, v, (w, p, parts, ln_r1, ln_r2) = marginal_terms(x)
-        val, d_v, g_c = _loglik_and_copula_gradient(base, c, u, v, log_f, density)
+        val, d_v, g_c = loglik_and_copula_gradient(base, c, u, v, log_f, density)
         if not np.isfinite(val):
             return 1e300, np.zeros_like(x)
         dens = density.astype(float)

@@ -25,7 +25,7 @@ from ..strategies.base import Strategy
 from ..strategies.pas import PAS
 from .schema import DEFAULT_MAX_HF
 
-__all__ = ["STRATEGIES", "LF_SETTINGS", "STUDY_SETTINGS", "PRESETS", "DEFAULT_MAX_HF",
+__all__ = ["study_settings", "STRATEGIES", "LF_SETTINGS", "STUDY_SETTINGS", "PRESETS", "DEFAULT_MAX_HF",
            "make_strategy", "split_settings", "apply_preset"]
 
 STRATEGIES = {"pas": PAS, "as": AS}
@@ -126,3 +126,24 @@ def split_settings(settings: dict) -> tuple[dict, dict]:
     """Split flat keyword settings into ``(study settings, strategy settings)``."""
     study = {k: v for k, v in settings.items() if k in STUDY_SETTINGS}
     return study, {k: v for k, v in settings.items() if k not in STUDY_SETTINGS}
+
+
+def study_settings(study) -> dict:
+    """Everything that defines ``study``: its strategy settings and study settings (stored)."""
+    strategy = study.strategy
+    params = {}
+    for name in strategy_parameters(type(strategy)):
+        if not hasattr(strategy, name):
+            raise AttributeError(f"strategy setting {name} is not kept on "
+                                 f"{type(strategy).__name__} as an attribute")
+        params[name] = getattr(strategy, name)
+    lfset, stop = study.lfset, study.stopping
+    return {"strategy": strategy.name, "strategy_settings": params,
+            "n_waves": lfset.n_waves, "p_exp": lfset.p_exp, "threshold": lfset.threshold,
+            "eps1": stop.eps1, "eps2": stop.eps2, "k1": stop.k1, "k2": stop.k2,
+            "stop_measure": stop.measure, "legacy_md": study.legacy_md,
+            "seed": study.seed, "max_hf": study.max_hf, "max_failures": study.max_failures,
+            "stop_on_convergence": study.stop_on_convergence,
+            "adaptive_threshold": study.adaptive_threshold,
+            "threshold_step": study.threshold_step, "fp_run": study.fp_run,
+            "target": study.target}

@@ -21,7 +21,7 @@ from ..strategies.base import Pairs, Prediction, Strategy
 from ..strategies.stopping import StoppingRule, range_grid
 from . import loop
 from .corrections import Corrections
-from .factory import LF_SETTINGS, STUDY_SETTINGS, make_strategy, strategy_parameters
+from .factory import LF_SETTINGS, STUDY_SETTINGS, make_strategy, study_settings
 from .answers import check_hf_answer, check_target, lacks_target
 from .replay import attach
 from .result import ScreeningResult
@@ -372,23 +372,7 @@ class Study(Corrections):
 
     def settings(self) -> dict:
         """Everything that defines this study: strategy settings and study settings."""
-        strategy = self.strategy
-        params = {}
-        for name in strategy_parameters(type(strategy)):
-            if not hasattr(strategy, name):
-                raise AttributeError(f"strategy setting {name} is not kept on "
-                                     f"{type(strategy).__name__} as an attribute")
-            params[name] = getattr(strategy, name)
-        lfset, stop = self.lfset, self.stopping
-        return {"strategy": strategy.name, "strategy_settings": params,
-                "n_waves": lfset.n_waves, "p_exp": lfset.p_exp, "threshold": lfset.threshold,
-                "eps1": stop.eps1, "eps2": stop.eps2, "k1": stop.k1, "k2": stop.k2,
-                "stop_measure": stop.measure, "legacy_md": self.legacy_md,
-                "seed": self.seed, "max_hf": self.max_hf, "max_failures": self.max_failures,
-                "stop_on_convergence": self.stop_on_convergence,
-                "adaptive_threshold": self.adaptive_threshold,
-                "threshold_step": self.threshold_step, "fp_run": self.fp_run,
-                "target": self.target}
+        return study_settings(self)
 
     # -- results -----------------------------------------------------------
     def history(self) -> pd.DataFrame:

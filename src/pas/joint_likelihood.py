@@ -1,0 +1,112 @@
+"""The copula part of the joint likelihood of :mod:`pas.joint` and :mod:`pas.joint_mixture`.
+
+The optimiser's unconstrained values and the family's parameters, the
+copula terms of ``ℓ = Σ [log c(u, F_H(h)) + log f_H(h)]`` (with the
+left-censored loads as ``log P(H ≤ h_c | u)``), their gradient, and the
+negative log-likelihood closure every HF marginal shares.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .copula_densities import copula_loghfunc, copula_logpdf, logc_grad, logh_grad
+
+__all__ = ["copula_parameters", "parameter_slope", "loglik_and_copula_gradient",
+           "negloglik_closure", "NU_STEP"]
+
+def copula_parameters(base: str, c):
+    """Unconstrained optimiser values → the family's parameter matrix (inside its bounds)."""
+    if base == "gaussian":
+        return np.array([[0.999 * np.tanh(c[0])]])
+    if base == "student":
+        with np.errstate(over="ignore"):  # exp(-c) = inf is ν = 2, its bound
+            nu = 2.0 + 48.0 / (1.0 + np.exp(-c[1]))
+        return np.array([[0.999 * np.tanh(c[0])], [nu]])
+    if base == "clayton":
+        return np.array([[np.clip(np.exp(c[0]), 1e-6, 28.0)]])
+    if base == "gumbel":
+        return np.array([[min(1.0 + np.exp(c[0]), 50.0)]])
+    if base == "frank":
+        return np.array([[35.0 * np.tanh(c[0] / 35.0)]])
+    raise ValueError(f"no joint fit for the copula family {base!r}")
+
+
+def parameter_slope(base: str, c) -> float:
+    """``dθ/dc`` of :func:`copula_parameters` for the first parameter (Student-t: ρ)."""
+    if base in ("gaussian", "student"):
+        return 0.999 * (1.0 - np.tanh(c[0]) ** 2)
+    if base == "clayton":
+        return float(np.exp(c[0])) if 1e-6 < np.exp(c[0]) < 28.0 else 0.0
+    if base == "gumbel":
+        return float(np.exp(c[0])) if 1.0 + np.exp(c[0]) < 50.0 else 0.0
+    return 1.0 - np.tanh(c[0] / 35.0) ** 2  # frank
+
+
+def _copula_terms(base, rotation, p, u, v, log_f, density) -> float:
+    """``Σ log f + log c`` over the loads with a density, ``Σ log P(H ≤ h_c | u)`` over the rest."""
+    uu, vv = (1.0 - u, 1.0 - v) if rotation == 180 else (u, v)
+    val = np.sum((log_f + copula_logpdf(base, p, uu, vv))[density])
+    if not density.all():  # the censored loads: P(H ≤ h_c | u)
+        lh = copula_loghfunc(base, p, uu[~density], vv[~density])
+        val += np.sum(np.log(-np.expm1(lh)) if rotation == 180 else lh)
+    return val
+
+
+def _gradient_terms(base, p, u, v, density):
+    """``(log c or log h, ∂/∂v, ∂/∂parameter)`` per pair (densities and censored loads)."""
+    lc, dc_dv, dc_dp = logc_grad(base, p, u, v)
+    d_v = np.where(density, dc_dv, 0.0)
+    d_p = np.where(density, dc_dp, 0.0)
+    total = np.where(density, lc, 0.0)
+    if not density.all():
+        lh, dh_dv, dh_dp = logh_grad(base, p, u[~density], v[~density])
+        total[~density], d_v[~density], d_p[~density] = lh, dh_dv, dh_dp
+    return total, d_v, d_p
+
+
+def _copula_sum(base, p, u, v, density) -> float:
+    """``Σ log c`` over the loads with a density and ``Σ log h`` over the censored (no rotation)."""
+    val = np.sum(copula_logpdf(base, p, u[density], v[density]))
+    if not density.all():
+        val += np.sum(copula_loghfunc(base, p, u[~density], v[~density]))
+    return float(val)
+
+
+NU_STEP = 1e-6
+"""Step in Student-t's optimiser value of ν for its one forward difference."""
+
+
+def loglik_and_copula_gradient(base, c, u, v, log_f, density):
+    """The log-likelihood and the copula part of its gradient: ``(value, ∂/∂v per pair,
+    gradient in the copula's optimiser values c)`` (no rotation; the marginal's chain
+    rule is the caller's).
+
+    Student-t's ν enters through the t quantiles of ``u`` and ``v``, whose
+    derivative in ν has no closed form: its component is a forward difference
+    of the copula terms in ``c[1]`` (the marginal terms do not depend on it).
+    """
+    p = copula_parameters(base, c).ravel()
+    total, d_v, d_p = _gradient_terms(base, p, u, v, density)
+    g_c = [np.sum(d_p) * parameter_slope(base, c)]
+    if base == "student":
+        step = np.array([0.0, NU_STEP])
+        moved = _copula_sum(base, copula_parameters(base, c + step).ravel(), u, v, density)
+        g_c.append((moved - float(np.sum(total))) / NU_STEP)
+    return float(np.sum(np.where(density, log_f + total, total))), d_v, g_c
+
+
+def negloglik_closure(base, rotation, u, density, marginal_terms, unpack):
+    """The negative log-likelihood of optimiser values ``x`` (+1e300 where not finite).
+
+    ``marginal_terms(x)`` gives ``(log f_H(h), F_H(h), …)``; ``unpack(x)`` ends
+    with the copula's optimiser values.
+    """
+    @np.errstate(all="ignore")  # the optimiser's trial steps may overflow: scored as +inf
+    def negloglik(x):
+        log_f, v, _ = marginal_terms(x)
+        p = copula_parameters(base, unpack(x)[-1]).ravel()
+        val = _copula_terms(base, rotation, p, u, v, log_f, density)
+        return -float(val) if np.isfinite(val) else 1e300
+
+    return negloglik
