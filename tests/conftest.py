@@ -10,6 +10,18 @@ import pytest
 import pyvinecopulib as pv
 from scipy import stats
 
+# Doctests cannot carry a marker.  These examples run a PAS study with its bootstrap band
+# (about 10 s), so the fast path (``pytest -m "not slow"``) leaves them out; their functions
+# keep fast tests in tests/.  tests/test_markers.py checks each name still has an example.
+SLOW_DOCTESTS = frozenset({"pas.api.run_pas"})
+
+
+def pytest_collection_modifyitems(config, items):
+    """Mark the doctests in ``SLOW_DOCTESTS`` slow (seen when ``tests/`` is collected too)."""
+    for item in items:
+        if isinstance(item, pytest.DoctestItem) and item.name in SLOW_DOCTESTS:
+            item.add_marker(pytest.mark.slow)
+
 
 def empirical_at(values, n_waves, p):
     """Empirical exceedance value at ``p`` (d = k / n_w, interpolated on ln d)."""

@@ -45,6 +45,7 @@ def test_registry_has_both_impact_sets():
             (paper.n_waves, paper.p_exp, paper.threshold, paper.eps1, paper.paper_truth)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("case", CASE_IDS)
 def test_case_shapes_ids_and_truth(small, case):
     d = small[case]
@@ -62,6 +63,7 @@ def test_case_shapes_ids_and_truth(small, case):
         assert min(lo, hi) - 1e-9 <= d.truth_mpm <= max(lo, hi) + 1e-9
 
 
+@pytest.mark.slow
 def test_oracle_reveals_the_table(small):
     d = small["2a"]
     oracle = d.oracle()
@@ -70,6 +72,7 @@ def test_oracle_reveals_the_table(small):
     assert d.meta()[7]["seed"] == d.seed_no[7]
 
 
+@pytest.mark.slow
 def test_case1_physics(small):
     d = small["1a"]
     assert d.tau > 0.9  # paper Fig. 16 / SPEC §8: ~0.95
@@ -82,6 +85,7 @@ def test_case1_physics(small):
     assert abs(small["1b"].truth_mpm - d.truth_mpm) < 0.05 * d.truth_mpm
 
 
+@pytest.mark.slow
 def test_case2_hog_sag_asymmetry(small):
     # VERSION 3 (issue 11): the midbody side-flare term outweighs the bow flare, so the
     # non-linear hogging peaks grow and the sagging peaks shrink: the paper's order hog > sag
@@ -91,6 +95,7 @@ def test_case2_hog_sag_asymmetry(small):
     assert hog.truth_mpm > sag.truth_mpm
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("case, rate", [("3a", 0.03), ("3b", 0.08), ("3a-hard", 0.03),
                                         ("3b-hard", 0.08)])
 def test_green_water_false_positives_and_rate(small, case, rate):
@@ -103,6 +108,7 @@ def test_green_water_false_positives_and_rate(small, case, rate):
     assert np.all((d.hf == 0) | (d.hf >= 100.0))  # 100 kN noise threshold
 
 
+@pytest.mark.slow
 def test_slamming_outliers(small):
     d = small["4a-hard"]
     pos = d.hf > 0
@@ -114,6 +120,7 @@ def test_slamming_outliers(small):
     assert np.argmax(d.hf) != np.argmax(d.lf)
 
 
+@pytest.mark.slow
 def test_cache_roundtrip(small, cache):
     d = small["3a"]
     file = cache_path("3a", 0, d.scale, cache)
@@ -151,6 +158,7 @@ def test_bad_scale():
         build_case("1a", scale=0.01)
 
 
+@pytest.mark.slow
 def test_cli_reproduce_writes_table_and_figures(tmp_path, monkeypatch, cache, capsys):
     monkeypatch.setenv("PAS_CACHE", str(cache))
     out = tmp_path / "out"
@@ -182,7 +190,9 @@ def _digest(a):
 # lf, hf, t_start, t_end and of seed_no as int64, and repr(truth_mpm).  The float rounding
 # to 9 digits keeps the check independent of last-bit FFT differences between platforms;
 # on the machine that recorded them the raw arrays were also compared bit for bit
-# (identical at scale 0.1 and 1.0).
+# (identical at scale 0.1 and 1.0).  The truth MPM is a fit, whose optimiser amplifies
+# last-bit differences of libm/BLAS: 3b gave 5336.852321456016 on another machine, 1.6e-9
+# relative off, so it is compared to TRUTH_RTOL (issue 25).
 HARD_REFERENCE = {
     "3a": (1824, "98571e8aa27ef7ff", "ee6a29d9b9d6eeb4", "02fdbeae46c56a23", "40ab1c8dabaca156",
            "422cd57ee7ce77c7", 1964.52241391635),
@@ -195,6 +205,10 @@ HARD_REFERENCE = {
 }
 
 
+TRUTH_RTOL = 1e-7
+
+
+@pytest.mark.slow
 @pytest.mark.parametrize("case", sorted(HARD_REFERENCE))
 def test_hard_variants_reproduce_the_first_release(small, case):
     d = small[f"{case}-hard"]
@@ -202,10 +216,11 @@ def test_hard_variants_reproduce_the_first_release(small, case):
     assert d.scale == 0.1 and d.seed == 0 and d.lf.size == n
     assert (_digest(d.lf), _digest(d.hf), _digest(d.t_start), _digest(d.t_end)) == (lf, hf, t0, t1)
     assert _digest(d.seed_no.astype(np.int64)) == seeds
-    assert d.truth_mpm == pytest.approx(truth, rel=1e-9)
+    assert d.truth_mpm == pytest.approx(truth, rel=TRUTH_RTOL)
     assert d.ids[0].startswith(f"{case}-hard-s000-w")  # documented: the ids carry the new id
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("case", ["3a", "3b", "4a", "4b"])
 def test_paper_like_and_hard_share_waves_and_lf(small, case):
     new, hard = small[case], small[f"{case}-hard"]
@@ -216,6 +231,7 @@ def test_paper_like_and_hard_share_waves_and_lf(small, case):
 
 # -- paper-like impact cases -------------------------------------------------------------------
 
+@pytest.mark.slow
 @pytest.mark.parametrize("case", ["3a", "3b"])
 def test_green_water_misses_spread_over_the_lf_range(small, case):
     # Misses (HF = 0 over the 12 m threshold) in every LF tercile, including the top one: a
@@ -272,6 +288,7 @@ def test_slamming_load_of_an_episode_uses_the_panel_level_speed():
         slamming_load(r, 0.0)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("case", ["3a", "4a"])
 def test_episode_functions_reproduce_generated_events(small, case):
     # The per-episode HF functions (for design waves, issue 12) give the generator's HF of an
@@ -325,3 +342,24 @@ def test_green_water_dependence_is_lower_tail_dominant_unlike_the_hard_variant()
     new, hard = build_case("3b", scale=0.3), build_case("3b-hard", scale=0.3)
     assert new.lambda_l >= new.lambda_u
     assert (new.lambda_l - new.lambda_u) - (hard.lambda_l - hard.lambda_u) > 0.3
+
+
+def test_reproduce_of_one_small_case_writes_a_table_that_agrees_with_its_runs(tmp_path):
+    # the fast counterpart of the CLI test above: AS on 2b at scale 0.05 (about 1 s)
+    from pas.validation.reproduce import format_table, parse_strategies, reproduce
+
+    out = reproduce(["2b"], scale=0.05, strategies=["as"], out=tmp_path, cache=False)
+    for name in ("table.csv", "runs.csv", "properties.csv", "case_2b.png", "metrics.png"):
+        assert (tmp_path / name).stat().st_size > 0, name
+    assert sorted(p.name for p in out["files"]) == sorted(p.name for p in tmp_path.iterdir())
+    (run,), (row,) = out["runs"].to_dict("records"), out["table"].to_dict("records")
+    data, spec = out["data"]["2b"], get_case("2b")
+    assert (row["case"], row["strategy"], row["replications"]) == ("2b", "AS", 1)
+    assert row["predicted_mpm"] == run["mpm"] and row["hf_samples"] == run["n_hf"]
+    assert run["M1"] == pytest.approx(run["n_hf"] / data.n_waves, rel=1e-12)
+    assert row["truth_vs_paper"] == pytest.approx(data.truth_mpm / spec.paper_truth - 1, rel=1e-12)
+    assert row["paper_mpm"] == spec.paper_as and row["converged"] in ("0/1", "1/1")
+    text = format_table(out["table"])
+    assert "2b" in text and "AS" in text and f"{100 * row['M2']:+.2f}%" in text
+    with pytest.raises(ValueError, match="strategies: unknown form"):
+        parse_strategies("as,form")

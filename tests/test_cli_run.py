@@ -53,6 +53,7 @@ def _run(capsys, *argv):
     return code, out, err
 
 
+@pytest.mark.slow
 def test_run_with_table_oracle_writes_everything_and_matches_the_api(files, tmp_path, capsys):
     d, _, _, ids = files
     out = tmp_path / "r1"
@@ -88,6 +89,7 @@ def test_run_with_table_oracle_writes_everything_and_matches_the_api(files, tmp_
     assert res.range_curves.shape == ref.range_curves.shape
 
 
+@pytest.mark.slow
 def test_run_json_quiet_npy_python_oracle(files, tmp_path, capsys, monkeypatch):
     d, *_ = files
     log = tmp_path / "calls.log"
@@ -124,6 +126,7 @@ def test_python_oracle_by_module_name(files, tmp_path, capsys, monkeypatch):
     assert not (tmp_path / "r3" / "study.sqlite").exists()
 
 
+@pytest.mark.slow
 def test_command_oracle(files, tmp_path, capsys):
     d, *_ = files
     script = tmp_path / "cfd.py"
@@ -203,6 +206,7 @@ def test_help_has_examples(capsys):
         assert "examples:" in text and f"pas {cmd} " in text.split("examples:")[1]
 
 
+@pytest.mark.slow
 def test_plot_redraws_from_the_output_folder(files, tmp_path, capsys):
     d, *_ = files
     out = tmp_path / "r5"
@@ -229,6 +233,7 @@ def test_plot_redraws_from_the_output_folder(files, tmp_path, capsys):
     assert code == 2 and "--out" in err
 
 
+@pytest.mark.slow
 def test_one_u95_in_summary_json_status_and_figure(files, tmp_path, capsys):
     d, *_ = files
     out = tmp_path / "u95"
@@ -265,6 +270,7 @@ def test_one_u95_in_summary_json_status_and_figure(files, tmp_path, capsys):
     plt.close(fig)
 
 
+@pytest.mark.slow
 def test_failed_evaluations_give_one_stderr_line_each_even_quiet(files, tmp_path, capsys):
     d, lf, hf, ids = files
     top = int(np.argmax(lf))
@@ -288,6 +294,7 @@ def test_failed_evaluations_give_one_stderr_line_each_even_quiet(files, tmp_path
     assert sum("FAILED" in ln for ln in stderr.splitlines()) == 1
 
 
+@pytest.mark.slow
 def test_n_waves_below_the_peaks_is_an_error_and_spectral_says_so(files, tmp_path, capsys):
     d, *_ = files
     argv = ["run", d / "lf.csv", "--lf-column", "rwe", "--oracle",

@@ -10,6 +10,7 @@ import sys
 from pathlib import Path
 
 import numpy as np
+import pytest
 
 import pas
 from pas.cli.run import STRATEGY_NAMES
@@ -50,6 +51,7 @@ def test_help_and_study_tell_import_nothing_heavy(tmp_path):
                    f"'{ev.id}', '2.5']) == 0") == "[]"
 
 
+@pytest.mark.slow
 def test_lazy_package_keeps_its_public_names():
     code = ("import pas\nnames = [n for n in pas.__all__ if getattr(pas, n) is None]\n"
             "from pas import *\nassert callable(run_pas) and callable(pas.metrics)\n"

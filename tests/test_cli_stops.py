@@ -1,7 +1,9 @@
 """Ctrl-C and closed pipes: one line on stderr, the exit codes of a shell, nothing lost.
 
 Each test runs ``python -m pas`` in a child process, as a user's shell would,
-and interrupts it while its oracle is busy.
+and interrupts it while its oracle is busy; what comes before and after the
+interruption (creating a study, resuming) runs in this process through
+``pas.cli.main``, where a process start is not the point.
 """
 
 import json
@@ -16,6 +18,10 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 import pytest
+
+from pas.cli import main
+
+pytestmark = pytest.mark.slow  # child processes, signals, resumed studies
 
 N, NW, P = 3000, 3200, 3e-3
 ORACLE = textwrap.dedent("""\
@@ -84,7 +90,8 @@ def _stored_ids(db):
             "SELECT event_id FROM events WHERE result_seq IS NOT NULL")}
 
 
-def test_ctrl_c_writes_the_partial_result_and_says_how_to_resume(inputs, tmp_path):
+def test_ctrl_c_writes_the_partial_result_and_says_how_to_resume(inputs, tmp_path, monkeypatch,
+                                                                  capsys):
     out, log = tmp_path / "run", tmp_path / "calls.log"
     proc = _pas(_run_args(inputs, out), {"PAS_TEST_LOG": str(log), "PAS_TEST_SLEEP": "0.1"})
     _wait_for_lines(log, 6, proc)  # 5 results in, the 6th call running
@@ -103,9 +110,8 @@ def test_ctrl_c_writes_the_partial_result_and_says_how_to_resume(inputs, tmp_pat
     stored = _stored_ids(out / "study.sqlite")
     # resuming runs only events without a stored result and finishes the study
     log2 = tmp_path / "calls2.log"
-    proc = _pas(_run_args(inputs, out, "--quiet"), {"PAS_TEST_LOG": str(log2)})
-    stdout, stderr = proc.communicate(timeout=120)
-    assert proc.returncode == 0, stderr
+    monkeypatch.setenv("PAS_TEST_LOG", str(log2))
+    assert main([str(a) for a in _run_args(inputs, out, "--quiet")]) == 0, capsys.readouterr().err
     again = set(log2.read_text().split()) if log2.exists() else set()
     assert not again & stored
     summary = json.loads((out / "summary.json").read_text())
@@ -159,8 +165,7 @@ def test_closed_stdout_pipe_of_study_run_says_how_to_resume(inputs, tmp_path):
         root = "runs"
         """))
     db = tmp_path / "s.db"
-    create = _pas(["study", "create", db, "--config", tmp_path / "study.toml"], {})
-    assert create.wait(timeout=120) == 0, create.communicate()
+    assert main(["study", "create", str(db), "--config", str(tmp_path / "study.toml")]) == 0
     proc = _pas(["study", "run", db], {})
     first = [proc.stdout.readline() for _ in range(2)]
     assert all(ln.startswith("[pas] it") for ln in first)

@@ -9,6 +9,7 @@ import pas
 from pas.study.store import StudyStore
 
 distributed = pytest.importorskip("distributed")
+pytestmark = pytest.mark.slow  # a cluster and a process pool start
 
 LF = np.random.default_rng(1).rayleigh(1.0, 2000)
 KW = dict(n_waves=2000, p_exp=1e-2, eps1=1e-4, seed=11, max_hf=16, n_bootstrap=0,

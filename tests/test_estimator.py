@@ -78,6 +78,7 @@ def test_impact_model_removes_the_bias_of_a_positive_draw_for_every_peak():
     assert abs(np.mean(with_)) < 0.02
 
 
+@pytest.mark.slow
 def test_a_lognormal_hf_marginal_is_recognised_and_fits_better():
     # HF log-normal (log-sd 1, heavier than the Weibull): with hf_marginal="both" every fit
     # keeps the log-normal, and the MPM error over six data sets shrinks (measured: mean
@@ -97,6 +98,7 @@ def test_a_lognormal_hf_marginal_is_recognised_and_fits_better():
         PAS(hf_marginal="gamma")
 
 
+@pytest.mark.slow
 def test_a_bore_impulse_hf_law_is_recognised_by_the_weibull_mixture():
     # HF 70 % Weibull β 2 (a bore) and 30 % Weibull β 0.7 at 2.5 times the scale (an
     # impulse), the known-truth "mix" law: hf_marginal="weibull_mixture" keeps the mixture by
@@ -127,6 +129,7 @@ def test_a_bore_impulse_hf_law_is_recognised_by_the_weibull_mixture():
     assert kept >= 4
 
 
+@pytest.mark.slow
 def test_weibull_mixture_in_the_band_and_a_failed_mixture_fit_keeps_the_weibull(monkeypatch):
     import pas.joint_mixture as joint_mixture
     from pas.stats.weibull_mixture import WeibullMixture
@@ -163,6 +166,7 @@ def test_weibull_mixture_in_the_band_and_a_failed_mixture_fit_keeps_the_weibull(
     assert strategy.model_band(pairs, s, np.random.default_rng(1)) is not None
 
 
+@pytest.mark.slow
 def test_band_marginals_let_the_bootstrap_choose_or_alternate_the_hf_marginal():
     # the replicates of the model band fit the study's Weibull ("fitted"), the Weibull and
     # the log-normal alternately ("alternate"), or the better of the two by likelihood
@@ -192,6 +196,7 @@ def test_band_marginals_let_the_bootstrap_choose_or_alternate_the_hf_marginal():
         PAS(band_marginals="lognormal")
 
 
+@pytest.mark.slow
 def test_at_strong_dependence_the_lf_ranks_carry_the_error_and_the_band_holds_it():
     # Gumbel τ 0.9, 30 pairs.  The estimator puts the copula on the LF sample's ranks; when
     # the loads follow the LF population CDF instead (as in nature), the ranks at the top

@@ -24,6 +24,7 @@ def test_notebooks_are_there():
                      "03_external_hf_results.ipynb", "04_impact_statistics.ipynb"]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("path", NOTEBOOKS, ids=lambda p: p.stem)
 def test_notebook_runs(path, tmp_path, monkeypatch):
     nb = nbformat.read(path, as_version=4)

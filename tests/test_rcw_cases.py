@@ -94,6 +94,7 @@ def test_run_rcw_case(small, case):
     assert mler.strategy == "mler" and (mler.history["iterations"] == 0).all()
 
 
+@pytest.mark.slow
 def test_cli_reproduce_design_waves(tmp_path, monkeypatch, capsys):
     from pas.cli import main
     import pandas as pd

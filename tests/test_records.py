@@ -312,6 +312,7 @@ def test_target_beyond_the_record_needs_a_named_model():
     assert np.isnan(a.mpm_pooled)
 
 
+@pytest.mark.slow
 def test_r_n_matches_fresh_campaigns_up_to_three_quarters_of_the_record():
     # 16 records of M = 40 seeds (100 crests per seed = one exposure); R(N) of
     # fresh N-seed campaigns about the exact MPM from 2000 new campaigns each

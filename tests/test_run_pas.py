@@ -10,6 +10,7 @@ from conftest import gumbel_problem, monotone_problem, threshold_problem
 import pas
 
 
+@pytest.mark.slow
 def test_monotone_indicator_reproduces_mapped_mpm(table_oracle):
     lf, hf, n_w, p_exp, truth = monotone_problem()
     oracle = table_oracle(hf)
@@ -21,6 +22,7 @@ def test_monotone_indicator_reproduces_mapped_mpm(table_oracle):
     assert res.n_hf < 60
 
 
+@pytest.mark.slow
 def test_known_copula_and_marginals(table_oracle):
     lf, hf, n_w, p_exp, truth = gumbel_problem()
     res = pas.run_pas(lf, table_oracle(hf), n_waves=n_w, p_exp=p_exp, eps1=0.01 * truth, seed=5)
@@ -28,6 +30,7 @@ def test_known_copula_and_marginals(table_oracle):
     assert res.mpm == pytest.approx(truth, rel=0.10)
 
 
+@pytest.mark.slow
 def test_threshold_problem_with_false_positives(table_oracle):
     lf, hf, n_w, p_exp, truth = threshold_problem()
     res = pas.run_pas(lf, table_oracle(hf), n_waves=n_w, p_exp=p_exp, eps1=0.015 * truth,
@@ -40,6 +43,7 @@ def test_threshold_problem_with_false_positives(table_oracle):
     assert res.mpm == pytest.approx(truth, rel=0.10)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("make, kwargs", [
     (monotone_problem, {}),
     (gumbel_problem, {}),
@@ -56,6 +60,7 @@ def test_mpm_stays_put_to_160_samples(make, kwargs, table_oracle):
     assert np.abs(err).max() <= 0.15, f"worst deviation {err[np.argmax(np.abs(err))]:+.3f}"
 
 
+@pytest.mark.slow
 def test_result_api_shape(table_oracle):
     lf, hf, n_w, p_exp, truth = monotone_problem(n=3000, n_waves=3200)
     res = pas.run_pas(lf, table_oracle(hf), n_waves=n_w, p_exp=p_exp, eps1=0.05, seed=1,
@@ -72,6 +77,7 @@ def test_result_api_shape(table_oracle):
     assert res.mpm_band_model is not None
 
 
+@pytest.mark.slow
 def test_same_seed_same_answer(table_oracle):
     lf, hf, n_w, p_exp, _ = monotone_problem(n=3000, n_waves=3200)
     a = pas.run_pas(lf, table_oracle(hf), n_waves=n_w, p_exp=p_exp, eps1=0.05, seed=9, max_hf=15)
@@ -79,6 +85,7 @@ def test_same_seed_same_answer(table_oracle):
     assert a.mpm == b.mpm and a.history.event_index.tolist() == b.history.event_index.tolist()
 
 
+@pytest.mark.slow
 def test_event_carries_index_lf_and_user_id():
     lf = np.random.default_rng(0).rayleigh(1.0, 500)
     seen = []
@@ -93,6 +100,7 @@ def test_event_carries_index_lf_and_user_id():
     assert len(seen) == 8
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("bad", [
     lambda ev: float("nan"), lambda ev: float("inf"), lambda ev: -1.0, lambda ev: "abc",
     lambda ev: 1 / 0,
@@ -175,6 +183,7 @@ def test_spectral_n_waves_convention_allows_exceedance_above_one():
         pas.make_study(pas.PAS, lf, n_waves=60, p_exp=0.05, eps1=0.1, n_waves_convention="guess")
 
 
+@pytest.mark.slow
 def test_unusable_indicator_warns():
     rng = np.random.default_rng(0)
     lf = rng.rayleigh(1.0, 2000)
@@ -224,6 +233,7 @@ def test_degenerate_pairs_do_not_stop_the_campaign():
     assert np.isfinite(res.mpm)
 
 
+@pytest.mark.slow
 def test_impact_model_on_threshold_problem(table_oracle):
     lf, hf, n_w, p_exp, truth = threshold_problem()
     res = pas.run_pas(lf, table_oracle(hf), n_waves=n_w, p_exp=p_exp, eps1=0.015 * truth,
@@ -295,6 +305,7 @@ def test_short_range_warns_and_cannot_converge():
     assert not res.converged and res.history.range_short.any()
 
 
+@pytest.mark.slow
 def test_a_study_stopped_by_its_budget_says_how_far_it_was_from_stopping(table_oracle):
     lf, hf, n_w, p_exp, truth = monotone_problem()
     res = pas.run_pas(lf, table_oracle(hf), n_waves=n_w, p_exp=p_exp, eps1=1e-6 * truth,

@@ -47,6 +47,7 @@ def _n_results(db):
         return 0
 
 
+@pytest.mark.slow
 def test_store_records_everything_and_resume_is_a_no_op(tmp_path):
     db = str(tmp_path / "s.db")
     ref = pas.run_pas(LF, hf, **KW)
@@ -147,6 +148,7 @@ def test_two_drivers_conflict(tmp_path):
         b.ask()
 
 
+@pytest.mark.slow
 def test_sigkill_resume_loses_nothing_and_reruns_nothing(tmp_path):
     """SIGKILL a command-oracle campaign 8 times at random points, then finish it."""
     script = _campaign.write_script(tmp_path)

@@ -12,7 +12,9 @@ states stored as ``pending``/``done``/``false_positive``/``failed``) with::
     StudyStore(path).tell_by_key(230, 2.0 * lf[230] ** 1.2)   # stored, not yet consumed
 
 The expected numbers below are what that version printed when it reopened
-the file; they are not computed by the code under test.
+the file; they are not computed by the code under test.  They are fitted MPMs
+from another machine, so they are compared to a relative ``REPLAY_RTOL``:
+an optimiser amplifies last-bit libm/BLAS differences to about 1e-9 (issue 25).
 """
 
 import shutil
@@ -24,6 +26,7 @@ import pytest
 from pas.study import open_study
 
 FIXTURE = Path(__file__).parent / "data" / "store_v1.sqlite"
+REPLAY_RTOL = 1e-7
 
 
 @pytest.fixture()
@@ -46,12 +49,12 @@ def test_store_written_with_old_state_strings_replays(store_v1):
         replayed = [r.get("mpm") for r in study.rows[:13]]
         assert [m is None for m in replayed] == [m is None for m in stored_mpm]
         assert [m for m in replayed if m is not None] == pytest.approx(
-            [m for m in stored_mpm if m is not None], rel=1e-9)
-        assert study.rows[-1]["mpm"] == pytest.approx(7.410337014024719, rel=1e-9)
+            [m for m in stored_mpm if m is not None], rel=REPLAY_RTOL)
+        assert study.rows[-1]["mpm"] == pytest.approx(7.410337014024719, rel=REPLAY_RTOL)
         assert [ev.index for ev in study.pending] == [58]
         study.tell(58, 3.5)
         assert [ev.index for ev in study.ask(1)] == [46]
-        assert study.rows[-1]["mpm"] == pytest.approx(7.07734006234522, rel=1e-9)
+        assert study.rows[-1]["mpm"] == pytest.approx(7.07734006234522, rel=REPLAY_RTOL)
     finally:
         study.store.close()
     with sqlite3.connect(store_v1) as c:

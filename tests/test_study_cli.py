@@ -49,6 +49,7 @@ def hf_of(lf):
     return 1.2 * np.asarray(lf) ** 1.1
 
 
+@pytest.mark.slow
 def test_campaign_through_the_cli(tmp_path, capsys):
     cfg = write_case(tmp_path)
     db = str(tmp_path / "s.db")
@@ -88,6 +89,7 @@ def _tell_many(db, items):
         assert main(["study", "tell", db, key, repr(value)]) == 0
 
 
+@pytest.mark.slow
 def test_eight_processes_tell_200_results(tmp_path, capsys):
     cfg = write_case(tmp_path, extra="max_hf = 400")  # above the default budget of 160
     db = str(tmp_path / "s.db")
@@ -176,6 +178,7 @@ def test_bad_inputs_exit_2_naming_the_field(tmp_path, capsys, argv, field):
     assert not (tmp_path / "new.db").exists()
 
 
+@pytest.mark.slow
 def test_study_run_with_command_oracle_survives_sigkill(tmp_path, capsys):
     """``python -m pas study run`` killed once, then continued: nothing lost or re-run."""
     import os
@@ -229,6 +232,7 @@ def _answer_all(db, tmp_path):
     pytest.fail("the study did not finish")
 
 
+@pytest.mark.slow
 def test_status_does_not_claim_convergence_beside_results_it_has_not_used(tmp_path, capsys):
     cfg = write_case(tmp_path, toml=TOML.format(extra="max_hf = 40").replace(
         "eps1 = 0.01", "eps1 = 0.05"))
@@ -258,6 +262,7 @@ def test_status_does_not_claim_convergence_beside_results_it_has_not_used(tmp_pa
     assert status["converged_at_n_hf"] <= 30
 
 
+@pytest.mark.slow
 def test_set_tightens_eps1_and_grows_the_budget_of_a_converged_study(tmp_path, capsys):
     cfg = write_case(tmp_path, toml=TOML.format(extra="max_hf = 40").replace(
         "eps1 = 0.01", "eps1 = 0.05"))
