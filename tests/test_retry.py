@@ -300,3 +300,27 @@ def test_retry_keeps_the_named_loads_of_reused_results(tmp_path):
     panel = pas.refit(db, target="panel")
     panel_ref = pas.refit(ref_db, target="panel")
     assert panel.mpm == pytest.approx(panel_ref.mpm, rel=1e-9)
+
+
+def test_command_oracle_campaign_fails_then_retried_matches_an_uninterrupted_run(
+        tmp_path, monkeypatch, capsys):
+    """Issue 26's campaign: a CFD command with a wrong input fails to the limit, is fixed and
+    rerun with --retry-failed on the same --out; it ends as a run with the fixed command."""
+    import sys
+
+    monkeypatch.chdir(tmp_path)
+    pd.DataFrame({"id": [f"e{i}" for i in range(N)], "lf": LF}).to_csv("lf.csv", index=False)
+    (tmp_path / "cfd.py").write_text(SCRIPT)      # a relative script path, as a user writes it
+    argv = ["lf.csv", "--oracle", f"command:{sys.executable} cfd.py {{lf}} {{result}}",
+            "--n-waves", str(N), "--p-exp", "1e-2", "--eps1", "1e-3", "--seed", "5",
+            "--max-hf", "8", "--quiet", "--preset", "paper", "--max-failures", "1"]
+    (tmp_path / "broken.flag").touch()
+    assert _run(capsys, *argv, "--out", "campaign")[0] == 1      # the failure limit
+    (tmp_path / "broken.flag").unlink()
+    code, _, err = _run(capsys, *argv, "--out", "campaign", "--retry-failed")
+    assert code == 0 and "retrying 2 failed event(s)" in err
+    assert _run(capsys, *argv, "--out", "fresh")[0] == 0
+    got = json.loads((tmp_path / "campaign" / "summary.json").read_text())
+    ref = json.loads((tmp_path / "fresh" / "summary.json").read_text())
+    assert got["n_failed"] == 0 and got["n_hf"] == ref["n_hf"]
+    assert got["mpm"] == pytest.approx(ref["mpm"], rel=1e-6)
