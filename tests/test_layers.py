@@ -86,10 +86,14 @@ def unit_graph(graph) -> dict[str, set[str]]:
 
 
 def upward_imports(graph, layer_of=LAYER_OF) -> list[str]:
-    """``"importer -> imported"`` for every edge from a lower layer to a higher one."""
+    """``"importer -> imported"`` for every edge from a lower layer to a higher one.
+
+    Units without a layer are left to :func:`test_every_unit_has_a_layer`.
+    """
+    never = len(LAYERS)
     return sorted(f"{module} -> {target}" for module, targets in graph.items()
                   for target in targets
-                  if layer_of[unit_of(target)] > layer_of[unit_of(module)])
+                  if layer_of.get(unit_of(target), -1) > layer_of.get(unit_of(module), never))
 
 
 def find_cycle(graph) -> list[str] | None:
