@@ -19,7 +19,7 @@ import warnings
 import numpy as np
 
 import pas
-from pas.copulas import conditional_quantile
+from pas.models.copulas import conditional_quantile
 from pas.stats.exceedance import value_at_exceedance
 from pas.strategies.pas import refit
 from pas.strategies.steps import hf_distribution

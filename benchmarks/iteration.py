@@ -1,7 +1,7 @@
 """Benchmark: one PAS iteration at paper scale, and the paper's stack for the draws.
 
 One iteration = Step 7–12 (outlier removal, five copula fits with AIC
-selection — by default joint fits of copula and HF marginal (``pas.joint``;
+selection — by default joint fits of copula and HF marginal (``pas.models.joint``;
 ``hf_marginal="both"`` fits a Weibull and a log-normal marginal with each copula),
 with ``estimator="selected"`` MLE copulas and two Weibull LS marginals — z = 10
 conditional realisations over n0 ≈ 15 000 LF peaks, mean distribution and
@@ -68,7 +68,7 @@ def paper_stack_draws(family, theta, u, n_total, n_slice=1500):
 def pas_draws(family, theta, u, n_total):
     fam = getattr(pv.BicopFamily, family)
     b = pv.Bicop(family=fam, parameters=np.array([[theta]]))
-    from pas.copulas import conditional_quantile
+    from pas.models.copulas import conditional_quantile
     rng = np.random.default_rng(0)
     t = time.perf_counter()
     conditional_quantile(b, np.tile(u, n_total // u.size), rng.uniform(1e-6, 1 - 1e-6, n_total))
@@ -80,7 +80,7 @@ def student_draws(u, n_total, rho=0.6, nu=4.3):
     CDF) and the same closed form with scipy's ``stdtrit``/``stdtr`` (the previous code)."""
     from scipy import special
 
-    from pas.copulas import conditional_quantile
+    from pas.models.copulas import conditional_quantile
 
     b = pv.Bicop(family=pv.BicopFamily.student, parameters=np.array([[rho], [nu]]))
     uu, rr = np.tile(u, n_total // u.size), np.random.default_rng(0).uniform(1e-6, 1 - 1e-6, n_total)

@@ -1,6 +1,6 @@
 """Record analysis: does the Weibull-mixture candidate help `compare_load_distributions`?
 
-The AIC-best of the load-distribution candidates (:mod:`pas.stats.load_fits`) is
+The AIC-best of the load-distribution candidates (:mod:`pas.records.load_fits`) is
 read at the MPM's exceedance probability among impacts, with and without the
 two-component Weibull mixture among the candidates:
 
@@ -22,7 +22,7 @@ import warnings
 import numpy as np
 from scipy import stats
 
-from pas.stats.load_fits import compare_load_distributions
+from pas.records.load_fits import compare_load_distributions
 from pas.stats.weibull_mixture import WeibullMixture
 from pas.validation import generate_case
 

@@ -18,7 +18,7 @@ import time
 
 import numpy as np
 
-from pas.stats import (
+from pas.records import (
     mpm_convergence,
     mpm_pooled,
     quantile_pooled,

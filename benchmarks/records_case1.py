@@ -21,15 +21,14 @@ import warnings
 import numpy as np
 
 import pas.waves as W
-from pas.stats import (
+from pas.records import (
     analyse_record,
     forristall_crest_mpm,
-    matched_peaks,
-    mean_period_from_peak_period,
     mpm_convergence,
     mpm_pooled,
     rayleigh_crest_mpm,
 )
+from pas.stats import matched_peaks, mean_period_from_peak_period
 
 HS, TP, GAMMA, DEPTH = 10.0, 11.0, 3.3, 30.0
 N_SEEDS, DURATION, DT = 50, 3600.0, 0.1
@@ -100,9 +99,12 @@ def main(plot_dir=None):
             import matplotlib
 
             matplotlib.use("Agg")
-            fig, _ = cv.plot(criterion=CRITERION, units="m", variable=f"{name} MPM")
+            from pas.plotting import plot_record_analysis, plot_record_convergence
+
+            fig, _ = plot_record_convergence(cv, criterion=CRITERION, units="m",
+                                             variable=f"{name} MPM")
             fig.savefig(f"{plot_dir}/records_case1_convergence_{name[:3]}.png", dpi=110)
-            fig, _ = results[name].plot(units="m", variable=name)
+            fig, _ = plot_record_analysis(results[name], units="m", variable=name)
             fig.savefig(f"{plot_dir}/records_case1_exceedance_{name[:3]}.png", dpi=110)
 
 

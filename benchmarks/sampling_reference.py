@@ -147,7 +147,7 @@ def known_law_lf_errors(data, k: int, subsamples: int, seed: int, copula: str = 
 def lf_reference_nll(copula: str, par: float):
     """``nll(ln (α, β), u_l, y)``: the likelihood of loads ``y = h − θ_W`` given LF ranks
     ``u_l`` under a Weibull (α, β) joined by ``copula`` with parameter ``par``."""
-    from pas.copula_densities import copula_logpdf
+    from pas.models.copula_densities import copula_logpdf
 
     def nll(x, u_l, y):
         a, b = np.exp(x)

@@ -33,9 +33,9 @@ import pyvinecopulib as pv
 from scipy import stats
 
 import pas
-import pas.copulas
-import pas.joint
-import pas.joint_mixture
+import pas.models.copulas
+import pas.models.joint
+import pas.models.joint_mixture
 import pas.stats.exceedance
 
 N, N_W, P_EXP = 15000, 16364, 2.55e-3
@@ -54,13 +54,13 @@ def scenario(n=N, seed=1):
 @contextlib.contextmanager
 def numerical_student():
     """The old path: the Student-t joint fit by scipy's numerical differences."""
-    saved = pas.joint.GRADIENT_FAMILIES, pas.joint_mixture.GRADIENT_FAMILIES
+    saved = pas.models.joint.GRADIENT_FAMILIES, pas.models.joint_mixture.GRADIENT_FAMILIES
     old = tuple(f for f in saved[0] if f != "student")
-    pas.joint.GRADIENT_FAMILIES = pas.joint_mixture.GRADIENT_FAMILIES = old
+    pas.models.joint.GRADIENT_FAMILIES = pas.models.joint_mixture.GRADIENT_FAMILIES = old
     try:
         yield
     finally:
-        pas.joint.GRADIENT_FAMILIES, pas.joint_mixture.GRADIENT_FAMILIES = saved
+        pas.models.joint.GRADIENT_FAMILIES, pas.models.joint_mixture.GRADIENT_FAMILIES = saved
 
 
 def cpu_seconds():
@@ -160,7 +160,7 @@ def band_path(warm=True, cold_families=None):
 @contextlib.contextmanager
 def cold_against_warm(record):
     """Every warm-only joint fit also fitted warm and cold: ``(family, marginal, Δ loglik)``."""
-    original = pas.joint.fit_joint
+    original = pas.models.joint.fit_joint
 
     def both(name, u, h, *, start=None, cold=True, **kwargs):
         fit = original(name, u, h, start=start, cold=cold, **kwargs)
@@ -170,11 +170,11 @@ def cold_against_warm(record):
                            best.copula.loglik - fit.copula.loglik))
         return fit
 
-    pas.joint.fit_joint = both
+    pas.models.joint.fit_joint = both
     try:
         yield
     finally:
-        pas.joint.fit_joint = original
+        pas.models.joint.fit_joint = original
 
 
 def band_seconds(study, rng, n_jobs):
@@ -272,7 +272,7 @@ def part_long(max_hf):
           "recomputed; new: kept); memory: peak traced during one iteration")
     out = {}
     for n, repeats in ((15000, 7), (150000, 5), (1500000, 2)):
-        for label, families in (("default", pas.copulas.PAPER_FAMILIES),
+        for label, families in (("default", pas.models.copulas.PAPER_FAMILIES),
                                 ("gaussian", ("gaussian",))):
             row = {}
             for path in ("old", "new"):

@@ -49,7 +49,7 @@ def test_kept_normal_scores_draw_what_the_uniforms_draw(family, params):
     import pyvinecopulib as pv
     from scipy import special
 
-    from pas.copulas import conditional_quantile
+    from pas.models.copulas import conditional_quantile
 
     cop = pv.Bicop(family=getattr(pv.BicopFamily, family), parameters=np.array(params, float))
     rng = np.random.default_rng(5)

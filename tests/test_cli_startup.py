@@ -56,7 +56,7 @@ def test_lazy_package_keeps_its_public_names():
     code = ("import pas\nnames = [n for n in pas.__all__ if getattr(pas, n) is None]\n"
             "from pas import *\nassert callable(run_pas) and callable(pas.metrics)\n"
             "from pas.metrics import m1\nassert callable(pas.metrics) and m1 is pas.m1\n"
-            "from pas.study import StudyStore, open_study\nfrom pas.stats import analyse_record\n"
+            "from pas.study import StudyStore, open_study\nfrom pas.records import analyse_record\n"
             "print(names)")
     assert _python(code).stdout.strip() == "[]"
 

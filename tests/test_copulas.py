@@ -5,7 +5,7 @@ import pyvinecopulib as pv
 
 from scipy import special
 
-from pas.copulas import (
+from pas.models.copulas import (
     PAPER_FAMILIES,
     CopulaFit,
     conditional_quantile,

@@ -131,7 +131,7 @@ def test_a_bore_impulse_hf_law_is_recognised_by_the_weibull_mixture():
 
 @pytest.mark.slow
 def test_weibull_mixture_in_the_band_and_a_failed_mixture_fit_keeps_the_weibull(monkeypatch):
-    import pas.joint_mixture as joint_mixture
+    import pas.models.joint_mixture as joint_mixture
     from pas.stats.weibull_mixture import WeibullMixture
 
     law = WeibullMixture(theta=0.0, p=0.7, alpha1=1000.0, beta1=2.0, alpha2=2500.0, beta2=0.7)

@@ -173,7 +173,7 @@ def test_aic_panel_draws_delta_aic_to_the_family_selected_at_each_iteration(conv
                                         "strategy_settings": {"delta_aic": 6.0}})
     fig, (top, bottom) = plot_aic(res)
     fitted = hist.loc[rows]
-    for fam in pas.copulas.PAPER_FAMILIES:
+    for fam in pas.models.copulas.PAPER_FAMILIES:
         line = [ln for ln in top.get_lines() if ln.get_label() == fam][0]
         expected = [row[f"aic_{fam}"] - row[f"aic_{row['family']}"]
                     for _, row in fitted.iterrows()]

@@ -176,11 +176,11 @@ def test_aic_two_panels_and_single(result, tmp_path):
     top, bottom = axes
     aic_lines = [ln for ln in top.get_lines() if ln.get_linestyle() == "-"]
     assert len(aic_lines) == 5
-    assert {ln.get_label() for ln in aic_lines} == set(pas.copulas.PAPER_FAMILIES)
+    assert {ln.get_label() for ln in aic_lines} == set(pas.models.copulas.PAPER_FAMILIES)
     # selected family per iteration: one marker per fitted iteration
     n_marks = sum(len(ln.get_xdata()) for ln in bottom.get_lines())
     assert n_marks == len(result.fitted)
-    assert [t.get_text() for t in bottom.get_yticklabels()] == list(pas.copulas.PAPER_FAMILIES)
+    assert [t.get_text() for t in bottom.get_yticklabels()] == list(pas.models.copulas.PAPER_FAMILIES)
 
     fig, ax = plt.subplots()
     fig2, ax2 = plot_aic(result, ax=ax)

@@ -9,7 +9,7 @@ import pandas as pd
 import pytest
 from scipy import optimize, stats
 
-from pas.stats import (
+from pas.records import (
     clustering_test,
     compare_load_distributions,
     decluster,

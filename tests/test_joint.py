@@ -6,9 +6,9 @@ import pyvinecopulib as pv
 from scipy import stats
 
 import pas
-from pas.copula_densities import copula_loghfunc, copula_logpdf, logc_grad, logh_grad
-from pas.copulas import fit_copula, tau_inversion_parameter
-from pas.joint import fit_joint
+from pas.models.copula_densities import copula_loghfunc, copula_logpdf, logc_grad, logh_grad
+from pas.models.copulas import fit_copula, tau_inversion_parameter
+from pas.models.joint import fit_joint
 from pas.strategies.pas import PAS
 
 RNG = np.random.default_rng(0)
@@ -174,7 +174,7 @@ def test_lognormal3_matches_scipy():
 
 
 def test_joint_fit_recovers_a_lognormal_marginal():
-    from pas.joint import best_per_family, fit_joint_all
+    from pas.models.joint import best_per_family, fit_joint_all
     from pas.stats import LogNormal3
 
     u, h = _pairs(stats.lognorm(0.8, loc=100.0, scale=np.exp(6.0)))
@@ -194,7 +194,7 @@ def test_joint_fit_recovers_a_lognormal_marginal():
 @pytest.mark.parametrize("marginal", ["weibull", "lognormal"])
 @pytest.mark.parametrize("family", ["gaussian", "clayton", "gumbel", "frank"])
 def test_objective_gradient_matches_finite_differences(family, marginal):
-    from pas.joint import joint_objective
+    from pas.models.joint import joint_objective
 
     u, h = _pairs(stats.lognorm(0.8, loc=100.0, scale=np.exp(6.0)), n=200, seed=1)
     negloglik, negloglik_grad, _ = joint_objective(family, u, h, marginal=marginal,
@@ -234,7 +234,7 @@ def test_weibull_mixture_quantiles_invert_its_survival_function():
       for loc, cen in [(True, 0.1), (True, 0.0), (False, 0.3)]],
     ("student", True, 0.1), ("student", False, 0.0)])
 def test_mixture_objective_gradient_matches_finite_differences(family, location, censor):
-    from pas.joint_mixture import mixture_objective
+    from pas.models.joint_mixture import mixture_objective
 
     _, u, h = _bore_impulse(200, seed=1)
     negloglik, negloglik_grad, _ = mixture_objective(family, u, h, location=location,
@@ -251,8 +251,8 @@ def test_mixture_objective_gradient_matches_finite_differences(family, location,
 
 
 def test_mixture_fit_recovers_a_bore_impulse_marginal_and_wins_on_aic():
-    from pas.joint import best_per_family, fit_joint_all
-    from pas.joint_mixture import MIXTURE, fit_joint_mixture_all
+    from pas.models.joint import best_per_family, fit_joint_all
+    from pas.models.joint_mixture import MIXTURE, fit_joint_mixture_all
 
     truth, u, h = _bore_impulse(3000, seed=2)
     weibull = fit_joint_all(u, h, ["gaussian"], location=False)
@@ -276,8 +276,8 @@ def test_mixture_fit_recovers_a_bore_impulse_marginal_and_wins_on_aic():
 
 
 def test_a_failed_warm_mixture_start_goes_cold_as_the_weibull_fit_does():
-    from pas.joint import fit_joint
-    from pas.joint_mixture import fit_joint_mixture
+    from pas.models.joint import fit_joint
+    from pas.models.joint_mixture import fit_joint_mixture
 
     _, u, h = _bore_impulse(400, seed=3)
     weibull = fit_joint("gaussian", u, h, location=False)
@@ -293,7 +293,7 @@ def test_a_failed_warm_mixture_start_goes_cold_as_the_weibull_fit_does():
 
 def test_mixture_likelihood_keeps_its_digits_just_above_the_location():
     # loads a hair above θ, where F = 1 − S would keep only a few digits
-    from pas.joint_mixture import mixture_objective
+    from pas.models.joint_mixture import mixture_objective
     from pas.stats.weibull_mixture import WeibullMixture
 
     h = np.array([1e-6, 3e-6, 1e-5, 50.0, 300.0])  # F ≈ 1e-10 … 1e-9 at the first three
@@ -338,7 +338,7 @@ def _student_x(marginal, rho, nu, location=True):
 @pytest.mark.parametrize("marginal", ["weibull", "lognormal"])
 @pytest.mark.parametrize("rho, nu", [(0.6, 4.0), (-0.3, 2.5), (0.85, 25.0), (0.3, 9.0)])
 def test_student_objective_gradient_matches_finite_differences(marginal, rho, nu):
-    from pas.joint import joint_objective
+    from pas.models.joint import joint_objective
 
     u, h = _pairs(stats.lognorm(0.8, loc=100.0, scale=np.exp(6.0)), n=200, seed=1)
     negloglik, negloglik_grad, _ = joint_objective("student", u, h, marginal=marginal,
@@ -353,7 +353,7 @@ def test_student_objective_gradient_matches_finite_differences(marginal, rho, nu
 
 
 def test_student_fit_with_its_gradient_finds_the_numerical_optimum():
-    import pas.joint as joint
+    import pas.models.joint as joint
 
     u, h = _pairs(stats.weibull_min(1.5, loc=0.5, scale=2.0), n=160, seed=3)
     analytic = fit_joint("student", u, h, censor=0.05)

@@ -9,8 +9,9 @@ import pytest
 from scipy import optimize, stats
 
 import pas.waves as W
-from pas.plotting import plot_convergence, plot_record_exceedance
-from pas.stats import (
+from pas.plotting import (plot_convergence, plot_record_analysis, plot_record_convergence,
+                          plot_record_exceedance)
+from pas.records import (
     analyse_record,
     forristall_crest_exceedance,
     forristall_crest_mpm,
@@ -20,7 +21,6 @@ from pas.stats import (
     mpm_seed_maxima,
     mpm_weibull,
     pooled_peaks_distribution,
-    quantile_exceedance,
     quantile_pooled,
     random_subsets,
     rayleigh_crest_exceedance,
@@ -28,9 +28,8 @@ from pas.stats import (
     rayleigh_crest_quantile,
     seed_maxima,
     seeds_needed,
-    value_at_exceedance,
-    wave_crests,
 )
+from pas.stats import quantile_exceedance, value_at_exceedance, wave_crests
 
 HS, TP = 10.0, 11.0
 
@@ -220,11 +219,11 @@ def test_bad_input_raises():
 def test_figures_write_png(tmp_path, linear_record):
     crests, enc, _ = linear_record
     a = analyse_record(crests[:20], enc[:20])
-    fig, ax = a.plot(units="m")
+    fig, ax = plot_record_analysis(a, units="m")
     assert ax.get_yscale() == "log" and "[m]" in ax.get_xlabel()
     fig.savefig(tmp_path / "exceedance.png", dpi=80)
     cv = mpm_convergence(crests[:20], enc[:20], n_subsets=50, n_subsets_fit=5, n_boot=10)
-    fig2, ax2 = cv.plot(criterion=0.3, units="m", variable="crest MPM")
+    fig2, ax2 = plot_record_convergence(cv, criterion=0.3, units="m", variable="crest MPM")
     fig2.savefig(tmp_path / "convergence.png", dpi=80)
     # composing on given axes
     import matplotlib.pyplot as plt
@@ -253,7 +252,7 @@ def _rayleigh_maxima(rng, shape, hs=HS, n=N_WAVES):
 
 def test_seed_maxima_mpm_is_unbiased_with_k_over_n_plus_1():
     # 20 000 replications of N seed maxima; the exact MPM is the e^-1 quantile
-    from pas.stats import read_at_exceedance
+    from pas.records import read_at_exceedance
 
     rng = np.random.default_rng(15)
     exact = rayleigh_crest_quantile(HS, N_WAVES, np.exp(-1.0))
@@ -338,7 +337,7 @@ def test_r_n_matches_fresh_campaigns_up_to_three_quarters_of_the_record():
 
 
 def test_bootstrap_intervals_cover_the_exact_mpm():
-    from pas.stats import bootstrap_mpm
+    from pas.records import bootstrap_mpm
 
     rng = np.random.default_rng(19)
     exact = HS * np.sqrt(np.log(N_WAVES) / 8.0)

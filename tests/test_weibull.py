@@ -2,7 +2,7 @@ import numpy as np
 import pytest
 from scipy import stats
 
-from pas.marginals import fit_marginal
+from pas.models.marginals import fit_marginal
 from pas.stats.weibull import fit_weibull3_ls, upper_tail_fraction
 
 

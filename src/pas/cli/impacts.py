@@ -11,7 +11,7 @@ none (then ``--n-encounters`` defaults to the number of rows); a ``seed``
 column, when there is one, keeps gaps from spanning two runs. Prints the impact
 probability per encounter with its interval, the inter-arrival test before and
 after declustering, the ranked peak-load distributions and the exposure
-probability of the best fit (:mod:`pas.stats.impacts`, :mod:`pas.stats.load_fits`).
+probability of the best fit (:mod:`pas.records.impacts`, :mod:`pas.records.load_fits`).
 ``--out`` writes the tables as CSV and the figures (inter-arrival times, Q–Q, exposure) as PNG.
 """
 
@@ -102,8 +102,8 @@ def run(args) -> int:
     import numpy as np
     import pandas as pd
 
-    from ..stats import impacts as imp
-    from ..stats.load_fits import compare_load_distributions
+    from ..records import impacts as imp
+    from ..records.load_fits import compare_load_distributions
 
     path = Path(args.events)
     if not path.exists():

@@ -1,7 +1,8 @@
 """Figures: ``plot_*(..., ax=None) -> (fig, ax)`` so users can compose them."""
 
 from .design import plot_design_points, plot_nonlinear_factor
-from .records import plot_convergence, plot_record_exceedance
+from .records import (plot_convergence, plot_record_convergence, plot_record_analysis,
+                      plot_record_exceedance)
 from .impacts import plot_exposure, plot_inter_arrival, plot_occurrence, plot_qq
 from .figures import (
     conditional_quantile_curves,

@@ -4,7 +4,7 @@ copula (Fig. 4/16/19), plus :func:`conditional_quantile_curves` behind it.
 
 No statistics are re-implemented here: the scatter figure refits the
 strategy's copula and marginals from :attr:`ScreeningResult.pairs` with
-:mod:`pas.copulas`, :func:`pas.marginals.fit_marginal` and
+:mod:`pas.models.copulas`, :func:`pas.models.marginals.fit_marginal` and
 :func:`pas.strategies.pas.remove_outliers`.
 """
 
@@ -239,7 +239,7 @@ def conditional_quantile_curves(result, lf_grid, quantiles=(0.05, 0.5, 0.95)):
     dict of float -> ndarray
         One HF curve per quantile, aligned with ``lf_grid``.
     """
-    from ..copulas import EXTRA_FAMILIES, PAPER_FAMILIES
+    from ..models.copulas import EXTRA_FAMILIES, PAPER_FAMILIES
     from ..strategies.refit import refit
 
     family = getattr(result, "family", None)

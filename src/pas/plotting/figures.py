@@ -11,7 +11,7 @@ Axis labels carry units through ``unit=`` (the HF load unit) and
 
 No statistics are re-implemented here: the scatter figure refits the
 strategy's copula and marginals from :attr:`ScreeningResult.pairs` with
-:mod:`pas.copulas`, :func:`pas.marginals.fit_marginal` and
+:mod:`pas.models.copulas`, :func:`pas.models.marginals.fit_marginal` and
 :func:`pas.strategies.pas.remove_outliers`.
 
 This module re-exports the figure functions, which live in

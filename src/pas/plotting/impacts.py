@@ -1,4 +1,4 @@
-"""Figures for impact records (:mod:`pas.stats.impacts`, :mod:`pas.stats.load_fits`).
+"""Figures for impact records (:mod:`pas.records.impacts`, :mod:`pas.records.load_fits`).
 
 Occurrence probability against Hm0 with its interval, inter-arrival
 histogram with the exponential fit before and after declustering, Q–Q plots
@@ -22,8 +22,8 @@ def plot_occurrence(fit, *, hm0=None, ax=None):
 
     Parameters
     ----------
-    fit : pas.stats.OccurrenceFit
-        From :func:`pas.stats.fit_occurrence`.
+    fit : pas.records.OccurrenceFit
+        From :func:`pas.records.fit_occurrence`.
     hm0 : array_like, optional
         Wave heights of the curves; default spanning the data.
     ax : matplotlib Axes, optional
@@ -56,7 +56,7 @@ def plot_occurrence(fit, *, hm0=None, ax=None):
 
 
 def _gaps_with_fit(ax, gaps, bins, color, label, loc=0.0):
-    from ..stats.impacts import exponential_test
+    from ..records.impacts import exponential_test
 
     g = np.asarray(gaps, dtype=float)
     res = exponential_test(g, loc=loc)
@@ -74,12 +74,12 @@ def plot_inter_arrival(gaps, *, declustered=None, t_min=0.0, bins=40, log=True, 
     Parameters
     ----------
     gaps : array_like
-        Inter-arrival times (:func:`pas.stats.inter_arrival_times`).
+        Inter-arrival times (:func:`pas.records.inter_arrival_times`).
     declustered : array_like, optional
-        The same after :func:`pas.stats.decluster`, drawn beside them.
+        The same after :func:`pas.records.decluster`, drawn beside them.
     t_min : float, default 0
         The declustering separation: the declustered gaps are compared with
-        ``t_min`` plus an exponential (:func:`pas.stats.exponential_test`).
+        ``t_min`` plus an exponential (:func:`pas.records.exponential_test`).
     bins : int, default 40
     log : bool, default True
         Logarithmic density axis (the exponential is a straight line; an
@@ -115,7 +115,7 @@ def plot_qq(loads, fits, *, unit="kN", ax=None):
     loads : array_like
         Peak loads.
     fits : frozen distribution, dict of str -> frozen distribution, or DataFrame
-        A table from :func:`pas.stats.compare_load_distributions` (its
+        A table from :func:`pas.records.compare_load_distributions` (its
         ``dist`` column, labelled with the AIC rank) also works.
     unit : str, default "kN"
     ax : matplotlib Axes, optional
@@ -124,7 +124,7 @@ def plot_qq(loads, fits, *, unit="kN", ax=None):
     -------
     fig, ax
     """
-    from ..stats.load_fits import qq_points
+    from ..records.load_fits import qq_points
 
     own_figure = ax is None
     fig, ax = _new_axes(ax)
@@ -155,7 +155,7 @@ def plot_exposure(limits, probability, distribution, n_encounters, *, mpm=None, 
     limits : array_like
         Load limits.
     probability, distribution, n_encounters
-        As :func:`pas.stats.exposure_probability`.
+        As :func:`pas.records.exposure_probability`.
     mpm : dict of str -> float, optional
         MPMs of other routes (PAS, records, truth) marked as vertical lines;
         the curve crosses ``1 − e⁻¹`` at its own MPM.
@@ -167,7 +167,7 @@ def plot_exposure(limits, probability, distribution, n_encounters, *, mpm=None, 
     -------
     fig, ax
     """
-    from ..stats.impacts import exposure_load, exposure_probability
+    from ..records.impacts import exposure_load, exposure_probability
 
     own_figure = ax is None
     fig, ax = _new_axes(ax)

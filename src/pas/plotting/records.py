@@ -10,7 +10,8 @@ import numpy as np
 
 from ._common import _legend_below, _new_axes
 
-__all__ = ["plot_record_exceedance", "plot_convergence"]
+__all__ = ["plot_record_exceedance", "plot_convergence", "plot_record_analysis",
+           "plot_record_convergence"]
 
 
 def _unit(units):
@@ -26,10 +27,10 @@ def plot_record_exceedance(d, values, *, maxima=None, fit=None, fit_scale=1.0, f
     ----------
     d, values : array_like
         Pooled-peaks distribution: exceedance per encounter (ascending) and
-        peaks (descending), e.g. from :func:`pas.stats.pooled_peaks_distribution`.
+        peaks (descending), e.g. from :func:`pas.records.pooled_peaks_distribution`.
     maxima : tuple (p, values), optional
         Seed-maxima distribution (exceedance per seed ``k/N``, maxima
-        descending), from :func:`pas.stats.seed_maxima_distribution`.
+        descending), from :func:`pas.records.seed_maxima_distribution`.
     fit : Weibull3, optional
         Weibull fit of a peak; drawn as ``fit_scale · fit.sf(x)`` for
         ``x ≥ fit_from``.
@@ -136,3 +137,46 @@ def plot_convergence(n, rms, *, criterion=None, bias=None, band=None, units="m",
     ax.grid(True, lw=0.3, alpha=0.5)
     _legend_below(ax, grow=own_figure)
     return fig, ax
+
+
+def plot_record_analysis(analysis, *, units="m", variable="crest", ax=None):
+    """Exceedance plot of a :class:`~pas.records.record_analysis.RecordAnalysis`.
+
+    Parameters
+    ----------
+    analysis : RecordAnalysis
+        The result of :func:`pas.records.analyse_record`.
+    units, variable, ax
+        As in :func:`plot_record_exceedance`.
+
+    Returns
+    -------
+    fig, ax : matplotlib Figure and Axes
+    """
+    k_fit = int(np.ceil(analysis.top_fraction * analysis.values.size))
+    return plot_record_exceedance(
+        analysis.d, analysis.values, maxima=(analysis.p_maxima, analysis.maxima),
+        fit=analysis.fit, fit_scale=analysis.fit_scale, fit_from=analysis.values[k_fit - 1],
+        mpm={"pooled peaks": analysis.mpm_pooled, "seed maxima": analysis.mpm_seed_maxima,
+             f"Weibull fit (top {analysis.top_fraction:.0%})": analysis.mpm_fit},
+        p_target=analysis.p_target, units=units, variable=variable, ax=ax)
+
+
+def plot_record_convergence(convergence, *, criterion=None, units="m", variable="MPM", ax=None):
+    """R(N) plot with its band of a :class:`~pas.records.convergence.MPMConvergence`.
+
+    Parameters
+    ----------
+    convergence : MPMConvergence
+        The result of :func:`pas.records.mpm_convergence`.
+    criterion, units, variable, ax
+        As in :func:`plot_convergence`.
+
+    Returns
+    -------
+    fig, ax : matplotlib Figure and Axes
+    """
+    return plot_convergence(convergence.n, convergence.rms, criterion=criterion,
+                            bias=convergence.bias,
+                            band=(convergence.rms_low, convergence.rms_high), units=units,
+                            variable=variable, ax=ax)

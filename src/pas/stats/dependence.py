@@ -1,7 +1,7 @@
 """Rank dependence of LF–HF pairs: pseudo-observations, Kendall's τ, empirical tail dependence.
 
 Plain functions over two samples; the copula models built on the
-pseudo-observations are :mod:`pas.copulas`.
+pseudo-observations are :mod:`pas.models.copulas`.
 """
 
 from __future__ import annotations

@@ -124,7 +124,7 @@ def fit_weibull_mixture(loads, *, loc=None) -> WeibullMixture:
     enters as ``P(X ≤ x_min)``: with a shape below 1 the density at the
     location is infinite, and the likelihood would otherwise grow without
     bound as the location reaches the smallest load (as in
-    :func:`pas.joint.fit_joint`); the location stays at least 1e-9 load
+    :func:`pas.models.joint.fit_joint`); the location stays at least 1e-9 load
     ranges below it, at most three below it, and at or above 0 when the
     loads are positive.  ``loc`` fixes it.
     Raises ValueError when no finite optimum is found.

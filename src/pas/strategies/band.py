@@ -40,8 +40,8 @@ import os
 
 import numpy as np
 
-from ..joint import HF_MARGINALS
-from ..joint_mixture import MIXTURE
+from ..models.joint import HF_MARGINALS
+from ..models.joint_mixture import MIXTURE
 from ..stats.exceedance import mpm_of_realisations
 from .selection import impact_probability
 from .steps import conditioning_set

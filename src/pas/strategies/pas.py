@@ -12,7 +12,7 @@ Estimator (``estimator``)
     ``"conditional"`` (default): the LF ranks are those of the LF
     *population* (every conditioning peak is known), and the copula and a
     three-parameter Weibull HF marginal are fitted together by the
-    likelihood of HF given LF (:mod:`pas.joint`), which selection by LF
+    likelihood of HF given LF (:mod:`pas.models.joint`), which selection by LF
     (MD) leaves valid.  ``"selected"``: the paper's fit of rank
     pseudo-observations of the selected sample (Eq. 5) and least-squares
     Weibull marginals (Eq. 15) — consistent only as far as a one-parameter
@@ -43,14 +43,14 @@ from __future__ import annotations
 import numpy as np
 
 from .._validation import check_finite, check_int, check_option
-from ..copulas import (
+from ..models.copulas import (
     PAPER_FAMILIES,
     _family_and_rotation,
     fit_candidates,
     select_family,
 )
-from ..joint import JOINT_FAMILIES
-from ..joint_mixture import HF_CHOICES, fit_hf_candidates
+from ..models.joint import JOINT_FAMILIES
+from ..models.joint_mixture import HF_CHOICES, fit_hf_candidates
 from ..screening import LFSet
 from ..stats.dependence import (
     empirical_tail_dependence,
@@ -96,8 +96,8 @@ class PAS(Strategy):
     ----------
     families : sequence of str
         Copula candidates; the paper's five by default
-        (:data:`pas.copulas.PAPER_FAMILIES`), extras in
-        :data:`pas.copulas.EXTRA_FAMILIES`.
+        (:data:`pas.models.copulas.PAPER_FAMILIES`), extras in
+        :data:`pas.models.copulas.EXTRA_FAMILIES`.
     z : int, default 10
         Conditional realisations per iteration (Step 9).
     delta_aic : float, default 4.0
@@ -120,7 +120,7 @@ class PAS(Strategy):
         have been seen (:mod:`pas.strategies.selection`); False is the paper.
     estimator : {"conditional", "selected"}, default "conditional"
         Fit the copula and the HF marginal by the likelihood of HF given the
-        LF population ranks (:mod:`pas.joint`), or to rank pseudo-observations
+        LF population ranks (:mod:`pas.models.joint`), or to rank pseudo-observations
         of the selected sample with least-squares Weibull marginals (the
         paper, Eq. 5, 15; §5.4).
     copula_fit : {"mle", "itau"}, default "mle"
@@ -136,10 +136,10 @@ class PAS(Strategy):
     hf_marginal : {"weibull", "lognormal", "both", "weibull_mixture"}, default "weibull"
         Conditional estimator: the HF marginal's family (the paper's Weibull
         by default), or ``"both"``: a Weibull and a log-normal fitted with
-        each copula and the one of higher likelihood kept (:mod:`pas.joint`;
+        each copula and the one of higher likelihood kept (:mod:`pas.models.joint`;
         measured trade-off in ``docs/departures.md``); or ``"weibull_mixture"``:
         per copula, a Weibull and a two-component Weibull mixture (a body and a
-        tail, :mod:`pas.joint_mixture`), the one of lower AIC kept.  The
+        tail, :mod:`pas.models.joint_mixture`), the one of lower AIC kept.  The
         selected-space estimator always fits the paper's Weibull (Eq. 15).
     band_marginals : {"fitted", "reselected", "alternate"}, default "reselected"
         Conditional estimator, model band (:meth:`model_band`): every
@@ -279,7 +279,7 @@ class PAS(Strategy):
 
     def _fit_conditional(self, pairs, lfset, keep, families, impact, family, update,
                          hf_marginal, lf_ranks_rng, starts):
-        """Population LF ranks and the joint conditional likelihood (:mod:`pas.joint`)."""
+        """Population LF ranks and the joint conditional likelihood (:mod:`pas.models.joint`)."""
         n0 = conditioning_set(lfset.lf, pairs.lf.min()).size
         cond_lf = lfset.lf[:n0]
         u_cond = self._population_ranks(lfset, n0, impact, lf_ranks_rng)

@@ -5,7 +5,7 @@ Beyond the paper.  MD (Eq. 16–17) spreads the HF samples uniformly over
 peaks are as likely to be sampled as the lowest 5 000.  Because MD chooses
 events by their LF value alone, the law of HF *given* LF — and of an impact
 given LF — is the same in the sample as in the population.  Two pieces of
-PAS's default estimator (:mod:`pas.joint` has the third) use that:
+PAS's default estimator (:mod:`pas.models.joint` has the third) use that:
 
 * :func:`impact_probability` — ``P(impact | LF)`` from the true and false
   positives, so a conditional draw can be "no impact" (the paper draws a

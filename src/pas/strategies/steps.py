@@ -10,8 +10,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..copulas import CopulaFit, conditional_quantile
-from ..marginals import fit_marginal
+from ..models.copulas import CopulaFit, conditional_quantile
+from ..models.marginals import fit_marginal
 from .base import band95
 
 __all__ = ["EPS", "FittedModel", "remove_outliers", "conditioning_set", "draw_conditional_hf", "fit_marginals",

@@ -17,7 +17,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .. import __version__
+from .._version import __version__
 from . import case_impacts, case_impacts_hard, case_vbm, case_waves
 from ._common import seed_plan
 from .data import CaseData, dependence, ground_truth

@@ -21,7 +21,7 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from ..copulas import fit_candidates, pseudo_observations
+from ..models.copulas import fit_candidates, pseudo_observations
 from ..strategies.acquisition import initial_targets, nearest_available
 from .registry import get_case
 

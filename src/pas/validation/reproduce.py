@@ -23,8 +23,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-import pas
-
+from ..api import run_as, run_pas
 from ..metrics import metrics
 from ..study.factory import DEFAULT_MAX_HF
 from .episodes import run_rcw_case
@@ -96,7 +95,7 @@ def run_case(data, *, strategy="pas", seed=0, max_hf=DEFAULT_MAX_HF, settings=No
 
 
 def _run_screening(data, strategy, seed, max_hf, settings):
-    runner = {"pas": pas.run_pas, "pas-paper": pas.run_pas, "as": pas.run_as}[strategy]
+    runner = {"pas": run_pas, "pas-paper": run_pas, "as": run_as}[strategy]
     preset = {"preset": "paper"} if strategy == "pas-paper" else {}
     return runner(data.lf, data.oracle(), **data.run_kwargs(), seed=seed, max_hf=max_hf,
                   **{**PAPER_SETTINGS, **preset, **(settings if strategy != "as" else {})})

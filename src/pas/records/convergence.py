@@ -56,7 +56,7 @@ from .records import (
     top_peaks,
     weibull_mpm,
 )
-from .weibull import fit_weibull3_ls
+from ..stats.weibull import fit_weibull3_ls
 
 __all__ = ["random_subsets", "rms_difference", "fresh_campaign_rms", "seeds_needed",
            "MPMConvergence", "mpm_convergence"]
@@ -199,14 +199,6 @@ class MPMConvergence:
         """
         r = self.rms_high[variant] if conservative else self.rms[variant]
         return seeds_needed(self.n, r, tolerance)
-
-    def plot(self, ax=None, *, criterion=None, units="m", variable="MPM"):
-        """R(N) plot with its band; see :func:`pas.plotting.records.plot_convergence`."""
-        from ..plotting.records import plot_convergence
-
-        return plot_convergence(self.n, self.rms, criterion=criterion, bias=self.bias,
-                                band=(self.rms_low, self.rms_high), units=units,
-                                variable=variable, ax=ax)
 
 
 def _subset_estimates(top, maxima, enc, n_values, n_subsets, rng, *, p_t, q, positions,

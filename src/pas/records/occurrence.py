@@ -1,6 +1,6 @@
 """How often: impact probability per encounter, its interval, and Eq. 3.4 against Hm0.
 
-Part of :mod:`pas.stats.impacts` (Boon 2025, thesis Eq. 3.1 and 3.4): ``Pr(GW) =
+Part of :mod:`pas.records.impacts` (Boon 2025, thesis Eq. 3.1 and 3.4): ``Pr(GW) =
 n_GW / n_w`` and ``Pr(EX)`` with Jeffreys or Clopper–Pearson intervals, and
 ``Pr(GW) = exp(−(C f / Hm0)²)`` fitted by binomial maximum likelihood with a
 profile-likelihood interval.

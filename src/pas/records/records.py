@@ -14,7 +14,7 @@ lies 0.53 % higher for the maximum of 1000 Rayleigh crests
 
 * **Pooled peaks** — the peaks of all seeds sorted descending; the k-th
   largest has exceedance probability per encounter ``d = (k − 0.44)/(n_e + 0.12)``
-  (Gringorten positions, :mod:`pas.stats.positions`; the paper's Eq. 3
+  (Gringorten positions, :mod:`pas.records.positions`; the paper's Eq. 3
   ``k / n_e`` with ``positions="k/n"``). The MPM is the value at
   ``P_t = 1 / n_e,t`` with ``n_e,t`` the encounters per exposure duration,
   read by linear interpolation on ``ln d`` (Eq. 12). Any quantile ``q`` of
@@ -25,8 +25,8 @@ lies 0.53 % higher for the maximum of 1000 Rayleigh crests
   one-hour seeds and ``n_e = 16 113`` encounters: ``P_0.368 = 2.169e-3``,
   ``P_0.9 = 2.288e-4`` (2.28834e-4). ``q = 0.368`` gives ``P_q ≈ 1/n_e,t``.
   A target beyond the largest peak is not read from the record: it raises
-  (or is NaN in :func:`pas.stats.analyse_record`) unless a named tail model
-  is asked for (``extrapolate="weibull"`` or ``"gpd"``, :mod:`pas.stats.tails`).
+  (or is NaN in :func:`pas.records.analyse_record`) unless a named tail model
+  is asked for (``extrapolate="weibull"`` or ``"gpd"``, :mod:`pas.records.tails`).
 * **Seed maxima** — the maximum of each of the N seeds (each seed one
   exposure duration), sorted descending; the k-th largest gets exceedance
   ``k / (N + 1)`` (``positions="weibull"``, unbiased for the 0.632
@@ -43,8 +43,8 @@ lies 0.53 % higher for the maximum of 1000 Rayleigh crests
   ``(n_p/n_e) · P_W(X > x)``, so the MPM is ``isf(P_t · n_e / n_p)``. It is
   the one of the three that can also read beyond the record.
 
-:func:`pas.stats.analyse_record` puts the three together with bootstrap
-confidence intervals (:func:`pas.stats.bootstrap_mpm`).
+:func:`pas.records.analyse_record` puts the three together with bootstrap
+confidence intervals (:func:`pas.records.bootstrap_mpm`).
 """
 
 from __future__ import annotations
@@ -54,10 +54,10 @@ import warnings
 import numpy as np
 
 from .._validation import check_open_unit, check_peaks, check_positive
-from .exceedance import quantile_exceedance
+from ..stats.exceedance import quantile_exceedance
 from .positions import plotting_positions, read_at_exceedance
 from .tails import fit_tail
-from .weibull import fit_weibull3_ls
+from ..stats.weibull import fit_weibull3_ls
 
 __all__ = [
     "MPM_QUANTILE",
@@ -159,7 +159,7 @@ def pooled_peaks_distribution(peaks, n_encounters, *, positions="gringorten"):
         Wave encounters in the whole record, or one count per seed (summed).
         For impact loads this is larger than the number of peaks.
     positions : {"gringorten", "weibull", "k/n"}, default "gringorten"
-        Plotting positions (:mod:`pas.stats.positions`); ``"k/n"`` is the
+        Plotting positions (:mod:`pas.records.positions`); ``"k/n"`` is the
         paper's Eq. 3.
 
     Returns

@@ -9,7 +9,7 @@ paper's upper-tail mode fits only the upper part of larger samples.
 
 from __future__ import annotations
 
-from .stats.weibull import Weibull3, fit_weibull3_ls, upper_tail_fraction
+from ..stats.weibull import Weibull3, fit_weibull3_ls, upper_tail_fraction
 
 __all__ = ["fit_marginal"]
 

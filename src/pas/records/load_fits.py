@@ -42,7 +42,7 @@ import pandas as pd
 from scipy import optimize, stats
 
 from .._validation import check_peaks
-from .weibull_mixture import fit_weibull_mixture
+from ..stats.weibull_mixture import fit_weibull_mixture
 
 __all__ = ["CANDIDATES", "fit_load_distribution", "compare_load_distributions", "qq_points"]
 

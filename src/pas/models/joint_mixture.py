@@ -1,22 +1,22 @@
-"""The joint conditional fit (:mod:`pas.joint`) with a two-component Weibull mixture HF marginal.
+"""The joint conditional fit (:mod:`pas.models.joint`) with a two-component Weibull mixture HF marginal.
 
 Beyond the paper.  Impact loads are a narrow quasi-static body and a wide
 impulsive tail (:mod:`pas.stats.weibull_mixture`); one Weibull fitted to all
 of them bends its tail towards the body.  The likelihood is that of
-:func:`pas.joint.fit_joint` — ``Σ log c(u, F_H(h)) + log f_H(h)``, the
+:func:`pas.models.joint.fit_joint` — ``Σ log c(u, F_H(h)) + log f_H(h)``, the
 smallest load left-censored — with ``F_H`` the mixture: a common location
 ``θ``, a weight ``p`` in [0.02, 0.98] and two scales and shapes (β in
 [0.3, 20]).  The optimiser starts from the family's Weibull fit split into
 a narrower, lower and a wider, higher component, and from an earlier mixture
 fit when given.  Seven or eight parameters against the Weibull's four or
-five, so callers compare by AIC (``pas.joint.best_per_family(..., by="aic")``).
+five, so callers compare by AIC (``pas.models.joint.best_per_family(..., by="aic")``).
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-from ._threads import one_blas_thread
+from .._threads import one_blas_thread
 from .copula_densities import GRADIENT_FAMILIES
 from .joint import (
     HF_MARGINALS,
@@ -30,7 +30,7 @@ from .joint import (
     starts_cold,
 )
 from .joint_likelihood import loglik_and_copula_gradient, negloglik_closure
-from .stats.weibull_mixture import (
+from ..stats.weibull_mixture import (
     LN_SHAPE_BOUNDS,
     WEIGHT_LOW,
     WEIGHT_SPAN,
@@ -62,7 +62,7 @@ def _unpack(x, location, h_c, span):
 
 
 def mixture_objective(name: str, u, h, *, location: bool = True, censor: float = 0.0):
-    """``(negloglik, negloglik_grad or None, unpack)`` as :func:`pas.joint.joint_objective`."""
+    """``(negloglik, negloglik_grad or None, unpack)`` as :func:`pas.models.joint.joint_objective`."""
     base, rotation, u, h, h_c, span, density = _prepare(name, u, h, location, censor)
 
     def unpack(x):
@@ -129,11 +129,11 @@ def fit_joint_mixture(name: str, u, h, weibull: JointFit, *, start=None, locatio
                       censor: float = 0.0, cold: bool = True) -> JointFit:
     """Fit one copula family with the Weibull-mixture HF marginal (module docs).
 
-    ``weibull`` is the same family's :func:`pas.joint.fit_joint` result, split
+    ``weibull`` is the same family's :func:`pas.models.joint.fit_joint` result, split
     into a body and a tail (the cold start); ``start`` an earlier mixture
     fit's optimiser values (the warm start; with ``cold=False`` the only one,
     unless it reaches no finite optimum: then the cold start is tried too, as
-    in :func:`pas.joint.fit_joint`).  Raises ValueError when no start reaches a
+    in :func:`pas.models.joint.fit_joint`).  Raises ValueError when no start reaches a
     finite optimum.
     """
     negloglik, negloglik_grad, unpack = mixture_objective(name, u, h, location=location,
@@ -182,12 +182,12 @@ def fit_hf_candidates(u, h, families, choice: str, *, starts=None, location: boo
                       censor: float = 0.0, cold=True):
     """The joint fits an ``hf_marginal`` choice asks for, and per family the one kept.
 
-    ``choice``: one marginal of :data:`pas.joint.HF_MARGINALS`; ``"both"`` (the
+    ``choice``: one marginal of :data:`pas.models.joint.HF_MARGINALS`; ``"both"`` (the
     Weibull and the log-normal, the higher likelihood kept); :data:`MIXTURE`
     (the Weibull and the mixture); or ``"all"`` (the three).  With the mixture,
     which has three parameters more, the lower AIC is kept.
     ``censor`` and ``cold`` (a bool, or the families that also start cold) go
-    to every fit (:func:`pas.joint.fit_joint`).
+    to every fit (:func:`pas.models.joint.fit_joint`).
     Returns ``(every fit by (family, marginal), the kept fit by family)``.
     """
     marginals = {"both": HF_MARGINALS, MIXTURE: ("weibull",),

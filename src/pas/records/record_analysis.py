@@ -26,8 +26,8 @@ from .records import (
     top_peaks,
     weibull_mpm,
 )
-from .exceedance import quantile_exceedance
-from .weibull import Weibull3, fit_weibull3_ls
+from ..stats.exceedance import quantile_exceedance
+from ..stats.weibull import Weibull3, fit_weibull3_ls
 
 __all__ = ["bootstrap_mpm", "RecordAnalysis", "analyse_record"]
 
@@ -67,7 +67,7 @@ def bootstrap_mpm(peaks, n_encounters, *, method="pooled peaks", q=None,
     n_encounters : int or sequence of int
         Encounters in the record, or per seed.
     method : {"pooled peaks", "seed maxima", "weibull"}
-        Which estimate (see :mod:`pas.stats.records`).
+        Which estimate (see :mod:`pas.records.records`).
     q : float, optional
         Quantile of the exposure maximum; default the MPM as its estimate reads
         it (pooled peaks and fit at ``P_t = 1/n_e,t``, seed maxima at 0.368).
@@ -183,22 +183,10 @@ class RecordAnalysis:
         """``n_p / n_e``: converts the fit's per-peak exceedance to per-encounter."""
         return self.values.size / self.n_encounters
 
-    def plot(self, ax=None, *, units="m", variable="crest"):
-        """Exceedance plot; see :func:`pas.plotting.records.plot_record_exceedance`."""
-        from ..plotting.records import plot_record_exceedance
-
-        k_fit = int(np.ceil(self.top_fraction * self.values.size))
-        return plot_record_exceedance(
-            self.d, self.values, maxima=(self.p_maxima, self.maxima), fit=self.fit,
-            fit_scale=self.fit_scale, fit_from=self.values[k_fit - 1],
-            mpm={"pooled peaks": self.mpm_pooled, "seed maxima": self.mpm_seed_maxima,
-                 f"Weibull fit (top {self.top_fraction:.0%})": self.mpm_fit},
-            p_target=self.p_target, units=units, variable=variable, ax=ax)
-
 
 def analyse_record(peaks, n_encounters, *, exposure_encounters=None, top_fraction=0.3,
                    empty=0.0, positions="gringorten", n_boot=1000, confidence=0.95, seed=0):
-    """All three MPM estimates of a record (:mod:`pas.stats.records`) in one object.
+    """All three MPM estimates of a record (:mod:`pas.records.records`) in one object.
 
     Parameters
     ----------
@@ -237,7 +225,7 @@ def analyse_record(peaks, n_encounters, *, exposure_encounters=None, top_fractio
     mpm_p = read_at_exceedance(v, n_total, p_t, positions=positions, below=empty)
     if np.isnan(mpm_p):
         warnings.warn(f"the MPM target {p_t:.3g} per encounter lies beyond the largest peak: "
-                      "mpm_pooled is NaN; use more seeds or pas.stats.mpm_pooled(..., "
+                      "mpm_pooled is NaN; use more seeds or pas.records.mpm_pooled(..., "
                       "extrapolate='gpd')", stacklevel=2)
     fit = fit_weibull3_ls(v, top_fraction=top_fraction)
     rows = {}

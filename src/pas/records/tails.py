@@ -2,7 +2,7 @@
 
 A record of ``n_e`` encounters can only resolve exceedance probabilities down
 to about ``1/n_e``; a target beyond that (a long exposure, a high quantile) is
-a NaN or an error in :mod:`pas.stats.records` unless one of these models is
+a NaN or an error in :mod:`pas.records.records` unless one of these models is
 asked for by name:
 
 * ``"weibull"`` — 3-parameter Weibull by least squares on Weibull paper
@@ -23,7 +23,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import stats
 
-from .weibull import fit_weibull3_ls
+from ..stats.weibull import fit_weibull3_ls
 
 __all__ = ["TAIL_MODELS", "TailModel", "fit_tail"]
 

@@ -1,6 +1,6 @@
 """Closed-form copula log-densities and h-functions, with their derivatives.
 
-The joint fit of :mod:`pas.joint` evaluates these hundreds of times per PAS
+The joint fit of :mod:`pas.models.joint` evaluates these hundreds of times per PAS
 iteration on ≤ 160 pairs, where building a pyvinecopulib object per call
 costs more than the formulas; the derivatives give the optimiser exact
 gradients.  Unrotated families of App. B.2: Gaussian (ρ), Student-t (ρ, ν),
@@ -11,7 +11,7 @@ Clayton, Gumbel and Frank (θ).  Tested against
 ``logh_grad(base, p, u, v)`` the same for ``log C_{V|U}(v | u)``; the
 derivative in ``p`` is for the first parameter of the family (Student-t: ρ;
 its ν moves the t quantiles ``t_ν⁻¹(u)``, which have no closed-form
-derivative in ν: :mod:`pas.joint` takes that one by a difference).
+derivative in ν: :mod:`pas.models.joint` takes that one by a difference).
 """
 
 from __future__ import annotations

@@ -28,7 +28,7 @@ the population the predicted distribution (Eq. 8–12) is about.  Here:
   tail is heavier than a Weibull's with β ≥ 1; :func:`best_per_family` keeps,
   per copula family, the marginal of higher likelihood (the same number of
   parameters, so also the lower AIC);
-* a two-component Weibull mixture marginal is in :mod:`pas.joint_mixture`.
+* a two-component Weibull mixture marginal is in :mod:`pas.models.joint_mixture`.
 
 AIC (Eq. 13) counts the marginal's parameters with the copula's, so the
 families are compared on the same likelihood.
@@ -42,13 +42,13 @@ import numpy as np
 import pyvinecopulib as pv
 from scipy import optimize, special
 
-from ._threads import one_blas_thread
+from .._threads import one_blas_thread
 from .copula_densities import GRADIENT_FAMILIES
 from .copulas import CopulaFit, _at_bound, _family_and_rotation, kendall_tau
 from .joint_likelihood import copula_parameters, loglik_and_copula_gradient, negloglik_closure
-from .stats.lognormal import LogNormal3
-from .stats.weibull import Weibull3, fit_weibull3_ls
-from .stats.weibull_mixture import WeibullMixture
+from ..stats.lognormal import LogNormal3
+from ..stats.weibull import Weibull3, fit_weibull3_ls
+from ..stats.weibull_mixture import WeibullMixture
 
 __all__ = ["JOINT_FAMILIES", "HF_MARGINALS", "JointFit", "censoring_level", "fit_joint",
            "fit_joint_all", "best_per_family", "starts_cold", "location_bounds", "minimise_bounded",

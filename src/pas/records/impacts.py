@@ -10,7 +10,7 @@ records of wave impacts, written for pandas tables of events:
   wave height and freeboard ``Pr(GW) = exp(−(C f / Hm0)²)`` (thesis Eq. 3.4,
   the overtopping form; the thesis finds C = 1.19), fitted by binomial maximum
   likelihood with a profile-likelihood interval (:func:`fit_occurrence`); these
-  live in :mod:`pas.stats.occurrence` and are re-exported here.
+  live in :mod:`pas.records.occurrence` and are re-exported here.
 * **Are they independent** — times between impacts within a seed against the
   exponential distribution of a Poisson process (Kolmogorov–Smirnov,
   :func:`exponential_test`); an excess of short gaps, the zero-inflation
@@ -25,9 +25,9 @@ records of wave impacts, written for pandas tables of events:
   (:func:`exposure_probability`, :func:`exposure_load`). It assumes
   independent impacts: use the declustered rate and cluster maxima when the
   record clusters. At exceedance ``1 − e⁻¹ ≈ 0.632`` the inverse is the MPM
-  of :mod:`pas.stats.records` and PAS for the same exposure.
+  of :mod:`pas.records.records` and PAS for the same exposure.
 
-The peak-load distribution ``F`` comes from :mod:`pas.stats.load_fits`.
+The peak-load distribution ``F`` comes from :mod:`pas.records.load_fits`.
 
 Declustering is done here, not with ``pyextremes.get_extremes(method="POT",
 r=...)``, which applies the same rule (a new cluster after a gap longer than

@@ -25,7 +25,7 @@ import numpy as np
 import pyvinecopulib as pv
 from scipy import special
 
-from .stats.dependence import kendall_tau, pseudo_observations  # Eq. 5: the input of every fit
+from ..stats.dependence import kendall_tau, pseudo_observations  # Eq. 5: the input of every fit
 
 __all__ = [
     "PAPER_FAMILIES",

@@ -1,0 +1,34 @@
+"""Names of a package imported from their modules on first use (PEP 562)."""
+
+from __future__ import annotations
+
+import importlib
+import sys
+
+
+def lazy_exports(package: str, exports: dict[str, str]):
+    """The ``__getattr__`` and ``__dir__`` of a package that imports its names on first use.
+
+    Parameters
+    ----------
+    package : str
+        The package's ``__name__``.
+    exports : dict
+        Public name -> the submodule (relative to ``package``) that defines it.
+
+    Returns
+    -------
+    getattr_, dir_ : callable
+        To assign to the package's ``__getattr__`` and ``__dir__``.
+    """
+    def getattr_(name):
+        if name in exports:
+            value = getattr(importlib.import_module(f".{exports[name]}", package), name)
+            setattr(sys.modules[package], name, value)
+            return value
+        raise AttributeError(f"module {package!r} has no attribute {name!r}")
+
+    def dir_():
+        return sorted(set(vars(sys.modules[package])) | set(exports))
+
+    return getattr_, dir_
