@@ -6,7 +6,7 @@ import importlib
 import sys
 
 
-def lazy_exports(package: str, exports: dict[str, str]):
+def lazy_exports(package: str, exports: dict[str, str], hint: str = ""):
     """The ``__getattr__`` and ``__dir__`` of a package that imports its names on first use.
 
     Parameters
@@ -15,6 +15,9 @@ def lazy_exports(package: str, exports: dict[str, str]):
         The package's ``__name__``.
     exports : dict
         Public name -> the submodule (relative to ``package``) that defines it.
+    hint : str, optional
+        Added to the AttributeError of a name the package does not have
+        (e.g. where names it once had went).
 
     Returns
     -------
@@ -26,7 +29,7 @@ def lazy_exports(package: str, exports: dict[str, str]):
             value = getattr(importlib.import_module(f".{exports[name]}", package), name)
             setattr(sys.modules[package], name, value)
             return value
-        raise AttributeError(f"module {package!r} has no attribute {name!r}")
+        raise AttributeError(f"module {package!r} has no attribute {name!r}{hint}")
 
     def dir_():
         return sorted(set(vars(sys.modules[package])) | set(exports))

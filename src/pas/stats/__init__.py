@@ -25,4 +25,5 @@ _EXPORTS = {name: module for module, names in _MODULES.items() for name in names
 
 __all__ = list(_EXPORTS)
 
-__getattr__, __dir__ = lazy_exports(__name__, _EXPORTS)
+__getattr__, __dir__ = lazy_exports(
+    __name__, _EXPORTS, " (the record statistics of pas impacts moved to pas.records in pas 0.2)")
