@@ -55,6 +55,9 @@ def status(args) -> int:
         print(dumps(info))
         return 0
     _print_status(info, counts_text, band_text, fitted, included, left_out)
+    if not from_store:
+        why = "--refresh" if getattr(args, "refresh", False) else "no result stored for it"
+        print(f"(computed by replaying the log of {n_told} used results: {why})")
     if args.events:
         _print_events(events, audit)
     return 0
