@@ -2,7 +2,9 @@
 
 ``--events`` adds the events table, the audit trail of replaced results
 (``pas study tell --replace``) and the asks a retry took out of the log
-(``pas study retry``), whose results are kept.
+(``pas study retry``), whose results are kept.  The result shown is the one
+stored for the current state of the log (:mod:`pas.study.stored_results`);
+``--refresh`` replays the log instead.
 """
 
 from __future__ import annotations
