@@ -131,3 +131,19 @@ def test_a_settings_change_makes_the_stored_result_not_current(stored_db, capsys
     assert cli(["study", "set", db, "--eps2", "0.2"]) == 0
     after = status_json(capsys, db)
     assert after["result_stored"] is False and after["eps2"] == 0.2
+
+
+def test_a_result_is_not_stored_under_a_log_that_changed_since_the_replay(tmp_path):
+    from pas.study.stored_results import save_result, stored_result
+
+    db = str(tmp_path / "s.db")
+    study = fast_study(db)
+    told(study, 12)
+    result = study.result(model_band=False)  # not stored: no model band
+    with StudyStore(db, create=False) as store:
+        assert stored_result(store)[0] is None
+        save_result(store, study, result, expected_key="a log read before another tell")
+        assert stored_result(store)[0] is None
+        save_result(store, study, result, expected_key=stored_result(store)[2])
+        assert stored_result(store)[0]["n_hf"] == 12
+    study.store.close()

@@ -27,10 +27,12 @@ def status(args) -> int:
 
     with StudyStore(args.study, create=False) as store:
         waiting = store.unconsumed()
-        shown, n_told = (None, None) if getattr(args, "refresh", False) else stored_result(store)
+        shown, n_told, key = stored_result(store)
+        if getattr(args, "refresh", False):
+            shown = None
         from_store = shown is not None
         if not from_store:
-            shown, n_told = _replayed(store, waiting)
+            shown, n_told = _replayed(store, waiting, key)
         events = store.events()
         changes = store.get("settings_changes", [])
         audit = {"replacements": store.replacements(), "dropped": store.dropped()}
@@ -65,11 +67,11 @@ def status(args) -> int:
     return 0
 
 
-def _replayed(store, waiting) -> tuple[dict, int]:
+def _replayed(store, waiting, key) -> tuple[dict, int]:
     """``(summary, n_told)`` of the study replayed from ``store``, the ``waiting`` results told.
 
     Stored for the next status when no result is waiting (with them it is the
-    result of no state of the log).
+    result of no state of the log) and the log is still the one of ``key``.
     """
     from ..study.resume import open_study
     from ..study.stored_results import save_result, summary
@@ -83,7 +85,7 @@ def _replayed(store, waiting) -> tuple[dict, int]:
     res = study.result()
     shown = summary(study, res)
     if not waiting and shown["fitted"]:
-        save_result(store, study, res)
+        save_result(store, study, res, expected_key=key)
     return {**shown, "used_converged": used_converged}, n_told
 
 

@@ -83,12 +83,14 @@ def _number(x):
     return None if x is None or (isinstance(x, float) and math.isnan(x)) else float(x)
 
 
-def save_result(store, study, result) -> None:
+def save_result(store, study, result, expected_key=None) -> None:
     """Store the summary of ``result`` under the store's current log fingerprint.
 
-    Skipped when ``study``'s settings are not the stored ones (it is then not
-    the stored study); a store that cannot be written gives a warning, never
-    an error, since the result itself is computed and the log is intact.
+    Skipped when the log is not the one ``study`` was built from: its settings
+    are not the stored ones, the fingerprint is not ``expected_key`` (read
+    before a replay), or, without one, another process changed the log since
+    this store's last op.  A store that cannot be written gives a warning,
+    never an error: the result is computed and the log is intact.
     """
     try:
         with store.transaction() as c:
@@ -96,15 +98,18 @@ def save_result(store, study, result) -> None:
             if stored is None or json.loads(stored[0]) != json.loads(dumps(study.settings())):
                 return
             key, n_told = log_key(c)
+            if key != expected_key if expected_key is not None else \
+                    store._meta(c, "op_seq") != store._op_seq:
+                return
             c.execute("INSERT OR REPLACE INTO results VALUES (?, ?, ?, ?)",
                       (key, n_told, dumps(summary(study, result)), _now()))
     except StoreError as exc:
         warnings.warn(f"the result was not stored for 'pas study status' ({exc})", stacklevel=3)
 
 
-def stored_result(store) -> tuple[dict | None, int]:
-    """``(summary, n_told)``: the stored summary of the current log state (None if none)."""
+def stored_result(store) -> tuple[dict | None, int, str]:
+    """``(summary, n_told, log_key)`` of the current log state (summary None if none stored)."""
     with store._read() as c:
         key, n_told = log_key(c)
         row = c.execute("SELECT data FROM results WHERE log_key = ?", (key,)).fetchone()
-    return (None if row is None else json.loads(row[0])), n_told
+    return (None if row is None else json.loads(row[0])), n_told, key
