@@ -26,7 +26,7 @@ import warnings
 
 from .schema import StoreError, _now, dumps
 
-__all__ = ["add_results_table", "log_key", "summary", "save_result", "stored_result"]
+__all__ = ["add_results_table", "log_key", "save_result", "stored_result", "summary"]
 
 RESULTS = """
 CREATE TABLE IF NOT EXISTS results (
