@@ -6,7 +6,7 @@
     pas study ask STUDY.db [-n N] [--format table|csv|json] [-o FILE]
     pas study tell STUDY.db EVENT VALUE | EVENT --error MSG | EVENT --load N=V ... | --csv FILE
         [--replace]
-    pas study status STUDY.db [--json] [--events]
+    pas study status STUDY.db [--json] [--events] [--refresh]
     pas study set STUDY.db [--eps1 E] [--eps2 C] [--k1 K] [--k2 K] [--max-hf N] [--max-failures N]
     pas study refit STUDY.db --target NAME [--out DIR]   (pas.cli.study_loads)
     pas study run STUDY.db [-q Q] [--workers N] [--pending resubmit|wait]
@@ -107,6 +107,8 @@ def add_parser(sub) -> None:
     s.add_argument("--json", action="store_true")
     s.add_argument("--events", action="store_true",
                    help="also every event asked, replaced results and asks dropped by a retry")
+    s.add_argument("--refresh", action="store_true",
+                   help="replay the log and recompute the result (default: the stored one)")
     c = cmds.add_parser("set", help="change the stopping limits or the budget of a study")
     c.add_argument("study", metavar="STUDY.db")
     c.add_argument("--eps1", type=float, metavar="E", help="limit on the distribution change")

@@ -2,7 +2,9 @@
 
 ``--events`` adds the events table, the audit trail of replaced results
 (``pas study tell --replace``) and the asks a retry took out of the log
-(``pas study retry``), whose results are kept.
+(``pas study retry``), whose results are kept.  The result shown is the one
+stored for the current state of the log (:mod:`pas.study.stored_results`);
+``--refresh`` replays the log instead.
 """
 
 from __future__ import annotations
@@ -13,47 +15,42 @@ __all__ = ["status"]
 
 
 def status(args) -> int:
-    """``pas study status``: counts, the MPM so far, convergence, pending events (and all events)."""
+    """``pas study status``: counts, the MPM so far, convergence, pending events (and all events).
+
+    Reads the result stored for the current state of the log
+    (:mod:`pas.study.stored_results`); only when there is none, or with
+    ``--refresh``, replays the log and computes it (and stores it when no told
+    result is waiting).
+    """
     from ..study.store import StudyStore
-    from ..study.resume import open_study
+    from ..study.stored_results import stored_result
 
     with StudyStore(args.study, create=False) as store:
-        study = open_study(store, consume=False)
-        study.store = None
-        used_converged = bool(study.converged)
         waiting = store.unconsumed()
-        for idx, hf, err in waiting:
-            study.tell(int(idx), hf, error=err, replace=True)
+        shown, n_told, key = stored_result(store)
+        if getattr(args, "refresh", False):
+            shown = None
+        from_store = shown is not None
+        if not from_store:
+            shown, n_told = _replayed(store, waiting, key)
         events = store.events()
         changes = store.get("settings_changes", [])
         audit = {"replacements": store.replacements(), "dropped": store.dropped()}
     pend = events[events["state"] == "pending"]
-    res = study.result()
-    fitted = [r for r in study.rows if r.get("mpm") is not None]
-    last = fitted[-1] if fitted else {}
-    at = next((r["n_hf"] for r in fitted if r.get("stop")), None)
-    info = {
-        "study": args.study, "strategy": study.strategy.name, "seed": study.seed,
-        "n_hf": study.n_hf, "n_false_positive": study.n_false_positive,
-        "n_failed": study.n_failed, "n_evaluated": res.n_evaluated, "n_loads": res.n_loads,
-        "n_no_impact": res.n_no_impact, "n_pending": len(pend), "results_not_yet_used": len(waiting),
-        "max_hf": study.max_hf, "mpm": res.mpm if fitted else None,
-        "mpm_band": list(res.mpm_band) if fitted else None,
-        "mpm_band_sampling": list(res.mpm_band_sampling) if fitted else None,
-        "mpm_band_model": None if res.mpm_band_model is None else list(res.mpm_band_model),
-        "family": res.family, "E_bar": last.get("E_bar"), "COV": last.get("COV"),
-        "eps1": study.stopping.eps1, "eps2": study.stopping.eps2,
-        "k1": study.stopping.k1, "k2": study.stopping.k2,
-        # convergence is decided on the results the study has used: with results waiting
-        # it is open until an ask or run uses them ('converged_with_waiting' says how it
-        # would come out, the numbers above include them)
-        "converged": None if waiting else used_converged,
-        "converged_with_waiting": bool(study.converged) if waiting else None,
-        "converged_at_n_hf": at, "finished": bool(study.finished) if not waiting else None,
-        "settings_changes": changes,
-        "pending": [{"id": r.event_id, "index": int(r.idx), "lf": r.lf, "d": r.d,
-                     "asked_at": r.asked_at} for r in pend.itertuples()],
-    }
+    # a stored result covers the results the study used; waiting ones are left out of it
+    left_out = len(waiting) if from_store else 0
+    included = len(waiting) - left_out
+    used_converged = shown.pop("used_converged", shown["converged"])
+    counts_text, band_text = shown.pop("counts_text"), shown.pop("band_text")
+    fitted = shown.pop("fitted")
+    info = {"study": args.study, **shown, "n_pending": len(pend),
+            "results_not_yet_used": len(waiting),
+            "converged": None if waiting else used_converged,
+            "converged_with_waiting": shown["converged"] if included else None,
+            "finished": shown["finished"] if not waiting else None,
+            "settings_changes": changes, "result_n_told": n_told, "result_stored": from_store,
+            "pending": [{"id": r.event_id, "index": int(r.idx), "lf": r.lf, "d": r.d,
+                         "asked_at": r.asked_at} for r in pend.itertuples()]}
     if args.events:
         info["events"] = events.drop(columns=["meta"]).to_dict(orient="records")
         info.update(audit)
@@ -61,34 +58,72 @@ def status(args) -> int:
         from .._json import dumps
         print(dumps(info))
         return 0
-    print(f"{args.study}: {info['strategy'].upper()}, seed {info['seed']}")
-    print(f"{res.counts_text()}, pending {info['n_pending']}"
-          + (f", budget {study.max_hf}" if study.max_hf else ""))
-    if waiting:
-        print(f"{len(waiting)} result(s) told since the last ask: included below, not yet used "
+    _print_status(info, counts_text, band_text, fitted, included, left_out)
+    if not from_store:
+        why = "--refresh" if getattr(args, "refresh", False) else "no result stored for it"
+        print(f"(computed by replaying the log of {n_told} used results: {why})")
+    if args.events:
+        _print_events(events, audit)
+    return 0
+
+
+def _replayed(store, waiting, key) -> tuple[dict, int]:
+    """``(summary, n_told)`` of the study replayed from ``store``, the ``waiting`` results told.
+
+    Stored for the next status when no result is waiting (with them it is the
+    result of no state of the log) and the log is still the one of ``key``.
+    """
+    from ..study.resume import open_study
+    from ..study.stored_results import save_result, summary
+
+    study = open_study(store, consume=False)
+    study.store = None
+    used_converged = bool(study.converged)
+    n_told = study.n_told
+    for idx, hf, err in waiting:
+        study.tell(int(idx), hf, error=err, replace=True)
+    res = study.result()
+    shown = summary(study, res)
+    if not waiting and shown["fitted"]:
+        save_result(store, study, res, expected_key=key)
+    return {**shown, "used_converged": used_converged}, n_told
+
+
+def _print_status(info, counts_text, band_text, fitted, included, left_out) -> None:
+    print(f"{info['study']}: {info['strategy'].upper()}, seed {info['seed']}")
+    print(f"{counts_text}, pending {info['n_pending']}"
+          + (f", budget {info['max_hf']}" if info["max_hf"] else ""))
+    if included:
+        print(f"{included} result(s) told since the last ask: included below, not yet used "
               f"by the study ('pas study ask' or 'pas study run' uses them)")
+    if left_out:
+        print(f"{left_out} result(s) told since the last ask are not included below: this is "
+              f"the stored result of the {info['result_n_told']} results the study has used "
+              f"('pas study status --refresh' includes them, 'pas study ask' or 'pas study "
+              f"run' uses them)")
+    at = info["converged_at_n_hf"]
     if fitted:
         fam = f", copula {info['family']}" if info["family"] else ""
-        print(f"MPM so far {res.mpm:.5g}, {res.band_text()}{fam}")
+        print(f"MPM so far {info['mpm']:.5g}, {band_text}{fam}")
         verdict = ("converged" + (f" (at {at} HF evaluations)" if at is not None else "")
-                   if used_converged else "not converged")
-        if waiting:
+                   if info["converged"] else "not converged")
+        if included:
             verdict = ("open until the waiting results are used (with them: "
-                       + ("converged" if study.converged else "not converged") + ")")
+                       + ("converged" if info["converged_with_waiting"] else "not converged")
+                       + ")")
+        elif left_out:
+            verdict = "open until the waiting results are used"
         print(f"convergence: E_bar {_fmt(info['E_bar'])} (limit eps1 {info['eps1']:g}), COV "
               f"{_fmt(info['COV'])} (limit eps2 {info['eps2']:g}): {verdict}")
     else:
         print("no model fitted yet")
-    for ch in changes:
+    for ch in info["settings_changes"]:
         print(f"setting changed: {ch['key']} {ch['old']} -> {ch['new']} "
               f"(after {ch['n_told']} results, {ch['at']})")
     if info["pending"]:
         print("pending:")
         for p in info["pending"]:
             print(f"  {p['id']}  (index {p['index']}, lf {p['lf']:.5g}, asked {p['asked_at']})")
-    if args.events:
-        _print_events(events, audit)
-    return 0
 
 
 def _result_text(hf, error) -> str:

@@ -124,7 +124,7 @@ class ScreeningResult:
             ids = [study.lfset.event(p).id for p in pairs.position]
             pair_frame = pd.DataFrame({"event_id": ids, "lf": pairs.lf, "hf": pairs.hf,
                                        "d": pairs.d})
-        return cls(
+        result = cls(
             strategy=study.strategy.name, mpm=mpm, mpm_band=band, mpm_band_sampling=sampling,
             mpm_band_model=model, n_hf=study.n_hf, n_false_positive=study.n_false_positive,
             n_failed=study.n_failed, converged=study.converged,
@@ -132,6 +132,10 @@ class ScreeningResult:
             range_curves=pd.DataFrame.from_dict(study.curves, orient="index", columns=study.grid),
             p_exp=study.lfset.p_exp, n_waves=study.lfset.n_waves, seed=study.seed, family=family,
             settings=study.settings())
+        if model_band and pred is not None and study.store is not None and not study._replaying:
+            from .stored_results import save_result
+            save_result(study.store, study, result)
+        return result
 
     @property
     def clipped_from(self) -> float | None:

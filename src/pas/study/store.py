@@ -35,6 +35,7 @@ import numpy as np
 from .._version import __version__
 from . import amend
 from .loads import add_event_loads, put_loads
+from .stored_results import add_results_table
 from .schema import (RESUMABLE, with_legacy_settings, SCHEMA_VERSION, STATES, STORED, StoreConflict, StoreError,
                      _now, named_errors, _pool_hash, _pool_records, create_or_upgrade, dumps)
 from .state import EventState
@@ -77,6 +78,7 @@ class StudyStore(StoreViews):
                 if version < SCHEMA_VERSION:
                     create_or_upgrade(c, version)
                 add_event_loads(c)
+                add_results_table(c)
 
     # -- plumbing ----------------------------------------------------------
     def close(self) -> None:
