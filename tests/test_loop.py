@@ -22,6 +22,26 @@ def test_no_oracle_call_after_the_failure_limit_in_process():
     assert len(calls) == 2 and info.value.result.n_failed == 2
 
 
+def test_failure_limit_result_skips_the_model_band():
+    """The partial result at the limit comes at once: no bootstrap refits, as after Ctrl-C."""
+    lf = np.random.default_rng(4).rayleigh(1.0, 600)
+
+    calls = []
+
+    def oracle(ev):   # loads for the first 12 events, then a broken licence server
+        calls.append(ev.index)
+        if len(calls) > 12:
+            raise RuntimeError("no licence")
+        return 2.0 * ev.lf ** 1.2
+
+    with pytest.raises(pas.OracleFailureLimit) as info:
+        pas.run_pas(lf, oracle, n_waves=600, p_exp=1e-2, eps1=1e-4, seed=3, max_hf=40,
+                    max_failures=2, stop_on_convergence=False)
+    res = info.value.result
+    assert np.isfinite(res.mpm) and res.mpm_band_model is None
+    assert tuple(res.mpm_band) == tuple(res.mpm_band_sampling)
+
+
 def test_failure_limit_also_with_a_store(tmp_path):
     calls = []
 

@@ -130,7 +130,10 @@ def failure_limit(study) -> OracleFailureLimit | None:
     """The error to raise when ``study`` saw more failed oracle calls than it allows, else None.
 
     Its message ends with how to continue from Python; ``reason`` holds the
-    message without that, for the command-line tools to add their own.
+    message without that, for the command-line tools to add their own.  Its
+    ``result`` is the partial result without the model band, as after Ctrl-C:
+    the study stopped on a broken oracle, and the band's refits (tens of
+    seconds) would only delay the message that says how to mend it.
     """
     if study.n_failed <= study.max_failures:
         return None
@@ -140,7 +143,7 @@ def failure_limit(study) -> OracleFailureLimit | None:
     error = OracleFailureLimit(
         f"{reason}; fix the cause and retry the failed events (study.retry_failed() or "
         "run_pas(..., retry_failed=True) on the same study store), or raise max_failures",
-        result=study.result())
+        result=study.result(model_band=False))
     error.reason = reason
     return error
 
