@@ -12,8 +12,7 @@ scikit-learn, pyvinecopulib or matplotlib before they need them.
 
 from __future__ import annotations
 
-import importlib
-
+from ._lazy import lazy_exports
 from ._version import __version__
 from .metrics import m1, m2, m3, metrics  # light (numpy); eager so pas.metrics is the function
 
@@ -38,13 +37,4 @@ __all__ = [
 ]
 
 
-def __getattr__(name):
-    if name in _EXPORTS:
-        module = importlib.import_module(f".{_EXPORTS[name]}", __name__)
-        value = globals()[name] = getattr(module, name)
-        return value
-    raise AttributeError(f"module 'pas' has no attribute {name!r}")
-
-
-def __dir__():
-    return sorted(set(globals()) | set(__all__))
+__getattr__, __dir__ = lazy_exports(__name__, _EXPORTS)

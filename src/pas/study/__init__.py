@@ -7,7 +7,7 @@ tell`` needs only :mod:`pas.study.store`, not the strategies behind
 
 from __future__ import annotations
 
-import importlib
+from .._lazy import lazy_exports
 
 _EXPORTS = {
     "CommandOracle": "oracles", "OracleError": "oracles", "OracleFailureLimit": "oracles",
@@ -21,13 +21,4 @@ __all__ = ["Study", "ScreeningResult", "OracleFailureLimit", "check_hf_value", "
            "EventState", "refit", "check_hf_answer"]
 
 
-def __getattr__(name):
-    if name in _EXPORTS:
-        value = globals()[name] = getattr(
-            importlib.import_module(f".{_EXPORTS[name]}", __name__), name)
-        return value
-    raise AttributeError(f"module 'pas.study' has no attribute {name!r}")
-
-
-def __dir__():
-    return sorted(set(globals()) | set(__all__))
+__getattr__, __dir__ = lazy_exports(__name__, _EXPORTS)
