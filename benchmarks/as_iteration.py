@@ -13,9 +13,9 @@ import time
 
 import numpy as np
 
-from pas.screening import LFSet
 from pas.strategies.as_ import AS
 from pas.strategies.base import Pairs
+from pas.strategies.screening import LFSet
 
 N, N_W, P_EXP, REPEATS = 15_000, 16_000, 2.5e-3, 15
 

@@ -28,8 +28,8 @@ import warnings
 import numpy as np
 
 import pas.strategies.pas as pas_module
-from pas.screening import LFSet
 from pas.strategies.base import Pairs
+from pas.strategies.screening import LFSet
 from pas.validation import generate_case
 from pas.validation.reproduce import run_case
 

@@ -24,9 +24,9 @@ import numpy as np
 import pyvinecopulib as pv
 from scipy import stats
 
-from pas.screening import LFSet
 from pas.strategies.base import Pairs
 from pas.strategies.pas import PAS
+from pas.strategies.screening import LFSet
 
 N, N_W, P_EXP, Z = 15000, 16364, 2.55e-3, 10
 

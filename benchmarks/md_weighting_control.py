@@ -21,7 +21,7 @@ import known_truth as kt
 import numpy as np
 from final_sample_refits import error_at, md_design_positions
 
-from pas.screening import LFSet
+from pas.strategies.screening import LFSet
 
 CONTROLS = (("tail-gaussian-mix", {"hf_marginal": "weibull_mixture"}),
             ("tail-clayton-mix", {"hf_marginal": "weibull_mixture"}),

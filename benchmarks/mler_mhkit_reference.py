@@ -1,5 +1,5 @@
 """Write ``tests/data/mler_mhkit.json``: MLER coefficients from mhkit, the peer check of
-:func:`pas.waves.design.mler_amplitudes` (``tests/test_design_waves.py``).
+:func:`pas.waves.design.mler_amplitudes` (``tests/strategies/test_design_waves.py``).
 
 mhkit (1.1.2) pulls in xarray, netCDF4, statsmodels, scikit-learn, fatpack and
 more (~0.7 GB), so the test suite does not install it: this script, run once in
@@ -19,11 +19,11 @@ exactly 1 Hz, so both grids below run from 0 to 1 Hz; the output
 """
 
 import json
+from importlib.metadata import version
 from pathlib import Path
 
 import numpy as np
 import pandas as pd
-from importlib.metadata import version
 from mhkit.loads.extreme import mler_coefficients
 
 

@@ -21,9 +21,9 @@ import warnings
 import numpy as np
 
 import pas
-from pas.screening import LFSet
 from pas.strategies.base import Pairs
 from pas.strategies.pas import PAS
+from pas.strategies.screening import LFSet
 from pas.strategies.stopping import distribution_change, range_grid
 from pas.validation import generate_case
 

@@ -58,7 +58,6 @@ from __future__ import annotations
 import argparse
 
 import numpy as np
-
 from scipy import stats
 
 from pas.stats.weibull import fit_weibull3_ls
@@ -199,9 +198,9 @@ def targets_met(errors_by_data_set, draws: int = 4000, seed: int = 0) -> float:
 
 def pas_on_random_events(data, k: int, draws: int, seed: int):
     """Relative MPM errors of PAS's default estimator on ``draws`` random sets of k pool events."""
-    from pas.screening import LFSet
     from pas.strategies.base import Pairs
     from pas.strategies.pas import PAS
+    from pas.strategies.screening import LFSet
 
     s = LFSet(data.lf, n_waves=data.n_waves, p_exp=data.p_exp, threshold=data.threshold)
     hs = np.asarray(data.hf, float)[s.index]

@@ -243,9 +243,9 @@ def long_record_path(new):
 
 def long_iterations(n, families, repeats):
     """``(median CPU ms, peak traced MB of one iteration, MPM)`` at ``n`` LF peaks, 80 pairs."""
-    from pas.screening import LFSet
     from pas.strategies.base import Pairs
     from pas.strategies.pas import PAS
+    from pas.strategies.screening import LFSet
 
     lf, hf = scenario(n)
     lfset = LFSet(lf, n_waves=int(round(n * N_W / N)), p_exp=P_EXP)

@@ -1,7 +1,7 @@
 """mkdocs hook: show the Sphinx roles of the numpydoc docstrings as plain code.
 
 The docstrings cross-reference with ``:func:`pas.run_pas``` and
-``:class:`~pas.screening.Event``` (Sphinx roles, read by ``help()`` and by
+``:class:`~pas.strategies.screening.Event``` (Sphinx roles, read by ``help()`` and by
 numpydoc tools).  mkdocstrings renders the role name as text before the code
 span; this drops it, and a leading ``~`` keeps only the last name, as Sphinx
 shows it.

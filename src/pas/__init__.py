@@ -12,14 +12,19 @@ scikit-learn, pyvinecopulib or matplotlib before they need them.
 
 from __future__ import annotations
 
-from ._lazy import lazy_exports
+from ._support.lazy import lazy_exports
 from ._version import __version__
-from .metrics import m1, m2, m3, metrics  # light (numpy); eager so pas.metrics is the function
+from .stats.metrics import (  # light (numpy); eager so pas.metrics is the function
+    m1,
+    m2,
+    m3,
+    metrics,
+)
 
 #: Public name -> the module that defines it (imported when the name is first used).
 _EXPORTS = {
     "run_pas": "api", "run_as": "api", "make_study": "api", "run_rcw": "design_waves",
-    "Event": "screening", "LFSet": "screening",
+    "Event": "strategies.screening", "LFSet": "strategies.screening",
     "encounter_period": "stats.exceedance", "mean_period_from_peak_period": "stats.exceedance",
     "n_waves_from_duration": "stats.exceedance", "p_exp_from_duration": "stats.exceedance",
     "quantile_exceedance": "stats.exceedance",

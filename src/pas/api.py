@@ -4,9 +4,9 @@ from __future__ import annotations
 
 import warnings
 
-from .screening import check_n_waves
 from .strategies.as_ import AS
 from .strategies.pas import PAS
+from .strategies.screening import check_n_waves
 from .study.factory import DEFAULT_MAX_HF, apply_preset, split_settings
 from .study.oracles import check_oracle
 from .study.result import ScreeningResult
@@ -79,7 +79,7 @@ def run_pas(lf_peaks, oracle, *, n_waves, p_exp, eps1, eps2=0.1, threshold=None,
         LF indicator peak of every wave event in the LF Monte-Carlo run.
     oracle : callable
         ``oracle(event) -> float``: the HF peak of ``event`` (an
-        :class:`~pas.screening.Event` with ``index``, ``id``, ``lf``, ``d``,
+        :class:`~pas.strategies.screening.Event` with ``index``, ``id``, ``lf``, ``d``,
         ``meta``); 0.0 means no impact (a false positive).  An exception, NaN,
         inf or a negative value is recorded as a failure, never taken as 0.
         Or ``-> {name: float}``, several loads of one HF run, with ``target``.
@@ -137,7 +137,7 @@ def run_pas(lf_peaks, oracle, *, n_waves, p_exp, eps1, eps2=0.1, threshold=None,
         sampling band; :data:`pas.study.factory.PRESETS`,
         ``docs/departures.md``); settings given explicitly win.
     n_waves_convention : {"count", "spectral"}, default "count"
-        How ``n_waves`` was obtained (:func:`pas.screening.check_n_waves`).
+        How ``n_waves`` was obtained (:func:`pas.strategies.screening.check_n_waves`).
         ``"count"``: counted wave encounters; ``n_waves`` below the number of
         LF peaks over the threshold (exceedance probabilities above 1) is a
         ``ValueError``, below the number of all peaks a warning.
@@ -206,7 +206,7 @@ def run_as(lf_peaks, oracle, *, n_waves, p_exp, eps1, eps2=0.1, threshold=None, 
         LF indicator peak of every wave event in the LF Monte-Carlo run.
     oracle : callable
         ``oracle(event) -> float``: the HF peak of ``event`` (an
-        :class:`~pas.screening.Event` with ``index``, ``id``, ``lf``, ``d``,
+        :class:`~pas.strategies.screening.Event` with ``index``, ``id``, ``lf``, ``d``,
         ``meta``); 0.0 means no impact (a false positive).  An exception, NaN,
         inf or a negative value is recorded as a failure, never taken as 0.
     n_waves : int
@@ -256,7 +256,7 @@ def run_as(lf_peaks, oracle, *, n_waves, p_exp, eps1, eps2=0.1, threshold=None, 
         Without ``executor``: a local process pool of this size (the oracle
         must be picklable).
     n_waves_convention : {"count", "spectral"}, default "count"
-        How ``n_waves`` was obtained (:func:`pas.screening.check_n_waves`).
+        How ``n_waves`` was obtained (:func:`pas.strategies.screening.check_n_waves`).
         ``"count"``: counted wave encounters; ``n_waves`` below the number of
         LF peaks over the threshold (exceedance probabilities above 1) is a
         ``ValueError``, below the number of all peaks a warning.

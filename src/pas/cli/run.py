@@ -204,14 +204,14 @@ def add_parser(sub) -> None:
 
 def run(args) -> int:
     """Execute ``pas run``; returns the exit code (:data:`pas.cli.EXIT_CODES`)."""
-    from . import EXIT_FAILED_LEFT_OUT, EXIT_STOPPED
     from ..api import make_study
-    from ..io import read_lf_peaks
-    from ..screening import check_n_waves
+    from ..strategies.screening import check_n_waves
+    from ..study.inputs import read_lf_peaks
     from ..study.oracle_spec import keep_start_dir, oracle_from_spec
     from ..study.oracles import OracleFailureLimit
     from ..study.replay import attach
     from ..study.store import StoreError, read_settings
+    from . import EXIT_FAILED_LEFT_OUT, EXIT_STOPPED
     from ._progress import Progress, stopped
 
     _check_numbers(args)

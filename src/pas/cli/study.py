@@ -48,7 +48,8 @@ import sys
 from pathlib import Path
 
 from .study_config import load_config, load_peaks
-from .study_loads import add_parsers as add_load_parsers, refit_command, tell_loads
+from .study_loads import add_parsers as add_load_parsers
+from .study_loads import refit_command, tell_loads
 
 __all__ = ["add_parser", "run", "load_config", "load_peaks"]
 
@@ -166,8 +167,8 @@ def _event_row(ev) -> dict:
 
 
 def _ask(args) -> int:
-    from ..study.store import StudyStore
     from ..study.resume import open_study
+    from ..study.store import StudyStore
 
     if args.n < 1:
         raise ValueError(f"-n must be at least 1, got {args.n}")
@@ -232,7 +233,7 @@ def _check_value(text, field, where):
 
 
 def _tell(args) -> int:
-    from ..io import read_table
+    from ..study.inputs import read_table
     from ..study.store import StudyStore
 
     if args.load or "," in args.value_column:
@@ -284,8 +285,8 @@ def _key(x) -> str:
 def _drive(args) -> int:
     from ..study.oracle_spec import oracle_from_spec
     from ..study.oracles import OracleFailureLimit
-    from ..study.store import StudyStore
     from ..study.resume import open_study
+    from ..study.store import StudyStore
     from ._progress import Progress
 
     store = StudyStore(args.study, create=False)
@@ -340,15 +341,15 @@ def _retry(args) -> int:
 
 
 def _set(args) -> int:
-    from ..study.store import StudyStore
     from ..study.resume import open_study
+    from ..study.store import StudyStore
 
     names = {"eps1": "--eps1", "eps2": "--eps2", "k1": "--k1", "k2": "--k2",
              "max_hf": "--max-hf", "max_failures": "--max-failures"}
     changes = {k: getattr(args, k) for k in names if getattr(args, k) is not None}
     if not changes:
         raise ValueError(f"give at least one of {', '.join(names.values())}")
-    from .._validation import check_setting
+    from .._support.checks import check_setting
 
     for key, value in changes.items():  # the rules of the Python API and the study file
         try:

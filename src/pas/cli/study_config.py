@@ -85,10 +85,10 @@ def _check_settings(cfg: dict, where: str) -> None:
     """The settings of the file by the rules of the Python API and ``pas study set``.
 
     Top-level keys and the study settings of ``[settings]`` go through
-    :func:`pas._validation.check_setting`, the strategy settings through the
+    :func:`pas._support.checks.check_setting`, the strategy settings through the
     strategy's constructor (:func:`pas.study.factory.make_strategy`).
     """
-    from .._validation import SETTING_CHECKS, check_setting
+    from .._support.checks import SETTING_CHECKS, check_setting
     from ..study.factory import STUDY_SETTINGS, make_strategy
 
     for key in sorted(SETTING_CHECKS.keys() & cfg.keys()):
@@ -150,8 +150,8 @@ _LF_NAMES = {"file": "lf.file", "column": "lf.column", "id_column": "lf.id_colum
 
 
 def load_peaks(lf_cfg: dict):
-    """LF peaks, ids and meta from the file named in the ``[lf]`` table (:func:`pas.io.read_lf_peaks`)."""
-    from ..io import read_lf_peaks
+    """LF peaks, ids and meta from the file named in the ``[lf]`` table (:func:`pas.study.inputs.read_lf_peaks`)."""
+    from ..study.inputs import read_lf_peaks
 
     return read_lf_peaks(lf_cfg["file"], column=lf_cfg.get("column"),
                          id_column=lf_cfg.get("id_column"),

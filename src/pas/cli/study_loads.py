@@ -109,7 +109,7 @@ def _screened(loads: dict, target, where: str, study) -> tuple:
 
 def _csv_told(args, target) -> list:
     """``(key, (value, loads), error)`` of every row of a results table with several columns."""
-    from ..io import read_table
+    from ..study.inputs import read_table
 
     if args.event is not None or args.error is not None:
         raise ValueError("give either EVENT VALUE / EVENT --error MSG or --csv FILE, not both")
@@ -155,7 +155,7 @@ def refit_command(args) -> int:
     else:
         summary = {**result.to_dict(), "summary": result.summary(unit=args.unit), "inputs": inputs}
     if args.json:
-        from .._json import json_data
+        from .._support.strict_json import json_data
 
         print(json.dumps(json_data(summary), indent=2))
     else:

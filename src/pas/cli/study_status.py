@@ -55,7 +55,7 @@ def status(args) -> int:
         info["events"] = events.drop(columns=["meta"]).to_dict(orient="records")
         info.update(audit)
     if args.json:
-        from .._json import dumps
+        from .._support.strict_json import dumps
         print(dumps(info))
         return 0
     _print_status(info, counts_text, band_text, fitted, included, left_out)

@@ -25,7 +25,10 @@ import numpy as np
 import pyvinecopulib as pv
 from scipy import special
 
-from ..stats.dependence import kendall_tau, pseudo_observations  # Eq. 5: the input of every fit
+from ..stats.dependence import (  # Eq. 5: the input of every fit
+    kendall_tau,
+    pseudo_observations,
+)
 
 __all__ = [
     "PAPER_FAMILIES",
@@ -273,7 +276,7 @@ def _hinv1(fam, p, bicop, u, r, r_scores=None):
 # one iteration).  Both are monotone maps that become smooth after a change of
 # variable, so a cubic Hermite interpolant with exact derivatives on a fixed grid,
 # built once per ν (~0.5 ms) and looked up by index arithmetic, reproduces them to
-# ~1e-9 relative (tests/test_copulas.py); values beyond the grid go to scipy.
+# ~1e-9 relative (tests/models/test_copulas.py); values beyond the grid go to scipy.
 _T_Z = 5.4
 """Half-width of the normal-score grid: Φ(−5.4) ≈ 3e-8, below the ε = 1e-6 draws."""
 _T_NODES = 1024

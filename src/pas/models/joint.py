@@ -42,13 +42,17 @@ import numpy as np
 import pyvinecopulib as pv
 from scipy import optimize, special
 
-from .._threads import one_blas_thread
-from .copula_densities import GRADIENT_FAMILIES
-from .copulas import CopulaFit, _at_bound, _family_and_rotation, kendall_tau
-from .joint_likelihood import copula_parameters, loglik_and_copula_gradient, negloglik_closure
+from .._support.threads import one_blas_thread
 from ..stats.lognormal import LogNormal3
 from ..stats.weibull import Weibull3, fit_weibull3_ls
 from ..stats.weibull_mixture import WeibullMixture
+from .copula_densities import GRADIENT_FAMILIES
+from .copulas import CopulaFit, _at_bound, _family_and_rotation, kendall_tau
+from .joint_likelihood import (
+    copula_parameters,
+    loglik_and_copula_gradient,
+    negloglik_closure,
+)
 
 __all__ = ["JOINT_FAMILIES", "HF_MARGINALS", "JointFit", "censoring_level", "fit_joint",
            "fit_joint_all", "best_per_family", "starts_cold", "location_bounds", "minimise_bounded",

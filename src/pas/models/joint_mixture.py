@@ -16,7 +16,14 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._threads import one_blas_thread
+from .._support.threads import one_blas_thread
+from ..stats.weibull_mixture import (
+    LN_SHAPE_BOUNDS,
+    WEIGHT_LOW,
+    WEIGHT_SPAN,
+    WeibullMixture,
+    split_start,
+)
 from .copula_densities import GRADIENT_FAMILIES
 from .joint import (
     HF_MARGINALS,
@@ -30,13 +37,6 @@ from .joint import (
     starts_cold,
 )
 from .joint_likelihood import loglik_and_copula_gradient, negloglik_closure
-from ..stats.weibull_mixture import (
-    LN_SHAPE_BOUNDS,
-    WEIGHT_LOW,
-    WEIGHT_SPAN,
-    WeibullMixture,
-    split_start,
-)
 
 __all__ = [
     "HF_CHOICES",

@@ -34,7 +34,7 @@ r=...)``, which applies the same rule (a new cluster after a gap longer than
 ``r``) to one continuous series with a DatetimeIndex: an impact record is many
 seeds whose times restart at zero, and joining them would merge the end of one
 seed with the start of the next. The two agree on a single seed
-(``tests/test_impacts.py``).
+(``tests/records/test_impacts.py``).
 """
 
 from __future__ import annotations
@@ -43,7 +43,7 @@ import numpy as np
 import pandas as pd
 from scipy import stats
 
-from .._validation import check_open_unit, check_positive
+from .._support.checks import check_open_unit, check_positive
 from .occurrence import (
     OccurrenceFit,
     _column,

@@ -41,7 +41,7 @@ import numpy as np
 import pandas as pd
 from scipy import optimize, stats
 
-from .._validation import check_peaks
+from .._support.checks import check_peaks
 from ..stats.weibull_mixture import fit_weibull_mixture
 
 __all__ = ["CANDIDATES", "fit_load_distribution", "compare_load_distributions", "qq_points"]

@@ -12,7 +12,7 @@ import numpy as np
 import pandas as pd
 from scipy import optimize, stats
 
-from .._validation import check_open_unit, check_positive
+from .._support.checks import check_open_unit, check_positive
 
 __all__ = ["occurrence_probability", "impact_rates", "occurrence_model", "OccurrenceFit",
            "fit_occurrence"]

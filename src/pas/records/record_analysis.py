@@ -17,7 +17,9 @@ from dataclasses import dataclass, field
 import numpy as np
 import pandas as pd
 
-from .._validation import check_open_unit
+from .._support.checks import check_open_unit
+from ..stats.exceedance import quantile_exceedance
+from ..stats.weibull import Weibull3, fit_weibull3_ls
 from .positions import plotting_positions, read_at_exceedance
 from .records import (
     MPM_QUANTILE,
@@ -26,8 +28,6 @@ from .records import (
     top_peaks,
     weibull_mpm,
 )
-from ..stats.exceedance import quantile_exceedance
-from ..stats.weibull import Weibull3, fit_weibull3_ls
 
 __all__ = ["bootstrap_mpm", "RecordAnalysis", "analyse_record"]
 

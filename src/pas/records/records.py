@@ -10,7 +10,7 @@ over an exposure duration are offered. Here, as in that literature, "MPM" is
 the ``e⁻¹ ≈ 0.368`` quantile of the exposure maximum (≈ the level exceeded
 once per exposure on average), not the mode of the maximum's density: the mode
 lies 0.53 % higher for the maximum of 1000 Rayleigh crests
-(``tests/test_records.py::test_mpm_is_the_e1_quantile_not_the_mode``).
+(``tests/records/test_records.py::test_mpm_is_the_e1_quantile_not_the_mode``).
 
 * **Pooled peaks** — the peaks of all seeds sorted descending; the k-th
   largest has exceedance probability per encounter ``d = (k − 0.44)/(n_e + 0.12)``
@@ -53,11 +53,11 @@ import warnings
 
 import numpy as np
 
-from .._validation import check_open_unit, check_peaks, check_positive
+from .._support.checks import check_open_unit, check_peaks, check_positive
 from ..stats.exceedance import quantile_exceedance
+from ..stats.weibull import fit_weibull3_ls
 from .positions import plotting_positions, read_at_exceedance
 from .tails import fit_tail
-from ..stats.weibull import fit_weibull3_ls
 
 __all__ = [
     "MPM_QUANTILE",

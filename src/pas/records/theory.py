@@ -32,7 +32,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._validation import check_open_unit, check_positive
+from .._support.checks import check_open_unit, check_positive
 from ..waves.spectra import wave_number
 
 __all__ = [

@@ -8,7 +8,7 @@ The names below are imported from their modules on first use (PEP 562), so
 
 from __future__ import annotations
 
-from .._lazy import lazy_exports
+from .._support.lazy import lazy_exports
 
 _MODULES = {
     "exceedance": ("exceedance_probabilities", "value_at_exceedance", "quantile_exceedance",

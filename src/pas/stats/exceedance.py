@@ -10,7 +10,12 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._validation import check_open_unit, check_peaks, check_positive, check_positive_int
+from .._support.checks import (
+    check_open_unit,
+    check_peaks,
+    check_positive,
+    check_positive_int,
+)
 
 __all__ = [
     "exceedance_probabilities",

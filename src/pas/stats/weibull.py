@@ -31,7 +31,7 @@ from typing import ClassVar
 import numpy as np
 from scipy import optimize, stats
 
-from .._validation import check_peaks
+from .._support.checks import check_peaks
 
 __all__ = ["Weibull3", "fit_weibull3_ls", "upper_tail_fraction"]
 

@@ -32,7 +32,7 @@ steps, implemented here as plain functions strung together by :class:`AS`:
     binned means on ``n_lf_bins`` (200) bins uniform on ``ln d``
     (:func:`thin_lf_curve`) — never to all ``n`` LF peaks, so the cost is
     ``O(n_lf_bins³)`` once per study, not ``O(n³)``.  ``GP_L`` depends only on
-    the LF pool and is fitted once per :class:`~pas.screening.LFSet` and
+    the LF pool and is fitted once per :class:`~pas.strategies.screening.LFSet` and
     cached.  ``ρ`` is the ordinary least-squares slope of ``h_sel`` on
     ``μ_L(ln d_sel)`` (with intercept), a two-stage simplification of
     Forrester's joint likelihood estimate; ``δ`` is a GP on the residuals
@@ -53,7 +53,7 @@ the nearest available LF pool peak on ``ln d`` is sampled
 (:func:`mvpd_select`).
 
 Every fit and prediction here runs under a one-thread BLAS limit
-(:func:`pas._threads.one_blas_thread`: small GP matrices lose a lot to BLAS
+(:func:`pas._support.threads.one_blas_thread`: small GP matrices lose a lot to BLAS
 threads on a loaded machine).
 scikit-learn's ``ConvergenceWarning`` (a hyper-parameter at its bound, common
 with a handful of samples) is silenced inside the fits.
@@ -68,12 +68,12 @@ from sklearn.exceptions import ConvergenceWarning
 from sklearn.gaussian_process import GaussianProcessRegressor
 from sklearn.gaussian_process.kernels import ConstantKernel, Matern, WhiteKernel
 
-from .._threads import one_blas_thread
-from .._validation import check_option, check_positive, check_positive_int
-from ..screening import LFSet
+from .._support.checks import check_option, check_positive, check_positive_int
+from .._support.threads import one_blas_thread
 from ..stats.dependence import kendall_tau
 from .acquisition import nearest_available
 from .base import Pairs, Prediction, Strategy, band95
+from .screening import LFSet
 
 __all__ = [
     "AS",

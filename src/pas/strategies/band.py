@@ -19,7 +19,7 @@ replicates of a 15 000-peak Gumbel problem): a cold start found a better
 optimum (by > 1e-6 in log-likelihood) in 7 of 101 Student-t fits at 80 pairs
 and 10 of 101 at 160, against 0–4 of 50 for each other family and marginal;
 the band ends of that run did not move either way, but on a log-normal
-problem of ``tests/test_estimator.py`` the warm-only Student-t fit made
+problem of ``tests/strategies/test_estimator.py`` the warm-only Student-t fit made
 replicates select another family and marginal.  The price: the band's CPU
 time is 0.82 (80 pairs) and about 1.0 (160) of the old path's, against
 0.56 and 0.64 with every family warm only.

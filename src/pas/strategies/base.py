@@ -14,9 +14,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..screening import LFSet
 from ..stats.exceedance import value_at_exceedance
 from .acquisition import initial_targets, md_select, nearest_available
+from .screening import LFSet
 
 __all__ = ["Pairs", "Prediction", "Strategy", "Z95", "band95"]
 
@@ -33,7 +33,7 @@ def band95(mean, sd):
 class Pairs:
     """The true-positive LF–HF pairs available to a fit.
 
-    ``position`` indexes the :class:`~pas.screening.LFSet` order; ``lf``,
+    ``position`` indexes the :class:`~pas.strategies.screening.LFSet` order; ``lf``,
     ``hf`` and ``d`` (LF exceedance probability) are aligned with it.
     """
 

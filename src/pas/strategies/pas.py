@@ -42,7 +42,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._validation import check_finite, check_int, check_option
+from .._support.checks import check_finite, check_int, check_option
 from ..models.copulas import (
     PAPER_FAMILIES,
     _family_and_rotation,
@@ -51,7 +51,6 @@ from ..models.copulas import (
 )
 from ..models.joint import JOINT_FAMILIES
 from ..models.joint_mixture import HF_CHOICES, fit_hf_candidates
-from ..screening import LFSet
 from ..stats.dependence import (
     empirical_tail_dependence,
     kendall_tau,
@@ -61,6 +60,7 @@ from . import band
 from .acquisition import md_select
 from .base import Pairs, Prediction, Strategy
 from .random_numbers import PeakUniforms
+from .screening import LFSet
 from .selection import impact_probability, population_lf_ranks
 from .steps import (
     FittedModel,

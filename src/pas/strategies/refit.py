@@ -4,9 +4,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..screening import LFSet
 from .base import Pairs
 from .pas import PAS
+from .screening import LFSet
 
 __all__ = ["refit"]
 

@@ -7,7 +7,7 @@ tell`` needs only :mod:`pas.study.store`, not the strategies behind
 
 from __future__ import annotations
 
-from .._lazy import lazy_exports
+from .._support.lazy import lazy_exports
 
 _EXPORTS = {
     "CommandOracle": "oracles", "OracleError": "oracles", "OracleFailureLimit": "oracles",

@@ -24,7 +24,7 @@ from __future__ import annotations
 
 import copy
 
-from ..screening import Event
+from ..strategies.screening import Event
 from .factory import STUDY_SETTINGS
 from .state import EventState
 

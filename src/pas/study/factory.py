@@ -11,7 +11,7 @@ the replay of a store all go through it.  A settings dict has the keys
 ``strategy_settings``
     Keyword arguments of the strategy's constructor.
 :data:`LF_SETTINGS`
-    Of the :class:`~pas.screening.LFSet`.
+    Of the :class:`~pas.strategies.screening.LFSet`.
 :data:`STUDY_SETTINGS`
     Keyword arguments of :class:`~pas.study.study.Study`.
 """

@@ -33,7 +33,7 @@ import gc
 import pickle
 from concurrent.futures import Executor, ProcessPoolExecutor, as_completed
 
-from .._validation import check_option, check_positive_int
+from .._support.checks import check_option, check_positive_int
 from .answers import lacks_target
 from .loads import answers_from_loads, record_loads
 from .oracles import OracleFailureLimit, call_oracle_loads, check_oracle

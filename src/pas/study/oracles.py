@@ -24,9 +24,9 @@ from pathlib import Path
 
 import numpy as np
 
-from ..io import read_table
 from ._processes import OWN_SESSION, kill_group, try_lock
 from .answers import check_hf_answer, check_hf_value, check_target, lacks_target
+from .inputs import read_table
 
 __all__ = ["OracleError", "OracleFailureLimit", "check_hf_value", "check_hf_answer",
            "lacks_target", "check_oracle", "call_oracle", "call_oracle_loads", "check_target",
@@ -97,7 +97,7 @@ class TableOracle:
     Examples
     --------
     >>> import pandas as pd
-    >>> from pas.screening import Event
+    >>> from pas.strategies.screening import Event
     >>> oracle = TableOracle(pd.DataFrame({"id": ["a", "b"], "hf": [1.5, 0.0]}))
     >>> oracle(Event(index=0, id="a", lf=1.0, d=0.1))
     1.5

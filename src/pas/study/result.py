@@ -10,7 +10,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from .._json import json_data
+from .._support.strict_json import json_data
 from ..stats.exceedance import quantile_exceedance, value_at_exceedance
 
 __all__ = ["ScreeningResult", "OUTPUT_FILES"]

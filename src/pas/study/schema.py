@@ -68,7 +68,7 @@ from datetime import datetime, timezone
 
 import numpy as np
 
-from .._json import dumps
+from .._support.strict_json import dumps
 from .state import EventState
 
 __all__ = ["SCHEMA_VERSION", "UPGRADES", "STATES", "STORED", "RESUMABLE", "LEGACY_SETTINGS", "DEFAULT_MAX_HF",

@@ -15,14 +15,14 @@ import warnings
 import numpy as np
 import pandas as pd
 
-from .._validation import SETTING_CHECKS, check_int, check_setting
-from ..screening import Event, LFSet
+from .._support.checks import SETTING_CHECKS, check_int, check_setting
 from ..strategies.base import Pairs, Prediction, Strategy
+from ..strategies.screening import Event, LFSet
 from ..strategies.stopping import StoppingRule, range_grid
 from . import loop
+from .answers import check_hf_answer, check_target, lacks_target
 from .corrections import Corrections
 from .factory import LF_SETTINGS, STUDY_SETTINGS, make_strategy, study_settings
-from .answers import check_hf_answer, check_target, lacks_target
 from .replay import attach
 from .result import ScreeningResult
 from .state import EventState

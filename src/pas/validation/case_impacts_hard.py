@@ -2,7 +2,7 @@
 
 These are the impact models of the first release (model VERSION "1"),
 unchanged: the same data seed gives the same LF, HF, time windows and seed
-numbers as before (pinned by ``tests/test_cases.py`` against hashes of the
+numbers as before (pinned by ``tests/validation/test_cases.py`` against hashes of the
 earlier code).  Their LF–HF dependence is upper-tail dominant (λ_U ≫ λ_L),
 the green-water misses cluster just above the LF threshold and the slamming
 tail is heavy — the opposite of what the paper reports for its basin data
@@ -71,7 +71,12 @@ from ..stats.peaks import rise_velocities, segment_max
 from ..waves import FERRY_190M
 from ..waves.ship import RHO_SEAWATER
 from ._common import DT, model_rng, window_of, windows
-from ._impact_signals import crossing_values, impact_sea, rwe_coefficients, time_derivative
+from ._impact_signals import (
+    crossing_values,
+    impact_sea,
+    rwe_coefficients,
+    time_derivative,
+)
 
 __all__ = ["generate_green_water", "generate_slamming", "COEFFICIENTS", "VERSION"]
 

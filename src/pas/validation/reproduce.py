@@ -24,7 +24,7 @@ import numpy as np
 import pandas as pd
 
 from ..api import run_as, run_pas
-from ..metrics import metrics
+from ..stats.metrics import metrics
 from ..study.factory import DEFAULT_MAX_HF
 from .episodes import run_rcw_case
 from .generate import generate_case

@@ -1,0 +1,165 @@
+"""Unit tests of single PAS steps against hand-computed values."""
+
+import numpy as np
+import pytest
+
+from pas.strategies.acquisition import md_select, nearest_available
+from pas.strategies.base import Pairs
+from pas.strategies.pas import PAS, conditioning_set, hf_distribution, remove_outliers
+from pas.strategies.screening import LFSet
+from pas.strategies.stopping import StoppingRule, distribution_change, range_grid
+
+
+def test_lfset_threshold_sort_and_exceedance():
+    s = LFSet([1.0, 7.0, 3.0, 9.0, 5.0, 8.0], n_waves=10, p_exp=0.2, threshold=2.0)
+    np.testing.assert_allclose(s.lf, [9.0, 8.0, 7.0, 5.0, 3.0])
+    np.testing.assert_allclose(s.d, [0.1, 0.2, 0.3, 0.4, 0.5])
+    ev = s.event(0)
+    assert (ev.index, ev.id, ev.lf, ev.d) == (3, 3, 9.0, 0.1)
+
+
+def test_initial_samples_uniform_on_log_d():
+    s = LFSet(np.arange(1000.0, 0.0, -1.0), n_waves=1000, p_exp=0.01)
+    pos = PAS().initial_positions(s)
+    # ln d spans ln(1/1000)..ln(1); 4 uniform targets are d = 1e-3, 1e-2, 1e-1, 1
+    np.testing.assert_allclose(s.d[pos], [1e-3, 1e-2, 1e-1, 1.0])
+
+
+def test_md_targets_largest_gap_midpoint():
+    ln_d = np.log(np.arange(1, 1001) / 1000.0)
+    avail = np.ones(1000, dtype=bool)
+    sel = np.log([1e-3, 1e-2, 1.0])
+    # largest gap is [1e-2, 1] (4.6 on ln d): its midpoint is d = 0.1
+    (p,) = md_select(ln_d, avail, sel, 1)
+    assert np.exp(ln_d[p]) == pytest.approx(0.1)
+    # batch of two: second target fills the next largest gap, [1e-3, 1e-2] or a half of
+    # the split one (all 2.3 wide); the sequential fill never repeats a position
+    batch = md_select(ln_d, avail, sel, 3)
+    assert len(set(batch)) == 3 and batch[0] == p
+
+
+def test_md_skips_gaps_no_peak_can_split():
+    ln_d = np.log(np.arange(1, 101) / 100.0)
+    avail = np.ones(100, dtype=bool)
+    avail[[0, 1]] = False  # d = 0.01 and 0.02 already selected
+    sel = np.log([0.01, 0.02, 0.05])  # gap [0.01, 0.02] = ln 2 is largest but has no peak inside
+    (p,) = md_select(ln_d, avail, np.log([0.01, 0.02, 0.025]), 1, skip_unsplittable=False)
+    assert p == 2  # paper's rule: nearest to the midpoint of [0.01, 0.02] is outside the gap
+    avail[2] = False
+    (p,) = md_select(ln_d, avail, sel, 1)
+    assert 2 < p < 4  # the unsplittable gap is skipped: the pick splits [0.02, 0.05]
+
+
+def test_nearest_available():
+    ln_d = np.log([0.1, 0.2, 0.3, 0.4])
+    assert nearest_available(ln_d, np.array([True, False, False, True]), np.log(0.15)) == 0
+    assert nearest_available(ln_d, np.zeros(4, bool), 0.0) == -1
+
+
+def test_temporary_outlier_removal():
+    rng = np.random.default_rng(1)
+    lf = np.linspace(1, 10, 30)
+    hf = 2 * lf**2 + rng.normal(0, 1, 30)
+    hf[17] += 80.0
+    keep = remove_outliers(lf, hf)
+    assert not keep[17] and keep.sum() == 29
+
+
+def test_conditioning_set_and_hf_distribution():
+    lf = np.array([9.0, 7.0, 5.0, 3.0])
+    np.testing.assert_allclose(conditioning_set(lf, 5.0), [9.0, 7.0, 5.0])
+    draws = np.array([[1.0, 3.0, 2.0], [2.0, 6.0, 4.0]])
+    d, mean, low, high = hf_distribution(draws, n_waves=10)
+    np.testing.assert_allclose(d, [0.1, 0.2, 0.3])
+    np.testing.assert_allclose(mean, [4.5, 3.0, 1.5])
+    sd = np.array([np.std([3, 6], ddof=1), np.std([2, 4], ddof=1), np.std([1, 2], ddof=1)])
+    np.testing.assert_allclose(high - mean, 1.96 * sd)
+
+
+def test_stopping_windows_and_cov():
+    rule = StoppingRule(eps1=0.5, eps2=0.1, k1=3, k2=3, measure="step")
+    assert rule.min_iterations == 1
+    outs = [rule.update(np.full(5, h), m) for h, m in [(0, 10), (1, 10), (3, 12), (3.1, 12)]]
+    e = [o[0] for o in outs]
+    assert np.isnan(e[0]) and e[1:] == pytest.approx([1.0, 2.0, 0.1])
+    # E_bar: mean of the available E's, then of the last k1
+    assert [o[1] for o in outs[1:]] == pytest.approx([1.0, 1.5, (1 + 2 + 0.1) / 3])
+    # COV over the last k2 MPMs with the population standard deviation
+    last3 = np.array([10, 12, 12.0])
+    assert outs[3][2] == pytest.approx(last3.std() / last3.mean())
+    assert not any(o[3] for o in outs)  # E_bar never below 0.5
+
+
+def test_window_measure_is_the_change_across_k1_iterations():
+    # Eq. 28 averages per-step changes; the window measure compares with K1 steps back
+    rule = StoppingRule(eps1=0.5, eps2=0.5, k1=2, k2=2)
+    outs = [rule.update(np.full(5, h), 10.0) for h in (0.0, 0.2, 0.4, 0.6, 0.6, 0.6)]
+    assert np.isnan(outs[0][1])
+    # one step available: its change counts for the K1 = 2 of a window
+    assert [o[1] for o in outs[1:]] == pytest.approx([0.4, 0.4, 0.4, 0.2, 0.0])
+    # a steady drift of 0.2 a step passes Eq. 28 (mean step 0.2 < 0.5) ...
+    step = StoppingRule(eps1=0.3, eps2=0.5, k1=4, k2=4, measure="step")
+    window = StoppingRule(eps1=0.3, eps2=0.5, k1=4, k2=4)
+    drift = [0.2 * k for k in range(8)]
+    assert [step.update(np.full(5, h), 10.0)[3] for h in drift][-1]
+    # ... but not the window measure: the distribution moved 0.8 over the window
+    assert not any(window.update(np.full(5, h), 10.0)[3] for h in drift)
+    with pytest.raises(ValueError, match="stop_measure"):
+        StoppingRule(eps1=1.0, measure="steps")
+
+
+def test_window_measure_sees_a_model_flipping_between_two_curves():
+    # two curves 10 eps1 apart, alternating: an even lag back sees the same curve
+    for measure in ("window", "step"):
+        rule = StoppingRule(eps1=1.0, eps2=0.5, k1=20, k2=20, measure=measure)
+        stops = [rule.update(np.full(5, 10.0 * (k % 2)), 10.0)[3] for k in range(60)]
+        assert not any(stops), measure
+
+
+def test_stopping_not_before_k1_over_3():
+    rule = StoppingRule(eps1=1.0, eps2=0.5, k1=20, k2=20)
+    stops = [rule.update(np.zeros(3), 5.0)[3] for _ in range(8)]
+    assert rule.min_iterations == 7
+    assert stops == [False] * 6 + [True, True]
+
+
+def test_range_grid_and_change():
+    g = range_grid(1e-3, 5)
+    assert g[0] == pytest.approx(5e-4) and g[-1] == pytest.approx(2e-3)
+    assert np.allclose(np.diff(np.log(g)), np.log(4) / 4)
+    assert distribution_change([1, 2, 3], [2, 2, 1]) == pytest.approx(1.0)
+
+
+def test_pas_predict_runs_on_minimal_pairs():
+    s = LFSet(np.linspace(10, 0.1, 500), n_waves=600, p_exp=0.01)
+    pos = np.array([0, 10, 100, 400])
+    pairs = Pairs(pos, s.lf[pos], 2 * s.lf[pos] + 1, s.d[pos])
+    pred = PAS().predict(pairs, s, np.random.default_rng(0))
+    assert np.all(np.diff(pred.d) > 0) and np.all(np.diff(pred.h_mean) <= 1e-12)
+    assert pred.mpm_band[0] <= pred.mpm <= pred.mpm_band[1]
+
+
+def test_impact_probability_rises_with_lf():
+    from pas.strategies.pas import impact_probability
+
+    assert impact_probability([5.0, 6.0], []) is None
+    rng = np.random.default_rng(0)
+    lf = rng.uniform(10, 20, 400)
+    hit = rng.uniform(size=400) < 1 / (1 + np.exp(-(lf - 14)))
+    p = impact_probability(lf[hit], lf[~hit])
+    low, mid, high = p(np.array([11.0, 14.0, 19.0]))
+    assert low < 0.15 and 0.3 < mid < 0.7 and high > 0.9
+
+
+def test_outliers_leave_the_selected_space_marginals_by_default():
+    s = LFSet(np.linspace(10, 0.1, 500), n_waves=600, p_exp=0.01)
+    pos = np.arange(0, 500, 25)
+    hf = 2 * s.lf[pos] + 1
+    hf[1] += 60.0  # one genuine heavy load far off the trend
+    pairs = Pairs(pos, s.lf[pos], hf, s.d[pos])
+    all_ = PAS(estimator="selected", marginals_from="all").predict(pairs, s,
+                                                                  np.random.default_rng(0))
+    kept = PAS(estimator="selected", marginals_from="kept").predict(pairs, s,
+                                                                   np.random.default_rng(0))
+    assert all_.record["n_outliers"] == kept.record["n_outliers"] == 1
+    assert all_.h_mean[0] > kept.h_mean[0]  # the HF tail keeps the heavy load

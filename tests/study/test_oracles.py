@@ -1,0 +1,122 @@
+"""Table and command oracles: lookups, failures recorded with a message (never 0), pickling."""
+
+import pickle
+import sys
+from concurrent.futures import ProcessPoolExecutor
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from pas.strategies.screening import Event
+from pas.study.oracles import (
+    CommandOracle,
+    OracleError,
+    TableOracle,
+    call_oracle,
+    parse_result,
+)
+
+EV = Event(index=3, id="ev3", lf=2.5, d=0.01, meta={"seed": 11, "t_start": 120.0})
+
+SCRIPT = r'''
+import os, sys
+mode, value, out = sys.argv[1], sys.argv[2], sys.argv[3]
+with open("calls.log", "a") as f:
+    f.write(" ".join(sys.argv[1:]) + "\n")
+if mode == "fail":
+    sys.stderr.write("solver diverged at t=12.5\n")
+    sys.exit(3)
+if mode == "sleep":
+    import time; time.sleep(30)
+if mode != "nofile":
+    with open(out, "w") as f:
+        f.write(value)
+'''
+
+
+@pytest.fixture
+def script(tmp_path):
+    path = tmp_path / "hf.py"
+    path.write_text(SCRIPT)
+    return str(path)
+
+
+def command(script, root, mode, value="{lf}", **kw):
+    return CommandOracle([sys.executable, script, mode, value, "{result}"], root=root, **kw)
+
+
+def test_table_oracle_csv_and_parquet(tmp_path):
+    df = pd.DataFrame({"event": ["ev1", "ev3", "ev4"], "hf": [1.0, 4.25, np.nan]})
+    df.to_csv(tmp_path / "basin.csv", index=False)
+    df.to_parquet(tmp_path / "basin.parquet")
+    for name in ("basin.csv", "basin.parquet"):
+        oracle = pickle.loads(pickle.dumps(TableOracle(tmp_path / name, id_column="event")))
+        assert call_oracle(oracle, EV) == (4.25, None)
+        value, err = call_oracle(oracle, Event(index=9, id="ev9", lf=1.0, d=0.5))
+        assert value is None and "ev9 is not in" in err  # missing id is a failure, not 0
+        value, err = call_oracle(oracle, Event(index=4, id="ev4", lf=1.0, d=0.5))
+        assert value is None and "no valid value for event ev4" in err
+
+
+def test_table_oracle_bad_tables(tmp_path):
+    with pytest.raises(ValueError, match="value_column: column 'hf' is missing"):
+        TableOracle(pd.DataFrame({"id": [1], "load": [2.0]}))
+    with pytest.raises(ValueError, match="id: event id '1' appears more than once"):
+        TableOracle(pd.DataFrame({"id": [1, 1], "hf": [2.0, 3.0]}))
+    with pytest.raises(FileNotFoundError):
+        TableOracle(tmp_path / "nope.csv")
+    ints = TableOracle(pd.DataFrame({"id": [3], "hf": [0.0]}))
+    assert call_oracle(ints, Event(index=3, id=3, lf=1.0, d=0.1)) == (0.0, None)
+
+
+def test_command_oracle_runs_without_shell_in_event_folder(tmp_path, script):
+    oracle = command(script, tmp_path / "runs", "ok", "{lf}")
+    assert call_oracle(oracle, EV) == (2.5, None)
+    folder = tmp_path / "runs" / "ev3"
+    assert (folder / "result.txt").read_text() == "2.5"
+    # shell metacharacters reach the program verbatim: there is no shell
+    weird = command(script, tmp_path / "runs", "ok", "1.5; rm -rf / $(echo x) {seed}")
+    value, err = call_oracle(weird, Event(index=5, id="a b/c", lf=1.0, d=0.1, meta={"seed": 4}))
+    assert value is None and "not a number" in err
+    calls = (tmp_path / "runs" / "a_b_c-5" / "calls.log").read_text()
+    assert "1.5; rm -rf / $(echo x) 4" in calls
+
+
+@pytest.mark.parametrize("mode,value,message", [
+    ("fail", "1", "exited with code 3: solver diverged at t=12.5"),
+    ("nofile", "1", "wrote no result file"),
+    ("ok", "abc", "holds 'abc', not a number"),
+    ("ok", "nan", "oracle returned nan"),
+    ("ok", "-2.0", "negative load"),
+    ("sleep", "1", "timed out after 0.5 s"),
+])
+def test_command_oracle_failures_are_recorded_never_zero(tmp_path, script, mode, value, message):
+    oracle = command(script, tmp_path, mode, value, timeout=0.5)
+    got, err = call_oracle(oracle, EV)
+    assert got is None and message in err
+
+
+def test_command_oracle_json_result_and_reuse(tmp_path, script):
+    oracle = command(script, tmp_path, "ok", '{{"value": 7.5}}')
+    assert oracle(EV) == 7.5
+    # a valid result left by an earlier (e.g. orphaned) run is reused, not recomputed
+    assert oracle(EV) == 7.5
+    assert len((tmp_path / "ev3" / "calls.log").read_text().splitlines()) == 1
+    fresh = command(script, tmp_path, "ok", "8.5", reuse=False)
+    assert fresh(EV) == 8.5
+
+
+def test_command_oracle_checks_and_pickles(tmp_path, script):
+    with pytest.raises(ValueError, match="args must be a non-empty list"):
+        CommandOracle("python cfd.py {id}", root=tmp_path)
+    with pytest.raises(ValueError, match="timeout"):
+        CommandOracle(["x"], root=tmp_path, timeout=-1)
+    with pytest.raises(OracleError, match="placeholder 'nope'"):
+        CommandOracle(["x", "{nope}"], root=tmp_path).command(EV, str(tmp_path))
+    assert parse_result(" 3.25\n") == 3.25
+    oracle = command(script, tmp_path / "pool", "ok", "{lf}")
+    events = [Event(index=i, id=f"e{i}", lf=1.0 + i, d=0.1) for i in range(3)]
+    with ProcessPoolExecutor(2) as pool:
+        got = list(pool.map(call_oracle, [oracle] * 3, events))
+    assert got == [(1.0, None), (2.0, None), (3.0, None)]
