@@ -3,11 +3,13 @@
 For each case and data seed 0 … N−1: generate the full-scale analogue (cache
 ``$PAS_CACHE`` or ``./pas-cache``) and compute its properties
 (:func:`pas.validation.properties.data_properties`: τ, λ_U, λ_L, miss shares,
-impact rate, truth β, truth against the paper, AIC family).  Prints the table
-of seed 0 and, per case, the median and range over the seeds of the key
-properties; writes every row to ``DIR/properties.csv``.
+impact rate, truth β, truth against the paper, AIC family).  Writes every row
+to ``DIR/properties.csv`` and prints the two tables of
+``docs/results/analogue-properties.md`` (seed 0; median and range over the
+seeds); ``--write`` puts them between that page's markers.
 
-Run: python benchmarks/case_properties.py [N] [--cases 3a,3a-hard] [--out DIR]
+Run: python benchmarks/studies/case_properties.py [N] [--cases 3a,3a-hard] [--out DIR]
+     [--write] [--read DIR/properties.csv]
 """
 
 from __future__ import annotations
@@ -19,9 +21,26 @@ from pathlib import Path
 import pandas as pd
 
 from pas.validation import CASE_IDS, generate_case
-from pas.validation.properties import data_properties, format_properties
+from pas.validation.properties import data_properties
+from pas.validation.result_tables import (properties_seed_table, properties_spread_table,
+                                          write_between_markers)
 
-KEY = ["lambda_u", "lambda_l", "miss_all", "miss_lnu50", "impact_rate", "truth_vs_paper", "tau"]
+PAGE = Path("docs/results/analogue-properties.md")
+
+
+def measure(cases, n, out):
+    """Generate each case at seeds 0 … n−1 and return its properties, one row per data set."""
+    rows, t_gen = [], {}
+    for case in cases:
+        for seed in range(n):
+            t0 = time.perf_counter()
+            data = generate_case(case, seed=seed)
+            t_gen[case] = t_gen.get(case, 0.0) + time.perf_counter() - t0
+            rows.append(dict(data_properties(data), seed=seed))
+        pd.DataFrame(rows).to_csv(out / "properties.csv", index=False)
+    print("generation time per case (s, sum over seeds): "
+          + ", ".join(f"{c} {t:.0f}" for c, t in t_gen.items()))
+    return pd.DataFrame(rows)
 
 
 def main(argv=None):
@@ -29,32 +48,24 @@ def main(argv=None):
     ap.add_argument("n", nargs="?", type=int, default=10)
     ap.add_argument("--cases", default=",".join(CASE_IDS))
     ap.add_argument("--out", default="pas-output/properties")
+    ap.add_argument("--read", type=Path, metavar="CSV",
+                    help="take the rows from this properties.csv instead of measuring")
+    ap.add_argument("--write", nargs="?", const=PAGE, type=Path, metavar="PAGE",
+                    help=f"write the tables between the markers of PAGE (default {PAGE})")
     args = ap.parse_args(argv)
-    out = Path(args.out)
-    out.mkdir(parents=True, exist_ok=True)
-    rows, t_gen = [], {}
-    for case in args.cases.split(","):
-        for seed in range(args.n):
-            t0 = time.perf_counter()
-            data = generate_case(case, seed=seed)
-            t_gen[case] = t_gen.get(case, 0.0) + time.perf_counter() - t0
-            rows.append(dict(data_properties(data), seed=seed))
-        pd.DataFrame(rows).to_csv(out / "properties.csv", index=False)
-    table = pd.DataFrame(rows)
-    print("data seed 0:")
-    print(format_properties(table[table.seed == 0]))
-    spread = table.groupby("case", sort=False)[KEY].agg(["median", "min", "max"])
-    flat = pd.DataFrame({k: [f"{m:.2f} [{lo:.2f}, {hi:.2f}]" for m, lo, hi in
-                             zip(spread[k]["median"], spread[k]["min"], spread[k]["max"])]
-                         for k in KEY}, index=spread.index)
-    flat["λ_L ≥ λ_U"] = (table.assign(ok=table.lambda_l >= table.lambda_u)
-                         .groupby("case", sort=False)["ok"].sum().astype(int).astype(str)
-                         + f"/{args.n}")
-    with pd.option_context("display.width", 250, "display.max_columns", 20):
-        print(f"\nmedian [min, max] over data seeds 0-{args.n - 1}:")
-        print(flat.to_string())
-    print("\ngeneration time per case (s, sum over seeds): "
-          + ", ".join(f"{c} {t:.0f}" for c, t in t_gen.items()))
+    if args.read:
+        table = pd.read_csv(args.read)
+    else:
+        out = Path(args.out)
+        out.mkdir(parents=True, exist_ok=True)
+        table = measure(args.cases.split(","), args.n, out)
+    blocks = {"seed-0": properties_seed_table(table[table.seed == 0]),
+              "spread": properties_spread_table(table)}
+    print(blocks["seed-0"], blocks["spread"], sep="\n\n")
+    if args.write:
+        page = args.write.read_text(encoding="utf-8")
+        args.write.write_text(write_between_markers(page, blocks, "case_properties.py"),
+                              encoding="utf-8")
 
 
 if __name__ == "__main__":

@@ -176,3 +176,111 @@ def readme_summary(runs: pd.DataFrame, known_truth_defaults: pd.DataFrame,
                 f"known-truth runs and {int(covered.sum())} of {len(covered)} analogue data "
                 "sets (nominal 95 %).")
     return "\n".join(rows) + "\n\n" + coverage
+
+
+def _minus(text: str) -> str:
+    return text.replace("-", "−")
+
+
+def _signed_int(value: float) -> str:
+    text = f"{value:+.0f}"
+    return "0" if text in ("+0", "-0") else _minus(text)
+
+
+def _magnitude(value: float, sci: str) -> str:
+    """A truth: two decimals below 100, none below 1e5, else ``sci`` with a short exponent."""
+    if abs(value) >= 1e5:
+        mantissa, exponent = format(value, sci).split("e")
+        return f"{mantissa}e{int(exponent)}"
+    return f"{value:.2f}" if abs(value) < 100 else f"{value:.0f}"
+
+
+def _with_paper(row, key: str, own_format, paper_format) -> str:
+    own = own_format(row[key]) if pd.notna(row[key]) else "–"
+    paper = row.get(f"paper_{key}")
+    return f"{own} [{paper_format(paper)}]" if isinstance(paper, float) and pd.notna(paper) else own
+
+
+def _percent(decimals: int):
+    return lambda fraction: f"{100 * fraction:.{decimals}f} %"
+
+
+def properties_seed_table(table: pd.DataFrame) -> str:
+    """The data properties of one data seed, one row per case (``docs/results/analogue-properties.md``).
+
+    Parameters
+    ----------
+    table : DataFrame
+        Rows of :func:`pas.validation.properties.data_properties` (the
+        ``properties.csv`` of ``case_properties.py``) for one seed.
+
+    Returns
+    -------
+    str
+        Markdown; the paper's value in brackets where it states one.
+    """
+    lines = ["| case | τ | λ_U / λ_L | miss all | miss ln-d 50 | impact rate | truth β | "
+             "truth MPM | paper truth | Δ | AIC family (gap) |", "|---" * 10 + "|---|"]
+    paper_rate = lambda fraction: f"{100 * fraction:g} %"  # noqa: E731  (as the paper states it)
+    for _, r in table.iterrows():
+        beta = f"{r['weibull_beta']:.2f}" if pd.notna(r["weibull_beta"]) else "–"
+        family = (f"{str(r['family']).capitalize()} ({r['aic_gap']:.0f})"
+                  if isinstance(r["family"], str) and r["family"] else "–")
+        delta = _minus(f"{100 * r['truth_vs_paper']:+.1f}")
+        lines.append(
+            f"| {r['case']} | {r['tau']:.2f} | {r['lambda_u']:.2f} / {r['lambda_l']:.2f} | "
+            f"{100 * r['miss_all']:.0f} % | "
+            f"{_with_paper(r, 'miss_lnu50', _percent(0), _percent(0))} | "
+            f"{_with_paper(r, 'impact_rate', _percent(1), paper_rate)} | "
+            f"{beta} | {_magnitude(r['truth_mpm'], '.4g')} {r['unit']} | "
+            f"{_magnitude(r['paper_truth'], '.2e')} | {delta} % | {family} |")
+    return "\n".join(lines)
+
+
+
+def _spread_formats(decimals: int, unit: str = ""):
+    def median(value):
+        return f"{value:.{decimals}f}{unit}"
+    return median, lambda value: f"{value:.{decimals}f}"
+
+
+SPREAD_COLUMNS = (("λ_U", "lambda_u", 1, *_spread_formats(2)),
+                  ("λ_L", "lambda_l", 1, *_spread_formats(2)),
+                  ("miss all", "miss_all", 100, *_spread_formats(0, " %")),
+                  ("miss ln-d 50", "miss_lnu50", 100, *_spread_formats(0, " %")),
+                  ("impact rate", "impact_rate", 100, *_spread_formats(1, " %")),
+                  ("truth vs paper", "truth_vs_paper", 100,
+                   lambda value: f"{_signed_int(value)} %", _signed_int))
+"""Columns of the spread table: heading, property, scale, format of the median and of the range."""
+
+
+def properties_spread_table(table: pd.DataFrame) -> str:
+    """Median [min, max] over the data seeds of the impact cases' key properties.
+
+    Parameters
+    ----------
+    table : DataFrame
+        Rows of :func:`pas.validation.properties.data_properties` with a
+        ``seed`` column; only the impact cases (those with an impact rate) are
+        shown, in the order of :data:`CASE_IDS`.
+
+    Returns
+    -------
+    str
+        Markdown, with the count of data seeds where λ_L ≥ λ_U.
+    """
+    heads = [column[0] for column in SPREAD_COLUMNS]
+    lines = ["| case | " + " | ".join(heads[:2] + ["λ_L ≥ λ_U"] + heads[2:]) + " |",
+             "|---" * (len(heads) + 2) + "|"]
+    impacts = table[table["impact_rate"].notna()]
+    for case in (c for c in CASE_IDS if c in set(impacts["case"])):
+        rows = impacts[impacts["case"] == case]
+        cells = []
+        for _, key, scale, median_format, range_format in SPREAD_COLUMNS:
+            values = scale * rows[key]
+            cells.append(f"{median_format(values.median())} "
+                         f"[{range_format(values.min())}, {range_format(values.max())}]")
+        ordered = int((rows["lambda_l"] >= rows["lambda_u"]).sum())
+        cells.insert(2, f"{ordered}/{len(rows)}")
+        lines.append(f"| {case} | " + " | ".join(cells) + " |")
+    return "\n".join(lines)
