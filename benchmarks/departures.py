@@ -2,8 +2,8 @@
 
 For every setting in which the package's defaults differ from
 ``preset="paper"`` (:data:`pas.study.factory.PRESETS`), run the known-truth
-problems (:mod:`known_truth`) with the defaults except that one setting at
-its paper value, and print the median and worst |MPM error|, the U95
+tuning problems (:mod:`pas.validation.known_truth`) with the defaults except
+that one setting at its paper value, and print the median and worst |MPM error|, the U95
 coverage and the median HF count beside the defaults and the full paper
 preset.  This is the "measured effect" column of ``docs/departures.md``.
 
@@ -17,11 +17,12 @@ import inspect
 from pathlib import Path
 
 import pandas as pd
-from known_truth import TYPES, make_problem, run_one
 
 from pas.strategies.pas import PAS
 from pas.study.factory import DEFAULT_MAX_HF, PRESETS
 from pas.study.study import Study
+from pas.validation.known_truth import make_problem
+from pas.validation.known_truth_runs import TYPES, run_one, select_types
 
 
 def default_value(name):
@@ -53,8 +54,7 @@ def main(argv=None):
     ap.add_argument("--variants", default=None, help="comma-separated labels (default all)")
     ap.add_argument("--out", default="pas-output/departures")
     args = ap.parse_args(argv)
-    names = [n for n in TYPES if any(n == t or n.startswith(t + "-")
-                                     for t in args.types.split(","))]
+    names = [n for n in select_types(args.types) if not TYPES[n].held_out]
     chosen = variants()
     if args.variants:
         chosen = {k: v for k, v in chosen.items() if k in args.variants.split(",")}

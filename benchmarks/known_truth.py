@@ -1,344 +1,57 @@
-"""Generated screening problems with exact truths: where PAS's defaults are chosen.
+"""PAS per known-truth problem type: median and worst |error|, U95 coverage, HF count.
 
-The validation analogues are measured once; method settings are chosen here,
-on problems whose answer is known exactly (development rule of the project).
+The problems, their exact truths and the split into tuning and held-out types
+are :mod:`pas.validation.known_truth` (docs/known-truth.md).
 
-A problem is one LF Monte-Carlo "run" of ``n_w`` wave events with one LF
-indicator peak each (Rayleigh, like linear crests), and for every event an HF
-load drawn from a known model:
-
-* **dependence**, either a copula — ``V | U ~ C_{V|U}(· | u)`` for a family
-  and Kendall's τ, ``U = F_L(l)`` the LF population CDF over the pool (over
-  the threshold when one is set), ``h = F_H⁻¹(V)`` with a Weibull HF marginal
-  of shape ``hf_shape`` (smaller = heavier tail; ``hf_law="lognormal"``: a
-  log-normal of log-sd ``hf_shape``, heavier than any Weibull with β ≥ 1)
-  — or a regression that no
-  candidate copula contains: ``"power"``, ``ln h = ln 1000 + 1.5 ln l + σ ε``,
-  and ``"crest"``, ``h = 1000 (l + 0.15 l²) + 1000 σ ε`` (a second-order-crest-like
-  HF, ε standard normal);
-* **misses** (false positives, HF = 0): impact with probability ``p(u)`` —
-  ``"none"``, ``"low"`` (clustered just above the threshold) or ``"spread"``
-  (about 40 % everywhere, as the paper's green water);
-* **outliers**: with probability ``outlier_p`` the load is ``outlier_k`` times
-  larger, whatever the LF (timing-driven slams);
-* **noise floor**: loads below ``floor`` are recorded as 0 (a sensor's noise
-  threshold, as the basin's 100 kN): misses that cluster where loads are
-  small.  It leaves the truth unchanged while the MPM is above the floor.
-
-Truth, exact given the LF peaks of the data set: the MPM ``H`` solves
-``Σ_j P(H_j > H | l_j) = P_exp · n_w`` (the mixture PAS estimates, Eq. 8–12),
-with ``P(H_j > h | l_j) = p(u_j) [(1 − p_o) S(h | u_j) + p_o S(h / k | u_j)]``
-and ``S(h | u) = 1 − C_{V|U}(F_H(h) | u)`` from pyvinecopulib's h-function.
-Each replication redraws the LF peaks and the HF loads, and is scored
-against its own truth.
-
-Run: ``python benchmarks/known_truth.py [N] [--types core,misses] [--preset default]``
+Run: ``python benchmarks/known_truth.py [N] [--types core,miss] [--held-out] [--preset paper]``
 prints, per problem type, median |error|, worst |error|, U95 coverage,
-median HF count and convergence, and writes ``runs.csv``.
+median HF count and convergence, and writes ``runs.csv``.  ``N`` data sets
+per type; ``--held-out`` runs the held-out types instead of the tuning ones.
 """
 
 from __future__ import annotations
 
 import argparse
-import time
-import warnings
-from dataclasses import asdict, dataclass, replace
 from pathlib import Path
 
-import numpy as np
 import pandas as pd
-import pyvinecopulib as pv
-from scipy import stats
 
-N_WAVES = 15_000
-P_EXP = 2.0e-3
-HF_SCALE = 1000.0  # kN, scale of the HF Weibull
-THRESHOLD_EXCEEDANCE = 0.03  # LF threshold at the 3 % level of the Rayleigh peaks
-
-
-@dataclass(frozen=True)
-class ProblemType:
-    """One kind of generated problem (module docs)."""
-
-    name: str
-    family: str = "gaussian"
-    tau: float = 0.6
-    hf_shape: float = 1.2
-    hf_law: str = "weibull"  # or "lognormal" (hf_shape is then the log-sd), or "mixture"
-    misses: str = "none"
-    outlier_p: float = 0.0
-    outlier_k: float = 3.0
-    threshold: bool = False
-    model: str = "copula"  # or "power", "crest" (module docs)
-    sigma: float = 0.3
-    floor: float = 0.0
-
-
-def _types():
-    out = []
-    for fam in ("gaussian", "clayton", "gumbel", "frank"):
-        # Frank's parameter bound in pyvinecopulib (35) is τ ≈ 0.89: 0.85 is its strongest
-        for tau in (0.3, 0.45, 0.6, 0.75, 0.85 if fam == "frank" else 0.9):
-            out.append(ProblemType(f"core-{fam}-t{tau:g}", fam, tau))
-    for fam in ("gaussian", "gumbel"):
-        for shape in (0.8, 3.0):
-            out.append(ProblemType(f"tail-{fam}-b{shape:g}", fam, 0.6, shape))
-    # the impact analogues' HF tails (truth Weibull β 0.3–0.6, cases/README.md)
-    for fam in ("gaussian", "clayton"):
-        out.append(ProblemType(f"tail-{fam}-b0.4", fam, 0.6, 0.4))
-    # a quasi-static load with an impulsive part in some events (green water: bore + jet)
-    for fam in ("gaussian", "clayton"):
-        out.append(ProblemType(f"tail-{fam}-mix", fam, 0.6, hf_law="mixture"))
-    for fam, sigma in (("gaussian", 0.6), ("gaussian", 1.0), ("gumbel", 1.0), ("clayton", 1.0)):
-        out.append(ProblemType(f"tail-{fam}-ln{sigma:g}", fam, 0.6, sigma, hf_law="lognormal"))
-    for fam in ("gaussian", "clayton"):
-        for tau in (0.4, 0.7):
-            for misses in ("low", "spread"):
-                out.append(ProblemType(f"miss-{misses}-{fam}-t{tau:g}", fam, tau,
-                                       misses=misses, threshold=True))
-    for tau in (0.5, 0.8):
-        out.append(ProblemType(f"outlier-gumbel-t{tau:g}", "gumbel", tau, outlier_p=0.02))
-    out.append(ProblemType("outlier-miss-gaussian-t0.6", "gaussian", 0.6, misses="spread",
-                           outlier_p=0.02, threshold=True))
-    for fam, tau in (("gaussian", 0.6), ("clayton", 0.45)):
-        out.append(ProblemType(f"floor-{fam}-t{tau:g}", fam, tau, threshold=True, floor=300.0))
-    for sigma in (0.05, 0.3, 0.6):
-        out.append(ProblemType(f"reg-power-s{sigma:g}", model="power", sigma=sigma))
-    out.append(ProblemType("reg-crest-s0.1", model="crest", sigma=0.1))
-    out.append(ProblemType("reg-power-miss-s0.3", model="power", sigma=0.3, misses="spread",
-                           threshold=True))
-    return {t.name: t for t in out}
-
-
-TYPES = _types()
-GROUPS = ("core", "tail", "miss", "outlier", "floor", "reg")
-
-
-def impact_probability(u, misses: str):
-    """``p(u)``: probability that an event over the pool gives an impact."""
-    u = np.asarray(u, float)
-    if misses == "none":
-        return np.ones_like(u)
-    if misses == "low":      # misses clustered just above the threshold: 60 % there, 0 at the top
-        return 1.0 - 0.6 * (1.0 - u) ** 4
-    if misses == "spread":   # misses everywhere: 45 % at the threshold, 30 % at the top
-        return 0.55 + 0.15 * u
-    raise ValueError(f"unknown miss pattern {misses!r}")
-
-
-def _bicop(family: str, tau: float) -> pv.Bicop:
-    fam = getattr(pv.BicopFamily, family)
-    b = pv.Bicop(family=fam)
-    return pv.Bicop(family=fam, parameters=b.tau_to_parameters(tau))
-
-
-@dataclass
-class Problem:
-    """One generated data set with its exact truth."""
-
-    type: ProblemType
-    replication: int
-    lf: np.ndarray
-    hf: np.ndarray
-    n_waves: int
-    p_exp: float
-    threshold: float | None
-    truth_mpm: float
-    eps1: float
-
-    def oracle(self):
-        hf = self.hf
-        return lambda event: float(hf[event.index])
-
-
-def _pool_u(lf, threshold):
-    """LF population CDF over the pool (Rayleigh σ = 1, conditional on the threshold)."""
-    sf = np.exp(-lf**2 / 2.0)
-    if threshold is None:
-        return 1.0 - sf
-    sf0 = np.exp(-threshold**2 / 2.0)
-    return 1.0 - sf / sf0
-
-
-class _Mixture:
-    """70 % Weibull(2, HF_SCALE) (quasi-static) and 30 % Weibull(0.7, 2.5 HF_SCALE)
-    (impulsive): ``cdf`` exact, ``ppf`` by interpolation on ln h (relative error < 1e-6)."""
-
-    parts = ((0.7, stats.weibull_min(2.0, scale=HF_SCALE)),
-             (0.3, stats.weibull_min(0.7, scale=2.5 * HF_SCALE)))
-
-    def __init__(self):
-        self._ln_h = np.linspace(np.log(1e-6 * HF_SCALE), np.log(1e3 * HF_SCALE), 200_001)
-        self._p = self.cdf(np.exp(self._ln_h))
-
-    def cdf(self, x):
-        return sum(w * d.cdf(x) for w, d in self.parts)
-
-    def ppf(self, q):
-        return np.exp(np.interp(q, self._p, self._ln_h))
-
-
-def hf_law(ptype: ProblemType):
-    """The HF marginal of a copula-type problem (frozen scipy distribution or a mixture)."""
-    if ptype.hf_law == "lognormal":
-        return stats.lognorm(ptype.hf_shape, scale=HF_SCALE)
-    if ptype.hf_law == "mixture":
-        return _Mixture()
-    return stats.weibull_min(ptype.hf_shape, scale=HF_SCALE)
-
-
-def copula_loads(ptype: ProblemType, bicop, u, r) -> np.ndarray:
-    """HF loads of a copula-type problem at LF CDF values ``u`` from uniforms ``r``."""
-    v = bicop.hinv1(np.column_stack([u, r]))
-    return hf_law(ptype).ppf(np.clip(v, 1e-12, 1 - 1e-12))
-
-
-def conditional_sf(x, lf, u, ptype: ProblemType, bicop) -> np.ndarray:
-    """``P(H > x | l)`` given an impact, before outliers, for every pool peak."""
-    if ptype.model == "power":
-        return stats.norm.sf((np.log(x / HF_SCALE) - 1.5 * np.log(lf)) / ptype.sigma)
-    if ptype.model == "crest":
-        return stats.norm.sf((x / HF_SCALE - lf - 0.15 * lf**2) / ptype.sigma)
-    v = np.clip(hf_law(ptype).cdf(x), 1e-12, 1 - 1e-12)
-    return 1.0 - bicop.hfunc1(np.column_stack([u, np.full(u.size, v)]))
-
-
-def exceedance_count(h, lf, u, ptype: ProblemType, bicop) -> float:
-    """``Σ_j P(H_j > h | l_j)``: expected number of events above ``h`` (module docs)."""
-    s = conditional_sf(h, lf, u, ptype, bicop)
-    if ptype.outlier_p > 0:
-        s = ((1 - ptype.outlier_p) * s
-             + ptype.outlier_p * conditional_sf(h / ptype.outlier_k, lf, u, ptype, bicop))
-    return float(np.sum(impact_probability(u, ptype.misses) * s))
-
-
-def truth_mpm(lf, u, n_waves, p_exp, ptype, bicop) -> float:
-    """The ``h`` with ``Σ_j P(H_j > h) = P_exp · n_w`` (bisection on ``ln h``)."""
-    target = p_exp * n_waves
-    lo, hi = np.log(1e-3 * HF_SCALE), np.log(1e3 * HF_SCALE)
-    for _ in range(80):
-        mid = 0.5 * (lo + hi)
-        if exceedance_count(np.exp(mid), lf, u, ptype, bicop) > target:
-            lo = mid
-        else:
-            hi = mid
-    return float(np.exp(0.5 * (lo + hi)))
-
-
-def make_problem(ptype: ProblemType, replication: int, *, n_waves=N_WAVES, p_exp=P_EXP,
-                 eps1_fraction=0.015) -> Problem:
-    """Draw one data set of ``ptype`` (seeded by its name and ``replication``)."""
-    key = [int.from_bytes(ptype.name.encode()[:8].ljust(8, b"\0"), "little"), replication]
-    rng = np.random.default_rng(key)
-    lf_all = rng.rayleigh(1.0, n_waves)
-    threshold = None
-    if ptype.threshold:
-        threshold = float(np.sqrt(-2.0 * np.log(THRESHOLD_EXCEEDANCE)))
-    lf = lf_all if threshold is None else lf_all[lf_all > threshold]
-    u = _pool_u(lf, threshold)
-    bicop = _bicop(ptype.family, ptype.tau)
-    r = rng.uniform(1e-9, 1 - 1e-9, lf.size)
-    if ptype.model == "power":
-        h = HF_SCALE * lf**1.5 * np.exp(ptype.sigma * stats.norm.ppf(r))
-    elif ptype.model == "crest":
-        h = HF_SCALE * np.maximum(lf + 0.15 * lf**2 + ptype.sigma * stats.norm.ppf(r), 1e-3)
-    else:
-        h = copula_loads(ptype, bicop, u, r)
-    if ptype.outlier_p > 0:
-        h = np.where(rng.uniform(size=lf.size) < ptype.outlier_p, h * ptype.outlier_k, h)
-    hit = rng.uniform(size=lf.size) < impact_probability(u, ptype.misses)
-    h = np.where(hit & (h >= ptype.floor), h, 0.0)
-    truth = truth_mpm(lf, u, n_waves, p_exp, ptype, bicop)
-    if truth <= ptype.floor:
-        raise ValueError(f"{ptype.name}: the MPM {truth:.4g} is below the noise floor")
-    return Problem(ptype, replication, lf, h, n_waves, p_exp, threshold, truth,
-                   eps1_fraction * truth)
-
-
-CHECKPOINTS = (20, 40, 80, 160)
-
-
-def run_one(problem: Problem, *, seed=None, max_hf=160, **settings) -> dict:
-    """Run PAS on ``problem`` with ``settings``; score MPM error and U95 coverage.
-
-    Also the error of the MPM predicted after 20, 40, 80 and 160 HF samples
-    (``err@k``, NaN when the run stopped earlier): with
-    ``stop_on_convergence=False`` this is the estimator's accuracy against
-    its cost, free of the stopping rule.
-    """
-    import pas
-
-    t0 = time.perf_counter()
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        res = pas.run_pas(problem.lf, problem.oracle(), n_waves=problem.n_waves,
-                          p_exp=problem.p_exp, eps1=problem.eps1, threshold=problem.threshold,
-                          seed=problem.replication if seed is None else seed, max_hf=max_hf,
-                          **settings)
-    lo, hi = res.mpm_band
-    hist = res.history.dropna(subset=["mpm"])
-    at = {f"err@{k}": (float(hist.loc[hist["n_hf"] <= k, "mpm"].iloc[-1]) / problem.truth_mpm - 1
-                       if (hist["n_hf"] <= k).any() and res.n_hf >= k else np.nan)
-          for k in CHECKPOINTS}
-    return {**at, "type": problem.type.name, "replication": problem.replication,
-            "truth": problem.truth_mpm, "mpm": res.mpm, "error": res.mpm / problem.truth_mpm - 1,
-            "band_low": lo, "band_high": hi,
-            "covered": bool(lo <= problem.truth_mpm <= hi), "n_hf": res.n_hf,
-            "n_fp": res.n_false_positive, "converged": bool(res.converged),
-            "family": res.family, "seconds": time.perf_counter() - t0,
-            **{f"type_{k}": v for k, v in asdict(problem.type).items() if k != "name"}}
-
-
-def summarise(runs: pd.DataFrame) -> pd.DataFrame:
-    runs = runs.assign(abs_error=runs["error"].abs())
-    return runs.groupby("type", sort=False).agg(
-        n=("error", "size"), median_abs=("abs_error", "median"), worst_abs=("abs_error", "max"),
-        median_err=("error", "median"), coverage=("covered", "mean"),
-        n_hf=("n_hf", "median"), converged=("converged", "mean"),
-        seconds=("seconds", "median"),
-        **{f"mae@{k}": (f"err@{k}", lambda x: x.abs().median()) for k in CHECKPOINTS},
-    ).reset_index()
-
-
-def settings_from_args(items) -> dict:
-    """``["NAME=VALUE", …]`` → settings, each value a Python literal or else the string."""
-    import ast
-
-    settings = {}
-    for item in items:
-        k, v = item.split("=", 1)
-        try:
-            settings[k] = ast.literal_eval(v)
-        except (ValueError, SyntaxError):
-            settings[k] = v
-    return settings
+from pas.validation.known_truth import make_problem
+from pas.validation.known_truth_runs import (
+    TYPES,
+    run_one,
+    select_types,
+    settings_from_args,
+    summarise,
+)
 
 
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("n", nargs="?", type=int, default=10, help="replications per type")
+    ap.add_argument("n", nargs="?", type=int, default=10, help="data sets per type")
     ap.add_argument("--types", default="all",
-                    help="comma-separated type names or groups (core, tail, miss, outlier)")
+                    help="comma-separated type names or groups (core, tail, miss, outlier, …)")
+    ap.add_argument("--held-out", action="store_true",
+                    help="with --types all: the held-out types, never used to choose settings")
+    ap.add_argument("--first", type=int, default=0, help="first data set (replication)")
     ap.add_argument("--preset", default=None, help="run_pas preset (e.g. paper)")
     ap.add_argument("--set", action="append", default=[],
                     help="extra run_pas setting NAME=VALUE (python literal), repeatable")
     ap.add_argument("--max-hf", type=int, default=160)
     ap.add_argument("--out", default="pas-output/known-truth")
     args = ap.parse_args(argv)
-    settings = settings_from_args(args.set)
+    try:
+        settings = settings_from_args(args.set)
+        names = select_types(args.types, held_out=args.held_out)
+    except ValueError as exc:
+        ap.error(str(exc))
     if args.preset:
         settings["preset"] = args.preset
-    if args.types == "all":
-        names = list(TYPES)
-    else:
-        names = []
-        for t in args.types.split(","):
-            names += [n for n in TYPES if n == t or n.startswith(t + "-")]
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     rows = []
     for name in names:
-        for r in range(args.n):
+        for r in range(args.first, args.first + args.n):
             row = run_one(make_problem(TYPES[name], r), max_hf=args.max_hf, **settings)
             rows.append(row)
             print(f"{name} r{r}: err {row['error']:+.3f} HF {row['n_hf']} "

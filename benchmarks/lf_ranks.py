@@ -1,7 +1,7 @@
 """Where the error at strong dependence comes from: the LF ranks or the HF loads.
 
 PAS's conditional estimator puts the copula on the LF sample's mid-ranks; the
-known-truth generator (:mod:`known_truth`), like nature, puts it on the LF
+known-truth generator (:mod:`pas.validation.known_truth`), like nature, puts it on the LF
 population's CDF (the Rayleigh CDF).  This script runs PAS at a fixed number of
 HF samples without stopping (``stop_on_convergence=False``) in three ways:
 
@@ -14,7 +14,7 @@ and prints per run the error of the MPM, the model band (both relative to
 the truth), whether the reported U95 holds the truth and the selected family,
 then the summary: standard deviation and mean of the error, the median
 standard deviation the model band implies (its width / 3.92), coverage.  Settings as in
-:mod:`known_truth` (``--set NAME=VALUE``).
+:mod:`pas.validation.known_truth` (``--set NAME=VALUE``).
 
 Run: ``python benchmarks/lf_ranks.py population core-gumbel-t0.9 --hf 30 --runs 20``
 """
@@ -28,15 +28,17 @@ from dataclasses import replace
 import numpy as np
 import pandas as pd
 
-import known_truth as kt
 import pas
+from pas.validation import known_truth as kt
+from pas.validation.known_truth_runs import settings_from_args
 
 
 def _loads(problem, u, rng):
     ptype = problem.type
-    bicop = kt._bicop(ptype.family, ptype.tau)
+    bicop = kt.copula(ptype.family, ptype.tau)
     h = kt.copula_loads(ptype, bicop, u, rng.uniform(1e-9, 1 - 1e-9, u.size))
-    truth = kt.truth_mpm(problem.lf, u, problem.n_waves, problem.p_exp, ptype, bicop)
+    truth = kt.truth_mpm(lambda x: ptype.exceedance_count(x, problem.lf, u), problem.n_waves,
+                         problem.p_exp)
     return replace(problem, hf=h, truth_mpm=truth, eps1=0.015 * truth)
 
 
@@ -53,7 +55,7 @@ def problem_for(mode, ptype, run, data_set):
         p = kt.make_problem(ptype, run)
         return _loads(p, weighted_ranks(p.lf, np.ones(p.lf.size)), np.random.default_rng([77, run]))
     p = kt.make_problem(ptype, data_set)
-    return _loads(p, kt._pool_u(p.lf, None), np.random.default_rng([99, data_set, run]))
+    return _loads(p, kt.pool_cdf(p.lf, None), np.random.default_rng([99, data_set, run]))
 
 
 def main(argv=None):
@@ -66,8 +68,8 @@ def main(argv=None):
     ap.add_argument("--data-set", type=int, default=0, help="the LF data set of 'redraw'")
     ap.add_argument("--set", action="append", default=[], help="PAS setting NAME=VALUE")
     args = ap.parse_args(argv)
-    settings = kt.settings_from_args(args.set)
-    ptype = kt.TYPES[args.type]
+    settings = settings_from_args(args.set)
+    ptype = kt.TUNING_TYPES[args.type]
     rows = []
     for run in range(args.first, args.first + args.runs):
         p = problem_for(args.mode, ptype, run, args.data_set)

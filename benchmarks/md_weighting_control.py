@@ -17,11 +17,11 @@ import sys
 import types
 import warnings
 
-import known_truth as kt
 import numpy as np
 from final_sample_refits import error_at, md_design_positions
 
 from pas.strategies.screening import LFSet
+from pas.validation import known_truth as kt
 
 CONTROLS = (("tail-gaussian-mix", {"hf_marginal": "weibull_mixture"}),
             ("tail-clayton-mix", {"hf_marginal": "weibull_mixture"}),
@@ -32,7 +32,7 @@ def main(n="5"):
     for name, settings in CONTROLS:
         errors = []
         for r in range(int(n)):
-            problem = kt.make_problem(kt.TYPES[name], r)
+            problem = kt.make_problem(kt.TUNING_TYPES[name], r)
             lfset = LFSet(problem.lf, n_waves=problem.n_waves, p_exp=problem.p_exp,
                           threshold=problem.threshold)
             hf_pool = np.asarray(problem.hf, float)[lfset.index]

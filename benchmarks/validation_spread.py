@@ -24,9 +24,9 @@ import time
 from pathlib import Path
 
 import pandas as pd
-from known_truth import settings_from_args
 
 from pas.validation import CASE_IDS, generate_case
+from pas.validation.known_truth_runs import settings_from_args
 from pas.validation.reproduce import _strategies, parse_strategies, run_case
 
 
