@@ -11,7 +11,7 @@ own bias).  ``--only NAME,NAME`` keeps the listed settings.
 ``--to-budget`` instead runs each study to 160 HF (ε1 = 1e-12) and prints the
 error along the way: whether a miss is an early stop or stays.
 ``--md-weighted`` fits every event again, each repeated as often as MD's
-design would include it (:func:`md_design_positions`): the fit PAS's samples
+design would include it (:func:`pas.validation.refits.md_design_positions`): the fit PAS's samples
 scatter about, without their sampling noise.
 
 Run: python benchmarks/final_sample_refits.py CASE [N] [--to-budget | --every-event |
@@ -21,16 +21,18 @@ Run: python benchmarks/final_sample_refits.py CASE [N] [--to-budget | --every-ev
 from __future__ import annotations
 
 import dataclasses
-import functools
 import sys
 import warnings
 
 import numpy as np
 
-import pas.strategies.pas as pas_module
-from pas.strategies.base import Pairs
-from pas.strategies.screening import LFSet
 from pas.validation import generate_case
+from pas.validation.refits import (
+    error_at,
+    evaluated_positions,
+    md_design_positions,
+    pool_of,
+)
 from pas.validation.reproduce import run_case
 
 # name: (PAS settings, keyword of the joint fit)
@@ -45,66 +47,6 @@ VARIANTS = {
     "censor 0.7": ({}, {"censor": 0.7}),  # with every event told: the truth's top 30 %
     "bootstrap median": ({"n_bootstrap": 50}, {}),
 }
-
-
-def pool_of(data):
-    """The data set's LF pool and the HF load of each pool peak (0: no impact)."""
-    lfset = LFSet(data.lf, n_waves=data.n_waves, p_exp=data.p_exp, threshold=data.threshold)
-    return lfset, np.asarray(data.hf, float)[lfset.index]
-
-
-def evaluated_positions(data, lfset, res):
-    """Pool positions of the events a study evaluated."""
-    position = np.full(len(data.lf), -1)
-    position[lfset.index] = np.arange(lfset.n)
-    return position[res.history["event_index"].dropna().to_numpy(int)]
-
-
-def pairs_at(lfset, hf_pool, positions):
-    """The true-positive pairs and false positives of pool ``positions``, in their order
-    (the order decides which pairs a bootstrap replicate draws)."""
-    idx = np.asarray(positions)
-    tp, fp = idx[hf_pool[idx] > 0], idx[hf_pool[idx] == 0]
-    return Pairs(tp, lfset.lf[tp], hf_pool[tp], lfset.d[tp], lfset.lf[fp], fp)
-
-
-def error_at(data, lfset, hf_pool, positions, seed, settings=None, joint_kw=None):
-    """MPM error of PAS (``settings``; no band) fitted to the events at pool ``positions``.
-
-    ``joint_kw`` goes to the joint fit (e.g. ``censor``); a setting
-    ``n_bootstrap`` > 0 reads the median of the bootstrap MPMs instead.
-    """
-    settings, joint_kw = settings or {}, joint_kw or {}
-    pairs = pairs_at(lfset, hf_pool, positions)
-    original = pas_module.fit_hf_candidates
-    pas_module.fit_hf_candidates = functools.partial(original, **joint_kw)
-    try:
-        strategy = pas_module.PAS(**{"n_bootstrap": 0, **settings})
-        strategy.reset(seed)
-        mpm = strategy.predict(pairs, lfset, np.random.default_rng(seed)).mpm
-        if settings.get("n_bootstrap"):
-            mpm = float(np.median(strategy.model_band(pairs, lfset,
-                                                      np.random.default_rng(seed))[2]))
-    finally:
-        pas_module.fit_hf_candidates = original
-    return mpm / data.truth_mpm - 1
-
-
-def md_design_positions(n, k=160, copies=10, seed=0):
-    """Pool positions repeated as MD's design includes them: ``copies · min(1, c / rank)``
-    times (stochastic rounding), with ``c`` such that ``k`` events are expected.
-
-    MD spreads ``k`` events uniformly over ``ln d``, so the event of LF rank ``i``
-    (its ln-d interval ``≈ 1/i`` wide) is included with probability ``≈ min(1, c/i)``.
-    """
-    rank = np.arange(1, n + 1)
-    lo, hi = 1e-3, float(n)
-    for _ in range(100):
-        c = np.sqrt(lo * hi)
-        lo, hi = (c, hi) if np.minimum(1.0, c / rank).sum() < k else (lo, c)
-    weight = copies * np.minimum(1.0, c / rank)
-    times = np.floor(weight + np.random.default_rng(seed).uniform(size=n)).astype(int)
-    return np.repeat(np.arange(n), times)
 
 
 def refit_error(data, res, seed, settings, joint_kw):

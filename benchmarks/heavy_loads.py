@@ -37,10 +37,10 @@ import sys
 import warnings
 
 import numpy as np
-from final_sample_refits import error_at, evaluated_positions, pool_of
 
 from pas.stats.weibull import Weibull3
 from pas.validation import generate_case
+from pas.validation.refits import error_at, evaluated_positions, pool_of
 from pas.validation.reproduce import run_case
 
 

@@ -4,7 +4,7 @@ move when every event is weighted as MD includes events?
 On known-truth problems whose law the fitted model contains (the bore + impulse mixtures with
 ``hf_marginal="weibull_mixture"``, single-Weibull HF with the default), every event of a data
 set is fitted once as told and once repeated as MD's design includes it
-(:func:`final_sample_refits.md_design_positions`), and scored against the exact truth.  A
+(:func:`pas.validation.refits.md_design_positions`), and scored against the exact truth.  A
 model that is right should stay centred under the weighting; one that shifts on every data
 set (as the mixture does on the green-water analogues) is misspecified there.
 
@@ -18,10 +18,10 @@ import types
 import warnings
 
 import numpy as np
-from final_sample_refits import error_at, md_design_positions
 
 from pas.strategies.screening import LFSet
 from pas.validation import known_truth as kt
+from pas.validation.refits import error_at, md_design_positions
 
 CONTROLS = (("tail-gaussian-mix", {"hf_marginal": "weibull_mixture"}),
             ("tail-clayton-mix", {"hf_marginal": "weibull_mixture"}),

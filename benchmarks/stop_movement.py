@@ -39,15 +39,15 @@ import sys
 import warnings
 
 import numpy as np
-from sampling_reference import (
+from scipy import optimize, stats
+
+from pas.validation import generate_case
+from pas.validation.references import (
     copula_at_tau,
     lf_reference_nll,
     lf_reference_pool,
     truth_law,
 )
-from scipy import optimize, stats
-
-from pas.validation import generate_case
 from pas.validation.reproduce import run_case
 
 WINDOW = 20

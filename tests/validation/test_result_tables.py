@@ -9,8 +9,15 @@ from pathlib import Path
 import pandas as pd
 import pytest
 
-from pas.validation.result_tables import (VALIDATION_HEADER, readme_summary, short_pct,
-                                          validation_tables, write_between_markers)
+from pas.validation.result_tables import (
+    VALIDATION_HEADER,
+    properties_seed_table,
+    properties_spread_table,
+    readme_summary,
+    short_pct,
+    validation_tables,
+    write_between_markers,
+)
 
 ROOT = Path(__file__).resolve().parents[2]
 RUNS = pd.read_csv(ROOT / "tests" / "data" / "spread_runs.csv")
@@ -44,8 +51,8 @@ The reported U95 holds the truth in 67 % of the known-truth runs and 6 of 8 anal
 def test_validation_tables_give_the_hand_checked_rows():
     tables = validation_tables(RUNS)
     rule = "|---|---|---|---|---|---|---|---|---|---|---|"
-    assert tables["paper-like"] == "\n".join([VALIDATION_HEADER, rule, PAPER_LIKE])
-    assert tables["hard"] == "\n".join([VALIDATION_HEADER, rule, HARD])
+    assert tables["paper-like"] == f"{VALIDATION_HEADER}\n{rule}\n{PAPER_LIKE}"
+    assert tables["hard"] == f"{VALIDATION_HEADER}\n{rule}\n{HARD}"
 
 
 def test_validation_tables_keep_the_usual_order_whatever_the_order_of_the_runs():
@@ -91,3 +98,29 @@ def test_the_readme_summary_sits_between_markers():
     block = readme.split("<!-- BEGIN validation_spread.py readme-summary -->\n")[1]
     assert block.split("<!-- END validation_spread.py readme-summary -->")[0].startswith(
         "| problems | HF runs (PAS, median) |")
+
+
+# The measured properties of the twelve analogues (case_properties.py 10, 2026-12-02),
+# trimmed to the columns the tables read, six significant digits.
+PROPERTIES = pd.read_csv(ROOT / "tests" / "data" / "analogue_properties.csv")
+
+
+def _block(page: str, tag: str, name: str) -> str:
+    return page.split(f"<!-- BEGIN {tag} {name} -->\n")[1].split(f"\n<!-- END {tag} {name} -->")[0]
+
+
+def test_properties_rows_follow_the_page_formats():
+    seed0 = PROPERTIES[PROPERTIES["seed"] == 0]
+    rows = properties_seed_table(seed0[seed0["case"].isin(["2a", "3a"])]).splitlines()[2:]
+    assert rows == [
+        "| 2a | 0.90 | 0.87 / 0.87 | 0 % | 0 % | – | – | 1.093e9 N m | 1.10e9 | −0.6 % | "
+        "Student (952) |",
+        "| 3a | 0.55 | 0.29 / 0.42 | 43 % | 44 % [45 %] | 2.7 % [3 %] | 0.31 | 1851 kN | 1850 | "
+        "+0.1 % | Frank (11) |"]
+
+
+def test_the_properties_page_is_the_writers_output_on_the_measured_data():
+    page = (ROOT / "docs" / "results" / "analogue-properties.md").read_text(encoding="utf-8")
+    assert _block(page, "case_properties.py", "seed-0") == properties_seed_table(
+        PROPERTIES[PROPERTIES["seed"] == 0])
+    assert _block(page, "case_properties.py", "spread") == properties_spread_table(PROPERTIES)

@@ -54,11 +54,12 @@ def write_between_markers(text: str, blocks: dict[str, str], tag: str) -> str:
     """
     for name, block in blocks.items():
         begin, end = f"<!-- BEGIN {tag} {name} -->", f"<!-- END {tag} {name} -->"
-        pattern = re.compile(re.escape(begin) + r"\n.*?" + re.escape(end), re.S)
+        pattern = re.compile(re.escape(begin) + r"\n.*?" + re.escape(end), re.DOTALL)
         if not pattern.search(text):
             raise ValueError(f"--write: the page has no '{begin}' … '{end}' markers; "
                              "add them where the table goes")
-        text = pattern.sub(lambda _: f"{begin}\n{block}\n{end}", text, count=1)
+        replacement = f"{begin}\n{block}\n{end}"
+        text = pattern.sub(lambda _, new=replacement: new, text, count=1)
     return text
 
 
@@ -205,6 +206,10 @@ def _percent(decimals: int):
     return lambda fraction: f"{100 * fraction:.{decimals}f} %"
 
 
+def _as_stated(fraction: float) -> str:
+    return f"{100 * fraction:g} %"
+
+
 def properties_seed_table(table: pd.DataFrame) -> str:
     """The data properties of one data seed, one row per case (``docs/results/analogue-properties.md``).
 
@@ -219,9 +224,8 @@ def properties_seed_table(table: pd.DataFrame) -> str:
     str
         Markdown; the paper's value in brackets where it states one.
     """
-    lines = ["| case | τ | λ_U / λ_L | miss all | miss ln-d 50 | impact rate | truth β | "
-             "truth MPM | paper truth | Δ | AIC family (gap) |", "|---" * 10 + "|---|"]
-    paper_rate = lambda fraction: f"{100 * fraction:g} %"  # noqa: E731  (as the paper states it)
+    lines = [("| case | τ | λ_U / λ_L | miss all | miss ln-d 50 | impact rate | truth β | "
+              "truth MPM | paper truth | Δ | AIC family (gap) |"), "|---" * 10 + "|---|"]
     for _, r in table.iterrows():
         beta = f"{r['weibull_beta']:.2f}" if pd.notna(r["weibull_beta"]) else "–"
         family = (f"{str(r['family']).capitalize()} ({r['aic_gap']:.0f})"
@@ -231,7 +235,7 @@ def properties_seed_table(table: pd.DataFrame) -> str:
             f"| {r['case']} | {r['tau']:.2f} | {r['lambda_u']:.2f} / {r['lambda_l']:.2f} | "
             f"{100 * r['miss_all']:.0f} % | "
             f"{_with_paper(r, 'miss_lnu50', _percent(0), _percent(0))} | "
-            f"{_with_paper(r, 'impact_rate', _percent(1), paper_rate)} | "
+            f"{_with_paper(r, 'impact_rate', _percent(1), _as_stated)} | "
             f"{beta} | {_magnitude(r['truth_mpm'], '.4g')} {r['unit']} | "
             f"{_magnitude(r['paper_truth'], '.2e')} | {delta} % | {family} |")
     return "\n".join(lines)
