@@ -148,7 +148,7 @@ def readme_summary(runs: pd.DataFrame, known_truth_defaults: pd.DataFrame,
         The ``runs.csv`` of ``validation_spread.py`` (strategies ``pas``,
         ``pas-paper``, ``as``), with ``covered``.
     known_truth_defaults, known_truth_paper : DataFrame
-        The ``runs.csv`` of ``benchmarks/known_truth.py`` with the defaults and
+        The ``runs.csv`` of ``benchmarks/studies/known_truth.py`` with the defaults and
         with ``--preset paper``: ``error`` (relative), ``covered``, ``n_hf``.
     max_hf : int
         The HF budget of the runs: a median at it is shown as "(budget)".

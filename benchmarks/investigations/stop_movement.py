@@ -30,12 +30,12 @@ reach on an analogue at all:
 ``--max-hf B`` also runs the default rule with the HF budget raised to B and
 prints where it stops.
 
-Run: python benchmarks/stop_movement.py [N] [--cases 4a,4b,3b] [--draws 100] [--max-hf B]
+Run: python benchmarks/investigations/stop_movement.py [N] [--cases 4a,4b,3b] [--draws 100] [--max-hf B]
 """
 
 from __future__ import annotations
 
-import sys
+import argparse
 import warnings
 
 import numpy as np
@@ -127,11 +127,15 @@ def _summary(values) -> str:
 
 
 def main(argv=None):
-    argv = list(sys.argv[1:] if argv is None else argv)
-    cases = argv[argv.index("--cases") + 1].split(",") if "--cases" in argv else ["4a", "4b", "3b"]
-    draws = int(argv[argv.index("--draws") + 1]) if "--draws" in argv else 100
-    budget = int(argv[argv.index("--max-hf") + 1]) if "--max-hf" in argv else None
-    n = int(argv[0]) if argv and not argv[0].startswith("--") else 10
+    ap = argparse.ArgumentParser(description=__doc__,
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("n", nargs="?", type=int, default=10, help="data seeds 0 … N-1")
+    ap.add_argument("--cases", default="4a,4b,3b")
+    ap.add_argument("--draws", type=int, default=100, help="draws of each reference")
+    ap.add_argument("--max-hf", type=int, default=None,
+                    help="also run the default rule with this HF budget")
+    args = ap.parse_args(argv)
+    cases, draws, budget, n = args.cases.split(","), args.draws, args.max_hf, args.n
     warnings.simplefilter("ignore")
     for case in cases:
         runs = {name: [] for name, _ in MEASURES}

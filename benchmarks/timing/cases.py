@@ -8,7 +8,7 @@ Generates every case at full scale into a fresh temporary cache (timed
 separately: the user's ``./pas-cache`` is never read), then runs PAS — and AS
 when available — once per case with the paper's settings, scores it, and
 draws the figures into a temporary folder.  Prints one line per case and the
-totals.  Run: ``python benchmarks/cases.py [--replications N]``.
+totals.  Run: ``python benchmarks/timing/cases.py [--replications N]``.
 """
 
 import argparse

@@ -8,7 +8,7 @@ The inputs are built here with plain numpy, independently of ``pas``.
 
     python3 -m venv /tmp/venv-mhkit && . /tmp/venv-mhkit/bin/activate
     pip install mhkit==1.1.2 statsmodels scikit-learn fatpack
-    python benchmarks/mler_mhkit_reference.py   # rewrites tests/data/mler_mhkit.json
+    python benchmarks/studies/mler_mhkit_reference.py   # rewrites tests/data/mler_mhkit.json
 
 Conventions of ``mhkit.loads.extreme.mler_coefficients`` (read from its source):
 the spectrum is given in m^2/Hz on a frequency index in Hz and converted to
@@ -18,13 +18,13 @@ exactly 1 Hz, so both grids below run from 0 to 1 Hz; the output
 ``sum sqrt(2 WaveSpectrum d_w) cos(w (t - T0) + Phase)``.
 """
 
+import argparse
 import json
 from importlib.metadata import version
 from pathlib import Path
 
 import numpy as np
 import pandas as pd
-from mhkit.loads.extreme import mler_coefficients
 
 
 def pierson_moskowitz_hz(f, hs, tp):
@@ -67,6 +67,8 @@ CASES = {
 
 
 def main():
+    from mhkit.loads.extreme import mler_coefficients  # a separate environment (module docs)
+
     out = {"mhkit_version": version("mhkit"), "cases": {}}
     for name, c in CASES.items():
         f = c["f"]
@@ -82,10 +84,12 @@ def main():
             "phase": mler["Phase"].to_numpy().tolist(),
             "d_w": 2 * np.pi / (f.size - 1),
         }
-    path = Path(__file__).resolve().parents[1] / "tests" / "data" / "mler_mhkit.json"
+    path = Path(__file__).resolve().parents[2] / "tests" / "data" / "mler_mhkit.json"
     path.write_text(json.dumps(out, indent=0))
     print(f"wrote {path} (mhkit {out['mhkit_version']})")
 
 
 if __name__ == "__main__":
+    argparse.ArgumentParser(description=__doc__,
+                            formatter_class=argparse.RawDescriptionHelpFormatter).parse_args()
     main()

@@ -6,9 +6,10 @@ pairs placed like an AS run places them (the two initial extremes, the rest
 clustered on ln d around P_exp).  The one-off multi-fidelity ``GP_L`` fit on
 the thinned LF curve (cached per LF set) is timed separately.
 
-Run: ``python3 benchmarks/as_iteration.py``
+Run: ``python3 benchmarks/timing/as_iteration.py``
 """
 
+import argparse
 import time
 
 import numpy as np
@@ -60,4 +61,6 @@ def main():
 
 
 if __name__ == "__main__":
+    argparse.ArgumentParser(description=__doc__,
+                            formatter_class=argparse.RawDescriptionHelpFormatter).parse_args()
     main()

@@ -16,7 +16,7 @@ then the summary: standard deviation and mean of the error, the median
 standard deviation the model band implies (its width / 3.92), coverage.  Settings as in
 :mod:`pas.validation.known_truth` (``--set NAME=VALUE``).
 
-Run: ``python benchmarks/lf_ranks.py population core-gumbel-t0.9 --hf 30 --runs 20``
+Run: ``python benchmarks/investigations/lf_ranks.py population core-gumbel-t0.9 --hf 30 --runs 20``
 """
 
 from __future__ import annotations

@@ -23,7 +23,7 @@ LF wave is re-synthesised with the generator's own functions.  For case 3 it
 also prints the peak of the HF model's non-linear bow RWE ``R''`` (before the
 bow wave) in the RCW and MLER episodes, against the target.
 
-Run: ``python benchmarks/design_waves_diagnosis.py [--seed 0] [--cases 1a,4a]``
+Run: ``python benchmarks/investigations/design_waves_diagnosis.py [--seed 0] [--cases 1a,4a]``
 """
 
 from __future__ import annotations

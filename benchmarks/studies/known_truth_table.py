@@ -1,6 +1,6 @@
 """The tables of ``docs/known-truth.md`` from the ``runs.csv`` files of :mod:`known_truth`.
 
-Run: python benchmarks/known_truth_table.py DEFAULTS.csv[,MORE.csv] PAPER.csv[,MORE.csv]
+Run: python benchmarks/studies/known_truth_table.py DEFAULTS.csv[,MORE.csv] PAPER.csv[,MORE.csv]
      [--write docs/known-truth.md]
 (comma-separated lists are concatenated: a run split over several processes).
 Prints the tables; ``--write PAGE`` also puts each between its markers in the
@@ -11,10 +11,11 @@ so the page's tables are the script's output, never edited by hand.
 from __future__ import annotations
 
 import argparse
-import re
 from pathlib import Path
 
 import pandas as pd
+
+from pas.validation.result_tables import write_between_markers
 
 
 def _read(arg):
@@ -53,19 +54,6 @@ def tables(default, paper) -> dict[str, str]:
             f"{_pct(p['error'].abs().median())} | {100 * p['covered'].mean():.0f} % | "
             f"{p['n_hf'].median():g} |")
     return {"overall": "\n".join(rows), "per-type": "\n".join(per_type)}
-
-
-def write_between_markers(text: str, blocks: dict[str, str], tag: str) -> str:
-    """``text`` with each block put between ``<!-- BEGIN tag NAME -->`` and
-    ``<!-- END tag NAME -->`` (the markers stay); a missing marker is a ValueError."""
-    for name, block in blocks.items():
-        begin, end = f"<!-- BEGIN {tag} {name} -->", f"<!-- END {tag} {name} -->"
-        pattern = re.compile(re.escape(begin) + r"\n.*?" + re.escape(end), re.S)
-        if not pattern.search(text):
-            raise ValueError(f"--write: the page has no '{begin}' … '{end}' markers; "
-                             "add them where the table goes")
-        text = pattern.sub(lambda _: f"{begin}\n{block}\n{end}", text, count=1)
-    return text
 
 
 def main(argv=None):

@@ -11,12 +11,12 @@ two-component Weibull mixture among the candidates:
   against the data set's truth (a Weibull fitted to the top 30 % of the same
   loads, read at ``P_exp / rate``).
 
-Run: python benchmarks/load_fits_mixture.py [N] [--skip-records]
+Run: python benchmarks/studies/load_fits_mixture.py [N] [--skip-records]
 """
 
 from __future__ import annotations
 
-import sys
+import argparse
 import warnings
 
 import numpy as np
@@ -54,8 +54,12 @@ def _line(label, errors, picks):
 
 
 def main(argv=None):
-    argv = list(sys.argv[1:] if argv is None else argv)
-    n_draws = int(argv[0]) if argv and not argv[0].startswith("--") else 10
+    ap = argparse.ArgumentParser(description=__doc__,
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("n", nargs="?", type=int, default=10, help="draws per law")
+    ap.add_argument("--skip-records", action="store_true", help="only the known laws")
+    args = ap.parse_args(argv)
+    n_draws = args.n
     warnings.simplefilter("ignore")
     q = 0.017
     for n in (400, 1700):
@@ -65,7 +69,7 @@ def main(argv=None):
                     for _ in range(n_draws)]
             print(_line(f"n {n}, {name}", [r[:2] for r in runs], [r[2] for r in runs]),
                   flush=True)
-    if "--skip-records" in argv:
+    if args.skip_records:
         return
     for case in ("3a", "3b", "4a", "4b"):
         runs = []

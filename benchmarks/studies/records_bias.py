@@ -11,9 +11,10 @@ Prints, for the issue-15 fixes, numbers measured in one run:
    R(N) from 30 records of M = 40 seeds (and the raw subset RMS), with the
    coverage of the R(N) band.
 
-Not a test. Run: ``python benchmarks/records_bias.py``.
+Not a test. Run: ``python benchmarks/studies/records_bias.py``.
 """
 
+import argparse
 import time
 
 import numpy as np
@@ -82,6 +83,8 @@ def r_of_n(rng, records=30, m=40, n_w=100, fresh_reps=4000):
 
 
 if __name__ == "__main__":
+    argparse.ArgumentParser(description=__doc__,
+                            formatter_class=argparse.RawDescriptionHelpFormatter).parse_args()
     rng = np.random.default_rng(2026)
     for f in (seed_maxima_bias, pooled_q90_bias, r_of_n):
         t0 = time.perf_counter()

@@ -10,12 +10,12 @@ streams, and prints the change, with and without common random numbers
 ε1.  Then it reruns the study both ways and prints Ē over the last K1
 iterations and the HF count at convergence.
 
-Run: python benchmarks/noise_floor.py [CASE ...]   (default: 4a-hard 4b-hard 3a)
+Run: python benchmarks/investigations/noise_floor.py [CASE ...]   (default: 4a-hard 4b-hard 3a)
 """
 
 from __future__ import annotations
 
-import sys
+import argparse
 import warnings
 
 import numpy as np
@@ -66,4 +66,7 @@ def main(cases):
 
 
 if __name__ == "__main__":
-    main(sys.argv[1:] or ["4a-hard", "4b-hard", "3a"])
+    ap = argparse.ArgumentParser(description=__doc__,
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("cases", nargs="*", default=["4a-hard", "4b-hard", "3a"])
+    main(ap.parse_args().cases)

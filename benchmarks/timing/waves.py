@@ -6,9 +6,10 @@ df = 1/3600 Hz, Sharma-Dean interactions over 0-5 rad/s, dt = 0.1 s.
 Times the FFT route (kernel once + per seed: linear + second order by one
 inverse FFT each) against the direct double summation on a short time slice
 of the same components, scaled to 50 h. SPEC §7 targets: <= 10 s and >= 100x.
-Run: ``python benchmarks/waves.py``.
+Run: ``python benchmarks/timing/waves.py``.
 """
 
+import argparse
 import time
 
 import numpy as np
@@ -72,4 +73,6 @@ def main():
 
 
 if __name__ == "__main__":
+    argparse.ArgumentParser(description=__doc__,
+                            formatter_class=argparse.RawDescriptionHelpFormatter).parse_args()
     main()

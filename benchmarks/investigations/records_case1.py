@@ -11,10 +11,10 @@ Prints the crest MPM from the pooled peaks, the seed maxima and a Weibull fit
 RMS error R(N) of fresh N-seed campaigns estimated from subsets of the 50 seeds
 (W = 500 subsets, fits on 100 subsets; finite-population corrected) at
 N = 1, 5, 10, 25, 40, and the seeds needed for R ≤ 3 % of Hs.
-Not a test. Run: ``python benchmarks/records_case1.py [--plot DIR]``.
+Not a test. Run: ``python benchmarks/investigations/records_case1.py [--plot DIR]``.
 """
 
-import sys
+import argparse
 import time
 import warnings
 
@@ -109,5 +109,7 @@ def main(plot_dir=None):
 
 
 if __name__ == "__main__":
-    out = sys.argv[sys.argv.index("--plot") + 1] if "--plot" in sys.argv else None
-    main(out)
+    ap = argparse.ArgumentParser(description=__doc__,
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--plot", metavar="DIR", help="also save the figures to DIR")
+    main(ap.parse_args().plot)

@@ -46,10 +46,10 @@ seeds 0…N−1 (new analogue data sets) × R random subsamples each, and
 ``P(worst of 10 ≤ 25 %)`` = ``P(|error| ≤ 25 %)¹⁰`` — the chance that ten
 independent data sets all land within ±25 %.  PAS, which must find the
 impacts and also spends HF on misses, is measured on the same data sets by
-``benchmarks/validation_spread.py``; compare at its number of true-positive
+``benchmarks/studies/validation_spread.py``; compare at its number of true-positive
 pairs (``--pas-runs`` reads them from that script's runs.csv).
 
-Run: python benchmarks/sampling_reference.py [N] [--k 50,100,160] [--cases 3a,3b,4a,4b]
+Run: python benchmarks/studies/sampling_reference.py [N] [--k 50,100,160] [--cases 3a,3b,4a,4b]
 [--subsamples 40] [--pas-runs pas-output/spread/runs.csv] [--skip-random-events]
 """
 

@@ -11,7 +11,7 @@ of a one-episode run (build + FORM + HF).  With ``--scipy`` it also solves the
 P_exp episode with scipy's SLSQP (same start, exact gradients, both on one BLAS
 thread) and prints the time ratio and both ``beta``.
 
-Run: ``python benchmarks/design_waves.py [--cases 2a,3b] [--scipy]``
+Run: ``python benchmarks/timing/design_waves.py [--cases 2a,3b] [--scipy]``
 """
 
 from __future__ import annotations

@@ -8,12 +8,12 @@ set is fitted once as told and once repeated as MD's design includes it
 model that is right should stay centred under the weighting; one that shifts on every data
 set (as the mixture does on the green-water analogues) is misspecified there.
 
-Run: python benchmarks/md_weighting_control.py [N]
+Run: python benchmarks/investigations/md_weighting_control.py [N]
 """
 
 from __future__ import annotations
 
-import sys
+import argparse
 import types
 import warnings
 
@@ -52,4 +52,7 @@ def main(n="5"):
 
 
 if __name__ == "__main__":
-    main(*sys.argv[1:])
+    ap = argparse.ArgumentParser(description=__doc__,
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("n", nargs="?", type=int, default=5, help="data sets per problem type")
+    main(ap.parse_args().n)

@@ -14,14 +14,14 @@ error along the way: whether a miss is an early stop or stays.
 design would include it (:func:`pas.validation.refits.md_design_positions`): the fit PAS's samples
 scatter about, without their sampling noise.
 
-Run: python benchmarks/final_sample_refits.py CASE [N] [--to-budget | --every-event |
+Run: python benchmarks/investigations/final_sample_refits.py CASE [N] [--to-budget | --every-event |
      --md-weighted] [--only NAME,NAME]
 """
 
 from __future__ import annotations
 
+import argparse
 import dataclasses
-import sys
 import warnings
 
 import numpy as np
@@ -56,13 +56,22 @@ def refit_error(data, res, seed, settings, joint_kw):
     return error_at(data, lfset, hf_pool, idx, seed, settings, joint_kw)
 
 
-def main(case, n="10", *flags):
-    if n.startswith("--"):
-        n, flags = "10", (n, *flags)
-    only = flags[flags.index("--only") + 1].split(",") if "--only" in flags else list(VARIANTS)
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__,
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("case")
+    ap.add_argument("n", nargs="?", type=int, default=10, help="data seeds 0 … N-1")
+    mode = ap.add_mutually_exclusive_group()
+    for flag in ("--to-budget", "--every-event", "--md-weighted"):
+        mode.add_argument(flag, dest="mode", action="store_const", const=flag)
+    ap.add_argument("--only", default=",".join(VARIANTS),
+                    help=f"comma-separated settings of: {', '.join(VARIANTS)}")
+    args = ap.parse_args(argv)
+    case, n, flags = args.case, args.n, (args.mode,)
+    only = args.only.split(",")
     unknown = [name for name in only if name not in VARIANTS]
     if unknown:
-        raise SystemExit(f"unknown setting {', '.join(unknown)}; known: {', '.join(VARIANTS)}")
+        ap.error(f"--only: unknown setting {', '.join(unknown)}; known: {', '.join(VARIANTS)}")
     variants = {name: VARIANTS[name] for name in only}
     errors = {name: [] for name in variants}
     for seed in range(int(n)):
@@ -117,4 +126,4 @@ def main(case, n="10", *flags):
 
 
 if __name__ == "__main__":
-    main(*sys.argv[1:])
+    main()

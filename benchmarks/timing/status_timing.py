@@ -7,12 +7,13 @@ current log, :mod:`pas.study.stored_results`), ``pas study status STUDY
 --refresh`` (replays the log and recomputes the band, as every status did
 before) and ``pas --help``.
 
-Run: python benchmarks/status_timing.py [STUDY.db] [repeats]
+Run: python benchmarks/timing/status_timing.py [STUDY.db] [repeats]
 Target (issue 27): status <= 1 s at 160 pairs; ``pas --help`` < 0.5 s.
 """
 
 from __future__ import annotations
 
+import argparse
 import os
 import subprocess
 import sys
@@ -66,4 +67,9 @@ def main(db=None, repeats: int = 3) -> None:
 
 
 if __name__ == "__main__":
-    main(sys.argv[1] if len(sys.argv) > 1 else None, int(sys.argv[2]) if len(sys.argv) > 2 else 3)
+    ap = argparse.ArgumentParser(description=__doc__,
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("db", nargs="?", default=None, help="study store to reuse (default: a new one)")
+    ap.add_argument("repeats", nargs="?", type=int, default=3)
+    args = ap.parse_args()
+    main(args.db, args.repeats)

@@ -5,20 +5,19 @@ and prints, per type, the median |error|, median error, U95 coverage, median
 HF count and share converged of each setting, then the overall figures and
 how many runs each setting got closer to the truth.
 
-Run: python benchmarks/known_truth_paired.py BASE.csv[,MORE.csv] OTHER.csv[,MORE.csv]
+Run: python benchmarks/studies/known_truth_paired.py BASE.csv[,MORE.csv] OTHER.csv[,MORE.csv]
 """
 
 from __future__ import annotations
 
-import sys
+import argparse
 
 import pandas as pd
-from known_truth_table import _read
 
 
 def _runs(arg):
     """The runs of a comma-separated list of files; a run that two files hold must agree."""
-    runs = _read(arg)
+    runs = pd.concat([pd.read_csv(p) for p in arg.split(",")], ignore_index=True)
     key = ["type", "replication"]
     twice = runs[runs.duplicated(key, keep=False)]
     if not twice.drop(columns="seconds").drop_duplicates().duplicated(key).eq(False).all():
@@ -27,8 +26,13 @@ def _runs(arg):
 
 
 def main(argv=None):
-    argv = sys.argv[1:] if argv is None else argv
-    base, other = _runs(argv[0]), _runs(argv[1])
+    ap = argparse.ArgumentParser(description=__doc__,
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("base", help="runs.csv of setting a (comma-separated list)")
+    ap.add_argument("other", help="runs.csv of setting b (comma-separated list)")
+    args = ap.parse_args(argv)
+    argv = [args.base, args.other]
+    base, other = _runs(args.base), _runs(args.other)
     runs = base.merge(other, on=["type", "replication"], suffixes=("_a", "_b"))
     for s in "ab":
         runs[f"abs_{s}"] = runs[f"error_{s}"].abs()

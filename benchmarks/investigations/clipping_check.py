@@ -3,17 +3,17 @@
 An earlier note blamed conditional draws above the sample's top rank, which
 extrapolate a β < 1 HF marginal, for the paper method's +38 % on 3a-hard.  This
 runs the paper preset on data seeds 0–4, refits each final model
-(:func:`pas.strategies.pas.refit`) and reads the MPM twice from the same
+(:func:`pas.strategies.refit.refit`) and reads the MPM twice from the same
 uniforms: as drawn, and with the copula draws clipped to the sample's rank
 range ``[1/(m+1), m/(m+1)]`` (no extrapolation at all).  Equal MPMs refute the
 explanation.
 
-Run: python benchmarks/clipping_check.py [CASE] [N]   (default 3a-hard 5)
+Run: python benchmarks/investigations/clipping_check.py [CASE] [N]   (default 3a-hard 5)
 """
 
 from __future__ import annotations
 
-import sys
+import argparse
 import warnings
 
 import numpy as np
@@ -21,7 +21,7 @@ import numpy as np
 import pas
 from pas.models.copulas import conditional_quantile
 from pas.stats.exceedance import value_at_exceedance
-from pas.strategies.pas import refit
+from pas.strategies.refit import refit
 from pas.strategies.steps import hf_distribution
 from pas.validation import generate_case
 
@@ -49,4 +49,9 @@ def main(case="3a-hard", n=5):
 
 
 if __name__ == "__main__":
-    main(*sys.argv[1:])
+    ap = argparse.ArgumentParser(description=__doc__,
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("case", nargs="?", default="3a-hard")
+    ap.add_argument("n", nargs="?", type=int, default=5, help="data seeds 0 … N-1")
+    args = ap.parse_args()
+    main(args.case, args.n)

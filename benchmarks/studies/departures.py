@@ -7,7 +7,7 @@ that one setting at its paper value, and print the median and worst |MPM error|,
 coverage and the median HF count beside the defaults and the full paper
 preset.  This is the "measured effect" column of ``docs/departures.md``.
 
-Run: python benchmarks/departures.py [N] [--types core,miss,...] [--out DIR]
+Run: python benchmarks/studies/departures.py [N] [--types core,miss,...] [--out DIR]
 """
 
 from __future__ import annotations

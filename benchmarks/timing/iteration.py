@@ -10,13 +10,14 @@ The paper's stack draws the same conditional samples with the `copulas`
 package (`percent_point`, a brentq root per sample); it is timed on a slice
 and scaled to the full 150 000 draws.
 
-Run: python benchmarks/iteration.py
+Run: python benchmarks/timing/iteration.py
 Targets (SPEC §7): median ≤ 50 ms per iteration for every family (Student-t
 included, issue 14), ≥ 100× the paper's stack.
 """
 
 from __future__ import annotations
 
+import argparse
 import time
 
 import copulas.bivariate as cb
@@ -143,4 +144,6 @@ def main():
 
 
 if __name__ == "__main__":
+    argparse.ArgumentParser(description=__doc__,
+                            formatter_class=argparse.RawDescriptionHelpFormatter).parse_args()
     main()

@@ -5,12 +5,13 @@ into a study store), each in a new process as a shell runs it, against a bare
 ``python -c pass`` started the same way, and reports which heavy libraries a
 ``pas study tell`` process imported.
 
-Run: python benchmarks/cli_startup.py [repeats]
+Run: python benchmarks/timing/cli_startup.py [repeats]
 Target (issue 14): both under 1 s.
 """
 
 from __future__ import annotations
 
+import argparse
 import shutil
 import subprocess
 import sys
@@ -64,4 +65,7 @@ def main(repeats: int = 7) -> None:
 
 
 if __name__ == "__main__":
-    main(int(sys.argv[1]) if len(sys.argv) > 1 else 7)
+    ap = argparse.ArgumentParser(description=__doc__,
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("repeats", nargs="?", type=int, default=7)
+    main(ap.parse_args().repeats)

@@ -26,14 +26,14 @@ law: for data seeds 0–9, the chance that the largest of the record's n impact
 loads drawn from the truth Weibull (the top-30 % fit) reaches each of the
 record's four largest.
 
-Run: python benchmarks/heavy_loads.py [CASE] [SEEDS] [K]   (default 3a 2,5 4)
-     python benchmarks/heavy_loads.py [CASE] --record-maxima
+Run: python benchmarks/investigations/heavy_loads.py [CASE] [SEEDS] [K]   (default 3a 2,5 4)
+     python benchmarks/investigations/heavy_loads.py [CASE] --record-maxima
 """
 
 from __future__ import annotations
 
+import argparse
 import functools
-import sys
 import warnings
 
 import numpy as np
@@ -115,4 +115,11 @@ def main(case="3a", seeds="2,5", k=4, n_random=8):
 
 
 if __name__ == "__main__":
-    main(*sys.argv[1:])
+    ap = argparse.ArgumentParser(description=__doc__,
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("case", nargs="?", default="3a")
+    ap.add_argument("seeds", nargs="?", default="2,5",
+                    help="comma-separated data seeds, or --record-maxima")
+    ap.add_argument("k", nargs="?", type=int, default=4, help="pairs to name per data set")
+    args, rest = ap.parse_known_args()
+    main(args.case, "--record-maxima" if "--record-maxima" in rest else args.seeds, args.k)
