@@ -1,6 +1,6 @@
 """The command line starts without the numerical stack: ``pas --help`` and ``pas study tell``.
 
-Timing is a benchmark's business (``benchmarks/cli_startup.py``); here the
+Timing is a benchmark's business (``benchmarks/timing/cli_startup.py``); here the
 cause of a slow start is checked: which libraries a fresh process imports.
 """
 

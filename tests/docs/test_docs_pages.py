@@ -110,7 +110,7 @@ def load_module(relative_path):
 
 
 def load_known_truth_table():
-    return load_module("benchmarks/known_truth_table.py")
+    return load_module("benchmarks/studies/known_truth_table.py")
 
 
 def test_known_truth_table_writes_the_page_between_its_markers(tmp_path):

@@ -1,7 +1,7 @@
 """Design waves: MLER against mhkit, the second-order surrogate, FORM-RCW and run_rcw.
 
 Independent references: mhkit's MLER coefficients (stored with the script that
-made them, ``benchmarks/mler_mhkit_reference.py``), the time-domain double
+made them, ``benchmarks/studies/mler_mhkit_reference.py``), the time-domain double
 summation of the Sharma–Dean surface (``direct_second_order``), finite
 differences, scipy's SLSQP for the constrained minimum, and closed forms.
 """

@@ -340,7 +340,7 @@ def test_green_water_dependence_is_lower_tail_dominant_unlike_the_hard_variant()
     # λ at q = 0.9 on ~200 pairs has a standard error near 0.1 (about 20 pairs per tail), so
     # the robust check is the contrast on the same waves: the paper-like model has λ_L ≥ λ_U,
     # the hard one λ_U far above λ_L.  (Full scale, 3b had λ_L ≥ λ_U in 10 of 10 data seeds,
-    # 3a in 8 of 10: benchmarks/case_properties.py, cases/README.md.)
+    # 3a in 8 of 10: benchmarks/studies/case_properties.py, cases/README.md.)
     new, hard = build_case("3b", scale=0.3), build_case("3b-hard", scale=0.3)
     assert new.lambda_l >= new.lambda_u
     assert (new.lambda_l - new.lambda_u) - (hard.lambda_l - hard.lambda_u) > 0.3

@@ -30,7 +30,7 @@ A normal-theory band (chi-square, M − 1 degrees of freedom) was tried first
 and rejected: R(N) varies between records far more than that (coefficient of
 variation 15 % at N = 0.12 M, 30 % at N = 0.75 M for Rayleigh crests, against
 11 %), because near N = M the subsets differ by a few seeds only.
-``benchmarks/records_bias.py`` measures R(N) against fresh campaigns and the
+``benchmarks/studies/records_bias.py`` measures R(N) against fresh campaigns and the
 band's coverage.
 
 Each seed is one exposure duration unless ``exposure_encounters`` says

@@ -6,7 +6,7 @@ pressures), GEV (``genextreme``), Weibull (``weibull_min``), gamma,
 log-normal (``lognorm``) and exponential (``expon``); and this package's
 two-component Weibull mixture (``weibull_mixture``, a narrow quasi-static
 body and a wide impulsive tail, :func:`pas.stats.weibull_mixture.fit_weibull_mixture`;
-beyond Boon 2025 and the PAS paper).  ``python benchmarks/load_fits_mixture.py 10``
+beyond Boon 2025 and the PAS paper).  ``python benchmarks/studies/load_fits_mixture.py 10``
 measured what adding it does to the AIC-best fit's quantile at the MPM
 level: on samples of single known laws (Fréchet, log-normal, Weibull,
 gamma; n 400 and 1700) it was picked in 3 of 80 and the median error moved

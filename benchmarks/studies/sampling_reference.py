@@ -1,0 +1,184 @@
+"""What k impact loads can tell: a sampling reference for the impact analogues.
+
+PAS on cases 3–4 is scored against a truth read from the *whole* HF record (a
+3-parameter Weibull fitted to the top 30 % of the non-zero HF peaks, the
+paper's truth).  How close can any method come with k HF values?  This script
+gives a reference that asks for no model of LF–HF dependence at all: an
+oracle that knows which events are impacts draws k of them at random (no
+false positive ever evaluated) and applies
+
+* ``truth-estimator``: the truth's own estimator (the same Weibull fit, top
+  30 % of the k loads, scaled by the known impact rate), and
+* ``empirical``: the empirical quantile of the k loads at the MPM's
+  exceedance probability among impacts, ``P_exp / rate``.
+
+Two model references ask what k impact loads could tell if nothing were
+misspecified.  They are models, not bounds: no estimator is shown unable to
+beat them, and they are told more than PAS knows (the law's family and
+location, the impact rate, the copula); they also draw every load from the
+truth's Weibull, whereas 30–64 % of the analogues' impacts lie below its
+location.  Their errors are against the law's own quantile (the data set's
+truth), not against a fit to a record drawn from it.
+
+* ``known law``: k loads drawn i.i.d. from the data set's truth Weibull, its
+  family and location told, scale and shape by maximum likelihood, the MPM
+  read at ``P_exp / rate``;
+* ``known law + LF``: the same law joined to the LF by a copula at the data
+  set's Kendall τ — Gaussian, and Gumbel (upper-tail dependent; its
+  association among the top LF decile is closer to the analogues' on 4a/4b)
+  — also told; a pool of as many events as the data set has impacts, k
+  distinct ones drawn uniformly in ln d over the LF ranks, scale and shape
+  by the likelihood of HF given LF.
+
+For each, ``P(targets)``: one error drawn per data set, the chance that the
+median |error| over the ten is ≤ 10 % and the worst ≤ 25 %.
+
+With ``--pas-runs`` it also runs **PAS's own estimator on random pool events**:
+for each data set, as many events as PAS evaluated there (its HF count),
+drawn at random from the LF pool (over the threshold; impacts and misses
+alike, no MD), 5 draws per data set.  Beside PAS's result this separates
+the two things PAS does differently from the oracle: how it chooses events
+(MD against random) and how it estimates (its conditional fit against the
+truth's Weibull on impacts).
+
+Per case and k it prints the median and 90th percentile of |error| over data
+seeds 0…N−1 (new analogue data sets) × R random subsamples each, and
+``P(worst of 10 ≤ 25 %)`` = ``P(|error| ≤ 25 %)¹⁰`` — the chance that ten
+independent data sets all land within ±25 %.  PAS, which must find the
+impacts and also spends HF on misses, is measured on the same data sets by
+``benchmarks/studies/validation_spread.py``; compare at its number of true-positive
+pairs (``--pas-runs`` reads them from that script's runs.csv).
+
+Run: python benchmarks/studies/sampling_reference.py [N] [--k 50,100,160] [--cases 3a,3b,4a,4b]
+[--subsamples 40] [--pas-runs pas-output/spread/runs.csv] [--skip-random-events]
+"""
+
+from __future__ import annotations
+
+import argparse
+
+import numpy as np
+
+from pas.validation import generate_case
+from pas.validation.references import (
+    COPULAS,
+    copula_association,
+    known_law_errors,
+    known_law_lf_errors,
+    reference_errors,
+    targets_met,
+    top_association,
+)
+
+
+def pas_on_random_events(data, k: int, draws: int, seed: int):
+    """Relative MPM errors of PAS's default estimator on ``draws`` random sets of k pool events."""
+    from pas.strategies.base import Pairs
+    from pas.strategies.pas import PAS
+    from pas.strategies.screening import LFSet
+
+    s = LFSet(data.lf, n_waves=data.n_waves, p_exp=data.p_exp, threshold=data.threshold)
+    hs = np.asarray(data.hf, float)[s.index]
+    rng = np.random.default_rng([seed, k, 7])
+    errors = []
+    for _ in range(draws):
+        pick = np.sort(rng.choice(s.n, size=min(k, s.n), replace=False))
+        tp, fp = pick[hs[pick] > 0], pick[hs[pick] == 0]
+        if tp.size < PAS.min_pairs:
+            continue
+        strategy = PAS(n_bootstrap=0)
+        strategy.reset(seed)
+        pairs = Pairs(tp, s.lf[tp], hs[tp], s.d[tp], s.lf[fp], fp)
+        try:
+            mpm = strategy.predict(pairs, s, np.random.default_rng(0)).mpm
+        except ValueError:
+            continue
+        errors.append(mpm / data.truth_mpm - 1.0)
+    return np.asarray(errors)
+
+
+def _row(errors):
+    a = np.abs(errors)
+    return (f"{100 * np.median(a):5.1f} % {100 * np.quantile(a, 0.9):6.1f} % "
+            f"{np.mean(a <= 0.25) ** 10:6.2f}")
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("n", nargs="?", type=int, default=10, help="data seeds 0…N−1")
+    ap.add_argument("--k", default="50,100,160")
+    ap.add_argument("--cases", default="3a,3b,4a,4b")
+    ap.add_argument("--subsamples", type=int, default=40)
+    ap.add_argument("--skip-random-events", action="store_true",
+                    help="with --pas-runs: take PAS's pair counts, skip PAS on random events")
+    ap.add_argument("--pas-runs", default=None,
+                    help="runs.csv of validation_spread.py: adds k = PAS's median pairs")
+    args = ap.parse_args(argv)
+    cases = args.cases.split(",")
+    ks = {c: [int(x) for x in args.k.split(",")] for c in cases}
+    if args.pas_runs:
+        import pandas as pd
+
+        runs = pd.read_csv(args.pas_runs)
+        runs = runs[runs.strategy == "pas"]
+        for c in cases:
+            g = runs[runs.case == c]
+            if len(g):
+                ks[c] = sorted(set(ks[c]) | {int(np.median(g.n_hf - g.n_false_positive))})
+    print("| case | k impacts | truth-estimator: median / p90 \\|error\\| / P(worst of 10 ≤ 25 %) "
+          "| empirical quantile: same |")
+    print("|---|---|---|---|")
+    data_sets = {c: [generate_case(c, seed=s) for s in range(args.n)] for c in cases}
+    for c in cases:
+        data = data_sets[c]
+        for k in ks[c]:
+            errs = [reference_errors(d, k, args.subsamples, s) for s, d in enumerate(data)]
+            t = np.concatenate([e[0] for e in errs])
+            e = np.concatenate([e[1] for e in errs])
+            print(f"| {c} | {k} | {_row(t)} | {_row(e)} |", flush=True)
+    print("\n| case | k impacts | known law (family and location told, ML): median / p90 "
+          "\\|error\\| / P(worst of 10 ≤ 25 %) / P(median ≤ 10 % and worst ≤ 25 %) "
+          + "".join(f"| known law + LF, {c} copula at the data's τ: same " for c in COPULAS) + "|")
+    print("|---|---|" + "---|" * (1 + len(COPULAS)))
+    for c in cases:
+        for k in ks[c]:
+            plain = [known_law_errors(d, k, 5 * args.subsamples, s)
+                     for s, d in enumerate(data_sets[c])]
+            cells = [f"{_row(np.concatenate(plain))} {targets_met(plain):6.2f}"]
+            for copula in COPULAS:
+                with_lf = [known_law_lf_errors(d, k, 5 * args.subsamples, s, copula)
+                           for s, d in enumerate(data_sets[c])]
+                cells.append(f"{_row(np.concatenate(with_lf))} {targets_met(with_lf):6.2f}")
+            print(f"| {c} | {k} | " + " | ".join(cells) + " |", flush=True)
+    print("\n| case | P(HF in its top 30 % \\| LF in its top 10 %), impacts over the threshold: "
+          "data (median of the data sets) | " + " | ".join(f"{c} at the data's τ" for c in COPULAS)
+          + " |")
+    print("|---|---|" + "---|" * len(COPULAS))
+    for c in cases:
+        assoc, taus = [], []
+        for d in data_sets[c]:
+            keep = np.asarray(d.hf) > 0
+            if d.threshold is not None:
+                keep &= np.asarray(d.lf) > d.threshold
+            assoc.append(top_association(np.asarray(d.lf)[keep], np.asarray(d.hf)[keep]))
+            taus.append(d.tau)
+        cells = [f"{copula_association(k, float(np.median(taus))):.2f}" for k in COPULAS]
+        print(f"| {c} | {np.median(assoc):.2f} | " + " | ".join(cells) + " |", flush=True)
+    if not args.pas_runs or args.skip_random_events:
+        return
+    print("\n| case | PAS on random pool events (k = PAS's HF count per data set): median / p90 "
+          "\\|error\\| / P(worst of 10 ≤ 25 %) | PAS (MD): median / worst \\|M2\\| |")
+    print("|---|---|---|")
+    for c in cases:
+        g = runs[runs.case == c].set_index("seed")
+        if not len(g):
+            continue
+        errs = np.concatenate([pas_on_random_events(d, int(g.n_hf[s]), 5, s)
+                               for s, d in enumerate(data_sets[c]) if s in g.index])
+        pas_m2 = g.M2.abs()
+        print(f"| {c} | {_row(errs)} | {100 * pas_m2.median():.1f} % / {100 * pas_m2.max():.1f} % |",
+              flush=True)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,104 @@
+"""PAS run on the known-truth problems (:mod:`pas.validation.known_truth`) and scored.
+
+:func:`run_one` runs one data set and scores its MPM error and U95 coverage,
+:func:`summarise` tabulates runs per type, :func:`select_types` reads a
+``--types`` list and :func:`settings_from_args` the ``--set NAME=VALUE``
+options of the benchmark scripts.
+"""
+
+from __future__ import annotations
+
+import ast
+import time
+import warnings
+from dataclasses import asdict
+
+import numpy as np
+import pandas as pd
+
+from ..api import run_pas
+from .known_truth import TUNING_TYPES, Problem
+
+TYPES = dict(TUNING_TYPES)
+"""Every known-truth type by name: the tuning types, then the held-out ones."""
+
+CHECKPOINTS = (20, 40, 80, 160)
+"""HF counts at which :func:`run_one` scores the MPM predicted then (``err@k``)."""
+
+
+def select_types(spec: str = "all", *, held_out: bool = False) -> list[str]:
+    """The type names a comma-separated ``spec`` of names or groups picks.
+
+    ``"all"`` is every tuning type, or with ``held_out=True`` every held-out
+    type; a group (``core``, ``miss``, …) is the types whose name starts
+    with it and a dash.  A name that picks nothing is a ValueError.
+    """
+    if spec == "all":
+        return [n for n, t in TYPES.items() if t.held_out == held_out]
+    names = []
+    for item in spec.split(","):
+        picked = [n for n in TYPES if n == item or n.startswith(item + "-")]
+        if not picked:
+            raise ValueError(f"--types: {item!r} is no known-truth type or group; "
+                             f"groups are the first part of the names, e.g. "
+                             f"{', '.join(sorted({n.split('-')[0] for n in TYPES}))}")
+        names += [n for n in picked if n not in names]
+    return names
+
+
+def run_one(problem: Problem, *, seed=None, max_hf=160, **settings) -> dict:
+    """Run PAS on ``problem`` with ``settings``; score MPM error and U95 coverage.
+
+    Also the error of the MPM predicted after 20, 40, 80 and 160 HF samples
+    (``err@k``, NaN when the run stopped earlier): with
+    ``stop_on_convergence=False`` this is the estimator's accuracy against
+    its cost, free of the stopping rule.
+    """
+    t0 = time.perf_counter()
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        res = run_pas(problem.lf, problem.oracle(), n_waves=problem.n_waves,
+                      p_exp=problem.p_exp, eps1=problem.eps1, threshold=problem.threshold,
+                      seed=problem.replication if seed is None else seed, max_hf=max_hf,
+                      **settings)
+    lo, hi = res.mpm_band
+    hist = res.history.dropna(subset=["mpm"])
+    at = {f"err@{k}": (float(hist.loc[hist["n_hf"] <= k, "mpm"].iloc[-1]) / problem.truth_mpm - 1
+                       if (hist["n_hf"] <= k).any() and res.n_hf >= k else np.nan)
+          for k in CHECKPOINTS}
+    return {**at, "type": problem.type.name, "replication": problem.replication,
+            "truth": problem.truth_mpm, "mpm": res.mpm, "error": res.mpm / problem.truth_mpm - 1,
+            "band_low": lo, "band_high": hi,
+            "covered": bool(lo <= problem.truth_mpm <= hi), "n_hf": res.n_hf,
+            "n_fp": res.n_false_positive, "converged": bool(res.converged),
+            "family": res.family, "seconds": time.perf_counter() - t0,
+            **{f"type_{k}": v for k, v in asdict(problem.type).items() if k != "name"}}
+
+
+def summarise(runs: pd.DataFrame) -> pd.DataFrame:
+    """Per type: median and worst |error|, median error, coverage, HF count, convergence."""
+    runs = runs.assign(abs_error=runs["error"].abs())
+    return runs.groupby("type", sort=False).agg(
+        n=("error", "size"), median_abs=("abs_error", "median"), worst_abs=("abs_error", "max"),
+        median_err=("error", "median"), coverage=("covered", "mean"),
+        n_hf=("n_hf", "median"), converged=("converged", "mean"),
+        seconds=("seconds", "median"),
+        **{f"mae@{k}": (f"err@{k}", lambda x: x.abs().median()) for k in CHECKPOINTS},
+    ).reset_index()
+
+
+def settings_from_args(items) -> dict:
+    """``["NAME=VALUE", …]`` → settings, each value a Python literal or else the string.
+
+    An item without ``=`` is a ValueError naming it.
+    """
+    settings = {}
+    for item in items:
+        if "=" not in item:
+            raise ValueError(f"--set {item!r}: write NAME=VALUE, e.g. --set hf_marginal=both")
+        k, v = item.split("=", 1)
+        try:
+            settings[k] = ast.literal_eval(v)
+        except (ValueError, SyntaxError):
+            settings[k] = v
+    return settings
