@@ -14,6 +14,7 @@ from .second_order import (
     sharma_dean_kernels,
 )
 from .contour import design_sea_state, iform_contour, linear_design_sea_state
+from .lf_records import LFRecord, events_frame, lf_record, lf_records, sea_state_seed
 from .linear_longterm import (
     HOURS_PER_YEAR,
     LinearLongTerm,
@@ -48,4 +49,5 @@ __all__ = [
     "TransferFunction", "ScatterDiagram", "north_atlantic", "fit_joint_model", "tz_over_tp",
     "iform_contour", "design_sea_state", "linear_design_sea_state", "HOURS_PER_YEAR",
     "short_term_linear", "LinearLongTerm", "linear_long_term", "rayleigh_extreme",
+    "LFRecord", "lf_record", "lf_records", "sea_state_seed", "events_frame",
 ]
