@@ -76,7 +76,9 @@ def short_term_linear(transfer, response, sea_states, *, omega=None):
         ``name``, ``probability``, ``hs``, ``tp`` and optionally ``gamma``,
         ``heading`` (default 180), ``speed`` (must equal ``transfer.speed``).
     omega : array_like, optional
-        Integration grid (rad/s); default 2000 points on [0.02, 4].
+        Integration grid (rad/s); default 2000 points on [0.02, 4]. The
+        spectral tail above it is left out (for a response that does not
+        decay, such as the RWE, ``m2`` of a Tz = 6.5 s sea is then ~3 % short).
 
     Returns
     -------
