@@ -22,6 +22,7 @@ Took ~4 min on the 2-core development machine; the file is ~0.1 MB.
 
 from __future__ import annotations
 
+import argparse
 import time
 from pathlib import Path
 
@@ -39,13 +40,12 @@ PANEL = 3.0  # target panel size (m)
 OUT = Path(__file__).resolve().parents[1] / "src" / "pas" / "waves" / "data" / "box_hull_capytaine.nc"
 
 
-def build_body():
+def build_body(length, beam, draught):
     """The submerged box (top open, lid at the waterline), rigid-body dofs about the centroid."""
-    resolution = (int(np.ceil(LENGTH / PANEL)), int(np.ceil(BEAM / PANEL)),
-                  int(np.ceil(DRAUGHT / PANEL)))
-    mesh = cpt.mesh_parallelepiped(size=(LENGTH, BEAM, DRAUGHT), center=(0.0, 0.0, -DRAUGHT / 2),
+    resolution = tuple(int(np.ceil(d / PANEL)) for d in (length, beam, draught))
+    centre = (0.0, 0.0, -draught / 2)
+    mesh = cpt.mesh_parallelepiped(size=(length, beam, draught), center=centre,
                                    resolution=resolution, missing_sides={"top"}, name="box")
-    centre = (0.0, 0.0, -DRAUGHT / 2)
     body = cpt.FloatingBody(mesh=mesh, lid_mesh=mesh.generate_lid(z=0.0),
                             dofs=cpt.rigid_body_dofs(rotation_center=centre),
                             center_of_mass=centre, name="box")
@@ -54,9 +54,15 @@ def build_body():
     return body
 
 
-def main():
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--length", type=float, default=LENGTH, help="box length (m)")
+    parser.add_argument("--beam", type=float, default=BEAM, help="box beam (m)")
+    parser.add_argument("--draught", type=float, default=DRAUGHT, help="box draught (m)")
+    parser.add_argument("--out", type=Path, default=OUT, help="NetCDF file to write")
+    args = parser.parse_args(argv)
     t0 = time.perf_counter()
-    body = build_body()
+    body = build_body(args.length, args.beam, args.draught)
     problems = []
     for w in OMEGA:
         problems += [cpt.RadiationProblem(body=body, radiating_dof=dof, omega=w, rho=RHO, g=G)
@@ -71,8 +77,8 @@ def main():
     ds["rao"] = rao(ds)
     ds.attrs.update({
         "title": "Capytaine radiation/diffraction of a box hull (pas benchmarks/make_box_rao.py)",
-        "length": LENGTH, "beam": BEAM, "draught": DRAUGHT,
-        "rotation_center_x": 0.0, "rotation_center_y": 0.0, "rotation_center_z": -DRAUGHT / 2,
+        "length": args.length, "beam": args.beam, "draught": args.draught,
+        "rotation_center_x": 0.0, "rotation_center_y": 0.0, "rotation_center_z": -args.draught / 2,
         "capytaine_version": cpt.__version__,
         "time_convention": "Capytaine: Re[X exp(-i omega t)], incident eta = Re[exp(i k (x cos b + y sin b) - i omega t)]",
         "n_panels": int(body.mesh.nb_faces), "n_lid_panels": int(body.lid_mesh.nb_faces),
@@ -82,9 +88,9 @@ def main():
             ds.attrs[name] = ds.coords[name].values.item() if name != "body_name" else str(ds.coords[name].values)
     drop = [c for c in ds.coords if c not in ds.dims and c not in ("radiating_dof", "influenced_dof")]
     ds = ds.drop_vars(drop)
-    OUT.parent.mkdir(parents=True, exist_ok=True)
-    save_dataset_as_netcdf(OUT, ds)
-    print(f"{OUT}: {OUT.stat().st_size / 1e3:.0f} kB, {len(problems)} problems, "
+    args.out.parent.mkdir(parents=True, exist_ok=True)
+    save_dataset_as_netcdf(args.out, ds)
+    print(f"{args.out}: {args.out.stat().st_size / 1e3:.0f} kB, {len(problems)} problems, "
           f"{body.mesh.nb_faces} + {body.lid_mesh.nb_faces} panels, {time.perf_counter() - t0:.0f} s")
 
 
