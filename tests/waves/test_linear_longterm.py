@@ -33,7 +33,8 @@ def test_mixture_weights_are_probability_times_cycle_rate():
     assert lt.exceedance(lt.value(1e-7)) == pytest.approx(1e-7, rel=1e-8)
     share = lt.contributions(x)["share"].to_numpy()
     assert share.sum() == pytest.approx(1.0, rel=1e-12)
-    assert share[1] == pytest.approx(0.1 * 0.1 * np.exp(-x**2 / 8) / ((p * nu) * np.exp(-x**2 / (2 * m0))).sum(), rel=1e-12)
+    terms = p * nu * np.exp(-x**2 / (2 * m0))
+    assert share[1] == pytest.approx(terms[1] / terms.sum(), rel=1e-12)
     years = 20.0
     n = years * 365.25 * 24 * 3600 * (p * nu).sum()
     assert lt.value(return_period=years) == pytest.approx(lt.value(1 / n), rel=1e-12)
@@ -55,6 +56,16 @@ def test_unit_transfer_gives_the_wave_moments():
             return integrate.quad(lambda x: x**n * W.jonswap(x, r.hs, r.tp), 0.02, 4.0, limit=200)[0]
         assert nu == pytest.approx(np.sqrt(moment(2) / moment(0)) / (2 * np.pi), rel=2e-3)
     assert (st["coverage"] > 0.99).all()
+
+
+def test_response_spectrum_integrates_to_m0_under_way():
+    tf = W.TransferFunction.from_ship(W.FERRY_190M, np.linspace(0.05, 2.5, 200), speed=5.0)
+    ss = W.north_atlantic().sea_states(speed=5.0, min_probability=5e-2)
+    st = W.short_term_linear(tf, "vbm", ss)
+    for (_, row), m0 in zip(ss.iterrows(), st["m0"]):
+        we, s_r = W.response_spectrum(tf, "vbm", row)
+        assert np.all(np.diff(we) > 0)
+        assert np.trapezoid(s_r, we) == pytest.approx(m0, rel=1e-3)
 
 
 def test_speed_must_match_the_transfer_function():

@@ -159,6 +159,11 @@ def test_rao_table_round_trip(tmp_path):
     back = TransferFunction.from_table(path)
     for dof in tf.values:
         np.testing.assert_allclose(back.values[dof], tf.values[dof], rtol=1e-9, atol=1e-12)
+    nc = tmp_path / "rao.nc"
+    tf.to_table().set_index(["omega", "heading", "dof"]).to_xarray().to_netcdf(nc, engine="h5netcdf")
+    from_nc = TransferFunction.from_table(nc)
+    for dof in tf.values:
+        np.testing.assert_allclose(from_nc.values[dof], tf.values[dof], rtol=1e-9, atol=1e-12)
     with pytest.raises(ValueError, match="lacks some"):
         TransferFunction.from_table(pd.DataFrame(rows[:-1]))
     with pytest.raises(ValueError, match="lacks columns"):

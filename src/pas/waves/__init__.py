@@ -20,6 +20,7 @@ from .linear_longterm import (
     LinearLongTerm,
     linear_long_term,
     rayleigh_extreme,
+    response_spectrum,
     short_term_linear,
 )
 from .scatter import ScatterDiagram, fit_joint_model, north_atlantic, tz_over_tp
@@ -49,5 +50,6 @@ __all__ = [
     "TransferFunction", "ScatterDiagram", "north_atlantic", "fit_joint_model", "tz_over_tp",
     "iform_contour", "design_sea_state", "linear_design_sea_state", "HOURS_PER_YEAR",
     "short_term_linear", "LinearLongTerm", "linear_long_term", "rayleigh_extreme",
+    "response_spectrum",
     "LFRecord", "lf_record", "lf_records", "sea_state_seed", "events_frame",
 ]

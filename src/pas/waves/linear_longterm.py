@@ -29,7 +29,7 @@ from .encounter import encounter_frequency
 from .spectra import jonswap
 
 __all__ = ["HOURS_PER_YEAR", "short_term_linear", "LinearLongTerm", "linear_long_term",
-           "rayleigh_extreme", "sea_state_spectrum"]
+           "rayleigh_extreme", "sea_state_spectrum", "response_spectrum"]
 
 HOURS_PER_YEAR = 365.25 * 24
 """Hours in a year (Julian), for return periods."""
@@ -43,6 +43,27 @@ def sea_state_spectrum(row):
     gamma = float(row.get("gamma", 3.3)) if hasattr(row, "get") else 3.3
     hs, tp = float(row["hs"]), float(row["tp"])
     return lambda w: jonswap(w, hs, tp, gamma)
+
+
+def response_spectrum(transfer, response, sea_state, *, omega=None):
+    """Response spectrum of one sea state on the encounter frequency.
+
+    ``S_R(w_e) = |H(w)|^2 S(w) / |dw_e / dw|`` on the wave-frequency grid
+    ``omega`` (default as :func:`short_term_linear`), so that
+    ``integral S_R dw_e = m0``.
+
+    Returns
+    -------
+    omega_e, s_r : ndarray
+        Encounter frequencies (rad/s, increasing for head and beam seas) and
+        the spectral density (response unit^2 s / rad).
+    """
+    w = _OMEGA if omega is None else np.asarray(omega, dtype=float)
+    heading = float(sea_state.get("heading", 180.0))
+    h = transfer.response(response, w, heading)
+    jacobian = np.abs(1.0 - 2.0 * w * transfer.speed * np.cos(np.deg2rad(heading)) / transfer._g)
+    return encounter_frequency(w, transfer.speed, heading), np.abs(h) ** 2 * sea_state_spectrum(
+        sea_state)(w) / jacobian
 
 
 def _check_table(sea_states, transfer):

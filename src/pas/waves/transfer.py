@@ -122,12 +122,20 @@ class TransferFunction:
     def from_table(cls, table, *, speed=0.0, source="RAO table"):
         """From a long table: ``omega``, ``heading``, ``dof``, ``amplitude``, ``phase`` (deg).
 
-        ``table`` is a DataFrame or the path of a CSV file. The phase is that
-        of ``exp(i w t)`` (this package's convention): a response leading the
-        wave at the reference point by ``phase`` degrees. Every (dof,
-        heading) must have every frequency.
+        ``table`` is a DataFrame, the path of a CSV file, or the path of a
+        NetCDF file (``.nc``, read with xarray + h5netcdf) whose variables
+        ``amplitude`` and ``phase`` have the dimensions ``omega``,
+        ``heading``, ``dof``. The phase is that of ``exp(i w t)`` (this
+        package's convention): a response leading the wave at the reference
+        point by ``phase`` degrees. Every (dof, heading) must have every
+        frequency. :meth:`to_table` writes the same layout.
         """
-        if not isinstance(table, pd.DataFrame):
+        if not isinstance(table, pd.DataFrame) and str(table).endswith(".nc"):
+            import xarray as xr
+
+            ds = xr.load_dataset(table, engine="h5netcdf")
+            table = ds[["amplitude", "phase"]].to_dataframe().reset_index()
+        elif not isinstance(table, pd.DataFrame):
             table = pd.read_csv(table, comment="#")
         need = ["omega", "heading", "dof", "amplitude", "phase"]
         missing = [c for c in need if c not in table.columns]
@@ -195,6 +203,17 @@ class TransferFunction:
         values = {_CAPYTAINE_DOFS.get(d, d): np.conj(x[:, order, i]).T for i, d in enumerate(dofs)}
         return cls(omega=w, heading=mu[order], values=values, speed=0.0,
                    source=label or "Capytaine dataset")
+
+    def to_table(self):
+        """The long table of :meth:`from_table`: ``omega``, ``heading``, ``dof``, ``amplitude``, ``phase``.
+
+        ``table.set_index(["omega", "heading", "dof"]).to_xarray()`` is the
+        NetCDF layout :meth:`from_table` reads.
+        """
+        rows = [(w, mu, dof, abs(v), np.angle(v, deg=True))
+                for dof, arr in self.values.items() for i, mu in enumerate(self.heading)
+                for w, v in zip(self.omega, arr[i])]
+        return pd.DataFrame(rows, columns=["omega", "heading", "dof", "amplitude", "phase"])
 
     # --- evaluation -------------------------------------------------------------------
     def _heading_index(self, heading):
