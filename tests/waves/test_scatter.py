@@ -107,3 +107,19 @@ def test_linear_design_sea_state_on_the_contour(fitted):
     # The 0.9 fractile of the 3-hour maximum lies above its MPM.
     d90, _ = W.linear_design_sea_state(contour, tf, "vbm", fractile=0.9)
     assert d90["value"] > design["value"]
+
+
+@pytest.mark.slow
+def test_omae2020_model_fits_and_bins_too(rec34):
+    model = W.fit_joint_model(rec34.sample(4000, seed=2), model="OMAE2020")  # ~3 s
+    binned = W.ScatterDiagram.from_joint_model(model, np.arange(0.0, 18.0), np.arange(1.0, 20.0))
+    assert 0.5 * np.abs(binned.probability - rec34.probability).sum() < 0.1  # measured 0.068
+
+
+def test_joint_model_input_errors(rec34):
+    with pytest.raises(ValueError, match="model must be one of"):
+        W.fit_joint_model(rec34.sample(100, seed=1), model="Weibull")
+    with pytest.raises(ValueError, match="shape"):
+        W.fit_joint_model(np.ones((10, 2)))
+    with pytest.raises(ValueError, match="hs_edges"):
+        W.ScatterDiagram.from_joint_model(None, [1.0], [1.0, 2.0])
