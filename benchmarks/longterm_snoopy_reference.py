@@ -10,10 +10,12 @@ environment and the test reads the committed numbers::
     PYTHONPATH=src /tmp/snoopy/bin/python benchmarks/longterm_snoopy_reference.py
 
 The cases (RAO from pas, sea states from the IACS Rec. 34 diagram in pas,
-head seas, zero speed, no spreading):
+head seas, no spreading):
 
 * ``rwe_ferry``: relative wave elevation at station 19 of the 190 m ferry
   (built-in closed-form model);
+* ``rwe_ferry_5ms``: the same at 5 m/s (Snoopy forms the encounter
+  frequencies itself from the RAO's forward speed);
 * ``heave_box``: heave of the Capytaine box hull (the checked-in dataset).
 
 Snoopy computes the spectral moments itself (its own JONSWAP with the same
@@ -44,10 +46,12 @@ RETURN_PERIODS = (1.0, 20.0, 25.0)
 
 def cases():
     """(name, pas transfer function, response spec) of the compared responses."""
-    ferry = TransferFunction.from_ship(FERRY_190M, OMEGA, heading=[180.0])
+    bow = ("rwe", FERRY_190M.station_x(19))
     box = TransferFunction.from_capytaine(ROOT / "src" / "pas" / "waves" / "data"
                                           / "box_hull_capytaine.nc")
-    return [("rwe_ferry", ferry, ("rwe", FERRY_190M.station_x(19))),
+    return [("rwe_ferry", TransferFunction.from_ship(FERRY_190M, OMEGA, heading=[180.0]), bow),
+            ("rwe_ferry_5ms",
+             TransferFunction.from_ship(FERRY_190M, OMEGA, heading=[180.0], speed=5.0), bow),
             ("heave_box", box, "heave")]
 
 
@@ -56,7 +60,8 @@ def snoopy_long_term(transfer, response, table):
     w = transfer.omega
     h = transfer.response(response, w, 180.0)
     rao = sp.Rao(b=np.array([np.pi]), w=w, cvalue=h.reshape(1, -1, 1), modes=np.array([0]),
-                 refPoint=np.zeros(3), waveRefPoint=np.zeros(2), forwardSpeed=0.0, depth=-1.0)
+                 refPoint=np.zeros(3), waveRefPoint=np.zeros(2), forwardSpeed=transfer.speed,
+                 depth=-1.0)
     ss_list = [sp.SeaState(sp.Jonswap(float(r.hs), float(r.tp), float(r.gamma), heading=np.pi),
                            probability=float(r.probability)) for r in table.itertuples()]
     lt = st.LongTermRao(rao, ss_list, dss="INDEP")
