@@ -181,9 +181,12 @@ def test_heading_interpolation_and_its_limits(box):
         box.dof("vbm", w)
 
 
-def test_capytaine_dataset_without_inertia_is_refused(box_dataset):
+def test_capytaine_dataset_without_inertia_or_with_speed_is_refused(box_dataset):
     with pytest.raises(ValueError, match="inertia_matrix"):
         TransferFunction.from_capytaine(box_dataset.drop_vars("inertia_matrix"))
+    moving = box_dataset.assign_attrs(forward_speed=3.0)
+    with pytest.raises(ValueError, match="forward speed"):
+        TransferFunction.from_capytaine(moving)
 
 
 def test_long_term_values_of_bem_and_builtin_box(box, box_dataset):

@@ -170,8 +170,10 @@ class TransferFunction:
         Parameters
         ----------
         dataset : xarray.Dataset or path
-            From ``capytaine.assemble_dataset`` (zero speed, deep water), or a
-            NetCDF file written by Capytaine's ``export_dataset``.
+            From ``capytaine.assemble_dataset`` (zero speed), or a NetCDF file
+            written by Capytaine's ``export_dataset``. The RWE's incident wave
+            uses the deep-water wave number, so for a finite-depth dataset
+            only the motions are exact.
         """
         import xarray as xr
 
@@ -180,6 +182,10 @@ class TransferFunction:
             label = label or str(dataset)
             dataset = xr.load_dataset(dataset, engine="h5netcdf")
         ds = _merge_complex(dataset)
+        speed = ds.coords.get("forward_speed", ds.attrs.get("forward_speed", 0.0))
+        if np.any(np.asarray(speed, dtype=float) != 0.0):
+            raise ValueError("Capytaine dataset has a forward speed; only zero-speed datasets "
+                             "are read (their RAOs on the wave frequency)")
         need = ["added_mass", "radiation_damping", "excitation_force", "inertia_matrix",
                 "hydrostatic_stiffness"]
         missing = [v for v in need if v not in ds]
