@@ -2,9 +2,9 @@
 
 The external peer of :mod:`pas.waves.linear_longterm` (issue 29): Snoopy
 (``snoopy-bv``, Bureau Veritas) ``Statistics.LongTermRao`` on the same RAO
-and the same sea states. Snoopy needs a compiled library and pins its own
-numpy, so it is not a test dependency; this script runs it once in a separate
-environment and the test reads the committed numbers::
+and the same sea states. Snoopy is a large compiled package that pas does not
+otherwise need, so it is kept out of the ``dev`` extra: this script runs it
+once in a separate environment and the test reads the committed numbers::
 
     python -m venv /tmp/snoopy && /tmp/snoopy/bin/pip install snoopy-bv==2.6.0 pandas scipy
     PYTHONPATH=src /tmp/snoopy/bin/python benchmarks/longterm_snoopy_reference.py
