@@ -1,4 +1,5 @@
-"""Waves and linear ship responses: spectra, realisations, second order, RAOs, design waves."""
+"""Waves and linear ship responses: spectra, realisations, second order, RAOs, design waves,
+scatter diagrams, contours and the linear long-term value."""
 
 from .design import FormResult, form_rcw, mler, mler_amplitudes, rayleigh_target
 from .encounter import encounter_frequency, mean_encounter_period, wave_frequency_from_encounter
@@ -12,8 +13,20 @@ from .second_order import (
     second_order_kernel,
     sharma_dean_kernels,
 )
+from .contour import design_sea_state, iform_contour, linear_design_sea_state
+from .lf_records import LFRecord, events_frame, lf_record, lf_records, sea_state_seed
+from .linear_longterm import (
+    HOURS_PER_YEAR,
+    LinearLongTerm,
+    linear_long_term,
+    rayleigh_extreme,
+    response_spectrum,
+    short_term_linear,
+)
+from .scatter import ScatterDiagram, fit_joint_model, north_atlantic, tz_over_tp
 from .ship import FERRY_190M, Ship, ShipRAO, relative_elevation_rao, ship_rao, ship_responses
 from .surrogate import ResponseSurrogate, response_surrogate
+from .transfer import TransferFunction
 from .spectra import (
     GRAVITY,
     jonswap,
@@ -34,4 +47,9 @@ __all__ = [
     "Ship", "FERRY_190M", "ShipRAO", "ship_rao", "relative_elevation_rao", "ship_responses",
     "ResponseSurrogate", "response_surrogate", "mler_amplitudes", "mler", "FormResult",
     "form_rcw", "rayleigh_target", "Episode", "design_episode",
+    "TransferFunction", "ScatterDiagram", "north_atlantic", "fit_joint_model", "tz_over_tp",
+    "iform_contour", "design_sea_state", "linear_design_sea_state", "HOURS_PER_YEAR",
+    "short_term_linear", "LinearLongTerm", "linear_long_term", "rayleigh_extreme",
+    "response_spectrum",
+    "LFRecord", "lf_record", "lf_records", "sea_state_seed", "events_frame",
 ]
