@@ -17,6 +17,11 @@ polynomial), which converts the diagram's period into the other one.
 References
 ----------
 IACS (2001). Recommendation No. 34, Standard wave data, Rev. 1.
+    The table (``data/iacs_rec34_north_atlantic.csv``) is IACS's published
+    reference data, which IACS distributes free of charge and which class rules
+    and codes reproduce widely; it is reproduced here with this attribution.  IACS
+    states no licence for it: where yours must be cleared, pass your own table
+    (:meth:`ScatterDiagram.from_table`).
 
 Haselsteiner, A.F., Coe, R.G., Manuel, L., Chai, W., Leira, B., Clarindo, G.,
 Guedes Soares, C., Hannesdóttir, Á., Dimitrov, N., Sander, A., Ohlendorf,
