@@ -128,7 +128,7 @@ class DesignWaveStudy(Study):
     """
 
     def __init__(self, lfset, strategy, *, episodes=(), run_settings=None, store=None,
-                 **settings):  # noqa: D107
+                 **settings):
         self.episodes = list(episodes)
         self.run_settings = dict(run_settings or {})
         settings = {"eps1": 1.0, "seed": 0, "adaptive_threshold": False,
@@ -182,7 +182,7 @@ class EpisodeOracle:
     file; those episodes are not evaluated again.
     """
 
-    def __init__(self, oracle, episodes, recorded=None):  # noqa: D107
+    def __init__(self, oracle, episodes, recorded=None):
         self.oracle, self.episodes, self.recorded = oracle, list(episodes), dict(recorded or {})
 
     def __call__(self, event):

@@ -39,9 +39,12 @@ class Counting:
 
 def test_a_rerun_on_the_study_store_takes_every_result_from_it(linear, tmp_path):
     path = tmp_path / "rcw.sqlite"
-    first = Counting()
-    res = pas.run_rcw(linear, first, p_exp=P_EXP, levels=LEVELS, study=path)
+    first, seen = Counting(), []
+    res = pas.run_rcw(linear, first, p_exp=P_EXP, levels=LEVELS, study=path,
+                      callback=lambda ep, row: seen.append((ep.level, row["f_nl"], row["n_hf"])))
     assert first.levels == [1e-2, 3e-3, 1e-3, 5e-4] and res.n_hf == 4 and res.converged
+    assert [s[0] for s in seen] == first.levels and [s[2] for s in seen] == [1, 2, 3, 4]
+    assert np.allclose([s[1] for s in seen], 0.3)
     memory = pas.run_rcw(linear, Counting(), p_exp=P_EXP, levels=LEVELS)
     assert res.mpm == pytest.approx(memory.mpm, rel=1e-12)
     events = pas.StudyStore(path).events()
@@ -50,6 +53,7 @@ def test_a_rerun_on_the_study_store_takes_every_result_from_it(linear, tmp_path)
     again = Counting(factor=99.0)  # would give other numbers, were it called
     back = pas.run_rcw(linear, again, p_exp=P_EXP, levels=LEVELS, study=path)
     assert again.levels == [] and back.mpm == res.mpm
+    assert list(back.history.columns) == list(res.history.columns)
     assert list(back.history["hf"]) == list(res.history["hf"])
 
 

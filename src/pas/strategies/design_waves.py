@@ -43,7 +43,7 @@ class LevelLadder(LFSet):
         Wave encounters of the LF Monte-Carlo, when there is one.
     """
 
-    def __init__(self, levels, targets, *, ids, p_exp, n_waves=None):  # noqa: D107
+    def __init__(self, levels, targets, *, ids, p_exp, n_waves=None):
         self.d = np.asarray(levels, dtype=float)
         self.lf = np.asarray(targets, dtype=float)
         ids = [str(i) for i in ids]
