@@ -116,15 +116,21 @@ def rcw_episodes(surrogate, levels, targets, *, method="form", tol=1e-6,
             for i, (p, t) in enumerate(zip(levels, targets))]
 
 
+DESIGN_WAVE_SETTINGS = ("strategy", "strategy_settings", "n_waves", "p_exp", "max_failures",
+                        "target")
+"""The settings a design-wave study stores (its episodes are its LF pool)."""
+
+
 class DesignWaveStudy(Study):
     """A :class:`~pas.study.study.Study` whose events are the episodes of a ladder of levels.
 
     The strategy is :class:`~pas.strategies.design_waves.DesignWaves` and the
     pool a :class:`~pas.strategies.design_waves.LevelLadder`; ``episodes``
     (position order) give the result its FORM diagnostics and
-    ``run_settings`` the rest of its ``settings`` (surrogate, FORM options).  No stopping rule,
-    threshold or budget applies; failures never stop the study
-    (``max_failures`` is the number of episodes) but leave it unconverged.
+    ``run_settings`` the rest of its ``settings`` (surrogate, FORM options).
+    No stopping rule, threshold or budget applies; failures never stop the
+    study (``max_failures`` is the number of episodes) but leave it
+    unconverged.
     """
 
     def __init__(self, lfset, strategy, *, episodes=(), run_settings=None, store=None,
@@ -158,7 +164,10 @@ class DesignWaveStudy(Study):
                 "residual": ep.form.residual, "error": error, "mpm": np.nan}
 
     def result(self, *, model_band: bool = True) -> ScreeningResult:
-        """The HF value at ``p_exp`` and the HF-vs-level points, from the latest result per episode."""
+        """The HF value at ``p_exp`` and the HF-vs-level points, from the latest result per episode.
+
+        ``model_band`` is accepted for the study loop; a design wave has no band.
+        """
         latest = {r["position"]: r for r in self.rows}
         rows, n_hf = [], 0
         for pos in sorted(latest):
@@ -168,11 +177,6 @@ class DesignWaveStudy(Study):
                     **self.run_settings}
         return _result(rows, self.lfset.p_exp, self.lfset.n_waves, self.strategy.name, settings,
                        complete=len(rows) == self.lfset.n)
-
-
-DESIGN_WAVE_SETTINGS = ("strategy", "strategy_settings", "n_waves", "p_exp", "max_failures",
-                        "target")
-"""The settings a design-wave study stores (its episodes are its LF pool)."""
 
 
 class EpisodeOracle:
