@@ -252,7 +252,7 @@ def test_run_rcw_ladder_targets_and_result(crest, tmp_path):
         pas.m1(mres)
 
 
-def test_run_rcw_lf_target_failures_and_record(crest, tmp_path):
+def test_run_rcw_lf_target_failures_and_study_store(crest, tmp_path):
     lf = np.random.default_rng(0).rayleigh(2.5, 5000)
     v = np.sort(lf)[::-1]
     expected = np.interp(np.log(2e-3), np.log(np.arange(1, v.size + 1) / 6000), v)
@@ -264,8 +264,8 @@ def test_run_rcw_lf_target_failures_and_record(crest, tmp_path):
             raise RuntimeError("CFD diverged")
         return 0.0 if ep.level > 2e-3 else 3.0 * ep.target
 
-    rec = tmp_path / "rcw.jsonl"
-    kw = dict(p_exp=2e-3, levels=[1e-2, 4e-3], target="lf", lf_peaks=lf, n_waves=6000, record=rec)
+    kw = dict(p_exp=2e-3, levels=[1e-2, 4e-3], linear_target="lf", lf_peaks=lf, n_waves=6000,
+              study=tmp_path / "rcw.sqlite")
     res = pas.run_rcw(crest, oracle, **kw)
     assert res.n_failed == 1 and res.n_false_positive == 1 and res.n_hf == 2
     assert not res.converged  # a failed episode is not a finished study
@@ -273,14 +273,16 @@ def test_run_rcw_lf_target_failures_and_record(crest, tmp_path):
     assert h.loc[1e-2, "status"] == "failed" and "CFD diverged" in h.loc[1e-2, "error"]
     assert h.loc[2e-3, "target"] == pytest.approx(expected, rel=1e-12)
     assert res.mpm == pytest.approx(3 * expected, rel=1e-12)
-    assert len(rec.read_text().splitlines()) == 3
+    assert len(pas.StudyStore(kw["study"]).events()) == 3
     calls.clear()
-    again = pas.run_rcw(crest, oracle, **kw)          # resume: only the failed one reruns
-    assert calls == [1e-2] and again.mpm == res.mpm
+    again = pas.run_rcw(crest, oracle, **kw)          # rerun: every result from the store
+    assert calls == [] and again.n_failed == 1 and again.mpm == res.mpm
+    retried = pas.run_rcw(crest, oracle, **kw, retry_failed=True)   # only the failed one reruns
+    assert calls == [1e-2] and retried.n_failed == 1 and retried.mpm == res.mpm
     with pytest.raises(ValueError, match="lf_peaks and n_waves"):
-        pas.run_rcw(crest, oracle, p_exp=2e-3, target="lf")
-    with pytest.raises(ValueError, match="target must be"):
-        pas.run_rcw(crest, oracle, p_exp=2e-3, target="gauss")
+        pas.run_rcw(crest, oracle, p_exp=2e-3, linear_target="lf")
+    with pytest.raises(ValueError, match="linear_target must be"):
+        pas.run_rcw(crest, oracle, p_exp=2e-3, linear_target="gauss")
     with pytest.raises(ValueError, match="ResponseSurrogate"):
         pas.run_rcw(lf, oracle, p_exp=2e-3)
 

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from ..strategies.design_waves import DESIGN_WAVE_METHODS
 from .factory import STRATEGIES
 from .schema import RESUMABLE, StoreError, with_legacy_settings
 from .store import StudyStore
@@ -33,6 +34,10 @@ def open_study(store, *, consume: bool = True, changes: dict | None = None) -> S
             raise ValueError(f"{key} cannot change on a resumed study; these can: "
                              f"{', '.join(RESUMABLE)}")
     s = {**s, **(changes or {})}
+    if s["strategy"] in DESIGN_WAVE_METHODS.values():
+        raise StoreError(f"{store.path} holds design waves ({s['strategy']}); its episodes are "
+                         "rebuilt from the surrogate: continue it with pas.run_rcw(..., "
+                         f"study={str(store.path)!r}) (pas study tell also stores its results)")
     if not isinstance(s["strategy"], str) or s["strategy"] not in STRATEGIES:
         raise StoreError(f"strategy {s['strategy']!r} in {store.path} is unknown to this pas")
     lf_all, all_ids, all_meta = store.lf_inputs()

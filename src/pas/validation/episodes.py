@@ -221,19 +221,20 @@ def episode_oracle(case_id, coeffs=None) -> EpisodeOracle:
 
 def _target(spec, surrogate, data):
     if spec.family != "4":
-        return {"target": "lf", "lf_peaks": data.lf}
+        return {"linear_target": "lf", "lf_peaks": data.lf}
     tz = 2.0 * np.pi * np.sqrt(surrogate.m0 / surrogate.m2)
-    return {"target": "rayleigh", "peaks_per_wave": data.scale * spec.t_mcs / tz / data.n_waves}
+    return {"linear_target": "rayleigh", "peaks_per_wave": data.scale * spec.t_mcs / tz / data.n_waves}
 
 
-def run_rcw_case(data, *, method="form", ladder=RCW_LADDER, record=None):
+def run_rcw_case(data, *, method="form", ladder=RCW_LADDER, study=None):
     """:func:`pas.run_rcw` on a generated case (:class:`~pas.validation.data.CaseData`).
 
     ``method="form"`` conditions the second-order surrogate, ``"mler"`` the
-    linear one; the levels are ``ladder × P_exp``.
+    linear one; the levels are ``ladder × P_exp``; ``study`` a study store
+    (:func:`pas.run_rcw`).
     """
     spec = get_case(data.case)
     surrogate = case_surrogate(spec.id, second_order=method == "form")
     return run_rcw(surrogate, episode_oracle(spec.id), p_exp=data.p_exp,
                    levels=[f * data.p_exp for f in ladder], n_waves=data.n_waves,
-                   method=method, record=record, **_target(spec, surrogate, data))
+                   method=method, study=study, **_target(spec, surrogate, data))
