@@ -22,8 +22,8 @@ from ..study.oracles import OracleFailureLimit, check_oracle
 from ..study.schema import StoreError, dumps
 from ..study.store import StudyStore
 from ..study.study import Study
-from .allocation import curves_of, gains, proxy_ratios, reaches
-from .combination import ProxyCurve, level_at
+from .allocation import REACH_SHARE, curves_of, gains, lf_shares, proxy_ratios
+from .combination import level_at, proxy_curve
 from .inputs import design_exceedance, encounter_weights, read_sea_states
 from .result import LongTermResult
 
@@ -101,16 +101,16 @@ def run_long_term(sea_states, lf_peaks, oracle, *, p_exceed=None, return_period=
     if batch_size < 1:
         raise ValueError(f"batch_size must be a positive integer, got {batch_size}")
     top = max(float(s.lf.max()) for s in states)
-    lf_value = level_at([ProxyCurve(s, 1.0) for s in states], weights, p, top)
+    lf_value = level_at([proxy_curve(s, 1.0) for s in states], weights, p, top)
     settings = {"p_exceed": p, "max_hf": max_hf, "eps1": eps1,
                 "sea_states": [[s.name, s.probability, s.n_waves, s.duration] for s in states]}
     root, seed = _open_root(study, settings, seed)
     strategy = _default_strategy() if strategy is None else strategy
-    studies = []
-    for i, s in enumerate(states):
-        q_lf = reaches(s, lf_value) if np.isfinite(lf_value) else 0.0
-        studies.append(None if q_lf <= 0 else _make_study(
-            s, i, q_lf, strategy, seed, max_hf, eps1, study_settings or {}, study))
+    share_lf, q_lf = lf_shares(states, weights, lf_value) if np.isfinite(lf_value) else \
+        (np.zeros(len(states)), np.zeros(len(states)))
+    studies = [None if share_lf[i] < REACH_SHARE else _make_study(
+        s, i, q_lf[i], strategy, seed, max_hf, eps1, study_settings or {}, study)
+        for i, s in enumerate(states)]
     run = _Run(states, weights, studies, oracle, executor, callback, max_hf)
     try:
         run.left_over()
@@ -160,10 +160,11 @@ def _seed(seed) -> int:
 
 
 def _make_study(state, i, q_lf, strategy, seed, max_hf, eps1, settings, path) -> Study:
-    """The sea state's study, at ``p_exp`` = its LF exceedance at the LF-only long-term level."""
+    """The sea state's study, at ``p_exp`` = its LF exceedance at the LF-only long-term level
+    (within its record: ``1/n_w`` for a level above it)."""
     n_initial = strategy.n_initial
     mask = state.lf > state.threshold if state.threshold is not None else slice(None)
-    p_exp = min(q_lf, np.asarray(state.lf)[mask].size / state.n_waves)
+    p_exp = min(max(q_lf, 1.0 / state.n_waves), np.asarray(state.lf)[mask].size / state.n_waves)
     lfset = LFSet(state.lf, n_waves=state.n_waves, p_exp=p_exp, threshold=state.threshold,
                   ids=state.ids, meta=state.meta, min_peaks=max(4, n_initial),
                   sea_state=state.name)
@@ -201,7 +202,8 @@ class _Run:
 
     def value_now(self, p, top):
         ratios = proxy_ratios(self.studies)
-        triples = [curves_of(s, st, ratios) for s, st in zip(self.states, self.studies)]
+        triples = [curves_of(s, st, ratios, record=False)
+                   for s, st in zip(self.states, self.studies)]
         x = level_at([t[1] for t in triples], self.weights, p, top * ratios[1])
         return triples, x
 

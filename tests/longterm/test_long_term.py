@@ -1,0 +1,97 @@
+"""pas.run_long_term on a user-supplied problem whose long-term truth is known in closed form."""
+
+from concurrent.futures import ThreadPoolExecutor
+
+import numpy as np
+import pandas as pd
+import pytest
+
+import pas
+from pas.longterm.allocation import REACH_SHARE
+from pas.study.store import StoreError
+
+import _longterm_problem as problem
+
+P = 1e-3
+FAST = dict(p_exceed=P, seed=4, strategy=pas.PAS(n_bootstrap=0), model_band=False)
+
+
+def _small(seed=1):
+    return problem.table(n_waves=2000), problem.lf_peaks(seed, n_waves=2000)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("g, tolerance", [(problem.hf_smooth, 0.05), (problem.hf_impact, 0.10)])
+def test_value_and_band_against_the_closed_form_truth(g, tolerance):
+    truth = problem.true_value(P, g)
+    res = pas.run_long_term(problem.table(), problem.lf_peaks(3), problem.Oracle(g), p_exceed=P,
+                            max_hf=30, seed=5, strategy=pas.PAS(n_bootstrap=20))
+    assert res.value == pytest.approx(truth, rel=tolerance)
+    assert res.band[0] <= truth <= res.band[1]
+    assert res.n_hf == res.contributions["n_hf"].sum() <= 30
+    d = res.distribution
+    assert d["exceedance_probability"].is_monotonic_increasing
+    assert (d["h_low"] <= d["h_mean"]).all() and (d["h_mean"] <= d["h_high"]).all()
+    at_p = d.loc[np.isclose(d["exceedance_probability"], P, rtol=1e-12), "h_mean"]
+    assert at_p.iloc[0] == pytest.approx(res.value, rel=1e-9)
+
+
+def test_sea_states_that_cannot_reach_the_level_get_no_hf_event():
+    table, lf = _small()
+    oracle = problem.Oracle()
+    res = pas.run_long_term(table, lf, oracle, max_hf=8, **FAST)
+    c = res.contributions.set_index("sea_state")
+    x = problem.true_lf_level(P)
+    lf_share = problem.weights() * np.exp(-x ** 2 / (2 * problem.SIGMA ** 2)) / P
+    # H0 and H1 lie orders of magnitude below the reach share: no study, no HF event
+    assert (lf_share[:2] < REACH_SHARE / 100).all()
+    assert (c.loc[["H0", "H1"], "n_hf"] == 0).all()
+    assert c.loc[["H0", "H1"], "p_exp"].isna().all()
+    assert {s for s, _ in oracle.calls} <= {"H2", "H3", "H4"}
+    assert len(oracle.calls) == res.n_hf == c["n_hf"].sum() <= 8
+    assert c["share"].sum() == pytest.approx(1.0, rel=1e-9)
+    assert "long-term value" in res.summary()
+
+
+def test_a_table_oracle_keys_on_sea_state_and_event_id():
+    table, lf = _small()
+    rows = [{"sea_state": name, "id": i, "hf": float(problem.hf_smooth(v))}
+            for name, values in lf.items() for i, v in enumerate(values)]
+    oracle = pas.TableOracle(pd.DataFrame(rows))  # ids 0..1999 repeat in every sea state
+    by_table = pas.run_long_term(table, lf, oracle, max_hf=8, **FAST)
+    by_function = pas.run_long_term(table, lf, problem.Oracle(), max_hf=8, **FAST)
+    assert by_table.value == pytest.approx(by_function.value, rel=1e-9)
+    for name, r in by_table.results.items():
+        assert r.pairs["hf"].to_numpy() == pytest.approx(
+            problem.hf_smooth(r.pairs["lf"].to_numpy()), rel=1e-12)
+
+
+@pytest.mark.slow
+def test_resumed_analysis_asks_nothing_twice_and_ends_as_an_uninterrupted_one(tmp_path):
+    table, lf = _small()
+    db = tmp_path / "long.sqlite"
+    oracle = problem.Oracle()
+    pas.run_long_term(table, lf, oracle, max_hf=8, study=db, **FAST)
+    first = list(oracle.calls)
+    resumed = pas.run_long_term(table, lf, oracle, max_hf=12, study=db, **FAST)
+    assert len(oracle.calls) == len(set(oracle.calls)) == 12
+    assert oracle.calls[:8] == first
+    fresh = pas.run_long_term(table, lf, problem.Oracle(), max_hf=12, **FAST)
+    assert resumed.value == pytest.approx(fresh.value, rel=1e-9)  # same code, same machine
+    again = problem.Oracle()
+    pas.run_long_term(table, lf, again, max_hf=12, study=db, **FAST)
+    assert again.calls == []
+    with pytest.raises(StoreError, match="p_exceed differs from the long-term store"):
+        pas.run_long_term(table, lf, again, max_hf=12, study=db, **{**FAST, "p_exceed": 2e-3})
+    with pytest.raises(StoreError, match="seed differs"):
+        pas.run_long_term(table, lf, again, max_hf=12, study=db, **{**FAST, "seed": 5})
+
+
+def test_sea_states_run_in_parallel_on_an_executor():
+    table, lf = _small()
+    oracle = problem.Oracle()
+    with ThreadPoolExecutor(2) as pool:
+        res = pas.run_long_term(table, lf, oracle, max_hf=8, batch_size=2, executor=pool, **FAST)
+    assert len({s for s, _ in oracle.calls[:8]}) == 2  # the first round serves two sea states
+    serial = pas.run_long_term(table, lf, problem.Oracle(), max_hf=8, batch_size=2, **FAST)
+    assert res.value == pytest.approx(serial.value, rel=1e-9)
