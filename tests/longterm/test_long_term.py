@@ -95,3 +95,58 @@ def test_sea_states_run_in_parallel_on_an_executor():
     assert len({s for s, _ in oracle.calls[:8]}) == 2  # the first round serves two sea states
     serial = pas.run_long_term(table, lf, problem.Oracle(), max_hf=8, batch_size=2, **FAST)
     assert res.value == pytest.approx(serial.value, rel=1e-9)
+
+
+KILLED_RUN = """
+import os, sys, time
+sys.path.insert(0, {tests!r})
+import pas
+import _longterm_problem as problem
+
+class SlowAfter(problem.Oracle):
+    def __call__(self, event):
+        if os.path.exists({log!r}) and len(open({log!r}).read().split("\\n")) > {n_before}:
+            time.sleep(120)  # killed here
+        value = super().__call__(event)
+        with open({log!r}, "a") as f:
+            f.write(f"{{event.sea_state}} {{event.index}}\\n")
+        return value
+
+pas.run_long_term(problem.table(n_waves=2000), problem.lf_peaks(1, n_waves=2000), SlowAfter(),
+                  p_exceed={p}, seed=4, strategy=pas.PAS(n_bootstrap=0), model_band=False,
+                  max_hf=12, study={db!r})
+"""
+
+
+@pytest.mark.slow
+def test_kill_9_mid_campaign_then_resume_loses_nothing_and_asks_nothing_twice(tmp_path):
+    import os
+    import subprocess
+    import sys
+    import time
+    from pathlib import Path
+
+    log, db, n_before = tmp_path / "done.log", tmp_path / "long.sqlite", 6
+    script = tmp_path / "run.py"
+    script.write_text(KILLED_RUN.format(tests=str(Path(__file__).parents[1]), log=str(log),
+                                        n_before=n_before, p=P, db=str(db)))
+    env = {**os.environ, "PYTHONPATH": str(Path(pas.__file__).resolve().parents[1])}
+    proc = subprocess.Popen([sys.executable, str(script)], env=env)
+    deadline = time.monotonic() + 300
+    while not (log.exists() and len(log.read_text().split()) >= 2 * n_before):
+        assert proc.poll() is None and time.monotonic() < deadline
+        time.sleep(0.2)
+    time.sleep(1.0)  # the next HF run is in flight now
+    proc.kill()
+    proc.wait(timeout=30)
+    done = [tuple(line.split()) for line in log.read_text().splitlines()]
+    done = [(s, int(i)) for s, i in done]
+    assert len(done) == n_before
+    table, lf = _small()
+    oracle = problem.Oracle()
+    resumed = pas.run_long_term(table, lf, oracle, max_hf=12, study=db, **FAST)
+    assert not set(oracle.calls) & set(done)  # no stored result computed again
+    assert len(set(oracle.calls) | set(done)) == len(oracle.calls) + len(done) == 12
+    fresh = pas.run_long_term(table, lf, problem.Oracle(), max_hf=12, **FAST)
+    assert resumed.value == pytest.approx(fresh.value, rel=1e-9)
+    assert resumed.contributions["n_hf"].tolist() == fresh.contributions["n_hf"].tolist()

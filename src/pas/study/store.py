@@ -1,6 +1,8 @@
 """Crash-safe study store: every HF result is on disk the moment it arrives.
 
-One SQLite file per study (standard-library :mod:`sqlite3`), WAL journal,
+One SQLite file per study — or per long-term analysis, one study per sea
+state, each in its own ``scope`` (schema 3) — (standard-library
+:mod:`sqlite3`), WAL journal,
 ``synchronous=FULL``, every write in a ``BEGIN IMMEDIATE`` transaction with a
 busy time-out, so a driver process and any number of ``pas study tell``
 processes can write at the same time without losing a result.  Everything is
