@@ -22,9 +22,9 @@ import pandas as pd
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
 
-import _longterm_problem as problem  # noqa: E402
+import _longterm_problem as problem
 
-import pas  # noqa: E402
+import pas
 
 
 def main(argv=None):

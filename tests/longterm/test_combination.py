@@ -4,8 +4,13 @@ import numpy as np
 import pytest
 from scipy.optimize import brentq
 
-from pas.longterm.combination import (PASCurve, extension_bounds, level_at,
-                                      long_term_exceedance, proxy_curve)
+from pas.longterm.combination import (
+    PASCurve,
+    extension_bounds,
+    level_at,
+    long_term_exceedance,
+    proxy_curve,
+)
 from pas.longterm.inputs import SeaState
 
 SIGMA = np.array([1.0, 1.5, 2.0])
@@ -41,7 +46,8 @@ def test_the_weibull_tail_above_the_record_is_exact_for_a_rayleigh_distribution(
 def test_the_long_term_level_solves_the_weighted_sum_in_closed_form():
     curves = [_exact_curve(s) for s in SIGMA]
     for p in (1e-2, 1e-3, 1e-5):  # the last beyond every record: the tails
-        truth = brentq(lambda x: np.sum(W * np.exp(-x ** 2 / (2 * SIGMA ** 2))) - p, 0.01, 50)
+        truth = brentq(lambda x, p=p: np.sum(W * np.exp(-x ** 2 / (2 * SIGMA ** 2))) - p,
+                       0.01, 50)
         # piecewise linear on ln d between the ranks: an interpolation error of ~1e-6
         assert level_at(curves, W, p, start=3.0) == pytest.approx(truth, rel=1e-5)
         assert long_term_exceedance(curves, W, truth)[0] == pytest.approx(p, rel=1e-4)

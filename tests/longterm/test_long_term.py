@@ -2,6 +2,7 @@
 
 from concurrent.futures import ThreadPoolExecutor
 
+import _longterm_problem as problem
 import numpy as np
 import pandas as pd
 import pytest
@@ -9,8 +10,6 @@ import pytest
 import pas
 from pas.longterm.allocation import REACH_SHARE
 from pas.study.store import StoreError
-
-import _longterm_problem as problem
 
 P = 1e-3
 FAST = dict(p_exceed=P, seed=4, strategy=pas.PAS(n_bootstrap=0), model_band=False)
@@ -61,7 +60,7 @@ def test_a_table_oracle_keys_on_sea_state_and_event_id():
     by_table = pas.run_long_term(table, lf, oracle, max_hf=8, **FAST)
     by_function = pas.run_long_term(table, lf, problem.Oracle(), max_hf=8, **FAST)
     assert by_table.value == pytest.approx(by_function.value, rel=1e-9)
-    for name, r in by_table.results.items():
+    for r in by_table.results.values():
         assert r.pairs["hf"].to_numpy() == pytest.approx(
             problem.hf_smooth(r.pairs["lf"].to_numpy()), rel=1e-12)
 

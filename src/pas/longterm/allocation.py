@@ -24,7 +24,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..stats.exceedance import value_at_exceedance
-from .combination import PASCurve, RecordBand, long_term_exceedance, proxy_curve
+from .combination import PASCurve, RecordBand, proxy_curve
 
 __all__ = ["curves_of", "proxy_ratios", "shares", "gains", "lf_shares", "REACH_SHARE",
            "UNFITTED_WIDTH"]
@@ -112,9 +112,3 @@ def gains(triples, weights, x: float, n_hf, fitted) -> np.ndarray:
         n = n_hf[i]
         out[i] = share[i] * max(width, 0.0) * (1.0 - np.sqrt(n / (n + 1.0)))
     return out
-
-
-def long_term_at(triples, weights, x: float) -> tuple[float, float, float]:
-    """``Q(x)`` of the low, mean and high curves."""
-    return tuple(float(long_term_exceedance([t[k] for t in triples], weights, x)[0])
-                 for k in range(3))

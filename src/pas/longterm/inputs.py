@@ -92,7 +92,7 @@ def read_sea_states(sea_states, lf_peaks) -> list[SeaState]:
     if not hasattr(lf_peaks, "keys"):
         raise ValueError(f"lf_peaks must be a mapping sea-state name -> LF peaks, got "
                          f"{type(lf_peaks).__name__}")
-    unknown = [str(k) for k in lf_peaks.keys() if str(k) not in names]
+    unknown = [str(k) for k in lf_peaks if str(k) not in names]
     if unknown:
         raise ValueError(f"lf_peaks: sea state {unknown[0]!r} is not in sea_states (names: "
                          f"{', '.join(names[:8])}{' ...' if len(names) > 8 else ''})")

@@ -246,12 +246,13 @@ class _Run:
             if st.store is not None and mine:
                 st.store.mark_submitted(mine)
         where = {id(ev): i for i, ev in todo}
-        for ev, (value, error, _loads) in execute(self.oracle, [ev for _, ev in todo],
-                                                  None, self.executor):
+        target = next((st.target for st in self.studies if st is not None), None)
+        for ev, (value, error, loads) in execute(self.oracle, [ev for _, ev in todo], target,
+                                                 self.executor):
             i = where[id(ev)]
             st = self.studies[i]
             if st.store is not None:
-                st.store.record_result(ev, value, error, loads=_loads)
+                st.store.record_result(ev, value, error, loads=loads)
             results[(i, ev.index)] = (value, error)
         for i, events in asks:
             st = self.studies[i]
