@@ -50,6 +50,9 @@ def test_sea_states_that_cannot_reach_the_level_get_no_hf_event():
     assert len(oracle.calls) == res.n_hf == c["n_hf"].sum() <= 8
     assert c["share"].sum() == pytest.approx(1.0, rel=1e-9)
     assert "long-term value" in res.summary()
+    # the studies screen down below the design level: the proxy below their ranges is not read
+    assert set(c.loc[c["n_hf"] > 0, "read_off"]) <= {"pas", "tail"}
+    assert res.extension_bounds == pytest.approx((res.value, res.value), rel=1e-9)
 
 
 def test_a_table_oracle_keys_on_sea_state_and_event_id():
@@ -149,3 +152,18 @@ def test_kill_9_mid_campaign_then_resume_loses_nothing_and_asks_nothing_twice(tm
     fresh = pas.run_long_term(table, lf, problem.Oracle(), max_hf=12, **FAST)
     assert resumed.value == pytest.approx(fresh.value, rel=1e-9)
     assert resumed.contributions["n_hf"].tolist() == fresh.contributions["n_hf"].tolist()
+
+
+@pytest.mark.slow
+def test_sea_states_in_parallel_on_a_dask_cluster_with_a_store(tmp_path):
+    distributed = pytest.importorskip("distributed")
+    table, lf = _small()
+    serial = pas.run_long_term(table, lf, problem.Oracle(), max_hf=8, batch_size=2, **FAST)
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=False,
+                                  dashboard_address=None) as cluster, \
+            distributed.Client(cluster) as client:
+        res = pas.run_long_term(table, lf, problem.Oracle(), max_hf=8, batch_size=2,
+                                executor=client.get_executor(), study=tmp_path / "d.sqlite",
+                                **FAST)
+    assert res.value == pytest.approx(serial.value, rel=1e-9)
+    assert res.contributions["n_hf"].tolist() == serial.contributions["n_hf"].tolist()

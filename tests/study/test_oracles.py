@@ -120,3 +120,19 @@ def test_command_oracle_checks_and_pickles(tmp_path, script):
     with ProcessPoolExecutor(2) as pool:
         got = list(pool.map(call_oracle, [oracle] * 3, events))
     assert got == [(1.0, None), (2.0, None), (3.0, None)]
+
+
+def test_table_oracle_keys_on_sea_state_and_id_when_the_table_has_sea_states():
+    table = pd.DataFrame({"sea_state": ["a", "a", "b"], "id": [1, 2, 1], "hf": [1.0, 2.0, 3.0]})
+    oracle = TableOracle(table)
+    assert oracle(Event(index=0, id=1, lf=1.0, d=0.1, sea_state="b")) == 3.0
+    assert oracle(Event(index=0, id=1, lf=1.0, d=0.1, sea_state="a")) == 1.0
+    with pytest.raises(OracleError, match="event 2 of sea state b is not in the table"):
+        oracle(Event(index=1, id=2, lf=1.0, d=0.1, sea_state="b"))
+    # a study of no sea state looks up the ids that appear once only
+    assert oracle(Event(index=1, id=2, lf=1.0, d=0.1)) == 2.0
+    with pytest.raises(OracleError, match="event 1 is not in the table"):
+        oracle(Event(index=0, id=1, lf=1.0, d=0.1))
+    with pytest.raises(ValueError, match=r"event id '1' appears more than once \(within its "
+                                         r"sea state\)"):
+        TableOracle(pd.DataFrame({"sea_state": ["a", "a"], "id": [1, 1], "hf": [1.0, 2.0]}))
