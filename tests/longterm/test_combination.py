@@ -77,3 +77,29 @@ def test_the_lf_proxy_follows_its_record_and_scales_with_the_ratio():
     assert proxy.exceedance(x) == pytest.approx(np.exp(-x ** 2 / (2 * 1.5 ** 2)), rel=0.1)
     assert proxy_curve(state, 2.0).exceedance(2 * x) == pytest.approx(proxy.exceedance(x),
                                                                        rel=1e-9)
+
+
+def test_the_record_band_is_the_binomial_spread_of_an_exceedance_from_the_record():
+    from pas.longterm.combination import RecordBand
+
+    mean = _exact_curve(1.5)
+    p, n = 1e-2, N
+    for side in (+1, -1):
+        band = RecordBand(mean, mean, n, side)  # the PAS band's end on the mean: the record decides
+        # Q + side 1.96 sqrt(Q (1 - Q) / n) = p, solved for Q, then the Rayleigh level of Q
+        q = brentq(lambda q, s=side: q + s * 1.96 * np.sqrt(q * (1 - q) / n) - p, 1e-6, 0.5)
+        expected = 1.5 * np.sqrt(-2 * np.log(q))
+        assert level_at([band], [1.0], p, start=3.0) == pytest.approx(expected, rel=1e-4)
+
+
+def test_the_gain_is_share_times_width_times_the_narrowing_of_one_more_event():
+    from pas.longterm.allocation import gains
+
+    triples = [tuple(_exact_curve(s * f) for f in (0.9, 1.0, 1.1)) for s in SIGMA]
+    x, n_hf = 4.0, [0, 6, 12]
+    q = {f: np.exp(-x ** 2 / (2 * (SIGMA * f) ** 2)) for f in (0.9, 1.0, 1.1)}
+    share = W * q[1.0] / np.sum(W * q[1.0])
+    width = np.where([False, True, True], (q[1.1] - q[0.9]) / q[1.0], 1.0)
+    expected = share * width * (1 - np.sqrt(np.array(n_hf) / (np.array(n_hf) + 1)))
+    got = gains(triples, W, x, n_hf, fitted=[False, True, True])
+    assert got == pytest.approx(expected, rel=1e-4)

@@ -9,6 +9,7 @@ import pytest
 
 import pas
 from pas.longterm.allocation import REACH_SHARE
+from pas.study import open_study
 from pas.study.store import StoreError
 
 P = 1e-3
@@ -87,6 +88,12 @@ def test_resumed_analysis_asks_nothing_twice_and_ends_as_an_uninterrupted_one(tm
         pas.run_long_term(table, lf, again, max_hf=12, study=db, **{**FAST, "p_exceed": 2e-3})
     with pytest.raises(StoreError, match="seed differs"):
         pas.run_long_term(table, lf, again, max_hf=12, study=db, **{**FAST, "seed": 5})
+    with pytest.raises(StoreError, match="holds no single study but a long-term analysis"):
+        open_study(db)
+    single = tmp_path / "single.sqlite"
+    pas.make_study(pas.PAS, lf["H4"], n_waves=2000, p_exp=0.01, eps1=0.1, store=single).store.close()
+    with pytest.raises(StoreError, match="holds a single study, not a long-term analysis"):
+        pas.run_long_term(table, lf, again, max_hf=12, study=single, **FAST)
 
 
 def test_sea_states_run_in_parallel_on_an_executor():

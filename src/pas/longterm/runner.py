@@ -133,6 +133,10 @@ def _open_root(path, settings, seed):
         return None, _seed(seed)
     root = StudyStore(path, scope="")
     stored = root.get(LONG_TERM_KEY)
+    if stored is None and not root.is_new:
+        root.close()
+        raise StoreError(f"study store {path} holds a single study, not a long-term analysis: "
+                         "give run_long_term another file")
     if stored is None:
         seed = _seed(seed)
         root.put(LONG_TERM_KEY, {**settings, "seed": seed})
