@@ -174,3 +174,26 @@ def test_sea_states_in_parallel_on_a_dask_cluster_with_a_store(tmp_path):
                                 **FAST)
     assert res.value == pytest.approx(serial.value, rel=1e-9)
     assert res.contributions["n_hf"].tolist() == serial.contributions["n_hf"].tolist()
+
+
+class _FailsOnce(problem.Oracle):
+    def __call__(self, event):
+        if not self.calls:  # the first HF run diverges
+            self.calls.append(("failed", -1))
+            raise RuntimeError("solver diverged")
+        return super().__call__(event)
+
+
+@pytest.mark.slow
+def test_a_failure_limit_names_the_sea_state_and_a_retry_runs_the_failed_event(tmp_path):
+    table, lf = _small()
+    db = tmp_path / "long.sqlite"
+    kw = {**FAST, "study_settings": {"max_failures": 0}, "study": db}
+    with pytest.raises(pas.OracleFailureLimit, match=r"sea state H\d: the HF oracle failed 1"):
+        pas.run_long_term(table, lf, _FailsOnce(), max_hf=8, **kw)
+    oracle = problem.Oracle()
+    res = pas.run_long_term(table, lf, oracle, max_hf=8, retry_failed=True, **kw)
+    assert res.contributions["n_failed"].sum() == 0 and res.n_hf == 8
+    assert len(oracle.calls) == len(set(oracle.calls))
+    with pytest.raises(ValueError, match="retry_failed=True needs study"):
+        pas.run_long_term(table, lf, oracle, max_hf=8, retry_failed=True, **FAST)

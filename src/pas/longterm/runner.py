@@ -37,7 +37,7 @@ DEFAULT_LONG_TERM_MAX_HF = 400
 def run_long_term(sea_states, lf_peaks, oracle, *, p_exceed=None, return_period=None,
                   hours_per_year=8766.0, max_hf=DEFAULT_LONG_TERM_MAX_HF, seed=None, study=None,
                   strategy=None, eps1=None, study_settings=None, batch_size=1, executor=None,
-                  callback=None, model_band=True) -> LongTermResult:
+                  callback=None, model_band=True, retry_failed=False) -> LongTermResult:
     """The long-term design value of an HF load over a scatter diagram, one HF budget shared.
 
     Parameters
@@ -88,12 +88,27 @@ def run_long_term(sea_states, lf_peaks, oracle, *, p_exceed=None, return_period=
         ``callback(name, study, row)`` after every told HF result.
     model_band : bool, default True
         Add each fitted study's model band to the result's band.
+    retry_failed : bool, default False
+        With ``study``: run the failed events of every sea state's stored
+        study again (:meth:`Study.retry_failed
+        <pas.study.study.Study.retry_failed>`): each study continues as if they
+        had not failed; the events already given to other sea states stay
+        theirs.
 
     Returns
     -------
     LongTermResult
+
+    Raises
+    ------
+    OracleFailureLimit
+        A sea state's study saw more than ``max_failures`` failed calls; the
+        message names the sea state, every result is stored.
     """
     check_oracle(oracle)
+    if retry_failed and study is None:
+        raise ValueError("retry_failed=True needs study=... (the store of the analysis whose "
+                         "failed events should run again)")
     states = read_sea_states(sea_states, lf_peaks)
     p = design_exceedance(states, p_exceed, return_period, hours_per_year)
     weights = encounter_weights(states)
@@ -111,6 +126,9 @@ def run_long_term(sea_states, lf_peaks, oracle, *, p_exceed=None, return_period=
     studies = [None if share_lf[i] < REACH_SHARE else _make_study(
         s, i, q_lf[i], strategy, seed, max_hf, eps1, study_settings or {}, study)
         for i, s in enumerate(states)]
+    for st in studies if retry_failed else ():
+        if st is not None and st.n_failed:
+            st.retry_failed()
     run = _Run(states, weights, studies, oracle, executor, callback, max_hf)
     try:
         run.left_over()
