@@ -90,6 +90,10 @@ def test_resumed_analysis_asks_nothing_twice_and_ends_as_an_uninterrupted_one(tm
         pas.run_long_term(table, lf, again, max_hf=12, study=db, **{**FAST, "seed": 5})
     with pytest.raises(StoreError, match="holds no single study but a long-term analysis"):
         open_study(db)
+    one = open_study(pas.StudyStore(db, scope="H4"))  # one sea state's study on its own
+    assert one.n_hf == resumed.contributions.set_index("sea_state").loc["H4", "n_hf"]
+    assert one.lfset.event(0).sea_state == "H4"
+    one.store.close()
     single = tmp_path / "single.sqlite"
     pas.make_study(pas.PAS, lf["H4"], n_waves=2000, p_exp=0.01, eps1=0.1, store=single).store.close()
     with pytest.raises(StoreError, match="holds a single study, not a long-term analysis"):
