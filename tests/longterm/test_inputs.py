@@ -74,3 +74,13 @@ def test_a_table_of_peaks_gives_ids_and_meta():
     states = read_sea_states(_table(), {"a": frame, "b": LF["b"]})
     assert states[0].ids[3] == "e3" and states[0].meta[3] == {"seed": 3}
     assert states[1].ids is None and states[1].meta is None
+
+
+def test_one_table_of_peaks_with_a_sea_state_column():
+    frame = pd.DataFrame({"sea_state": ["b"] * 200 + ["a"] * 100,
+                          "lf": np.concatenate([LF["b"], LF["a"]]),
+                          "id": [f"b{i}" for i in range(200)] + [f"a{i}" for i in range(100)]})
+    states = read_sea_states(_table(), frame)
+    assert [s.name for s in states] == ["a", "b"]
+    assert states[0].lf == pytest.approx(LF["a"], rel=1e-12) and states[0].ids[0] == "a0"
+    assert states[1].ids[199] == "b199" and states[1].meta is None
