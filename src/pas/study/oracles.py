@@ -17,7 +17,6 @@ from __future__ import annotations
 import json
 import math
 import os
-import re
 import subprocess
 import time
 from pathlib import Path
@@ -27,6 +26,7 @@ import numpy as np
 from ._processes import OWN_SESSION, kill_group, try_lock
 from .answers import check_hf_answer, check_hf_value, check_target, lacks_target
 from .inputs import read_table
+from .workdirs import event_dir
 
 __all__ = ["OracleError", "OracleFailureLimit", "check_hf_value", "check_hf_answer",
            "lacks_target", "check_oracle", "call_oracle", "call_oracle_loads", "check_target",
@@ -87,6 +87,11 @@ class TableOracle:
         load: panels, sensors, forces) make the oracle answer ``{column:
         value}`` (a study then screens on its ``target``; ``pas run --oracle
         table:FILE:ID:COL1,COL2``).
+    sea_state_column : str, default "sea_state"
+        When the table has this column, rows are keyed by sea state and event
+        id, and an event is looked up by ``(event.sea_state, event.id)`` (a
+        long-term analysis, :func:`pas.run_long_term`, where ids may repeat
+        across sea states); an event of no sea state by its id alone.
 
     Notes
     -----
@@ -103,7 +108,8 @@ class TableOracle:
     1.5
     """
 
-    def __init__(self, table, *, id_column: str = "id", value_column: str = "hf"):
+    def __init__(self, table, *, id_column: str = "id", value_column: str = "hf",
+                 sea_state_column: str = "sea_state"):
         import pandas as pd
 
         if isinstance(table, pd.DataFrame):
@@ -120,33 +126,40 @@ class TableOracle:
                 raise ValueError(f"{field}: column {c!r} is missing from {name} "
                                  f"(columns: {', '.join(map(str, df.columns))})")
         keys = df[id_column].astype(str)
+        self.by_sea_state = sea_state_column in df.columns and sea_state_column != id_column
+        if self.by_sea_state:
+            keys = df[sea_state_column].astype(str) + "\x1f" + keys
         dup = keys[keys.duplicated()]
         if len(dup):
-            raise ValueError(f"{id_column}: event id {dup.iloc[0]!r} appears more than once in {name}")
+            where = " (within its sea state)" if self.by_sea_state else ""
+            raise ValueError(f"{id_column}: event id {dup.iloc[0].split(chr(31))[-1]!r} appears "
+                             f"more than once{where} in {name}")
         values = [pd.to_numeric(df[c], errors="coerce").to_numpy(dtype=float).tolist()
                   for c in columns]
         self.name = name
         self.columns = columns if named else None
         self.values = dict(zip(keys, zip(*values)))
+        if self.by_sea_state:  # a single-sea-state study looks up its ids alone, if unique
+            plain = df[id_column].astype(str)
+            once = set(plain[~plain.duplicated(keep=False)])
+            self.values.update({k.split("\x1f", 1)[1]: v for k, v in self.values.items()
+                                if k.split("\x1f", 1)[1] in once})
 
     def __call__(self, event):
         key = str(event.id)
-        if key not in self.values:
+        lookup = key
+        sea_state = getattr(event, "sea_state", None)
+        if self.by_sea_state and sea_state is not None:
+            lookup = f"{sea_state}\x1f{key}"
+            key = f"{key} of sea state {sea_state}"
+        if lookup not in self.values:
             raise OracleError(f"event {key} is not in {self.name}")
-        row = self.values[key]
+        row = self.values[lookup]
         if self.columns is not None:
             return dict(zip(self.columns, row))
         if not math.isfinite(row[0]):
             raise OracleError(f"{self.name} has no valid value for event {key}")
         return row[0]
-
-
-_SAFE = re.compile(r"[^A-Za-z0-9._-]")
-
-
-def _event_dir(event) -> str:
-    name = _SAFE.sub("_", str(event.id))
-    return name if name == str(event.id) and name not in (".", "..") else f"{name}-{event.index}"
 
 
 def parse_result(text: str):
@@ -219,7 +232,8 @@ class CommandOracle:
     args : sequence of str
         Argument-list template, e.g. ``["python", "cfd.py", "--event", "{id}",
         "--lf", "{lf}", "--out", "{result}"]``.  Placeholders: ``{id}``,
-        ``{index}``, ``{lf}``, ``{d}``, ``{workdir}``, ``{result}``,
+        ``{index}``, ``{lf}``, ``{d}``, ``{sea_state}`` (long-term analysis),
+        ``{workdir}``, ``{result}``,
         ``{cwd}`` and every key of the event's ``meta`` (``{seed}``,
         ``{t_start}`` …).  For a design-wave
         :class:`~pas.waves.episode.Episode` (:func:`pas.run_rcw`) also
@@ -227,8 +241,9 @@ class CommandOracle:
         series and wave components, written into the working directory, and
         its ``{level}``, ``{target}`` and ``{t0}``.
     root : str or os.PathLike
-        Each event runs in its own working directory ``root/<event id>``,
-        with ``stdout.log`` and ``stderr.log``; relative to ``cwd``.
+        Each event runs in its own working directory ``root/<event id>``
+        (``root/<sea state>/<event id>`` in a long-term analysis), with
+        ``stdout.log`` and ``stderr.log``; relative to ``cwd``.
     cwd : str or os.PathLike, optional
         The directory the campaign is started from (default: the current
         one when the oracle is made): relative paths in ``args`` and
@@ -295,6 +310,8 @@ class CommandOracle:
         """The argument list for ``event`` (``files``: extra placeholders, e.g. an episode's)."""
         fields = {str(k): v for k, v in event.meta.items()}
         fields.update(files or {})
+        if getattr(event, "sea_state", None) is not None:  # else a meta key of that name
+            fields["sea_state"] = event.sea_state
         fields.update(id=event.id, index=event.index, lf=repr(float(event.lf)),
                       d=repr(float(event.d)), workdir=workdir, cwd=self.cwd,
                       result=os.path.join(workdir, self.result_name))
@@ -305,7 +322,7 @@ class CommandOracle:
                               "meta") from None
 
     def __call__(self, event) -> float:
-        workdir = os.path.join(self.root, _event_dir(event))
+        workdir = os.path.join(self.root, event_dir(event))
         os.makedirs(workdir, exist_ok=True)
         result = os.path.join(workdir, self.result_name)
         lock = os.open(os.path.join(workdir, ".lock"), os.O_RDWR | os.O_CREAT, 0o644)
