@@ -103,7 +103,7 @@ def _pas_case(name, omega):
 @pytest.mark.parametrize("case", ["rwe_ferry", "rwe_ferry_5ms", "heave_box"])
 def test_linear_long_term_agrees_with_snoopy(peer, case):
     # Snoopy's LongTermRao (snoopy-bv 2.6.0) on the same RAO and IACS Rec. 34
-    # sea states, from benchmarks/longterm_snoopy_reference.py; measured
+    # sea states, from benchmarks/studies/longterm_snoopy_reference.py; measured
     # agreement <= 0.16 % (at 5 m/s too). Snoopy's return value is exp(-1) non-exceedance over
     # N years of 365.24 days; ours Q = 1 / N cycles: the same to ~1e-4 here.
     table = pd.DataFrame(peer["sea_states"])

@@ -55,6 +55,7 @@ class LevelLadder(LFSet):
         self.p_exp = float(p_exp)
         self.n_waves = None if n_waves is None else int(n_waves)
         self.threshold = None
+        self.sea_state = None
         self._ids = ids
         self._meta = [{"level": float(p), "target": float(t)} for p, t in zip(self.d, self.lf)]
 

@@ -15,7 +15,7 @@ inertia and hydrostatic stiffness that the RAO needs and Capytaine's own
 Run in a separate environment with Capytaine (it is not a dependency of pas)::
 
     python -m venv /tmp/capy && /tmp/capy/bin/pip install capytaine==3.0.0 h5netcdf
-    /tmp/capy/bin/python benchmarks/make_box_rao.py
+    /tmp/capy/bin/python benchmarks/studies/make_box_rao.py
 
 51 s (120 m) and 86-148 s (240 m) on the shared 2-core machine; each file is 54 kB.
 The 240 m box (L/B = 12, tests/data/box_hull_240m_capytaine.nc) tests the explanation of
@@ -80,7 +80,7 @@ def main(argv=None):
     ds["hydrostatic_stiffness"] = body.hydrostatic_stiffness
     ds["rao"] = rao(ds)
     ds.attrs.update({
-        "title": "Capytaine radiation/diffraction of a box hull (pas benchmarks/make_box_rao.py)",
+        "title": "Capytaine radiation/diffraction of a box hull (pas benchmarks/studies/make_box_rao.py)",
         "length": args.length, "beam": args.beam, "draught": args.draught,
         "rotation_center_x": 0.0, "rotation_center_y": 0.0, "rotation_center_z": -args.draught / 2,
         "capytaine_version": cpt.__version__,

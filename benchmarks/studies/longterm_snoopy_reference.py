@@ -7,7 +7,7 @@ otherwise need, so it is kept out of the ``dev`` extra: this script runs it
 once in a separate environment and the test reads the committed numbers::
 
     python -m venv /tmp/snoopy && /tmp/snoopy/bin/pip install snoopy-bv==2.6.0 pandas scipy
-    PYTHONPATH=src /tmp/snoopy/bin/python benchmarks/longterm_snoopy_reference.py
+    PYTHONPATH=src /tmp/snoopy/bin/python benchmarks/studies/longterm_snoopy_reference.py
 
 The cases (RAO from pas, sea states from the IACS Rec. 34 diagram in pas,
 head seas, no spreading):
