@@ -1,6 +1,10 @@
 """The known-truth generator (pas.validation.known_truth): same problems, exact truths."""
 
+import importlib.util
+from pathlib import Path
+
 import numpy as np
+import pandas as pd
 import pytest
 from scipy import integrate
 
@@ -133,3 +137,42 @@ def test_an_unknown_mechanism_is_named_with_the_choices():
         ho.lf_hit_probability(np.ones(2), "often")
     with pytest.raises(ValueError, match="unknown outlier mechanism 'big'"):
         ho.outlier_share(np.ones(2), "big")
+
+
+def _known_truth_table():
+    path = Path(__file__).parents[2] / "benchmarks" / "known_truth_table.py"
+    spec = importlib.util.spec_from_file_location("known_truth_table", path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+def test_the_held_out_table_counts_coverage_and_errors_per_group(tmp_path):
+    runs = pd.DataFrame({
+        "type": ["ho-miss-a", "ho-miss-a", "ho-reg-b"], "error": [0.1, -0.3, 0.2],
+        "truth": [100.0, 200.0, 50.0], "band_low": [90.0, 100.0, 40.0],
+        "band_high": [130.0, 180.0, 80.0], "covered": [True, False, True],
+        "n_hf": [20, 40, 160], "converged": [True, True, False]})
+    runs.to_csv(tmp_path / "runs.csv", index=False)
+    page = tmp_path / "page.md"
+    page.write_text("x\n<!-- BEGIN known_truth_table.py held-out-groups -->\nold\n"
+                    "<!-- END known_truth_table.py held-out-groups -->\n"
+                    "<!-- BEGIN known_truth_table.py held-out-types -->\n"
+                    "<!-- END known_truth_table.py held-out-types -->\ny\n", encoding="utf-8")
+    _known_truth_table().main(["--held-out", str(tmp_path / "runs.csv"), "--write", str(page)])
+    written = page.read_text(encoding="utf-8")
+    # misses: |error| 10, 30 % (median 20, p90 28), 1 of 2 covered, widths 40 and 40 % of the
+    # truth, HF 20 and 40 (median 30)
+    assert ("| threshold + misses | 2 | 50 % | 20.0 % | 28.0 % | 30.0 % | -10.0 % | 40.0 % | "
+            "30 | 100 % |") in written
+    assert "| regressions | 1 | 100 % | 20.0 % | 20.0 % | 20.0 % | +20.0 % | 80.0 % | 160 | 0 % |" \
+        in written
+    assert "| all held-out types | 3 | 67 % |" in written
+    assert "| ho-reg-b | 1 |" in written and "\nold\n" not in written
+    assert written.startswith("x\n") and written.endswith("y\n")
+
+
+def test_the_table_script_asks_for_one_kind_of_runs(capsys):
+    with pytest.raises(SystemExit):
+        _known_truth_table().main([])
+    assert "give DEFAULTS.csv PAPER.csv (tuning types) or --held-out" in capsys.readouterr().err
