@@ -2,7 +2,10 @@
 
 Run: python benchmarks/studies/known_truth_table.py DEFAULTS.csv[,MORE.csv] PAPER.csv[,MORE.csv]
      [--write docs/known-truth.md]
+     python benchmarks/studies/known_truth_table.py --held-out HELD_OUT.csv[,MORE.csv] [--write …]
 (comma-separated lists are concatenated: a run split over several processes).
+The first form makes the tables of the tuning types (defaults beside the paper
+preset), the second those of the held-out types (per group and per type).
 Prints the tables; ``--write PAGE`` also puts each between its markers in the
 page (``<!-- BEGIN known_truth_table.py NAME -->`` … ``<!-- END … NAME -->``),
 so the page's tables are the script's output, never edited by hand.
@@ -56,14 +59,54 @@ def tables(default, paper) -> dict[str, str]:
     return {"overall": "\n".join(rows), "per-type": "\n".join(per_type)}
 
 
+HELD_OUT_GROUPS = {"miss": "threshold + misses", "outlier": "outliers", "mix": "mixtures",
+                   "reg": "regressions"}
+
+
+def _held_out_row(label, runs):
+    a = runs["error"].abs()
+    width = (runs["band_high"] - runs["band_low"]) / runs["truth"]
+    return (f"| {label} | {len(runs)} | {100 * runs['covered'].mean():.0f} % | {_pct(a.median())} | "
+            f"{_pct(a.quantile(0.9))} | {_pct(a.max())} | {_pct(runs['error'].median(), True)} | "
+            f"{_pct(width.median())} | {runs['n_hf'].median():g} | "
+            f"{100 * runs['converged'].mean():.0f} % |")
+
+
+def held_out_tables(runs) -> dict[str, str]:
+    """The held-out types' tables, by marker name: ``held-out-groups`` (per group and
+    overall) and ``held-out-types``."""
+    head = [("| {} | runs | U95 coverage | median \\|error\\| | p90 | worst | median error | "
+             "band width (median, of the truth) | HF (median) | converged |"),
+            "|---|---|---|---|---|---|---|---|---|---|"]
+    group = runs["type"].str.split("-").str[1]
+    groups = [head[0].format("group"), head[1]]
+    groups += [_held_out_row(label, runs[group == key])
+               for key, label in HELD_OUT_GROUPS.items() if (group == key).any()]
+    groups.append(_held_out_row("all held-out types", runs))
+    types = [head[0].format("held-out type"), head[1]]
+    types += [_held_out_row(name, d) for name, d in runs.groupby("type", sort=False)]
+    return {"held-out-groups": "\n".join(groups), "held-out-types": "\n".join(types)}
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("defaults", help="runs.csv of the defaults (comma-separated list)")
-    parser.add_argument("paper", help="runs.csv of --preset paper (comma-separated list)")
+    parser.add_argument("defaults", nargs="?",
+                        help="runs.csv of the defaults (comma-separated list)")
+    parser.add_argument("paper", nargs="?",
+                        help="runs.csv of --preset paper (comma-separated list)")
+    parser.add_argument("--held-out", help="runs.csv of the held-out types (comma-separated "
+                        "list; known_truth.py --held-out)")
     parser.add_argument("--write", type=Path, help="page to write the tables into")
     args = parser.parse_args(argv)
-    blocks = tables(_read(args.defaults), _read(args.paper))
-    print(blocks["overall"], blocks["per-type"], sep="\n\n")
+    if args.held_out:
+        if args.defaults:
+            parser.error("give either DEFAULTS PAPER or --held-out RUNS, not both")
+        blocks = held_out_tables(_read(args.held_out))
+    elif args.paper:
+        blocks = tables(_read(args.defaults), _read(args.paper))
+    else:
+        parser.error("give DEFAULTS.csv PAPER.csv (tuning types) or --held-out RUNS.csv")
+    print(*blocks.values(), sep="\n\n")
     if args.write:
         page = args.write.read_text(encoding="utf-8")
         args.write.write_text(write_between_markers(page, blocks, "known_truth_table.py"),

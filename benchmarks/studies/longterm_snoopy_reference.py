@@ -26,18 +26,15 @@ formula: ``pcycle_to_x(p)`` is the level ``x`` of ``Q(x) = p`` and
 
 from __future__ import annotations
 
+import argparse
 import json
 from pathlib import Path
 
 import numpy as np
 
-import Snoopy
-from Snoopy import Spectral as sp
-from Snoopy import Statistics as st
-
 from pas.waves import FERRY_190M, TransferFunction, north_atlantic
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 OUT = ROOT / "tests" / "data" / "longterm_snoopy.json"
 OMEGA = np.linspace(0.05, 3.0, 296)
 P_EXCEED = (1e-4, 1e-6, 1e-8)
@@ -57,6 +54,11 @@ def cases():
 
 def snoopy_long_term(transfer, response, table):
     """Snoopy's moments and long-term values for one response on the sea-state table."""
+    from Snoopy import (
+        Spectral as sp,  # not a dependency of pas: only this script needs it
+    )
+    from Snoopy import Statistics as st
+
     w = transfer.omega
     h = transfer.response(response, w, 180.0)
     rao = sp.Rao(b=np.array([np.pi]), w=w, cvalue=h.reshape(1, -1, 1), modes=np.array([0]),
@@ -73,7 +75,10 @@ def snoopy_long_term(transfer, response, table):
     }
 
 
-def main():
+def main(argv=None):
+    argparse.ArgumentParser(description=__doc__.splitlines()[0]).parse_args(argv)
+    import Snoopy
+
     table = north_atlantic().sea_states()
     out = {"snoopy_version": getattr(Snoopy, "__version__", "2.6.0"), "omega": OMEGA.tolist(),
            "sea_states": table[["name", "probability", "hs", "tp", "gamma"]].to_dict("list"),

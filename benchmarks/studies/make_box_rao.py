@@ -30,19 +30,17 @@ from pathlib import Path
 
 import numpy as np
 
-import capytaine as cpt
-from capytaine.io.xarray import save_dataset_as_netcdf
-from capytaine.post_pro import rao
-
 LENGTH, BEAM, DRAUGHT = 120.0, 20.0, 6.0
 RHO, G = 1025.0, 9.81
 OMEGA = np.concatenate([[0.05, 0.1, 0.15], np.arange(0.2, 1.61, 0.1)])
 HEADINGS_DEG = (180.0, 135.0, 90.0)
 PANEL = 3.0  # target panel size (m)
-OUT = Path(__file__).resolve().parents[1] / "src" / "pas" / "waves" / "data" / "box_hull_capytaine.nc"
+OUT = Path(__file__).resolve().parents[2] / "src" / "pas" / "waves" / "data" / "box_hull_capytaine.nc"
 
 
 def build_body(length, beam, draught):
+    import capytaine as cpt  # not a dependency of pas: only this script needs it
+
     """The submerged box (top open, lid at the waterline), rigid-body dofs about the centroid."""
     resolution = tuple(int(np.ceil(d / PANEL)) for d in (length, beam, draught))
     centre = (0.0, 0.0, -draught / 2)
@@ -63,6 +61,10 @@ def main(argv=None):
     parser.add_argument("--draught", type=float, default=DRAUGHT, help="box draught (m)")
     parser.add_argument("--out", type=Path, default=OUT, help="NetCDF file to write")
     args = parser.parse_args(argv)
+    import capytaine as cpt
+    from capytaine.io.xarray import save_dataset_as_netcdf
+    from capytaine.post_pro import rao
+
     t0 = time.perf_counter()
     body = build_body(args.length, args.beam, args.draught)
     problems = []

@@ -1,9 +1,15 @@
 """The known-truth generator (pas.validation.known_truth): same problems, exact truths."""
 
+import importlib.util
+from pathlib import Path
+
 import numpy as np
+import pandas as pd
 import pytest
+from scipy import integrate
 
 from pas.validation import known_truth as kt
+from pas.validation import known_truth_held_out as ho
 from pas.validation.known_truth_runs import TYPES, select_types, settings_from_args
 
 # (type, data set, pool size, truth MPM, first two LF peaks, first three HF loads, sum of
@@ -52,11 +58,9 @@ def test_the_tuning_set_is_the_fifty_types_the_defaults_were_chosen_on():
 
 def _mean_count_above(ptype, problem, n_redraws, seed):
     """Mean number of pool events above the truth over loads redrawn at the same LF peaks."""
-    rng = np.random.default_rng(seed)
-    u = kt.pool_cdf(problem.lf, problem.threshold)
-    counts = [np.sum(ptype.loads(problem.lf, u, rng) > problem.truth_mpm)
-              for _ in range(n_redraws)]
-    return float(np.mean(counts))
+    lf = np.tile(problem.lf, n_redraws)
+    loads = ptype.loads(lf, kt.pool_cdf(lf, problem.threshold), np.random.default_rng(seed))
+    return float(np.sum(loads > problem.truth_mpm)) / n_redraws
 
 
 @pytest.mark.parametrize("name", ["outlier-miss-gaussian-t0.6", "reg-power-miss-s0.3",
@@ -84,3 +88,91 @@ def test_settings_from_args_reads_literals_and_strings_and_names_a_bad_item():
         "z": 10, "hf_marginal": "both", "eps2": 0.2}
     with pytest.raises(ValueError, match=r"--set 'z10': write NAME=VALUE"):
         settings_from_args(["z10"])
+
+
+# BB1 and Tawn invert their h-functions numerically (~40 us a load): fewer redraws, and a
+# tolerance of ~4 sd of the mean count (a 1 % error in the truth moves the count ~5 %)
+@pytest.mark.parametrize("name, n_redraws, rel", [
+    ("ho-reg-hump-rank-miss", 1000, 0.025), ("ho-miss-rank-varying-gpd", 1000, 0.025),
+    pytest.param("ho-miss-rank-bb1-gamma", 300, 0.05, marks=pytest.mark.slow),
+    pytest.param("ho-miss-high-tawn-loglogistic", 300, 0.05, marks=pytest.mark.slow),
+    pytest.param("ho-outlier-contaminate-miss-bb1", 300, 0.05, marks=pytest.mark.slow)])
+def test_a_held_out_truth_is_exceeded_p_exp_n_w_times_on_average_by_the_drawn_loads(
+        name, n_redraws, rel):
+    ptype = ho.HELD_OUT_TYPES[name]
+    problem = kt.make_problem(ptype, 0)
+    target = problem.p_exp * problem.n_waves
+    assert _mean_count_above(ptype, problem, n_redraws, 6) == pytest.approx(target, rel=rel)
+
+
+def test_the_held_out_types_are_marked_and_never_in_the_tuning_set():
+    held_out = select_types("all", held_out=True)
+    assert held_out == list(ho.HELD_OUT_TYPES) and len(held_out) == 12
+    assert all(TYPES[n].held_out for n in held_out)
+    assert not set(held_out) & set(kt.TUNING_TYPES)
+    assert {TYPES[n].group for n in held_out} == set(ho.HELD_OUT_GROUPS)
+    assert select_types("ho-reg") == ["ho-reg-hump", "ho-reg-hetero", "ho-reg-hump-rank-miss"]
+
+
+def test_the_rank_miss_mass_is_the_integral_of_the_hit_probability():
+    for t_h in (0.0, 0.3, 0.95):
+        expected, _ = integrate.quad(ho.rank_hit_probability, t_h, 1.0)
+        assert ho.rank_hit_mass(t_h) == pytest.approx(expected, rel=1e-9)
+    assert ho.rank_hit_mass(0.0) == pytest.approx(0.2 + 0.8 / 2.5, rel=1e-12)
+
+
+def test_the_spliced_weibull_gpd_law_is_continuous_and_its_ppf_inverts_its_cdf():
+    law = ho.SplicedWeibullGPD()
+    q = np.array([0.1, 0.5, 0.899, 0.9, 0.95, 0.999])
+    assert law.cdf(law.ppf(q)) == pytest.approx(q, rel=1e-10)
+    h, dh = law.h_body, 1e-6 * law.h_body
+    density_below = (law.cdf(h) - law.cdf(h - dh)) / dh
+    density_above = (law.cdf(h + dh) - law.cdf(h)) / dh
+    assert density_above == pytest.approx(density_below, rel=1e-4)
+    assert law.cdf(h) == pytest.approx(0.9, rel=1e-12)
+
+
+def test_an_unknown_mechanism_is_named_with_the_choices():
+    with pytest.raises(ValueError, match="unknown held-out miss mechanism 'often'"):
+        ho.lf_hit_probability(np.ones(2), "often")
+    with pytest.raises(ValueError, match="unknown outlier mechanism 'big'"):
+        ho.outlier_share(np.ones(2), "big")
+
+
+def _known_truth_table():
+    path = Path(__file__).parents[2] / "benchmarks" / "studies" / "known_truth_table.py"
+    spec = importlib.util.spec_from_file_location("known_truth_table", path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+def test_the_held_out_table_counts_coverage_and_errors_per_group(tmp_path):
+    runs = pd.DataFrame({
+        "type": ["ho-miss-a", "ho-miss-a", "ho-reg-b"], "error": [0.1, -0.3, 0.2],
+        "truth": [100.0, 200.0, 50.0], "band_low": [90.0, 100.0, 40.0],
+        "band_high": [130.0, 180.0, 80.0], "covered": [True, False, True],
+        "n_hf": [20, 40, 160], "converged": [True, True, False]})
+    runs.to_csv(tmp_path / "runs.csv", index=False)
+    page = tmp_path / "page.md"
+    page.write_text("x\n<!-- BEGIN known_truth_table.py held-out-groups -->\nold\n"
+                    "<!-- END known_truth_table.py held-out-groups -->\n"
+                    "<!-- BEGIN known_truth_table.py held-out-types -->\n"
+                    "<!-- END known_truth_table.py held-out-types -->\ny\n", encoding="utf-8")
+    _known_truth_table().main(["--held-out", str(tmp_path / "runs.csv"), "--write", str(page)])
+    written = page.read_text(encoding="utf-8")
+    # misses: |error| 10, 30 % (median 20, p90 28), 1 of 2 covered, widths 40 and 40 % of the
+    # truth, HF 20 and 40 (median 30)
+    assert ("| threshold + misses | 2 | 50 % | 20.0 % | 28.0 % | 30.0 % | -10.0 % | 40.0 % | "
+            "30 | 100 % |") in written
+    assert "| regressions | 1 | 100 % | 20.0 % | 20.0 % | 20.0 % | +20.0 % | 80.0 % | 160 | 0 % |" \
+        in written
+    assert "| all held-out types | 3 | 67 % |" in written
+    assert "| ho-reg-b | 1 |" in written and "\nold\n" not in written
+    assert written.startswith("x\n") and written.endswith("y\n")
+
+
+def test_the_table_script_asks_for_one_kind_of_runs(capsys):
+    with pytest.raises(SystemExit):
+        _known_truth_table().main([])
+    assert "give DEFAULTS.csv PAPER.csv (tuning types) or --held-out" in capsys.readouterr().err

@@ -18,8 +18,9 @@ import pandas as pd
 
 from ..api import run_pas
 from .known_truth import TUNING_TYPES, Problem
+from .known_truth_held_out import HELD_OUT_TYPES
 
-TYPES = dict(TUNING_TYPES)
+TYPES = {**TUNING_TYPES, **HELD_OUT_TYPES}
 """Every known-truth type by name: the tuning types, then the held-out ones."""
 
 CHECKPOINTS = (20, 40, 80, 160)
