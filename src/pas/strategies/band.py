@@ -24,12 +24,22 @@ replicates select another family and marginal.  The price: the band's CPU
 time is 0.82 (80 pairs) and about 1.0 (160) of the old path's, against
 0.56 and 0.64 with every family warm only.
 
+A replicate fits only the candidates that can win it (:data:`PRUNE_AIC`):
+its resampled pairs are known before it is fitted, so each candidate's AIC
+on them is known at the final fit's parameters (the sum of its per-pair
+log-likelihood terms over the resample); a candidate more than
+:data:`PRUNE_AIC` behind the best eligible one there is not refitted.  The
+refit moves each AIC by a few units (twice the log-likelihood a refit of
+four or five parameters gains), so the margin leaves the winner the one
+every candidate's refit would choose; ``benchmarks/timing.py`` counts the
+replicates where it did not.
+
 Worker processes (``n_jobs`` > 1, or -1 for every core) are forked (POSIX),
 so they inherit the study's state instead of receiving it pickled; where fork
-is not available the replicates run in this process.  The default is one
-process: on the shared 2-core machine the band was measured on, two
-processes gave no wall-clock gain, and forking a driver that runs oracle
-threads or a Dask client is a risk a default should not take.
+is not available the replicates run in this process.  The default (None)
+is every core the process may use, but one process when this process runs
+other threads (an oracle's, a Dask client's): forking a threaded process
+can copy a lock that one of them holds.
 """
 
 from __future__ import annotations
@@ -37,17 +47,18 @@ from __future__ import annotations
 import copy
 import multiprocessing
 import os
+import threading
 
 import numpy as np
 
 from ..models.joint import HF_MARGINALS
-from ..models.joint_mixture import MIXTURE
+from ..models.joint_mixture import MIXTURE, pair_logliks
 from ..stats.exceedance import mpm_of_realisations
 from .selection import impact_probability
 from .steps import conditioning_set
 
-__all__ = ["WARM_BAND", "COLD_FAMILIES", "bootstrap_band", "default_jobs", "replicate_plan",
-           "replicate_mpms"]
+__all__ = ["WARM_BAND", "COLD_FAMILIES", "PRUNE_AIC", "ReplicateStarts", "bootstrap_band",
+           "default_jobs", "replicate_plan", "replicate_mpms", "replicate_starts"]
 
 WARM_BAND = True
 """Replicates start their joint fits from the final model's fits only; False: from the
@@ -56,7 +67,16 @@ study's last fits and from the data (a cold start), as before (``benchmarks/timi
 COLD_FAMILIES = ("student",)
 """Families whose replicate fits also start from the data in a warm band (module docs)."""
 
-_JOB = None  # (strategy, pairs, lfset, starts, plan) while replicate_mpms runs
+PRUNE_AIC = 30.0
+"""A replicate refits the candidates within this AIC of its best eligible one, judged at
+the final fits' parameters on its resampled pairs (module docs); None: every candidate."""
+
+_JOB = None  # (strategy, pairs, lfset, starts, plan, lf_rngs) while replicate_mpms runs
+
+
+class ReplicateStarts(dict):
+    """The joint fits a band replicate starts from, by ``(family, marginal)``: only these
+    candidates are fitted (:meth:`pas.strategies.pas.PAS.fit`)."""
 
 
 def default_jobs() -> int:
@@ -109,6 +129,35 @@ def _lf_rank_streams(strategy, pairs, lfset, plan, lf_rng) -> list:
     return streams
 
 
+def _choice_marginals(strategy, choice) -> set:
+    """The HF marginals a replicate's ``hf_marginal`` choice fits (None: the study's)."""
+    choice = choice or strategy.hf_marginal
+    return set({"both": HF_MARGINALS, MIXTURE: ("weibull", MIXTURE),
+                "all": (*HF_MARGINALS, MIXTURE)}.get(choice, (choice,)))
+
+
+def replicate_starts(strategy, pairs, lfset, starts: dict, plan) -> list:
+    """Per replicate of ``plan``, the :class:`ReplicateStarts` of the candidates that can
+    win it: within :data:`PRUNE_AIC` of the best one not on a parameter bound, by the
+    AIC of the final fits ``starts`` on the replicate's resampled pairs (module docs)."""
+    impact = impact_probability(pairs.lf, pairs.fp_lf) if strategy.impact_model else None
+    n0 = conditioning_set(lfset.lf, pairs.lf.min()).size
+    u = strategy._population_ranks(lfset, n0, impact, None)[pairs.position]
+    terms = {k: pair_logliks(f, u, pairs.hf, location=strategy.hf_location)
+             for k, f in starts.items()}
+    out = []
+    for tp, _, choice, _ in plan:
+        keys = [k for k in starts if k[1] in _choice_marginals(strategy, choice)]
+        counts = np.bincount(tp, minlength=len(pairs))
+        aic = {k: 2.0 * starts[k].copula.npars - 2.0 * float(counts @ terms[k]) for k in keys}
+        eligible = [aic[k] for k in keys if not starts[k].copula.at_bound] or list(aic.values())
+        kept = {k for k in keys if PRUNE_AIC is None or not np.isfinite(aic[k])
+                or aic[k] <= min(eligible) + PRUNE_AIC}
+        kept |= {(f, "weibull") for f, m in kept if m == MIXTURE}  # its cold start
+        out.append(ReplicateStarts((k, starts[k]) for k in keys if k in kept))
+    return out
+
+
 def _replicate_mpm(i: int) -> float | None:
     """The MPM of replicate ``i`` of the running job, None when it cannot be fitted."""
     strategy, pairs, lfset, starts, plan, lf_rngs = _JOB
@@ -118,7 +167,8 @@ def _replicate_mpm(i: int) -> float | None:
         return None
     try:
         model = strategy.fit(b, lfset, update=False, hf_marginal=marginal,
-                             lf_ranks_rng=lf_rngs[i], starts=starts)
+                             lf_ranks_rng=lf_rngs[i],
+                             starts=starts[i] if isinstance(starts, list) else starts)
         draws = strategy._draws(model, draw_rng)
     except (ValueError, np.linalg.LinAlgError):
         return None
@@ -129,15 +179,18 @@ def replicate_mpms(strategy, pairs, lfset, starts, plan, lf_rng=None,
                    n_jobs: int | None = None) -> list:
     """The MPM of every replicate of ``plan`` (None where it failed), in plan order.
 
-    ``starts``: the joint fits every replicate starts from (None: the
-    strategy's own rule); ``lf_rng``: the stream of the LF-rank draws, read
-    by the replicates in turn (None: mid-ranks); ``n_jobs``: processes
-    (None or 1: this process; -1: every core).
+    ``starts``: the joint fits every replicate starts from, or a list of them
+    per replicate (None: the strategy's own rule); ``lf_rng``: the stream of
+    the LF-rank draws, read by the replicates in turn (None: mid-ranks);
+    ``n_jobs``: processes (1: this process; -1: every core; None: every core
+    unless this process runs other threads, module docs).
     """
     global _JOB
     if n_jobs is not None and int(n_jobs) != -1 and int(n_jobs) < 1:
         raise ValueError(f"n_jobs must be at least 1, or -1 for every core, got {n_jobs}")
-    n_jobs = 1 if n_jobs is None else int(n_jobs)
+    if n_jobs is None:
+        n_jobs = -1 if threading.active_count() == 1 else 1
+    n_jobs = int(n_jobs)
     n_jobs = min(default_jobs() if n_jobs == -1 else n_jobs, max(len(plan), 1))
     if n_jobs == 1 or "fork" not in multiprocessing.get_all_start_methods():
         n_jobs, lf_rngs = 1, [lf_rng] * len(plan)
@@ -167,6 +220,8 @@ def bootstrap_band(strategy, pairs, lfset, rng: np.random.Generator, n_jobs: int
     # a stream of its own, so the resampled pairs are those of "fixed"
     lf_rng = rng.spawn(1)[0] if strategy.band_lf_ranks == "redrawn" else None
     plan = replicate_plan(pairs, rng, strategy.n_bootstrap, marginals)
+    if starts is not None:
+        starts = replicate_starts(strategy, pairs, lfset, starts, plan)
     mpms = [x for x in replicate_mpms(strategy, pairs, lfset, starts, plan, lf_rng, n_jobs)
             if x is not None]
     if len(mpms) < 10:

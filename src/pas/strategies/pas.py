@@ -283,6 +283,8 @@ class PAS(Strategy):
         n0 = conditioning_set(lfset.lf, pairs.lf.min()).size
         cond_lf = lfset.lf[:n0]
         u_cond = self._population_ranks(lfset, n0, impact, lf_ranks_rng)
+        # a band replicate fits only the candidates that can win it (band.ReplicateStarts)
+        only = set(starts) if isinstance(starts, band.ReplicateStarts) else None
         if starts is not None:  # a band replicate from the final fits (model_band)
             cold = band.COLD_FAMILIES
         else:
@@ -294,7 +296,7 @@ class PAS(Strategy):
             cold = not update or (family is None and self._n_fits % COLD_EVERY == 0)
         every, joint = fit_hf_candidates(u_cond[pairs.position][keep], pairs.hf[keep], families,
                                          hf_marginal, starts=starts, location=self.hf_location,
-                                         cold=cold or not starts)
+                                         cold=cold or not starts, only=only)
         self._last_joint = every
         if update and family is None:
             self._joint = every
@@ -376,7 +378,8 @@ class PAS(Strategy):
         CDF only to within the spread of the largest order statistics.
         The conditional estimator's replicates start their joint fits from the
         final model's (:mod:`pas.strategies.band`); ``n_jobs`` processes fit
-        them (None: one; -1: every core), with the same band for any ``n_jobs``.
+        them (1: this one; -1: every core; None: every core unless this process runs other
+        threads), with the same band for any ``n_jobs``.
         Returns ``(low, high, mpms)`` or None when off.
         """
         if self.n_bootstrap <= 0 or self.family_ is None:
