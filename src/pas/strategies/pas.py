@@ -64,6 +64,7 @@ from .screening import LFSet
 from .selection import impact_probability, population_lf_ranks
 from .steps import (
     FittedModel,
+    cold_turns,
     conditioning_set,
     draw_conditional_hf,
     fit_marginals,
@@ -290,10 +291,12 @@ class PAS(Strategy):
         else:
             starts = self._joint if family is None else {
                 k: v for k, v in self._joint.items() if k[0] == family}
-            # a warm start from the previous iteration converges in a few steps; every
-            # COLD_EVERY-th fit, and every other fit with update=False, also starts from
-            # the data, so no fit stays trapped in the basin of another sample
-            cold = not update or (family is None and self._n_fits % COLD_EVERY == 0)
+            # a warm start from the previous iteration converges in a few steps; each
+            # family's fit every COLD_EVERY-th iteration, the families in turn (steps.cold_turns),
+            # and every other fit with update=False also starts from the data, so no fit
+            # stays trapped in the basin of another sample
+            cold = not update or (family is None and cold_turns(families, self._n_fits,
+                                                                COLD_EVERY))
         every, joint = fit_hf_candidates(u_cond[pairs.position][keep], pairs.hf[keep], families,
                                          hf_marginal, starts=starts, location=self.hf_location,
                                          cold=cold or not starts, only=only)
