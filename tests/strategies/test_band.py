@@ -124,15 +124,13 @@ def test_replicate_starts_keep_the_candidates_within_the_margin_of_the_best():
     strategy.reset(0)
     strategy.predict(pairs, s, np.random.default_rng(0))
     starts = strategy.final_joint_fits(pairs, s, "both")
-    # the whole sample once: the AIC of the final fits themselves
-    plan = [(np.arange(len(pairs)), np.array([], int), "both", None)]
-    (kept,) = band.replicate_starts(strategy, pairs, s, starts, plan)
+    # the whole sample as the replicate: the AIC of the final fits themselves
+    kept = band.replicate_starts(strategy, pairs, s, starts, "both")
     aic = {k: f.copula.aic for k, f in starts.items()}
     best = min(a for k, a in aic.items() if not starts[k].copula.at_bound)
     assert set(kept) == {k for k, a in aic.items() if a <= best + band.PRUNE_AIC}
-    assert len(kept) < len(starts)
-    (weibull_only,) = band.replicate_starts(strategy, pairs, s, starts,
-                                            [(*plan[0][:2], "weibull", None)])
+    assert 0 < len(kept) < len(starts)
+    weibull_only = band.replicate_starts(strategy, pairs, s, starts, "weibull")
     assert {m for _, m in weibull_only} == {"weibull"}
 
 

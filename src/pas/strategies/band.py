@@ -25,14 +25,15 @@ time is 0.82 (80 pairs) and about 1.0 (160) of the old path's, against
 0.56 and 0.64 with every family warm only.
 
 A replicate fits only the candidates that can win it (:data:`PRUNE_AIC`):
-its resampled pairs are known before it is fitted, so each candidate's AIC
-on them is known at the final fit's parameters (the sum of its per-pair
-log-likelihood terms over the resample); a candidate more than
-:data:`PRUNE_AIC` behind the best eligible one there is not refitted.  The
-refit moves each AIC by a few units (twice the log-likelihood a refit of
-four or five parameters gains), so the margin leaves the winner the one
-every candidate's refit would choose; ``benchmarks/timing.py`` counts the
-replicates where it did not.
+each candidate's AIC on the replicate's pairs — their own conditioning set
+and censored load — at the final fit's parameters, where its warm start
+begins; a candidate more than :data:`PRUNE_AIC` behind the best eligible
+one there is not refitted.  The margin is for what a refit gains: on a
+Frank problem of ``benchmarks/known_truth.py`` a replicate's winner gained
+13 units more than the candidate best at the start (the AIC summed from the
+full sample's per-pair terms, without the replicate's own conditioning set,
+was 65 behind and wrongly pruned); ``benchmarks/timing.py`` counts the
+replicates whose MPM pruning changed.
 
 Worker processes (``n_jobs`` > 1, or -1 for every core) are forked (POSIX),
 so they inherit the study's state instead of receiving it pickled; where fork
@@ -136,26 +137,24 @@ def _choice_marginals(strategy, choice) -> set:
                 "all": (*HF_MARGINALS, MIXTURE)}.get(choice, (choice,)))
 
 
-def replicate_starts(strategy, pairs, lfset, starts: dict, plan) -> list:
-    """Per replicate of ``plan``, the :class:`ReplicateStarts` of the candidates that can
-    win it: within :data:`PRUNE_AIC` of the best one not on a parameter bound, by the
-    AIC of the final fits ``starts`` on the replicate's resampled pairs (module docs)."""
-    impact = impact_probability(pairs.lf, pairs.fp_lf) if strategy.impact_model else None
-    n0 = conditioning_set(lfset.lf, pairs.lf.min()).size
-    u = strategy._population_ranks(lfset, n0, impact, None)[pairs.position]
-    terms = {k: pair_logliks(f, u, pairs.hf, location=strategy.hf_location)
-             for k, f in starts.items()}
-    out = []
-    for tp, _, choice, _ in plan:
-        keys = [k for k in starts if k[1] in _choice_marginals(strategy, choice)]
-        counts = np.bincount(tp, minlength=len(pairs))
-        aic = {k: 2.0 * starts[k].copula.npars - 2.0 * float(counts @ terms[k]) for k in keys}
-        eligible = [aic[k] for k in keys if not starts[k].copula.at_bound] or list(aic.values())
-        kept = {k for k in keys if PRUNE_AIC is None or not np.isfinite(aic[k])
-                or aic[k] <= min(eligible) + PRUNE_AIC}
-        kept |= {(f, "weibull") for f, m in kept if m == MIXTURE}  # its cold start
-        out.append(ReplicateStarts((k, starts[k]) for k in keys if k in kept))
-    return out
+def replicate_starts(strategy, b, lfset, starts: dict, choice) -> ReplicateStarts:
+    """The :class:`ReplicateStarts` of the candidates that can win the replicate of pairs
+    ``b``: within :data:`PRUNE_AIC` of the best one not on a parameter bound, by the AIC
+    of the final fits ``starts`` on ``b`` (its own conditioning set and censoring, the
+    mid-ranks of its LF; module docs) for the HF marginals of ``choice``."""
+    keys = [k for k in starts if k[1] in _choice_marginals(strategy, choice)]
+    if PRUNE_AIC is None:
+        return ReplicateStarts((k, starts[k]) for k in keys)
+    impact = impact_probability(b.lf, b.fp_lf) if strategy.impact_model else None
+    n0 = conditioning_set(lfset.lf, b.lf.min()).size
+    u = strategy._population_ranks(lfset, n0, impact, None)[b.position]
+    aic = {k: 2.0 * starts[k].copula.npars
+           - 2.0 * float(np.sum(pair_logliks(starts[k], u, b.hf, location=strategy.hf_location)))
+           for k in keys}
+    eligible = [aic[k] for k in keys if not starts[k].copula.at_bound] or list(aic.values())
+    kept = {k for k in keys if not np.isfinite(aic[k]) or aic[k] <= min(eligible) + PRUNE_AIC}
+    kept |= {(f, "weibull") for f, m in kept if m == MIXTURE}  # its cold start
+    return ReplicateStarts((k, starts[k]) for k in keys if k in kept)
 
 
 def _replicate_mpm(i: int) -> float | None:
@@ -166,9 +165,10 @@ def _replicate_mpm(i: int) -> float | None:
     if b is None:
         return None
     try:
+        if starts is not None:
+            starts = replicate_starts(strategy, b, lfset, starts, marginal)
         model = strategy.fit(b, lfset, update=False, hf_marginal=marginal,
-                             lf_ranks_rng=lf_rngs[i],
-                             starts=starts[i] if isinstance(starts, list) else starts)
+                             lf_ranks_rng=lf_rngs[i], starts=starts)
         draws = strategy._draws(model, draw_rng)
     except (ValueError, np.linalg.LinAlgError):
         return None
@@ -179,8 +179,8 @@ def replicate_mpms(strategy, pairs, lfset, starts, plan, lf_rng=None,
                    n_jobs: int | None = None) -> list:
     """The MPM of every replicate of ``plan`` (None where it failed), in plan order.
 
-    ``starts``: the joint fits every replicate starts from, or a list of them
-    per replicate (None: the strategy's own rule); ``lf_rng``: the stream of
+    ``starts``: the final joint fits, those that can win a replicate its
+    starts (:func:`replicate_starts`; None: the strategy's own rule); ``lf_rng``: the stream of
     the LF-rank draws, read by the replicates in turn (None: mid-ranks);
     ``n_jobs``: processes (1: this process; -1: every core; None: every core
     unless this process runs other threads, module docs).
@@ -220,8 +220,6 @@ def bootstrap_band(strategy, pairs, lfset, rng: np.random.Generator, n_jobs: int
     # a stream of its own, so the resampled pairs are those of "fixed"
     lf_rng = rng.spawn(1)[0] if strategy.band_lf_ranks == "redrawn" else None
     plan = replicate_plan(pairs, rng, strategy.n_bootstrap, marginals)
-    if starts is not None:
-        starts = replicate_starts(strategy, pairs, lfset, starts, plan)
     mpms = [x for x in replicate_mpms(strategy, pairs, lfset, starts, plan, lf_rng, n_jobs)
             if x is not None]
     if len(mpms) < 10:
