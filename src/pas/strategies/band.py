@@ -24,16 +24,19 @@ replicates select another family and marginal.  The price: the band's CPU
 time is 0.82 (80 pairs) and about 1.0 (160) of the old path's, against
 0.56 and 0.64 with every family warm only.
 
-A replicate fits only the candidates that can win it (:data:`PRUNE_AIC`):
+A replicate fits only the copula families that can win it (:data:`PRUNE_AIC`):
 each candidate's AIC on the replicate's pairs — their own conditioning set
 and censored load — at the final fit's parameters, where its warm start
-begins; a candidate more than :data:`PRUNE_AIC` behind the best eligible
-one there is not refitted.  The margin is for what a refit gains: on a
-Frank problem of ``benchmarks/known_truth.py`` a replicate's winner gained
-13 units more than the candidate best at the start (the AIC summed from the
-full sample's per-pair terms, without the replicate's own conditioning set,
-was 65 behind and wrongly pruned); ``benchmarks/timing.py`` counts the
-replicates whose MPM pruning changed.
+begins; a family whose every HF marginal is more than :data:`PRUNE_AIC`
+behind the best eligible candidate there is not refitted.  Whole families,
+because a marginal's start can be far from its replicate optimum: on a
+36-pair Gumbel problem of ``benchmarks/known_truth.py`` the log-normal
+started 38–48 units behind its family's Weibull and won three replicates
+after its refit.  The margin is for what a family's refit gains: on a Frank
+problem there a replicate's winner gained 13 units more than the candidate
+best at the start (the AIC summed from the full sample's per-pair terms,
+without the replicate's own conditioning set, had put it 65 behind).
+``benchmarks/timing.py`` counts the replicates whose MPM pruning changed.
 
 Worker processes (``n_jobs`` > 1, or -1 for every core) are forked (POSIX),
 so they inherit the study's state instead of receiving it pickled; where fork
@@ -69,8 +72,9 @@ COLD_FAMILIES = ("student",)
 """Families whose replicate fits also start from the data in a warm band (module docs)."""
 
 PRUNE_AIC = 30.0
-"""A replicate refits the candidates within this AIC of its best eligible one, judged at
-the final fits' parameters on its resampled pairs (module docs); None: every candidate."""
+"""A replicate refits the families with a candidate within this AIC of its best eligible
+one, judged at the final fits' parameters on its resampled pairs (module docs); None:
+every family."""
 
 _JOB = None  # (strategy, pairs, lfset, starts, plan, lf_rngs) while replicate_mpms runs
 
@@ -138,10 +142,11 @@ def _choice_marginals(strategy, choice) -> set:
 
 
 def replicate_starts(strategy, b, lfset, starts: dict, choice) -> ReplicateStarts:
-    """The :class:`ReplicateStarts` of the candidates that can win the replicate of pairs
-    ``b``: within :data:`PRUNE_AIC` of the best one not on a parameter bound, by the AIC
-    of the final fits ``starts`` on ``b`` (its own conditioning set and censoring, the
-    mid-ranks of its LF; module docs) for the HF marginals of ``choice``."""
+    """The :class:`ReplicateStarts` of the families that can win the replicate of pairs
+    ``b``, with the HF marginals of ``choice``: a family with a candidate within
+    :data:`PRUNE_AIC` of the best one not on a parameter bound, by the AIC of the final
+    fits ``starts`` on ``b`` (its own conditioning set and censoring, the mid-ranks of
+    its LF; module docs)."""
     keys = [k for k in starts if k[1] in _choice_marginals(strategy, choice)]
     if PRUNE_AIC is None:
         return ReplicateStarts((k, starts[k]) for k in keys)
@@ -152,9 +157,11 @@ def replicate_starts(strategy, b, lfset, starts: dict, choice) -> ReplicateStart
            - 2.0 * float(np.sum(pair_logliks(starts[k], u, b.hf, location=strategy.hf_location)))
            for k in keys}
     eligible = [aic[k] for k in keys if not starts[k].copula.at_bound] or list(aic.values())
-    kept = {k for k in keys if not np.isfinite(aic[k]) or aic[k] <= min(eligible) + PRUNE_AIC}
-    kept |= {(f, "weibull") for f, m in kept if m == MIXTURE}  # its cold start
-    return ReplicateStarts((k, starts[k]) for k in keys if k in kept)
+    # whole families: a marginal's start can be far from its replicate optimum (module docs)
+    kept = {f for f, _ in keys
+            if min(a if np.isfinite(a) else -np.inf for (g, _), a in aic.items() if g == f)
+            <= min(eligible) + PRUNE_AIC}
+    return ReplicateStarts((k, starts[k]) for k in keys if k[0] in kept)
 
 
 def _replicate_mpm(i: int) -> float | None:
