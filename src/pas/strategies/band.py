@@ -41,9 +41,10 @@ without the replicate's own conditioning set, had put it 65 behind).
 Worker processes (``n_jobs`` > 1, or -1 for every core) are forked (POSIX),
 so they inherit the study's state instead of receiving it pickled; where fork
 is not available the replicates run in this process.  The default (None)
-is every core the process may use, but one process when this process runs
-other threads (an oracle's, a Dask client's): forking a threaded process
-can copy a lock that one of them holds.
+is every core the process may use on Linux, but one process when this
+process runs other threads (an oracle's, a Dask client's): forking a
+threaded process can copy a lock that one of them holds; and one process
+elsewhere (macOS: system libraries that are not fork-safe).
 """
 
 from __future__ import annotations
@@ -51,6 +52,7 @@ from __future__ import annotations
 import copy
 import multiprocessing
 import os
+import sys
 import threading
 
 import numpy as np
@@ -190,13 +192,13 @@ def replicate_mpms(strategy, pairs, lfset, starts, plan, lf_rng=None,
     starts (:func:`replicate_starts`; None: the strategy's own rule); ``lf_rng``: the stream of
     the LF-rank draws, read by the replicates in turn (None: mid-ranks);
     ``n_jobs``: processes (1: this process; -1: every core; None: every core
-    unless this process runs other threads, module docs).
+    on Linux unless this process runs other threads, module docs).
     """
     global _JOB
     if n_jobs is not None and int(n_jobs) != -1 and int(n_jobs) < 1:
         raise ValueError(f"n_jobs must be at least 1, or -1 for every core, got {n_jobs}")
     if n_jobs is None:
-        n_jobs = -1 if threading.active_count() == 1 else 1
+        n_jobs = -1 if threading.active_count() == 1 and sys.platform.startswith("linux") else 1
     n_jobs = int(n_jobs)
     n_jobs = min(default_jobs() if n_jobs == -1 else n_jobs, max(len(plan), 1))
     if n_jobs == 1 or "fork" not in multiprocessing.get_all_start_methods():

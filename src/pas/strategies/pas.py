@@ -381,8 +381,8 @@ class PAS(Strategy):
         CDF only to within the spread of the largest order statistics.
         The conditional estimator's replicates start their joint fits from the
         final model's (:mod:`pas.strategies.band`); ``n_jobs`` processes fit
-        them (1: this one; -1: every core; None: every core unless this process runs other
-        threads), with the same band for any ``n_jobs``.
+        them (1: this one; -1: every core; None: every core on Linux unless this process
+        runs other threads), with the same band for any ``n_jobs``.
         Returns ``(low, high, mpms)`` or None when off.
         """
         if self.n_bootstrap <= 0 or self.family_ is None:
