@@ -9,14 +9,19 @@ time, the forked band workers' included; wall time on a shared machine):
   fit by numerical differences (scipy's L-BFGS-B default, the old path)
   against its analytic gradient; the largest change of MPM and band ends
   and whether the family sequence is the same;
+* ``fit`` also: the study's periodic cold starts all at once every tenth fit
+  (old) against the families in turn (``steps.cold_turns``): loop median and
+  worst, the largest change of MPM and band ends;
 * ``band``: the final model band of 80 and 160 pairs started from the
   study's fits and cold in every replicate (old) against warm from the final
-  fits, on 1 and 2 cores, and how often a cold start beats the warm one;
+  fits, every family refitted (``PRUNE_AIC=None``) against the families that
+  can win each replicate, on 1 and 2 cores, how many replicate MPMs pruning
+  changed, and how often a cold start beats the warm one;
 * ``long``: one iteration at n = 15 k / 150 k / 1.5 M with the LF ranks and
   the normal scores of the common uniforms recomputed (old) or kept, and a
   band replicate's full sort against the partial one.
 
-Run: python benchmarks/timing.py [--parts fit,band,long] [--max-hf 80] [--json out.json]
+Run: python benchmarks/timing.py [--parts fit,cold,band,long] [--max-hf 80] [--json out.json]
 """
 
 from __future__ import annotations
@@ -85,6 +90,38 @@ def run(max_hf, n=N, n_waves=N_W, **settings):
     return res, np.diff(cpu), cpu_seconds() - cpu[-1], time.perf_counter() - stamps[-1][1]
 
 
+@contextlib.contextmanager
+def cold_all_at_once():
+    """The old cold starts: every family's fit on every tenth fit of the study."""
+    import pas.strategies.pas as pas_strategy
+
+    saved = pas_strategy.cold_turns
+    pas_strategy.cold_turns = lambda families, n_fits, every: (
+        tuple(families) if n_fits % every == 0 else ())
+    try:
+        yield
+    finally:
+        pas_strategy.cold_turns = saved
+
+
+def part_cold(max_hf):
+    """Cold starts all at once (old) against the families in turn (new), no band."""
+    print("-- the study's cold starts: all families every tenth fit (old) vs in turn (new)")
+    out = {}
+    for label, ctx in (("old", cold_all_at_once), ("new", contextlib.nullcontext)):
+        with ctx():
+            res, loop, _, _ = run(max_hf, n_bootstrap=0)
+        out[label] = summary(res)
+        out[label]["times"] = [float(np.median(loop)), float(loop.max())]
+        print(f"  {label}: loop median {1e3 * np.median(loop):5.1f} ms, worst "
+              f"{1e3 * loop.max():6.1f} ms, 95th percentile {1e3 * np.percentile(loop, 95):5.1f} ms")
+    rel, same = largest_change(out["old"], out["new"])
+    print(f"  ratio new/old: loop median {out['new']['times'][0] / out['old']['times'][0]:.2f}, "
+          f"worst {out['new']['times'][1] / out['old']['times'][1]:.2f}; largest relative change "
+          f"of MPM and band ends {rel:.1e}; family sequence {'the same' if same else 'DIFFERENT'}")
+    return out
+
+
 def summary(res):
     """What must not change: MPM, band ends and the family sequence."""
     return {"mpm": float(res.mpm), "band": [float(x) for x in res.mpm_band],
@@ -142,19 +179,22 @@ def final_study(max_hf):
 
 
 @contextlib.contextmanager
-def band_path(warm=True, cold_families=None):
+def band_path(warm=True, cold_families=None, prune=True):
     """The band's starts: warm from the final fits (new) or the study's fits and cold (old);
-    ``cold_families`` overrides which families also start cold in a warm band."""
+    ``cold_families`` overrides which families also start cold in a warm band; ``prune``
+    False refits every family in every replicate."""
     from pas.strategies import band
 
-    saved = band.WARM_BAND, band.COLD_FAMILIES
+    saved = band.WARM_BAND, band.COLD_FAMILIES, band.PRUNE_AIC
     band.WARM_BAND = warm
     if cold_families is not None:
         band.COLD_FAMILIES = cold_families
+    if not prune:
+        band.PRUNE_AIC = None
     try:
         yield
     finally:
-        band.WARM_BAND, band.COLD_FAMILIES = saved
+        band.WARM_BAND, band.COLD_FAMILIES, band.PRUNE_AIC = saved
 
 
 @contextlib.contextmanager
@@ -180,8 +220,8 @@ def cold_against_warm(record):
 def band_seconds(study, rng, n_jobs):
     """``(wall s, CPU s with the workers', band)`` of the final model band."""
     t, c = time.perf_counter(), cpu_seconds()
-    low, high, _ = study.strategy.model_band(study.pairs(), study.lfset, rng(), n_jobs=n_jobs)
-    return time.perf_counter() - t, cpu_seconds() - c, (low, high)
+    low, high, mpms = study.strategy.model_band(study.pairs(), study.lfset, rng(), n_jobs=n_jobs)
+    return time.perf_counter() - t, cpu_seconds() - c, (low, high), mpms
 
 
 def part_band(max_hf):
@@ -192,13 +232,14 @@ def part_band(max_hf):
     for m in (max_hf, 2 * max_hf):
         study, rng = final_study(m)
         rows = {}
-        for label, ctx, jobs in (("old 1 core", band_path(False), 1),
+        for label, ctx, jobs in (("old 1 core", band_path(False, prune=False), 1),
+                                 ("every family", band_path(True, prune=False), 1),
                                  ("new 1 core", band_path(True), 1),
                                  ("new 2 cores", band_path(True), 2),
                                  ("all warm, 1 core", band_path(True, ()), 1)):
             with ctx:
                 rows[label] = band_seconds(study, rng, jobs)
-            wall, cpu, (low, high) = rows[label]
+            wall, cpu, (low, high), _ = rows[label]
             print(f"  {m:3d} pairs, {label:>16}: {wall:5.2f} s wall, {cpu:5.2f} s CPU; "
                   f"band [{low:.6g}, {high:.6g}]")
         old, new = rows["old 1 core"], rows["new 1 core"]
@@ -207,8 +248,12 @@ def part_band(max_hf):
               f"identical on 1 and 2 cores: "
               f"{rows['new 2 cores'][2] == new[2]}; band ends new/old "
               f"{new[2][0] / old[2][0] - 1:+.2%}, {new[2][1] / old[2][1] - 1:+.2%}")
+        every = rows["every family"]
+        changed = int(np.sum(np.abs(new[3] / every[3] - 1) > 1e-9))
+        print(f"  {m:3d} pairs: pruned/every family CPU {new[1] / every[1]:.2f} on one core; "
+              f"replicate MPMs pruning changed: {changed} of {every[3].size}")
         record = []
-        with band_path(True, ()), cold_against_warm(record):
+        with band_path(True, (), prune=False), cold_against_warm(record):
             band_seconds(study, rng, 1)
         keys = sorted({r[:2] for r in record})
         worse = ", ".join(
@@ -216,6 +261,7 @@ def part_band(max_hf):
             f"/{sum((k, j) == (f, mg) for k, j, _ in record)}" for f, mg in keys)
         print(f"  {m:3d} pairs: fits where a cold start beats warm by > 1e-6 in loglik: {worse}")
         out[m] = {k: [v[0], v[1], list(v[2])] for k, v in rows.items()}
+        out[m]["pruning_changed"] = changed
         out[m]["cold_beats_warm"] = record
     return out
 
@@ -298,11 +344,11 @@ def part_long(max_hf):
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--max-hf", type=int, default=80)
-    parser.add_argument("--parts", default="fit", help="comma-separated: fit, band, long")
+    parser.add_argument("--parts", default="fit", help="comma-separated: fit, cold, band, long")
     parser.add_argument("--json", help="write the figures here")
     args = parser.parse_args()
     out = {}
-    parts = {"fit": part_fit, "band": part_band, "long": part_long}
+    parts = {"fit": part_fit, "cold": part_cold, "band": part_band, "long": part_long}
     for part in args.parts.split(","):
         out[part] = parts[part](args.max_hf)
     if args.json:

@@ -91,3 +91,73 @@ def test_kept_lf_ranks_are_those_of_the_lf_set_fitted():
     expected = fresh.fit(pairs_b, s_b).u_cond
     assert np.max(np.abs(first.u_cond - expected)) > 1e-6
     np.testing.assert_allclose(again.u_cond, expected, rtol=1e-12)
+
+
+@pytest.mark.slow
+def test_pruned_replicates_fit_fewer_candidates_and_give_the_same_band(monkeypatch):
+    # a Gumbel problem with strong dependence: Clayton and Frank are far behind on every
+    # resample, so their replicate fits are dropped, and the replicates' MPMs do not move
+    import pas.models.joint as joint
+
+    s, pairs, _ = _problem(3, tau=0.7, gumbel=True, m=60)
+    strategy = PAS(n_bootstrap=12)
+    strategy.reset(0)
+    strategy.predict(pairs, s, np.random.default_rng(0))
+    original, fitted = joint.fit_joint, []
+
+    def counted(name, *args, **kwargs):
+        fitted.append((name, kwargs.get("marginal", "weibull")))
+        return original(name, *args, **kwargs)
+
+    monkeypatch.setattr(joint, "fit_joint", counted)
+    pruned = _band(strategy, pairs, s, 1)
+    n_pruned, fitted[:] = len(fitted), []
+    monkeypatch.setattr(band, "PRUNE_AIC", None)
+    every = _band(strategy, pairs, s, 1)
+    assert n_pruned < 0.7 * len(fitted)
+    np.testing.assert_allclose(pruned[2], every[2], rtol=1e-12)
+
+
+def test_replicate_starts_keep_the_families_within_the_margin_of_the_best():
+    s, pairs, _ = _problem(3, tau=0.7, gumbel=True, m=60)
+    strategy = PAS(n_bootstrap=4)
+    strategy.reset(0)
+    strategy.predict(pairs, s, np.random.default_rng(0))
+    starts = strategy.final_joint_fits(pairs, s, "both")
+    # the whole sample as the replicate: the AIC of the final fits themselves
+    kept = band.replicate_starts(strategy, pairs, s, starts, "both")
+    aic = {k: f.copula.aic for k, f in starts.items()}
+    best = min(a for k, a in aic.items() if not starts[k].copula.at_bound)
+    families = {f for (f, _), a in aic.items() if a <= best + band.PRUNE_AIC}
+    assert set(kept) == {k for k in starts if k[0] in families}
+    assert 0 < len(kept) < len(starts)
+    weibull_only = band.replicate_starts(strategy, pairs, s, starts, "weibull")
+    assert {m for _, m in weibull_only} == {"weibull"}
+
+
+def test_the_default_forks_only_a_process_without_other_threads(monkeypatch):
+    import threading
+
+    forked = []
+    real = band.multiprocessing.get_context
+
+    def spy(method):
+        forked.append(method)
+        return real(method)
+
+    monkeypatch.setattr(band.multiprocessing, "get_context", spy)
+    monkeypatch.setattr(band, "default_jobs", lambda: 2)
+    monkeypatch.setattr(band, "_replicate_mpm", float)
+    plan = [None] * 4
+    release = threading.Event()
+    other = threading.Thread(target=release.wait)
+    other.start()
+    try:
+        assert band.replicate_mpms(None, None, None, None, plan) == [0.0, 1.0, 2.0, 3.0]
+        assert forked == []
+    finally:
+        release.set()
+        other.join()
+    if threading.active_count() == 1:
+        assert band.replicate_mpms(None, None, None, None, plan) == [0.0, 1.0, 2.0, 3.0]
+        assert forked == ["fork"]

@@ -163,3 +163,48 @@ def test_outliers_leave_the_selected_space_marginals_by_default():
                                                                    np.random.default_rng(0))
     assert all_.record["n_outliers"] == kept.record["n_outliers"] == 1
     assert all_.h_mean[0] > kept.h_mean[0]  # the HF tail keeps the heavy load
+
+
+def test_hf_distribution_sorts_each_realisation_descending_with_ties_and_zeros():
+    from pas.strategies.steps import hf_distribution
+
+    rng = np.random.default_rng(3)
+    h = np.where(rng.uniform(size=(5, 400)) < 0.3, 0.0, np.round(rng.weibull(1.2, (5, 400)), 2))
+    d, mean, low, high = hf_distribution(h, 1000)
+    expected = np.array([sorted(row, reverse=True) for row in h])
+    np.testing.assert_allclose(mean, expected.mean(axis=0), rtol=1e-12)
+    np.testing.assert_allclose(high - mean, mean - low, rtol=1e-9, atol=1e-12)
+    np.testing.assert_allclose(d, np.arange(1, 401) / 1000, rtol=1e-12)
+
+
+@pytest.mark.parametrize("family, params", [("gumbel", [[3.0]])])
+def test_draws_hold_few_arrays_of_their_shape_at_a_time(family, params):
+    # a long record's draws are z x n0 values (10 x 1.5 M: 120 MB an array); the Gumbel
+    # inverse held five such arrays at once and the impact model's zeros one more
+    import tracemalloc
+
+    import pyvinecopulib as pv
+    from scipy import special
+
+    from pas.models.copulas import CopulaFit
+    from pas.stats.weibull import Weibull3
+    from pas.strategies.steps import FittedModel
+
+    rng = np.random.default_rng(0)
+    u, r = rng.uniform(1e-3, 1 - 1e-3, 20000), rng.uniform(1e-3, 1 - 1e-3, (10, 20000))
+    q = rng.uniform(size=r.shape)
+    cop = pv.Bicop(family=getattr(pv.BicopFamily, family), parameters=np.array(params))
+    fit = CopulaFit(name=family, bicop=cop, loglik=0.0, aic=0.0, npars=1, at_bound=False)
+    model = FittedModel(fit, Weibull3(0.1, 2.0, 1.3), None, u, np.full(u.size, 0.8), {}, 0)
+    scores = special.ndtri(r)  # kept by the study (common random numbers)
+    tracemalloc.start()
+    try:
+        h = model.draws(r, q, scores)
+        peak = tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+    assert peak < 3.5 * r.nbytes
+    v = pv.Bicop(family=cop.family, parameters=cop.parameters).hinv1(
+        np.column_stack([np.broadcast_to(u, r.shape).ravel(), r.ravel()])).reshape(r.shape)
+    expected = np.where(q < 0.8, Weibull3(0.1, 2.0, 1.3).ppf(np.clip(v, 1e-6, 1 - 1e-6)), 0.0)
+    np.testing.assert_allclose(h, expected, rtol=1e-5)

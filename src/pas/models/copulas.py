@@ -236,7 +236,11 @@ def _hinv1(fam, p, bicop, u, r, r_scores=None):
     if fam == pv.BicopFamily.gaussian:
         rho = p[0]
         scores = special.ndtri(r) if r_scores is None else r_scores
-        return special.ndtr(rho * special.ndtri(u) + np.sqrt(1 - rho**2) * scores)
+        z, x = np.sqrt(1 - rho**2) * np.asarray(scores, float), rho * special.ndtri(u)
+        if np.ndim(z) and z.shape == np.broadcast_shapes(z.shape, np.shape(x)):
+            z += x  # in place: one array of the draws' shape
+            return special.ndtr(z, out=z)
+        return special.ndtr(z + x)
     if fam == pv.BicopFamily.student:
         rho, nu = p
         x1 = t_quantile(nu, u)
@@ -259,12 +263,24 @@ def _hinv1(fam, p, bicop, u, r, r_scores=None):
         # h(v|u) = r with x = −ln u, w = ((−ln u)^θ + (−ln v)^θ)^{1/θ} gives
         # w + (θ−1) ln w = x + (θ−1) ln x − ln r, solved by w = (θ−1) ω(s) with
         # the Wright omega function ω (ω + ln ω = s).
+        # in place: two arrays of the draws' shape alive at a time, not five
         th = p[0]
         x = -np.log(u)
-        s = (x + (th - 1) * np.log(x) - np.log(r)) / (th - 1) - np.log(th - 1)
-        w = np.maximum((th - 1) * special.wrightomega(s).real, x)
-        y = np.exp(np.log(np.maximum(w**th - x**th, 0.0)) / th)
-        return np.exp(-y)
+        s = np.subtract(x + (th - 1) * np.log(x), np.log(r))
+        s /= th - 1
+        s -= np.log(th - 1)
+        w = special.wrightomega(s).real
+        del s
+        w *= th - 1
+        np.maximum(w, x, out=w)
+        np.power(w, th, out=w)
+        w -= x**th
+        np.maximum(w, 0.0, out=w)
+        np.log(w, out=w)
+        w /= th
+        np.exp(w, out=w)
+        np.negative(w, out=w)
+        return np.exp(w, out=w)
     if fam == pv.BicopFamily.indep or fam == pv.BicopFamily.gumbel:
         return np.broadcast_to(r, np.broadcast_shapes(u.shape, r.shape)).copy()
     u, r = np.broadcast_arrays(u, r)

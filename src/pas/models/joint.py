@@ -144,13 +144,14 @@ def _prepare(name: str, u, h, location: bool, censor: float):
 
 
 def joint_objective(name: str, u, h, *, location: bool = True, censor: float = 0.0,
-                    marginal: str = "weibull"):
+                    marginal: str = "weibull", per_pair: bool = False):
     """The negative log-likelihood of :func:`fit_joint` and how to read its parameters.
 
     Returns ``(negloglik, negloglik_grad, unpack)``: the objective of the
     optimiser values ``x``; the objective with its gradient (exact, but for
     Student-t's ν: a difference; None for rotated families); and ``x → (θ, α, β, copula values)``
-    (log-normal: ``(θ, μ, σ, copula values)``).
+    (log-normal: ``(θ, μ, σ, copula values)``).  ``per_pair``: the first is
+    instead each pair's log-likelihood term (:func:`negloglik_closure`).
     """
     if marginal not in HF_MARGINALS:
         raise ValueError(f"marginal must be one of {HF_MARGINALS}, got {marginal!r}")
@@ -176,7 +177,7 @@ def joint_objective(name: str, u, h, *, location: bool = True, censor: float = 0
         log_f = np.log(b / a) + (b - 1.0) * ln_z - zb
         return log_f, np.clip(-np.expm1(-zb), _TINY, 1 - _TINY), (w, ln_z, zb)
 
-    negloglik = negloglik_closure(base, rotation, u, density, marginal_terms, unpack)
+    negloglik = negloglik_closure(base, rotation, u, density, marginal_terms, unpack, per_pair)
 
     @np.errstate(all="ignore")
     def negloglik_grad(x):
@@ -322,17 +323,20 @@ def joint_fit_result(name: str, res, c, n_marg: int, hf, marginal: str) -> Joint
 
 def fit_joint_all(u, h, families, *, marginals=("weibull",), starts=None,
                   location: bool = True, censor: float = 0.0,
-                  cold=True) -> dict[tuple[str, str], JointFit]:
+                  cold=True, only=None) -> dict[tuple[str, str], JointFit]:
     """:func:`fit_joint` for every copula family and HF marginal, by ``(family, marginal)``.
 
     ``starts``: earlier fits by the same keys, to warm-start; ``cold``: a bool
-    for every family, or the families that also start cold.
+    for every family, or the families that also start cold; ``only``: the
+    ``(family, marginal)`` keys to fit, the others skipped (None: all).
     """
     starts = starts or {}
     out = {}
     with one_blas_thread():
         for name in families:
             for marginal in marginals:
+                if only is not None and (name, marginal) not in only:
+                    continue
                 prev = starts.get((name, marginal))
                 out[name, marginal] = fit_joint(name, u, h, location=location, censor=censor,
                                                 start=None if prev is None else prev.x,

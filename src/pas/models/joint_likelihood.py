@@ -15,6 +15,7 @@ from .copula_densities import copula_loghfunc, copula_logpdf, logc_grad, logh_gr
 __all__ = ["copula_parameters", "parameter_slope", "loglik_and_copula_gradient",
            "negloglik_closure", "NU_STEP"]
 
+
 def copula_parameters(base: str, c):
     """Unconstrained optimiser values → the family's parameter matrix (inside its bounds)."""
     if base == "gaussian":
@@ -51,6 +52,16 @@ def _copula_terms(base, rotation, p, u, v, log_f, density) -> float:
         lh = copula_loghfunc(base, p, uu[~density], vv[~density])
         val += np.sum(np.log(-np.expm1(lh)) if rotation == 180 else lh)
     return val
+
+
+def _pair_terms(base, rotation, p, u, v, log_f, density) -> np.ndarray:
+    """Each pair's term of :func:`_copula_terms`: ``log f + log c``, or ``log P(H ≤ h_c | u)``."""
+    uu, vv = (1.0 - u, 1.0 - v) if rotation == 180 else (u, v)
+    out = log_f + copula_logpdf(base, p, uu, vv)
+    if not density.all():
+        lh = copula_loghfunc(base, p, uu[~density], vv[~density])
+        out[~density] = np.log(-np.expm1(lh)) if rotation == 180 else lh
+    return out
 
 
 def _gradient_terms(base, p, u, v, density):
@@ -96,12 +107,22 @@ def loglik_and_copula_gradient(base, c, u, v, log_f, density):
     return float(np.sum(np.where(density, log_f + total, total))), d_v, g_c
 
 
-def negloglik_closure(base, rotation, u, density, marginal_terms, unpack):
+def negloglik_closure(base, rotation, u, density, marginal_terms, unpack, per_pair=False):
     """The negative log-likelihood of optimiser values ``x`` (+1e300 where not finite).
 
     ``marginal_terms(x)`` gives ``(log f_H(h), F_H(h), …)``; ``unpack(x)`` ends
-    with the copula's optimiser values.
+    with the copula's optimiser values.  ``per_pair``: instead, each pair's
+    log-likelihood term (their sum is the log-likelihood).
     """
+    if per_pair:
+        @np.errstate(all="ignore")
+        def pair_logliks(x):
+            log_f, v, _ = marginal_terms(x)
+            p = copula_parameters(base, unpack(x)[-1]).ravel()
+            return _pair_terms(base, rotation, p, u, v, log_f, density)
+
+        return pair_logliks
+
     @np.errstate(all="ignore")  # the optimiser's trial steps may overflow: scored as +inf
     def negloglik(x):
         log_f, v, _ = marginal_terms(x)

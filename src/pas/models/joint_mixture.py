@@ -31,6 +31,7 @@ from .joint import (
     _prepare,
     best_per_family,
     fit_joint_all,
+    joint_objective,
     joint_fit_result,
     location_bounds,
     minimise_bounded,
@@ -44,6 +45,7 @@ __all__ = [
     "fit_hf_candidates",
     "fit_joint_mixture",
     "fit_joint_mixture_all",
+    "pair_logliks",
 ]
 
 MIXTURE = "weibull_mixture"
@@ -61,8 +63,10 @@ def _unpack(x, location, h_c, span):
     return theta, WEIGHT_LOW + WEIGHT_SPAN * sig, a1, b1, a2, b2, x[k + 5:]
 
 
-def mixture_objective(name: str, u, h, *, location: bool = True, censor: float = 0.0):
-    """``(negloglik, negloglik_grad or None, unpack)`` as :func:`pas.models.joint.joint_objective`."""
+def mixture_objective(name: str, u, h, *, location: bool = True, censor: float = 0.0,
+                      per_pair: bool = False):
+    """``(negloglik, negloglik_grad or None, unpack)`` as :func:`pas.models.joint.joint_objective`
+    (``per_pair`` as there)."""
     base, rotation, u, h, h_c, span, density = _prepare(name, u, h, location, censor)
 
     def unpack(x):
@@ -82,7 +86,7 @@ def mixture_objective(name: str, u, h, *, location: bool = True, censor: float =
         cdf = -p * np.expm1(-parts[0][3]) - (1.0 - p) * np.expm1(-parts[1][3])
         return log_f, np.clip(cdf, _TINY, 1 - _TINY), (w, p, parts, l1 - log_f, l2 - log_f)
 
-    negloglik = negloglik_closure(base, rotation, u, density, marginal_terms, unpack)
+    negloglik = negloglik_closure(base, rotation, u, density, marginal_terms, unpack, per_pair)
 
     @np.errstate(all="ignore")
     def negloglik_grad(x):
@@ -156,16 +160,18 @@ def fit_joint_mixture(name: str, u, h, weibull: JointFit, *, start=None, locatio
 
 
 def fit_joint_mixture_all(u, h, weibull_fits: dict, *, starts=None, location: bool = True,
-                          censor: float = 0.0, cold=True) -> dict[tuple[str, str], JointFit]:
+                          censor: float = 0.0, cold=True,
+                          only=None) -> dict[tuple[str, str], JointFit]:
     """:func:`fit_joint_mixture` for every family of ``weibull_fits`` (keys ``(family, "weibull")``).
 
-    A family whose mixture fit fails keeps its Weibull (it gets no mixture entry).
+    A family whose mixture fit fails keeps its Weibull (it gets no mixture
+    entry); ``only``: the keys to fit (None: all).
     """
     starts = starts or {}
     out = {}
     with one_blas_thread():
         for (name, marginal), weibull in weibull_fits.items():
-            if marginal != "weibull":
+            if marginal != "weibull" or (only is not None and (name, MIXTURE) not in only):
                 continue
             prev = starts.get((name, MIXTURE))
             try:
@@ -178,8 +184,18 @@ def fit_joint_mixture_all(u, h, weibull_fits: dict, *, starts=None, location: bo
     return out
 
 
+def pair_logliks(fit: JointFit, u, h, *, location: bool = True,
+                 censor: float = 0.0) -> np.ndarray:
+    """Each pair's log-likelihood term at the optimum of ``fit`` (a joint fit to ``u``, ``h``
+    of either marginal kind); their sum is ``fit.copula.loglik``."""
+    kind = {} if fit.marginal == MIXTURE else {"marginal": fit.marginal}
+    objective = mixture_objective if fit.marginal == MIXTURE else joint_objective
+    return objective(fit.copula.name, u, h, location=location, censor=censor, per_pair=True,
+                     **kind)[0](fit.x)
+
+
 def fit_hf_candidates(u, h, families, choice: str, *, starts=None, location: bool = True,
-                      censor: float = 0.0, cold=True):
+                      censor: float = 0.0, cold=True, only=None):
     """The joint fits an ``hf_marginal`` choice asks for, and per family the one kept.
 
     ``choice``: one marginal of :data:`pas.models.joint.HF_MARGINALS`; ``"both"`` (the
@@ -187,15 +203,16 @@ def fit_hf_candidates(u, h, families, choice: str, *, starts=None, location: boo
     (the Weibull and the mixture); or ``"all"`` (the three).  With the mixture,
     which has three parameters more, the lower AIC is kept.
     ``censor`` and ``cold`` (a bool, or the families that also start cold) go
-    to every fit (:func:`pas.models.joint.fit_joint`).
+    to every fit (:func:`pas.models.joint.fit_joint`); ``only``: the
+    ``(family, marginal)`` keys to fit (None: all; a mixture needs its Weibull).
     Returns ``(every fit by (family, marginal), the kept fit by family)``.
     """
     marginals = {"both": HF_MARGINALS, MIXTURE: ("weibull",),
                  "all": HF_MARGINALS}.get(choice, (choice,))
     every = fit_joint_all(u, h, families, marginals=marginals, starts=starts,
-                          location=location, censor=censor, cold=cold)
+                          location=location, censor=censor, cold=cold, only=only)
     mixture = choice in (MIXTURE, "all")
     if mixture:
         every |= fit_joint_mixture_all(u, h, every, starts=starts, location=location,
-                                       censor=censor, cold=cold)
+                                       censor=censor, cold=cold, only=only)
     return every, best_per_family(every, by="aic" if mixture else "loglik")

@@ -24,12 +24,35 @@ replicates select another family and marginal.  The price: the band's CPU
 time is 0.82 (80 pairs) and about 1.0 (160) of the old path's, against
 0.56 and 0.64 with every family warm only.
 
+A replicate fits only the copula families that can win it (:data:`PRUNE_AIC`):
+each candidate's AIC on the replicate's pairs — their own conditioning set
+and censored load — at the final fit's parameters, where its warm start
+begins; a family whose every HF marginal is more than :data:`PRUNE_AIC`
+behind the best eligible candidate there is not refitted.  Whole families,
+because a marginal's start can be far from its replicate optimum: on a
+36-pair Gumbel problem of ``benchmarks/known_truth.py`` the log-normal
+started 38–48 units behind its family's Weibull and won three replicates
+after its refit.  The margin is for what a family's refit gains over the
+best start's: on a 45-pair Gumbel problem there the Gaussian started 37
+behind and won a replicate by 5 after its refit (a gain of 42), on a Frank
+problem a replicate's winner gained 13 (the AIC summed from the full
+sample's per-pair terms, without the replicate's own conditioning set, had
+put it 65 behind); 100 is over twice the largest gain seen.  Families
+further behind than that (Clayton and Frank on a Gumbel problem of
+``benchmarks/timing.py``: 130–190 on the full sample) are the saving.
+``benchmarks/timing.py`` counts the replicates whose MPM pruning changed:
+none of 50 at 80 and at 160 pairs, for 0.80 and 0.85 of the CPU time of
+refitting every family (Student-t, Gaussian and Gumbel kept; Student-t's
+cold start is most of what remains); on 10 known-truth problems (one data
+set each, 27–160 pairs) none of 500, the same 8 of 10 bands covering.
+
 Worker processes (``n_jobs`` > 1, or -1 for every core) are forked (POSIX),
 so they inherit the study's state instead of receiving it pickled; where fork
-is not available the replicates run in this process.  The default is one
-process: on the shared 2-core machine the band was measured on, two
-processes gave no wall-clock gain, and forking a driver that runs oracle
-threads or a Dask client is a risk a default should not take.
+is not available the replicates run in this process.  The default (None)
+is every core the process may use on Linux, but one process when this
+process runs other threads (an oracle's, a Dask client's): forking a
+threaded process can copy a lock that one of them holds; and one process
+elsewhere (macOS: system libraries that are not fork-safe).
 """
 
 from __future__ import annotations
@@ -37,17 +60,19 @@ from __future__ import annotations
 import copy
 import multiprocessing
 import os
+import sys
+import threading
 
 import numpy as np
 
 from ..models.joint import HF_MARGINALS
-from ..models.joint_mixture import MIXTURE
+from ..models.joint_mixture import MIXTURE, pair_logliks
 from ..stats.exceedance import mpm_of_realisations
 from .selection import impact_probability
 from .steps import conditioning_set
 
-__all__ = ["WARM_BAND", "COLD_FAMILIES", "bootstrap_band", "default_jobs", "replicate_plan",
-           "replicate_mpms"]
+__all__ = ["WARM_BAND", "COLD_FAMILIES", "PRUNE_AIC", "ReplicateStarts", "bootstrap_band",
+           "default_jobs", "replicate_plan", "replicate_mpms", "replicate_starts"]
 
 WARM_BAND = True
 """Replicates start their joint fits from the final model's fits only; False: from the
@@ -56,7 +81,17 @@ study's last fits and from the data (a cold start), as before (``benchmarks/timi
 COLD_FAMILIES = ("student",)
 """Families whose replicate fits also start from the data in a warm band (module docs)."""
 
-_JOB = None  # (strategy, pairs, lfset, starts, plan) while replicate_mpms runs
+PRUNE_AIC = 100.0
+"""A replicate refits the families with a candidate within this AIC of its best eligible
+one, judged at the final fits' parameters on its resampled pairs (module docs); None:
+every family."""
+
+_JOB = None  # (strategy, pairs, lfset, starts, plan, lf_rngs) while replicate_mpms runs
+
+
+class ReplicateStarts(dict):
+    """The joint fits a band replicate starts from, by ``(family, marginal)``: only these
+    candidates are fitted (:meth:`pas.strategies.pas.PAS.fit`)."""
 
 
 def default_jobs() -> int:
@@ -109,6 +144,36 @@ def _lf_rank_streams(strategy, pairs, lfset, plan, lf_rng) -> list:
     return streams
 
 
+def _choice_marginals(strategy, choice) -> set:
+    """The HF marginals a replicate's ``hf_marginal`` choice fits (None: the study's)."""
+    choice = choice or strategy.hf_marginal
+    return set({"both": HF_MARGINALS, MIXTURE: ("weibull", MIXTURE),
+                "all": (*HF_MARGINALS, MIXTURE)}.get(choice, (choice,)))
+
+
+def replicate_starts(strategy, b, lfset, starts: dict, choice) -> ReplicateStarts:
+    """The :class:`ReplicateStarts` of the families that can win the replicate of pairs
+    ``b``, with the HF marginals of ``choice``: a family with a candidate within
+    :data:`PRUNE_AIC` of the best one not on a parameter bound, by the AIC of the final
+    fits ``starts`` on ``b`` (its own conditioning set and censoring, the mid-ranks of
+    its LF; module docs)."""
+    keys = [k for k in starts if k[1] in _choice_marginals(strategy, choice)]
+    if PRUNE_AIC is None:
+        return ReplicateStarts((k, starts[k]) for k in keys)
+    impact = impact_probability(b.lf, b.fp_lf) if strategy.impact_model else None
+    n0 = conditioning_set(lfset.lf, b.lf.min()).size
+    u = strategy._population_ranks(lfset, n0, impact, None)[b.position]
+    aic = {k: 2.0 * starts[k].copula.npars
+           - 2.0 * float(np.sum(pair_logliks(starts[k], u, b.hf, location=strategy.hf_location)))
+           for k in keys}
+    eligible = [aic[k] for k in keys if not starts[k].copula.at_bound] or list(aic.values())
+    # whole families: a marginal's start can be far from its replicate optimum (module docs)
+    kept = {f for f, _ in keys
+            if min(a if np.isfinite(a) else -np.inf for (g, _), a in aic.items() if g == f)
+            <= min(eligible) + PRUNE_AIC}
+    return ReplicateStarts((k, starts[k]) for k in keys if k[0] in kept)
+
+
 def _replicate_mpm(i: int) -> float | None:
     """The MPM of replicate ``i`` of the running job, None when it cannot be fitted."""
     strategy, pairs, lfset, starts, plan, lf_rngs = _JOB
@@ -117,6 +182,8 @@ def _replicate_mpm(i: int) -> float | None:
     if b is None:
         return None
     try:
+        if starts is not None:
+            starts = replicate_starts(strategy, b, lfset, starts, marginal)
         model = strategy.fit(b, lfset, update=False, hf_marginal=marginal,
                              lf_ranks_rng=lf_rngs[i], starts=starts)
         draws = strategy._draws(model, draw_rng)
@@ -129,15 +196,18 @@ def replicate_mpms(strategy, pairs, lfset, starts, plan, lf_rng=None,
                    n_jobs: int | None = None) -> list:
     """The MPM of every replicate of ``plan`` (None where it failed), in plan order.
 
-    ``starts``: the joint fits every replicate starts from (None: the
-    strategy's own rule); ``lf_rng``: the stream of the LF-rank draws, read
-    by the replicates in turn (None: mid-ranks); ``n_jobs``: processes
-    (None or 1: this process; -1: every core).
+    ``starts``: the final joint fits, those that can win a replicate its
+    starts (:func:`replicate_starts`; None: the strategy's own rule); ``lf_rng``: the stream of
+    the LF-rank draws, read by the replicates in turn (None: mid-ranks);
+    ``n_jobs``: processes (1: this process; -1: every core; None: every core
+    on Linux unless this process runs other threads, module docs).
     """
     global _JOB
     if n_jobs is not None and int(n_jobs) != -1 and int(n_jobs) < 1:
         raise ValueError(f"n_jobs must be at least 1, or -1 for every core, got {n_jobs}")
-    n_jobs = 1 if n_jobs is None else int(n_jobs)
+    if n_jobs is None:
+        n_jobs = -1 if threading.active_count() == 1 and sys.platform.startswith("linux") else 1
+    n_jobs = int(n_jobs)
     n_jobs = min(default_jobs() if n_jobs == -1 else n_jobs, max(len(plan), 1))
     if n_jobs == 1 or "fork" not in multiprocessing.get_all_start_methods():
         n_jobs, lf_rngs = 1, [lf_rng] * len(plan)

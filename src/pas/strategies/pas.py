@@ -64,6 +64,7 @@ from .screening import LFSet
 from .selection import impact_probability, population_lf_ranks
 from .steps import (
     FittedModel,
+    cold_turns,
     conditioning_set,
     draw_conditional_hf,
     fit_marginals,
@@ -283,18 +284,22 @@ class PAS(Strategy):
         n0 = conditioning_set(lfset.lf, pairs.lf.min()).size
         cond_lf = lfset.lf[:n0]
         u_cond = self._population_ranks(lfset, n0, impact, lf_ranks_rng)
+        # a band replicate fits only the candidates that can win it (band.ReplicateStarts)
+        only = set(starts) if isinstance(starts, band.ReplicateStarts) else None
         if starts is not None:  # a band replicate from the final fits (model_band)
             cold = band.COLD_FAMILIES
         else:
             starts = self._joint if family is None else {
                 k: v for k, v in self._joint.items() if k[0] == family}
-            # a warm start from the previous iteration converges in a few steps; every
-            # COLD_EVERY-th fit, and every other fit with update=False, also starts from
-            # the data, so no fit stays trapped in the basin of another sample
-            cold = not update or (family is None and self._n_fits % COLD_EVERY == 0)
+            # a warm start from the previous iteration converges in a few steps; each
+            # family's fit every COLD_EVERY-th iteration, the families in turn (steps.cold_turns),
+            # and every other fit with update=False also starts from the data, so no fit
+            # stays trapped in the basin of another sample
+            cold = not update or (family is None and cold_turns(families, self._n_fits,
+                                                                COLD_EVERY))
         every, joint = fit_hf_candidates(u_cond[pairs.position][keep], pairs.hf[keep], families,
                                          hf_marginal, starts=starts, location=self.hf_location,
-                                         cold=cold or not starts)
+                                         cold=cold or not starts, only=only)
         self._last_joint = every
         if update and family is None:
             self._joint = every
@@ -376,7 +381,8 @@ class PAS(Strategy):
         CDF only to within the spread of the largest order statistics.
         The conditional estimator's replicates start their joint fits from the
         final model's (:mod:`pas.strategies.band`); ``n_jobs`` processes fit
-        them (None: one; -1: every core), with the same band for any ``n_jobs``.
+        them (1: this one; -1: every core; None: every core on Linux unless this process
+        runs other threads), with the same band for any ``n_jobs``.
         Returns ``(low, high, mpms)`` or None when off.
         """
         if self.n_bootstrap <= 0 or self.family_ is None:

@@ -15,7 +15,7 @@ from ..models.marginals import fit_marginal
 from .base import band95
 
 __all__ = ["EPS", "FittedModel", "remove_outliers", "conditioning_set", "draw_conditional_hf", "fit_marginals",
-           "hf_distribution"]
+           "hf_distribution", "cold_turns"]
 
 EPS = 1e-6
 
@@ -51,10 +51,13 @@ def draw_conditional_hf(fit: CopulaFit, u_cond, hf_marginal, r, *, eps: float = 
     when kept); returns HF draws of that shape.
     """
     u = np.clip(np.asarray(u_cond, float), eps, 1 - eps)
-    v = np.clip(conditional_quantile(fit, u[None, :], r, r_scores=r_scores), eps, 1 - eps)
+    v = np.asarray(conditional_quantile(fit, u[None, :], r, r_scores=r_scores), float)
+    v = np.clip(v, eps, 1 - eps, out=v if v.flags.writeable and v.shape == np.shape(r) else None)
     # HF loads are non-negative by the oracle's contract; a Weibull location
     # below zero must not produce negative loads in the bulk
-    return np.maximum(hf_marginal.ppf(v), 0.0)
+    h = np.asarray(hf_marginal.ppf(v), float)
+    del v
+    return np.maximum(h, 0.0, out=h if h.flags.writeable and h.ndim == 2 else None)
 
 
 def fit_marginals(lf, hf, keep, *, upper_tail: bool, marginals_from: str = "all"):
@@ -68,6 +71,22 @@ def fit_marginals(lf, hf, keep, *, upper_tail: bool, marginals_from: str = "all"
     return fit_marginal(m_lf, upper_tail=upper_tail), fit_marginal(m_hf, upper_tail=upper_tail), m_lf
 
 
+def cold_turns(families, n_fits: int, every: int) -> tuple:
+    """The families whose fit number ``n_fits`` of a study also starts from the data.
+
+    Each family once in ``every`` fits, their turns spread evenly over the
+    ``every`` fits (family ``i`` of ``k`` when ``n_fits + ⌊i·every/k⌋`` is a
+    multiple of ``every``), so that no iteration refits every family cold.
+
+    Examples
+    --------
+    >>> [cold_turns(("a", "b"), n, 4) for n in range(4)]
+    [('a',), (), ('b',), ()]
+    """
+    k = max(len(families), 1)
+    return tuple(f for i, f in enumerate(families) if (n_fits + i * every // k) % every == 0)
+
+
 def hf_distribution(h_draws, n_waves: int):
     """Steps 10–11: exceedance probabilities and mean distribution with U95 (Eq. 8–10).
 
@@ -75,7 +94,7 @@ def hf_distribution(h_draws, n_waves: int):
     distribution is the mean over realisations of each order statistic and
     the band ``h* ± 1.96 σ``.  Returns ``(d, h_mean, h_low, h_high)``.
     """
-    h = -np.sort(-np.atleast_2d(h_draws), axis=1)
+    h = np.sort(np.atleast_2d(h_draws), axis=1)[:, ::-1]
     d = np.arange(1, h.shape[1] + 1) / n_waves
     mean = h.mean(axis=0)
     sd = h.std(axis=0, ddof=1) if h.shape[0] > 1 else np.zeros_like(mean)
@@ -108,7 +127,7 @@ class FittedModel:
         when kept), shape ``(z, n0)``."""
         h = draw_conditional_hf(self.copula, self.u_cond, self.hf_marginal, r, r_scores=r_scores)
         if self.impact is not None:
-            h = np.where(q < self.impact[None, :], h, 0.0)
+            h[~(q < self.impact[None, :])] = 0.0  # in place: no second array of draws
         return h
 
     def conditional_quantiles(self, lf, q) -> np.ndarray:
