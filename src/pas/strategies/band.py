@@ -14,7 +14,7 @@ The joint fits of a replicate start from the final model's fits
 (:data:`WARM_BAND`): the replicate is a resample of the same pairs, so its
 optimum lies near the final one.  Student-t also starts from the data
 (:data:`COLD_FAMILIES`): its ν sits on a logistic map that a warm start
-near a bound barely moves.  Measured (``benchmarks/timing.py``, 50
+near a bound barely moves.  Measured (``benchmarks/timing/study_parts.py``, 50
 replicates of a 15 000-peak Gumbel problem): a cold start found a better
 optimum (by > 1e-6 in log-likelihood) in 7 of 101 Student-t fits at 80 pairs
 and 10 of 101 at 160, against 0–4 of 50 for each other family and marginal;
@@ -39,8 +39,8 @@ problem a replicate's winner gained 13 (the AIC summed from the full
 sample's per-pair terms, without the replicate's own conditioning set, had
 put it 65 behind); 100 is over twice the largest gain seen.  Families
 further behind than that (Clayton and Frank on a Gumbel problem of
-``benchmarks/timing.py``: 130–190 on the full sample) are the saving.
-``benchmarks/timing.py`` counts the replicates whose MPM pruning changed:
+``benchmarks/timing/study_parts.py``: 130–190 on the full sample) are the saving.
+``benchmarks/timing/study_parts.py`` counts the replicates whose MPM pruning changed:
 none of 50 at 80 and at 160 pairs, for 0.80 and 0.85 of the CPU time of
 refitting every family (Student-t, Gaussian and Gumbel kept; Student-t's
 cold start is most of what remains); on 10 known-truth problems (one data
@@ -76,7 +76,7 @@ __all__ = ["WARM_BAND", "COLD_FAMILIES", "PRUNE_AIC", "ReplicateStarts", "bootst
 
 WARM_BAND = True
 """Replicates start their joint fits from the final model's fits only; False: from the
-study's last fits and from the data (a cold start), as before (``benchmarks/timing.py``)."""
+study's last fits and from the data (a cold start), as before (``benchmarks/timing/study_parts.py``)."""
 
 COLD_FAMILIES = ("student",)
 """Families whose replicate fits also start from the data in a warm band (module docs)."""

@@ -21,7 +21,7 @@ time, the forked band workers' included; wall time on a shared machine):
   the normal scores of the common uniforms recomputed (old) or kept, and a
   band replicate's full sort against the partial one.
 
-Run: python benchmarks/timing.py [--parts fit,cold,band,long] [--max-hf 80] [--json out.json]
+Run: python benchmarks/timing/study_parts.py [--parts fit,cold,band,long] [--max-hf 80] [--json out.json]
 """
 
 from __future__ import annotations
