@@ -37,16 +37,18 @@ from __future__ import annotations
 import copy
 import multiprocessing
 import os
+from dataclasses import dataclass
 
 import numpy as np
 
 from ..models.joint import HF_MARGINALS
 from ..models.joint_mixture import MIXTURE
 from ..stats.exceedance import mpm_of_realisations
+from .._support.checks import check_int, check_option
 from .selection import impact_probability
 from .steps import conditioning_set
 
-__all__ = ["WARM_BAND", "COLD_FAMILIES", "bootstrap_band", "default_jobs", "replicate_plan",
+__all__ = ["ModelBand", "WARM_BAND", "COLD_FAMILIES", "bootstrap_band", "default_jobs", "replicate_plan",
            "replicate_mpms"]
 
 WARM_BAND = True
@@ -55,6 +57,42 @@ study's last fits and from the data (a cold start), as before (``benchmarks/timi
 
 COLD_FAMILIES = ("student",)
 """Families whose replicate fits also start from the data in a warm band (module docs)."""
+
+
+
+@dataclass(frozen=True)
+class ModelBand:
+    """The model-uncertainty band of :meth:`pas.strategies.pas.PAS.model_band` (beyond the paper).
+
+    Parameters
+    ----------
+    n_bootstrap : int, default 50
+        Bootstrap replicates (0: no model band, the paper's sampling band only).
+    marginals : {"fitted", "reselected", "alternate"}, default "reselected"
+        Conditional estimator: every replicate fits the estimator's
+        ``hf_marginal`` ("fitted"); or fits the Weibull and the log-normal and
+        keeps the one of higher likelihood, as it re-selects the copula family
+        ("reselected"; with ``hf_marginal="weibull_mixture"`` the mixture too,
+        all compared by AIC); or the replicates take the Weibull and the
+        log-normal in turn ("alternate", never the mixture).
+    lf_ranks : {"fixed", "redrawn"}, default "redrawn"
+        Conditional estimator: every replicate also draws the LF population
+        CDF at the peaks given their order (a Bayesian bootstrap,
+        :func:`pas.stats.dependence.weighted_ranks`) instead of keeping their
+        mid-ranks ("fixed"), so the band holds what the empirical LF ranks
+        cannot tell about the LF tail (``docs/departures.md``).
+    """
+
+    n_bootstrap: int = 50
+    marginals: str = "reselected"
+    lf_ranks: str = "redrawn"
+
+    def __post_init__(self):
+        object.__setattr__(self, "n_bootstrap", check_int(self.n_bootstrap, "n_bootstrap",
+                                                          minimum=0))
+        check_option(self.marginals, "marginals", {"fitted", "reselected", "alternate"})
+        check_option(self.lf_ranks, "lf_ranks", {"fixed", "redrawn"})
+
 
 _JOB = None  # (strategy, pairs, lfset, starts, plan) while replicate_mpms runs
 
@@ -98,7 +136,7 @@ def _lf_rank_streams(strategy, pairs, lfset, plan, lf_rng) -> list:
     for tp, fp, _, _ in plan:
         streams.append(copy.deepcopy(lf_rng))
         b = _resampled(pairs, tp, fp)
-        if b is None or strategy.estimator != "conditional":
+        if b is None or strategy.estimator.name != "conditional":
             continue
         try:
             impact = impact_probability(b.lf, b.fp_lf) if strategy.impact_model else None
@@ -155,18 +193,20 @@ def replicate_mpms(strategy, pairs, lfset, starts, plan, lf_rng=None,
         _JOB = None
 
 
-def bootstrap_band(strategy, pairs, lfset, rng: np.random.Generator, n_jobs: int | None = None):
-    """:meth:`pas.strategies.pas.PAS.model_band`: ``(low, high, replicate MPMs)`` or None
-    when fewer than 10 replicates could be fitted."""
-    reselected = "all" if strategy.hf_marginal == MIXTURE else "both"
+def bootstrap_band(strategy, band: ModelBand, pairs, lfset, rng: np.random.Generator,
+                   n_jobs: int | None = None):
+    """:meth:`pas.strategies.pas.PAS.model_band` with the settings ``band``: ``(low, high,
+    replicate MPMs)`` or None when fewer than 10 replicates could be fitted."""
+    conditional = strategy.estimator.name == "conditional"
+    reselected = "all" if conditional and strategy.estimator.hf_marginal == MIXTURE else "both"
     marginals = {"fitted": (None,), "reselected": (reselected,),
-                 "alternate": HF_MARGINALS}[strategy.band_marginals]
+                 "alternate": HF_MARGINALS}[band.marginals]
     starts = None
-    if WARM_BAND and strategy.estimator == "conditional":
+    if WARM_BAND and conditional:
         starts = strategy.final_joint_fits(pairs, lfset, reselected)
     # a stream of its own, so the resampled pairs are those of "fixed"
-    lf_rng = rng.spawn(1)[0] if strategy.band_lf_ranks == "redrawn" else None
-    plan = replicate_plan(pairs, rng, strategy.n_bootstrap, marginals)
+    lf_rng = rng.spawn(1)[0] if band.lf_ranks == "redrawn" else None
+    plan = replicate_plan(pairs, rng, band.n_bootstrap, marginals)
     mpms = [x for x in replicate_mpms(strategy, pairs, lfset, starts, plan, lf_rng, n_jobs)
             if x is not None]
     if len(mpms) < 10:
