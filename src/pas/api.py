@@ -10,10 +10,12 @@ A keyword of pas 0.1 raises a ``TypeError`` naming its new place
 
 from __future__ import annotations
 
+import copy
 import warnings
 
 from ._support.moved import keywords_moved
 from .strategies.as_ import AS
+from .strategies.base import Strategy
 from .strategies.pas import PAS
 from .strategies.screening import check_n_waves
 from .study.flat import MOVED, SETTINGS_PAGE
@@ -123,7 +125,8 @@ def make_study(strategy, lf_peaks, *, n_waves, p_exp, threshold=None, eps1=None,
     ----------
     strategy : str, Strategy subclass or instance
         ``"pas"``, ``"as"``, ``"paper"`` (``PAS.paper()``), a strategy class
-        (its defaults) or an instance such as ``PAS(z=20)``.
+        (its defaults) or an instance such as ``PAS(z=20)``, of which the
+        study takes a copy (so one instance may configure several studies).
     lf_peaks, n_waves, p_exp, threshold, eps1, eps2, precision, seed, max_hf, stopping, budget
         As for :func:`run_pas`.
     store : str, os.PathLike or StudyStore, optional
@@ -155,6 +158,8 @@ def make_study(strategy, lf_peaks, *, n_waves, p_exp, threshold=None, eps1=None,
         warnings.warn(note, stacklevel=3)
     if isinstance(strategy, str) and strategy == "paper":
         strategy = PAS.paper()
+    elif isinstance(strategy, Strategy):  # its own copy: one object may serve many studies
+        strategy = copy.deepcopy(strategy)
     stopping, budget = resolve("make_study", strategy, stopping, budget, eps1=eps1, eps2=eps2,
                                precision=precision, max_hf=max_hf)
     others = {"target": target, "stop_on_convergence": stop_on_convergence,

@@ -47,7 +47,7 @@ import os
 import sys
 from pathlib import Path
 
-from .study_config import load_config, load_peaks
+from .study_config import load_config, load_peaks, study_objects
 from .study_loads import add_parsers as add_load_parsers
 from .study_loads import refit_command, tell_loads
 
