@@ -247,7 +247,7 @@ def _run(cls, given: dict) -> ScreeningResult:
     """:func:`run_pas` / :func:`run_as` with their arguments ``given``."""
     strategy = cls() if given["strategy"] is None else given["strategy"]
     if not isinstance(strategy, cls):
-        raise TypeError(f"run_{cls.name}: strategy must be a {cls.__name__}(...) instance, "
+        raise TypeError(f"run_{cls.name}: strategy must be an {cls.__name__}(...) instance, "
                         f"got {strategy!r}")
     check_oracle(given["oracle"])  # before a study store is written
     if given["retry_failed"] and given["study"] is None:

@@ -11,7 +11,8 @@ from __future__ import annotations
 from ..strategies.flat import BAND_NAMES, FLAT_NAMES, OWN_NAMES, SETTINGS_PAGE
 from ..strategies.flat import MOVED as STRATEGY_MOVED
 from ..strategies.pas import PAS
-from .factory import make_strategy
+from ..strategies.as_ import AS
+from .factory import make_strategy, strategy_parameters
 from .settings import BUDGET_NAMES, OTHER_STUDY_SETTINGS, STOPPING_NAMES, Budget, Stopping
 
 __all__ = ["MOVED", "SETTINGS_PAGE", "from_flat", "moved_table"]
@@ -31,6 +32,7 @@ MOVED = {
     "pending": "pas.make_study(...).optimize(oracle, pending=...)",
     "n_workers": "executor=N (an int: N local processes)",
     "preset": "strategy=PAS.paper() (strategy='paper' in pas.make_study)",
+    **{name: f"strategy=AS({name}=...)" for name in strategy_parameters(AS)},
 }
 """Where each keyword of :func:`pas.run_pas` in pas 0.1 that is no argument now lives."""
 
