@@ -253,10 +253,11 @@ def _run(cls, given: dict) -> ScreeningResult:
     if given["retry_failed"] and given["study"] is None:
         raise ValueError("retry_failed=True needs study=... (the study store of the run whose "
                          "failed events should run again)")
-    built = make_study(strategy, given["lf_peaks"], store=given["study"],
-                       **{k: given[k] for k in ("n_waves", "p_exp", "threshold", "eps1", "eps2",
-                                                "precision", "seed", "max_hf", "stopping",
-                                                "budget")})
+    stopping, budget = resolve(f"run_{cls.name}", strategy, given["stopping"], given["budget"],
+                               **{k: given[k] for k in ("eps1", "eps2", "precision", "max_hf")})
+    built = make_study(strategy, given["lf_peaks"], store=given["study"], stopping=stopping,
+                       budget=budget, **{k: given[k] for k in ("n_waves", "p_exp", "threshold",
+                                                               "seed")})
     if given["retry_failed"]:
         built.retry_failed()
     executor = given["executor"]
