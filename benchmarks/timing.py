@@ -37,6 +37,7 @@ import pas.models.copulas
 import pas.models.joint
 import pas.models.joint_mixture
 import pas.stats.exceedance
+from pas.study.flat import from_flat
 
 N, N_W, P_EXP = 15000, 16364, 2.55e-3
 
@@ -79,8 +80,9 @@ def run(max_hf, n=N, n_waves=N_W, **settings):
         stamps.append((cpu_seconds(), time.perf_counter()))
 
     t0 = cpu_seconds()
-    res = pas.run_pas(lf, lambda e: float(hf[e.index]), n_waves=n_waves, p_exp=P_EXP,
-                      eps1=1e-12, seed=0, max_hf=max_hf, callback=callback, **settings)
+    objects = from_flat({"eps1": 1e-12, "max_hf": max_hf, **settings})  # flat names
+    res = pas.run_pas(lf, lambda e: float(hf[e.index]), n_waves=n_waves, p_exp=P_EXP, seed=0,
+                      callback=callback, **objects)
     cpu = np.r_[t0, [c for c, _ in stamps]]
     return res, np.diff(cpu), cpu_seconds() - cpu[-1], time.perf_counter() - stamps[-1][1]
 
@@ -135,9 +137,10 @@ def final_study(max_hf):
     lf, hf = scenario()
     seen = []
     pas.run_pas(lf, lambda e: float(hf[e.index]), n_waves=N_W, p_exp=P_EXP, eps1=1e-12, seed=0,
-                max_hf=max_hf, n_bootstrap=0, callback=lambda study, row: seen.append(study))
+                max_hf=max_hf, strategy=pas.PAS(band=pas.ModelBand(n_bootstrap=0)),
+                callback=lambda study, row: seen.append(study))
     study = seen[-1]
-    study.strategy.n_bootstrap = 50
+    study.strategy.band = pas.ModelBand(n_bootstrap=50)
     return study, lambda: np.random.default_rng([study.seed, len(study.rows), 1])
 
 
@@ -243,6 +246,7 @@ def long_record_path(new):
 
 def long_iterations(n, families, repeats):
     """``(median CPU ms, peak traced MB of one iteration, MPM)`` at ``n`` LF peaks, 80 pairs."""
+    from pas.strategies.band import ModelBand
     from pas.strategies.base import Pairs
     from pas.strategies.pas import PAS
     from pas.strategies.screening import LFSet
@@ -251,7 +255,7 @@ def long_iterations(n, families, repeats):
     lfset = LFSet(lf, n_waves=int(round(n * N_W / N)), p_exp=P_EXP)
     pos = np.unique(np.round(np.geomspace(1, lfset.n, 80)).astype(int) - 1)
     pairs = Pairs(pos, lfset.lf[pos], hf[lfset.index[pos]], lfset.d[pos])
-    strat = PAS(families=families, n_bootstrap=0)
+    strat = PAS(families=families, band=ModelBand(n_bootstrap=0))
     strat.reset(0)
     strat.predict(pairs, lfset, np.random.default_rng(0))  # the first: uniforms drawn
     times = []
