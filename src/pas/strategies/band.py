@@ -48,8 +48,8 @@ from .._support.checks import check_int, check_option
 from .selection import impact_probability
 from .steps import conditioning_set
 
-__all__ = ["ModelBand", "WARM_BAND", "COLD_FAMILIES", "bootstrap_band", "default_jobs", "replicate_plan",
-           "replicate_mpms"]
+__all__ = ["ModelBand", "WARM_BAND", "COLD_FAMILIES", "bootstrap_band", "default_jobs",
+           "replicate_plan", "replicate_mpms"]
 
 WARM_BAND = True
 """Replicates start their joint fits from the final model's fits only; False: from the

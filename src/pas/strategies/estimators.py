@@ -1,4 +1,4 @@
-"""How :class:`~pas.strategies.pas.PAS` fits its model (Steps 7–9): one frozen object per estimator.
+"""How :class:`~pas.strategies.pas.PAS` fits its model (Steps 7–9): an object per estimator.
 
 Each estimator keeps the options that apply to it, and nothing else, and
 fits with one method, :meth:`fit`, which returns :class:`CandidateFits`.

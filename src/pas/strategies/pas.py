@@ -36,7 +36,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._support.checks import check_finite, check_int, check_option
+from .._support.checks import check_finite, check_int
 from ..models.copulas import PAPER_FAMILIES, _family_and_rotation, select_family
 from ..stats.dependence import empirical_tail_dependence, kendall_tau
 from . import band

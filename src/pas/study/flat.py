@@ -94,7 +94,8 @@ def from_flat(flat: dict, *, strategy: str = "pas", preset: str | None = None,
 
 
 def moved_table() -> str:
-    """The Markdown table "old name -> new place" of :data:`MOVED` (``docs/reference/settings.md``)."""
+    """The Markdown table "old name -> new place" of :data:`MOVED` (for
+    ``docs/reference/settings.md``)."""
     rows = ["| pas 0.1 keyword | now |", "|---|---|"]
     rows += [f"| `{name}` | `{place}` |" for name, place in sorted(MOVED.items())]
     return "\n".join(rows)

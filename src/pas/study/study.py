@@ -65,9 +65,8 @@ class Study(Corrections):
     target : str, optional
         With an oracle answering several named loads ``{name: load}``: the
         one to screen on (:func:`~pas.study.answers.check_hf_answer`).
-    precision : float, optional
-        The field of :class:`~pas.study.settings.Stopping` of that name
-        (not available in this version: must be None).
+    precision : None
+        :class:`~pas.study.settings.Stopping`'s field; no rule in this version.
     legacy_md : bool, default False
         MD gaps between true positives only and the earlier reading of the
         threshold rule (pas 0.1): set for study stores written then, so they
