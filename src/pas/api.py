@@ -27,7 +27,75 @@ from .study.study import Study
 
 __all__ = ["run_pas", "run_as", "make_study"]
 
-_COMMON = """lf_peaks : array-like or pandas.DataFrame
+@keywords_moved(MOVED, SETTINGS_PAGE)
+def make_study(strategy, lf_peaks, *, n_waves, p_exp, threshold=None, eps1=None, eps2=None,
+               precision=None, seed=None, max_hf=UNSET, stopping=None, budget=None, store=None,
+               n_waves_convention="count", target=None, stop_on_convergence=None,
+               adaptive_threshold=None, threshold_step=None, fp_run=None,
+               legacy_md=None) -> Study:
+    """Validate the inputs and build a :class:`~pas.study.study.Study` for ``strategy``.
+
+    Parameters
+    ----------
+    strategy : str, Strategy subclass or instance
+        ``"pas"``, ``"as"``, ``"paper"`` (``PAS.paper()``), a strategy class
+        (its defaults) or an instance such as ``PAS(z=20)``, of which the
+        study takes a copy (so one instance may configure several studies).
+    lf_peaks, n_waves, p_exp, threshold, eps1, eps2, precision, seed, max_hf, stopping, budget
+        As for :func:`run_pas`.
+    store : str, os.PathLike or StudyStore, optional
+        Makes the study crash-safe and resumable (:mod:`pas.study.store`);
+        with ``seed=None`` an existing store's seed is used.
+    n_waves_convention : {"count", "spectral"}, default "count"
+        How ``n_waves`` was obtained (:func:`pas.strategies.screening.check_n_waves`).
+        ``"count"``: counted wave encounters; ``n_waves`` below the number of
+        LF peaks over the threshold (exceedance probabilities above 1) is a
+        ``ValueError``, below the number of all peaks a warning.
+        ``"spectral"``: ``n_w = T_MCS / T_p,e`` on purpose, as in the paper's
+        Table 2 and :mod:`pas.validation`; not checked.
+    target : str, optional
+        With an oracle answering several named loads ``{name: load}``: the one
+        to screen on (the store keeps all; :func:`pas.refit` analyses another).
+    stop_on_convergence, adaptive_threshold, threshold_step, fp_run, legacy_md : optional
+        Study settings of :class:`~pas.study.study.Study` (its defaults when None).
+
+    Returns
+    -------
+    Study
+        Run it with :meth:`~pas.study.study.Study.optimize` (``n_workers``,
+        ``pending``) or drive it with ask/tell.
+    """
+    lf, ids, meta = split_lf_table(lf_peaks)
+    note = check_n_waves(lf, n_waves, threshold, convention=n_waves_convention,
+                         names={"convention": "n_waves_convention='spectral'"})
+    if note is not None:
+        warnings.warn(note, stacklevel=3)
+    if isinstance(strategy, str) and strategy == "paper":
+        strategy = PAS.paper()
+    elif isinstance(strategy, Strategy):  # its own copy: one object may serve many studies
+        strategy = copy.deepcopy(strategy)
+    stopping, budget = resolve("make_study", strategy, stopping, budget, eps1=eps1, eps2=eps2,
+                               precision=precision, max_hf=max_hf)
+    others = {"target": target, "stop_on_convergence": stop_on_convergence,
+              "adaptive_threshold": adaptive_threshold, "threshold_step": threshold_step,
+              "fp_run": fp_run, "legacy_md": legacy_md}
+    return Study.from_settings(
+        {"strategy": strategy, "n_waves": n_waves, "p_exp": p_exp, "threshold": threshold,
+         "seed": seed, **stopping.flat(), **budget.flat(),
+         **{k: v for k, v in others.items() if v is not None}},
+        lf, ids=ids, meta=meta, store=store)
+
+
+@keywords_moved(MOVED, SETTINGS_PAGE)
+def run_pas(lf_peaks, oracle, *, n_waves, p_exp, threshold=None, eps1=None, eps2=None,
+            precision=None, seed=None, max_hf=UNSET, stopping=None, budget=None, strategy=None,
+            study=None, batch_size=1, executor=None, callback=None,
+            retry_failed=False) -> ScreeningResult:
+    """Predict the MPM of an HF load with Probabilistic Adaptive Screening.
+
+    Parameters
+    ----------
+    lf_peaks : array-like or pandas.DataFrame
         LF indicator peak of every wave event in the LF Monte-Carlo run; or a
         table, one row per event: the column ``lf`` (or its only column) the
         peaks, the column ``id`` (or else the index, unless it is the default
@@ -90,9 +158,14 @@ _COMMON = """lf_peaks : array-like or pandas.DataFrame
     retry_failed : bool, default False
         With ``study``: run the failed events of the stored study again (after
         fixing their cause), so it continues as if they had not failed
-        (:meth:`Study.retry_failed <pas.study.study.Study.retry_failed>`)."""
+        (:meth:`Study.retry_failed <pas.study.study.Study.retry_failed>`).
+    strategy : PAS, optional
+        The PAS settings (:class:`~pas.strategies.pas.PAS`): default
+        ``PAS()``; ``PAS.paper()`` reproduces the paper's scripts (τ inversion
+        for the Archimedean copulas, selected-sample space, redrawn uniforms,
+        the sampling band, the step measure and no budget; ``docs/departures.md``).
 
-_RETURNS = """Returns
+    Returns
     -------
     ScreeningResult
 
@@ -102,94 +175,7 @@ _RETURNS = """Returns
         More than ``budget.max_failures`` oracle calls failed; ``.result``
         holds the result so far.
     TypeError
-        A keyword of pas 0.1, naming its new place (``docs/reference/settings.md``)."""
-
-
-def _documented(**parts):
-    """Fill ``{common}`` and ``{returns}`` in a docstring with the shared parameter docs."""
-    def decorate(func):
-        func.__doc__ = func.__doc__.format(common=_COMMON, returns=_RETURNS, **parts)
-        return func
-    return decorate
-
-
-@keywords_moved(MOVED, SETTINGS_PAGE)
-def make_study(strategy, lf_peaks, *, n_waves, p_exp, threshold=None, eps1=None, eps2=None,
-               precision=None, seed=None, max_hf=UNSET, stopping=None, budget=None, store=None,
-               n_waves_convention="count", target=None, stop_on_convergence=None,
-               adaptive_threshold=None, threshold_step=None, fp_run=None,
-               legacy_md=None) -> Study:
-    """Validate the inputs and build a :class:`~pas.study.study.Study` for ``strategy``.
-
-    Parameters
-    ----------
-    strategy : str, Strategy subclass or instance
-        ``"pas"``, ``"as"``, ``"paper"`` (``PAS.paper()``), a strategy class
-        (its defaults) or an instance such as ``PAS(z=20)``, of which the
-        study takes a copy (so one instance may configure several studies).
-    lf_peaks, n_waves, p_exp, threshold, eps1, eps2, precision, seed, max_hf, stopping, budget
-        As for :func:`run_pas`.
-    store : str, os.PathLike or StudyStore, optional
-        Makes the study crash-safe and resumable (:mod:`pas.study.store`);
-        with ``seed=None`` an existing store's seed is used.
-    n_waves_convention : {"count", "spectral"}, default "count"
-        How ``n_waves`` was obtained (:func:`pas.strategies.screening.check_n_waves`).
-        ``"count"``: counted wave encounters; ``n_waves`` below the number of
-        LF peaks over the threshold (exceedance probabilities above 1) is a
-        ``ValueError``, below the number of all peaks a warning.
-        ``"spectral"``: ``n_w = T_MCS / T_p,e`` on purpose, as in the paper's
-        Table 2 and :mod:`pas.validation`; not checked.
-    target : str, optional
-        With an oracle answering several named loads ``{name: load}``: the one
-        to screen on (the store keeps all; :func:`pas.refit` analyses another).
-    stop_on_convergence, adaptive_threshold, threshold_step, fp_run, legacy_md : optional
-        Study settings of :class:`~pas.study.study.Study` (its defaults when None).
-
-    Returns
-    -------
-    Study
-        Run it with :meth:`~pas.study.study.Study.optimize` (``n_workers``,
-        ``pending``) or drive it with ask/tell.
-    """
-    lf, ids, meta = split_lf_table(lf_peaks)
-    note = check_n_waves(lf, n_waves, threshold, convention=n_waves_convention,
-                         names={"convention": "n_waves_convention='spectral'"})
-    if note is not None:
-        warnings.warn(note, stacklevel=3)
-    if isinstance(strategy, str) and strategy == "paper":
-        strategy = PAS.paper()
-    elif isinstance(strategy, Strategy):  # its own copy: one object may serve many studies
-        strategy = copy.deepcopy(strategy)
-    stopping, budget = resolve("make_study", strategy, stopping, budget, eps1=eps1, eps2=eps2,
-                               precision=precision, max_hf=max_hf)
-    others = {"target": target, "stop_on_convergence": stop_on_convergence,
-              "adaptive_threshold": adaptive_threshold, "threshold_step": threshold_step,
-              "fp_run": fp_run, "legacy_md": legacy_md}
-    return Study.from_settings(
-        {"strategy": strategy, "n_waves": n_waves, "p_exp": p_exp, "threshold": threshold,
-         "seed": seed, **stopping.flat(), **budget.flat(),
-         **{k: v for k, v in others.items() if v is not None}},
-        lf, ids=ids, meta=meta, store=store)
-
-
-@keywords_moved(MOVED, SETTINGS_PAGE)
-@_documented()
-def run_pas(lf_peaks, oracle, *, n_waves, p_exp, threshold=None, eps1=None, eps2=None,
-            precision=None, seed=None, max_hf=UNSET, stopping=None, budget=None, strategy=None,
-            study=None, batch_size=1, executor=None, callback=None,
-            retry_failed=False) -> ScreeningResult:
-    """Predict the MPM of an HF load with Probabilistic Adaptive Screening.
-
-    Parameters
-    ----------
-    {common}
-    strategy : PAS, optional
-        The PAS settings (:class:`~pas.strategies.pas.PAS`): default
-        ``PAS()``; ``PAS.paper()`` reproduces the paper's scripts (τ inversion
-        for the Archimedean copulas, selected-sample space, redrawn uniforms,
-        the sampling band, the step measure and no budget; ``docs/departures.md``).
-
-    {returns}
+        A keyword of pas 0.1, naming its new place (``docs/reference/settings.md``).
 
     Examples
     --------
@@ -205,7 +191,6 @@ def run_pas(lf_peaks, oracle, *, n_waves, p_exp, threshold=None, eps1=None, eps2
 
 
 @keywords_moved(MOVED, SETTINGS_PAGE)
-@_documented()
 def run_as(lf_peaks, oracle, *, n_waves, p_exp, threshold=None, eps1=None, eps2=None,
            precision=None, seed=None, max_hf=UNSET, stopping=None, budget=None, strategy=None,
            study=None, batch_size=1, executor=None, callback=None,
@@ -222,13 +207,19 @@ def run_as(lf_peaks, oracle, *, n_waves, p_exp, threshold=None, eps1=None, eps2=
 
     Parameters
     ----------
-    {common}
+    lf_peaks, oracle, n_waves, p_exp, threshold, eps1, eps2, precision, seed, max_hf
+        As for :func:`run_pas`.
+    stopping, budget, study, batch_size, executor, callback, retry_failed
+        As for :func:`run_pas`.
     strategy : AS, optional
         The AS settings (:class:`~pas.strategies.as_.AS`: ``fidelity``
         ``"multi"``/``"single"``, ``range_factor``, ``n_grid``, ``n_lf_bins``,
         ``n_restarts``); default ``AS()``.
 
-    {returns}
+    Returns
+    -------
+    ScreeningResult
+        As for :func:`run_pas` (which also lists what it raises).
 
     Examples
     --------
@@ -247,7 +238,7 @@ def _run(cls, given: dict) -> ScreeningResult:
     """:func:`run_pas` / :func:`run_as` with their arguments ``given``."""
     strategy = cls() if given["strategy"] is None else given["strategy"]
     if not isinstance(strategy, cls):
-        raise TypeError(f"run_{cls.name}: strategy must be an {cls.__name__}(...) instance, "
+        raise TypeError(f"run_{cls.name}: strategy must be {cls.__name__}(...), "
                         f"got {strategy!r}")
     check_oracle(given["oracle"])  # before a study store is written
     if given["retry_failed"] and given["study"] is None:

@@ -101,7 +101,7 @@ def test_run_as_names_the_new_place_of_an_as_setting(rayleigh):
     with pytest.raises(TypeError, match=r"fidelity is now strategy=AS\(fidelity=...\)"):
         pas.run_as(rayleigh, lambda ev: ev.lf, n_waves=N_W, p_exp=P_EXP, eps1=0.05,
                    fidelity="single")
-    with pytest.raises(TypeError, match="strategy must be an AS"):
+    with pytest.raises(TypeError, match=r"strategy must be AS\(...\)"):
         pas.run_as(rayleigh, lambda ev: ev.lf, n_waves=N_W, p_exp=P_EXP, eps1=0.05,
                    strategy=pas.PAS())
 
