@@ -9,11 +9,15 @@ the replay of a store all go through it.  A settings dict has the keys
     A name of :data:`STRATEGIES`, a :class:`~pas.strategies.base.Strategy`
     subclass or instance.
 ``strategy_settings``
-    Keyword arguments of the strategy's constructor.
+    The strategy's settings by their flat names: PAS's of
+    :mod:`pas.strategies.flat` (the fields of its settings objects), another
+    strategy's constructor arguments.
 :data:`LF_SETTINGS`
     Of the :class:`~pas.strategies.screening.LFSet`.
 :data:`STUDY_SETTINGS`
-    Keyword arguments of :class:`~pas.study.study.Study`.
+    Keyword arguments of :class:`~pas.study.study.Study` (the flat names of
+    :class:`~pas.study.settings.Stopping` and :class:`~pas.study.settings.Budget`
+    among them).
 """
 
 from __future__ import annotations
