@@ -20,7 +20,7 @@ with open(log, "a") as f:
     f.write(event + "\n")
 '''
 
-SETTINGS = dict(n_waves=2000, p_exp=1e-2, eps1=1e-4, seed=7, max_hf=25, n_bootstrap=0)
+SETTINGS = dict(n_waves=2000, p_exp=1e-2, eps1=1e-4, seed=7, max_hf=25)
 
 
 def lf_peaks():
@@ -44,5 +44,8 @@ def campaign(db, root, log, script, batch_size=1):
 
     oracle = CommandOracle([sys.executable, script, "{id}", "{index}", "{lf}", "{result}", log],
                            root=root, timeout=60)
-    ids = [f"ev{i}" for i in range(2000)]
-    return pas.run_pas(lf_peaks(), oracle, ids=ids, study=db, batch_size=batch_size, **SETTINGS)
+    import pandas as pd
+
+    table = pd.DataFrame({"lf": lf_peaks()}, index=[f"ev{i}" for i in range(2000)])
+    return pas.run_pas(table, oracle, study=db, batch_size=batch_size,
+                       strategy=pas.PAS(band=pas.ModelBand(n_bootstrap=0)), **SETTINGS)

@@ -24,6 +24,7 @@ import pytest
 
 import pas
 from pas.cli import main
+from pas.study.flat import from_flat
 from pas.study.result import ScreeningResult
 from pas.study.store import StudyStore
 
@@ -66,12 +67,27 @@ def run_with(*change, lf="{lf.csv}", drop=()):
 
 
 def api(**change):
-    """A ``pas.run_pas`` call on the workspace peaks with keyword arguments replaced."""
+    """A ``pas.run_pas`` call on the workspace peaks with keyword arguments replaced (``eps1``
+    and ``max_hf`` left out beside a ``stopping`` or ``budget`` object)."""
     def call(ws):
         lf = np.asarray(pd.read_csv(ws / "lf.csv")["lf"])
         kw = {"n_waves": NW, "p_exp": P, "eps1": 0.1, "seed": 1, "max_hf": 10, **change}
+        for obj, arg in (("stopping", "eps1"), ("budget", "max_hf")):
+            if obj in change and arg not in change:
+                del kw[arg]
         oracle = kw.pop("oracle", lambda ev: 1.2 * ev.lf)
         return pas.run_pas(kw.pop("lf_peaks", lf), oracle, **kw)
+    return call
+
+
+def study(**change):
+    """A ``pas.make_study(...).optimize(oracle)`` call with study keywords replaced."""
+    def call(ws):
+        lf = np.asarray(pd.read_csv(ws / "lf.csv")["lf"])
+        pending = change.pop("pending", "resubmit")
+        built = pas.make_study("pas", lf, n_waves=NW, p_exp=P, eps1=0.1, seed=1, max_hf=10,
+                               **change)
+        return built.optimize(lambda ev: 1.2 * ev.lf, pending=pending)
     return call
 
 
@@ -180,8 +196,12 @@ CASES = [
     Case("study tell VALUE nan", 2, "VALUE", ("study", "tell", "{s.db}", "e1", "nan")),
     # -- Python API
     Case("threshold='high'", ValueError, "threshold", call=api(threshold="high")),
-    Case("k1=0", ValueError, "k1", call=api(k1=0)),
-    Case("k2=-1", ValueError, "k2", call=api(k2=-1)),
+    Case("Stopping(k1=0)", ValueError, "k1", call=api(stopping=pas.Stopping(eps1=0.1, k1=0))),
+    Case("Stopping(k2=-1)", ValueError, "k2", call=api(stopping=pas.Stopping(eps1=0.1, k2=-1))),
+    Case("eps1 beside stopping=", ValueError, "stopping",
+         call=api(stopping=pas.Stopping(eps1=0.2), eps1=0.1)),
+    Case("max_hf beside budget=", ValueError, "budget", call=api(budget=pas.Budget(),
+                                                               max_hf=5)),
     Case("p_exp='2.55e-3'", ValueError, "p_exp", call=api(p_exp="2.55e-3")),
     Case("n_waves='16364'", ValueError, "n_waves", call=api(n_waves="16364")),
     Case("n_waves=2.5", ValueError, "n_waves", call=api(n_waves=2.5)),
@@ -190,31 +210,38 @@ CASES = [
     Case("eps2='0.1'", ValueError, "eps2", call=api(eps2="0.1")),
     Case("seed='a'", ValueError, "seed", call=api(seed="a")),
     Case("max_hf=0", ValueError, "max_hf", call=api(max_hf=0)),
-    Case("max_failures=-1", ValueError, "max_failures", call=api(max_failures=-1)),
-    Case("z='ten'", ValueError, "z", call=api(z="ten")),
-    Case("delta_aic='x'", ValueError, "delta_aic", call=api(delta_aic="x")),
+    Case("Budget(max_failures=-1)", ValueError, "max_failures",
+         call=api(budget=pas.Budget(max_failures=-1))),
+    Case("PAS(z='ten')", ValueError, "z", call=lambda ws: pas.PAS(z="ten")),
+    Case("PAS(delta_aic='x')", ValueError, "delta_aic", call=lambda ws: pas.PAS(delta_aic="x")),
+    Case("ModelBand(n_bootstrap=-1)", ValueError, "n_bootstrap",
+         call=lambda ws: pas.ModelBand(n_bootstrap=-1)),
+    Case("strategy='paper' in run_pas", TypeError, "strategy", call=api(strategy="paper")),
     Case("stop_on_convergence='no'", ValueError, "stop_on_convergence",
-         call=api(stop_on_convergence="no")),
+         call=study(stop_on_convergence="no")),
     Case("batch_size=0", ValueError, "batch_size", call=api(batch_size=0)),
-    Case("pending='later'", ValueError, "pending", call=api(pending="later")),
+    Case("pending='later'", ValueError, "pending", call=study(pending="later")),
     Case("n_waves_convention='counted'", ValueError, "n_waves_convention",
-         call=api(n_waves_convention="counted")),
-    Case("preset='fast'", ValueError, "preset", call=api(preset="fast")),
-    Case("unknown setting zz=1", ValueError, "zz", call=api(zz=1)),
+         call=study(n_waves_convention="counted")),
+    Case("preset='paper' (a keyword of pas 0.1)", TypeError, "PAS.paper()",
+         call=api(preset="paper")),
+    Case("n_bootstrap=0 (a keyword of pas 0.1)", TypeError, "ModelBand",
+         call=api(n_bootstrap=0)),
+    Case("unknown keyword zz=1", TypeError, "zz", call=api(zz=1)),
     Case("oracle=3 (not callable)", TypeError, "oracle", call=api(oracle=3)),
     Case("lf_peaks with a NaN", ValueError, "lf_peaks", call=api(lf_peaks=[1.0, np.nan] * 200)),
     Case("lf_peaks of text", ValueError, "lf_peaks", call=api(lf_peaks=["a", "b"] * 200)),
     Case("lf_peaks 2-D", ValueError, "lf_peaks", call=api(lf_peaks=np.ones((20, 20)))),
     Case("lf_peaks empty", ValueError, "lf_peaks", call=api(lf_peaks=[])),
     Case("lf_peaks of one peak", ValueError, "lf_peaks", call=api(lf_peaks=[3.0])),
-    Case("ids of the wrong length", ValueError, "ids", call=api(ids=["a", "b"])),
-    Case("duplicate ids", ValueError, "ids", call=api(ids=["a"] * N)),
-    Case("meta of the wrong length", ValueError, "meta", call=api(meta=[{}])),
+    Case("lf_peaks table repeating an id", ValueError, "id",
+         call=api(lf_peaks=pd.DataFrame({"lf": np.linspace(1, 5, N)}, index=["a"] * N))),
+    Case("lf_peaks table without an lf column", ValueError, "'lf'",
+         call=api(lf_peaks=pd.DataFrame({"a": np.ones(N), "b": np.ones(N)}))),
     Case("strategy 'gpr' in make_study", ValueError, "strategy",
          call=lambda ws: pas.make_study("gpr", [1.0] * 10, n_waves=10, p_exp=0.5, eps1=1.0)),
-    Case("run_as fidelity='triple'", ValueError, "fidelity",
-         call=lambda ws: pas.run_as([1.0, 2.0, 3.0, 4.0, 5.0], abs, n_waves=5, p_exp=0.5,
-                                    eps1=1.0, fidelity="triple")),
+    Case("AS(fidelity='triple')", ValueError, "fidelity",
+         call=lambda ws: pas.AS(fidelity="triple")),
     Case("p_exp_from_duration with a negative exposure", ValueError, "exposure_s",
          call=lambda ws: pas.p_exp_from_duration(-3.0, 3 * 3600.0)),
     Case("ScreeningResult.load of a missing folder", FileNotFoundError, "nope",
@@ -342,9 +369,9 @@ _TOP_LEVEL = ("eps1", "eps2", "max_hf", "max_failures")
 def test_a_setting_has_one_rule_in_python_the_study_file_and_study_set(key, value, workspace,
                                                                        tmp_path):
     lf = np.asarray(pd.read_csv(workspace / "lf.csv")["lf"])
-    kw = {"n_waves": NW, "p_exp": P, "eps1": 0.1, "seed": 1, key: value}
+    objects = from_flat({"eps1": 0.1, key: value})  # the objects, as the study file builds them
     try:
-        pas.make_study("pas", lf, **kw)
+        pas.make_study(objects.pop("strategy"), lf, n_waves=NW, p_exp=P, seed=1, **objects)
         python_ok = True
     except ValueError:
         python_ok = False

@@ -5,7 +5,7 @@ import warnings
 import numpy as np
 import pandas as pd
 import pytest
-from conftest import gumbel_problem, monotone_problem, threshold_problem
+from conftest import gumbel_problem, monotone_problem, no_band, threshold_problem
 
 import pas
 
@@ -52,8 +52,9 @@ def test_threshold_problem_with_false_positives(table_oracle):
 def test_mpm_stays_put_to_160_samples(make, kwargs, table_oracle):
     """Stability: past the stopping point the MPM stays within ±15 % after the 30th sample."""
     lf, hf, n_w, p_exp, truth = make()
-    res = pas.run_pas(lf, table_oracle(hf), n_waves=n_w, p_exp=p_exp, eps1=1.0, seed=0,
-                      max_hf=160, stop_on_convergence=False, n_bootstrap=0, **kwargs)
+    study = pas.make_study(no_band(**kwargs), lf, n_waves=n_w, p_exp=p_exp, eps1=1.0, seed=0,
+                           max_hf=160, stop_on_convergence=False)
+    res = study.optimize(table_oracle(hf))
     assert res.n_hf == 160
     f = res.fitted
     err = f.mpm.to_numpy()[f.n_hf.to_numpy() > 30] / truth - 1
@@ -95,8 +96,8 @@ def test_event_carries_index_lf_and_user_id():
         assert ev.lf == lf[ev.index] and ev.id == f"ev{ev.index}" and ev.meta == {"seed": ev.index}
         return 2 * ev.lf
 
-    pas.run_pas(lf, oracle, n_waves=500, p_exp=0.01, eps1=0.01, seed=0, max_hf=8,
-                ids=[f"ev{i}" for i in range(500)], meta=[{"seed": i} for i in range(500)])
+    table = pd.DataFrame({"lf": lf, "seed": range(500)}, index=[f"ev{i}" for i in range(500)])
+    pas.run_pas(table, oracle, n_waves=500, p_exp=0.01, eps1=0.01, seed=0, max_hf=8)
     assert len(seen) == 8
 
 
@@ -123,7 +124,7 @@ def test_too_many_failures_stop_with_partial_result():
     lf = np.random.default_rng(0).rayleigh(1.0, 500)
     with pytest.raises(pas.OracleFailureLimit, match="max_failures=3") as info:
         pas.run_pas(lf, lambda ev: float("nan"), n_waves=500, p_exp=0.01, eps1=0.01,
-                    max_failures=3)
+                    budget=pas.Budget(max_failures=3))
     assert info.value.result.n_failed == 4
 
 
@@ -145,9 +146,11 @@ def test_bad_inputs_name_the_argument(kwargs, name):
 
 
 def test_unknown_setting_rejected():
-    with pytest.raises(ValueError, match="unknown setting"):
+    with pytest.raises(TypeError, match="unknown keyword argument 'zz'"):
         pas.run_pas(np.linspace(1, 5, 50), lambda ev: 1.0, n_waves=100, p_exp=0.05, eps1=0.1,
                     zz=3)
+    with pytest.raises(ValueError, match="unknown setting 'zz'"):
+        pas.PAS.from_flat({"zz": 3})
 
 
 def test_fewer_waves_than_peaks_over_threshold_is_an_error_naming_both_numbers():
@@ -190,13 +193,13 @@ def test_unusable_indicator_warns():
     hf = rng.permutation(2.0 * lf)  # LF carries no information on the HF ranks
     with pytest.warns(UserWarning, match="Kendall's tau"):
         pas.run_pas(lf, lambda ev: hf[ev.index] if hf[ev.index] > 0 else 1.0, n_waves=2000,
-                    p_exp=0.01, eps1=1e-6, seed=0, max_hf=40, n_bootstrap=0)
+                    p_exp=0.01, eps1=1e-6, seed=0, max_hf=40, strategy=no_band())
 
 
 def test_quantiles_of_the_exposure_maximum(table_oracle):
     lf, hf, n_w, p_exp, truth = monotone_problem(n=3000, n_waves=3200)
     res = pas.run_pas(lf, table_oracle(hf), n_waves=n_w, p_exp=p_exp, eps1=0.05, seed=1,
-                      max_hf=15, n_bootstrap=0)
+                      max_hf=15, strategy=no_band())
     # q = 1/e is the MPM level: 1 - exp(-P_exp) ~ P_exp
     assert res.quantile(np.exp(-1)) == pytest.approx(res.mpm, rel=2e-3)
     assert res.quantile(0.9) > res.mpm
@@ -208,10 +211,11 @@ def test_quantiles_of_the_exposure_maximum(table_oracle):
 def test_extra_copula_families(families, table_oracle):
     lf, hf, n_w, p_exp, truth = gumbel_problem(n=3000, n_waves=3300)
     # beyond the paper's five (and their rotations) only the selected-space fit applies
-    with pytest.raises(ValueError, match="estimator='selected'"):
-        pas.run_pas(lf, table_oracle(hf), n_waves=n_w, p_exp=p_exp, eps1=1.0, families=families)
+    with pytest.raises(ValueError, match=r"estimator=SelectedSample\(\)"):
+        pas.PAS(families=families)
     res = pas.run_pas(lf, table_oracle(hf), n_waves=n_w, p_exp=p_exp, eps1=1.0, seed=1,
-                      max_hf=20, n_bootstrap=0, families=families, estimator="selected")
+                      max_hf=20, strategy=no_band(families=families,
+                                                  estimator=pas.SelectedSample()))
     assert set(res.fitted.family) <= set(families)
     assert all(f"aic_{f}" in res.history for f in families)
     assert res.mpm == pytest.approx(truth, rel=0.25)
@@ -228,7 +232,7 @@ def test_degenerate_pairs_do_not_stop_the_campaign():
 
     with pytest.warns(UserWarning, match="no model fit"):
         res = pas.run_pas(lf, oracle, n_waves=800, p_exp=0.01, eps1=0.01, seed=0, max_hf=14,
-                          n_bootstrap=0)
+                          strategy=no_band())
     assert res.n_hf == 14 and res.history.fit_error.notna().any()
     assert np.isfinite(res.mpm)
 
@@ -237,7 +241,7 @@ def test_degenerate_pairs_do_not_stop_the_campaign():
 def test_impact_model_on_threshold_problem(table_oracle):
     lf, hf, n_w, p_exp, truth = threshold_problem()
     res = pas.run_pas(lf, table_oracle(hf), n_waves=n_w, p_exp=p_exp, eps1=0.015 * truth,
-                      threshold=3.0, seed=2, impact_model=True)
+                      threshold=3.0, seed=2, strategy=pas.PAS(impact_model=True))
     assert res.n_false_positive > 0
     assert (res.distribution.h_mean == 0).any()  # some conditioning peaks give no impact
     assert res.mpm == pytest.approx(truth, rel=0.10)
@@ -254,7 +258,7 @@ def test_failed_initial_samples_are_replaced():
         return 2.0 * ev.lf
 
     res = pas.run_pas(lf, oracle, n_waves=500, p_exp=0.01, eps1=0.01, seed=0, max_hf=8,
-                      n_bootstrap=0)
+                      strategy=no_band())
     assert res.n_failed == 4 and res.n_hf == 8 and np.isfinite(res.mpm)
 
 
@@ -276,7 +280,7 @@ def test_false_positives_between_true_positives_do_not_raise_the_threshold():
     # it is and those impacts stay reachable; the misses inform the impact model
     lf, hf, n_w = _fp_band_problem()
     res = pas.run_pas(lf, lambda ev: float(hf[ev.index]), n_waves=n_w, p_exp=2e-3, eps1=0.01,
-                      threshold=5.0, seed=0, max_hf=60, n_bootstrap=0)
+                      threshold=5.0, seed=0, max_hf=60, strategy=no_band())
     assert (res.history.threshold.dropna() == 5.0).all()
     assert res.n_false_positive >= 10
     low = res.history[res.history.status == "true_positive"].lf.min()
@@ -288,7 +292,7 @@ def test_all_false_positives_do_not_exhaust_the_pool():
     lf = np.random.default_rng(1).rayleigh(3.0, 5000)
     pool = int((lf > 6.0).sum())
     res = pas.run_pas(lf, lambda ev: 0.0, n_waves=5000, p_exp=5e-3, eps1=0.01, threshold=6.0,
-                      seed=0, n_bootstrap=0)
+                      seed=0, strategy=no_band())
     assert res.n_false_positive == res.n_hf < pool / 2
     assert not res.converged and np.isnan(res.mpm)
 
@@ -301,7 +305,7 @@ def test_short_range_warns_and_cannot_converge():
     hf[order[:120]] = 10 * lf[order[:120]]  # impacts end at d = 0.012 < 2 P_exp
     with pytest.warns(UserWarning, match="short of"):
         res = pas.run_pas(lf, lambda ev: float(hf[ev.index]), n_waves=n_w, p_exp=0.01,
-                          eps1=1e3, threshold=6.0, seed=0, max_hf=40, n_bootstrap=0)
+                          eps1=1e3, threshold=6.0, seed=0, max_hf=40, strategy=no_band())
     assert not res.converged and res.history.range_short.any()
 
 
@@ -309,7 +313,7 @@ def test_short_range_warns_and_cannot_converge():
 def test_a_study_stopped_by_its_budget_says_how_far_it_was_from_stopping(table_oracle):
     lf, hf, n_w, p_exp, truth = monotone_problem()
     res = pas.run_pas(lf, table_oracle(hf), n_waves=n_w, p_exp=p_exp, eps1=1e-6 * truth,
-                      seed=3, max_hf=15, n_bootstrap=0)
+                      seed=3, max_hf=15, strategy=no_band())
     assert not res.converged
     last = res.fitted.iloc[-1]
     assert np.isfinite(last["E_bar"]) and last["E_bar"] > 1e-6 * truth
@@ -318,11 +322,11 @@ def test_a_study_stopped_by_its_budget_says_how_far_it_was_from_stopping(table_o
         f"NOT converged (last Ē {last['E_bar']:.3g} against ε1 {1e-6 * truth:.3g})")
     # stopped by its budget before the rule could stop, both measures within their limits
     early = pas.run_pas(lf, table_oracle(hf), n_waves=n_w, p_exp=p_exp, eps1=10.0 * truth,
-                        seed=3, max_hf=5, n_bootstrap=0)
+                        seed=3, max_hf=5, strategy=no_band())
     assert not early.converged
     assert "NOT converged (Ē and COV within ε1 and ε2: too few fitted iterations" in (
         early.summary())
     # a converged study keeps the short word
     done = pas.run_pas(lf, table_oracle(hf), n_waves=n_w, p_exp=p_exp, eps1=0.01 * truth,
-                       seed=3, n_bootstrap=0)
+                       seed=3, strategy=no_band())
     assert done.converged and done.summary().endswith("; converged")

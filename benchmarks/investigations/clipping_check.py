@@ -31,9 +31,8 @@ def main(case="3a-hard", n=5):
         data = generate_case(case, seed=seed)
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
-            res = pas.run_pas(data.lf, data.oracle(), n_waves=data.n_waves, p_exp=data.p_exp,
-                              eps1=data.eps1, threshold=data.threshold, seed=seed,
-                              preset="paper", max_hf=None, n_waves_convention="spectral")
+            res = pas.make_study("paper", data.lf_table(), **data.run_kwargs(), seed=seed,
+                                 max_hf=None).optimize(data.oracle())
         model = refit(res)
         m = len(res.pairs)
         r = np.random.default_rng(0).uniform(1e-6, 1 - 1e-6, (40, model.n0))

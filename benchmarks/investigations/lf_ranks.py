@@ -29,6 +29,7 @@ import numpy as np
 import pandas as pd
 
 import pas
+from pas.study.flat import from_flat
 from pas.validation import known_truth as kt
 from pas.validation.known_truth_runs import settings_from_args
 
@@ -75,9 +76,11 @@ def main(argv=None):
         p = problem_for(args.mode, ptype, run, args.data_set)
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
-            res = pas.run_pas(p.lf, p.oracle(), n_waves=p.n_waves, p_exp=p.p_exp, eps1=p.eps1,
-                              seed=args.data_set if args.mode == "redraw" else run,
-                              max_hf=args.hf, stop_on_convergence=False, **settings)
+            objects = from_flat({"eps1": p.eps1, "max_hf": args.hf, **settings})
+            res = pas.make_study(objects.pop("strategy"), p.lf, n_waves=p.n_waves,
+                                 p_exp=p.p_exp,
+                                 seed=args.data_set if args.mode == "redraw" else run,
+                                 stop_on_convergence=False, **objects).optimize(p.oracle())
         t = p.truth_mpm
         model = res.mpm_band_model or (np.nan, np.nan)
         rows.append({"run": run, "error": res.mpm / t - 1,

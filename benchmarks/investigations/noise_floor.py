@@ -21,6 +21,7 @@ import warnings
 import numpy as np
 
 import pas
+from pas.strategies.band import ModelBand
 from pas.strategies.base import Pairs
 from pas.strategies.pas import PAS
 from pas.strategies.screening import LFSet
@@ -40,7 +41,7 @@ def same_model_change(data, result, crn: bool, repeats: int = 20) -> float:
     grid = range_grid(data.p_exp)
     out = []
     for k in range(repeats):
-        st = PAS(common_random_numbers=crn, n_bootstrap=0)
+        st = PAS(common_random_numbers=crn, band=ModelBand(n_bootstrap=0))
         st.reset(k)
         a = st.predict(pairs, s, np.random.default_rng([k, 0])).at(grid)
         b = st.predict(pairs, s, np.random.default_rng([k, 1])).at(grid)
@@ -54,10 +55,9 @@ def main(cases):
         for crn in (False, True):
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore")
-                res = pas.run_pas(data.lf, data.oracle(), n_waves=data.n_waves, p_exp=data.p_exp,
-                                  eps1=data.eps1, threshold=data.threshold, seed=0,
-                                  max_hf=160, common_random_numbers=crn,
-                                  n_waves_convention="spectral")
+                res = pas.make_study(PAS(common_random_numbers=crn), data.lf_table(),
+                                     **data.run_kwargs(), seed=0,
+                                     max_hf=160).optimize(data.oracle())
             h = res.history.dropna(subset=["E_bar"])
             floor = same_model_change(data, res, crn)
             print(f"{case} CRN {'on ' if crn else 'off'}: same-model E {floor:9.3g} "

@@ -1,9 +1,9 @@
 """Measured effect of each departure from the paper: switch one setting back at a time.
 
 For every setting in which the package's defaults differ from
-``preset="paper"`` (:data:`pas.study.factory.PRESETS`), run the known-truth
-tuning problems (:mod:`pas.validation.known_truth`) with the defaults except
-that one setting at its paper value, and print the median and worst |MPM error|, the U95
+``PAS.paper()`` (with ``Stopping.paper()`` and ``Budget.paper()``), run the known-truth
+tuning problems (:mod:`pas.validation.known_truth`) with the defaults except that one setting at
+its paper value, and print the median and worst |MPM error|, the U95
 coverage and the median HF count beside the defaults and the full paper
 preset.  This is the "measured effect" column of ``docs/departures.md``.
 
@@ -13,37 +13,42 @@ Run: python benchmarks/studies/departures.py [N] [--types core,miss,...] [--out 
 from __future__ import annotations
 
 import argparse
-import inspect
 from pathlib import Path
 
 import pandas as pd
 
+from pas.strategies.estimators import SelectedSample
 from pas.strategies.pas import PAS
-from pas.study.factory import DEFAULT_MAX_HF, PRESETS
-from pas.study.study import Study
+from pas.study.settings import Budget, Stopping
 from pas.validation.known_truth import make_problem
 from pas.validation.known_truth_runs import TYPES, run_one, select_types
 
+PAPER = {**PAS.paper().settings(), **Stopping.paper().flat(), **Budget.paper().flat()}
+DEFAULT = {**PAS().settings(), **Stopping().flat(), **Budget().flat()}
+"""The flat settings of the paper preset and of the defaults (the settings objects')."""
+
 
 def default_value(name):
-    """The package default of a PAS or study setting (from the constructors' signatures)."""
-    for cls in (PAS, Study):
-        parameter = inspect.signature(cls.__init__).parameters.get(name)
-        if parameter is not None:
-            return DEFAULT_MAX_HF if name == "max_hf" else parameter.default
-    raise KeyError(name)
+    """The package default of a flat setting; for an option of the paper's estimator, that
+    estimator's default."""
+    return DEFAULT[name] if name in DEFAULT else getattr(SelectedSample(), name)
 
 
 def variants():
     """``{label: settings}``: defaults, the paper preset, one paper setting at a time on the
-    defaults, and (labels ``paper+name=value``) one default at a time on the paper preset —
-    for settings that act only inside the paper's selected-space estimator."""
+    defaults (those that act there), and (labels ``paper+name=value``) one default at a time
+    on the paper preset — also for settings that act only inside the paper's selected-space
+    estimator."""
     out = {"default": {}, "paper": {"preset": "paper"}}
-    for name, value in PRESETS["paper"].items():
-        out[f"{name}={value}"] = {name: value}
-    for name in PRESETS["paper"]:
+    changed = [name for name, value in PAPER.items() if DEFAULT.get(name, value) != value
+               or name not in DEFAULT]
+    for name in changed:
+        if name in DEFAULT:  # copula_fit, marginals_from: options of the paper's estimator
+            out[f"{name}={PAPER[name]}"] = {name: PAPER[name]}
+    for name in changed:
         value = default_value(name)
-        out[f"paper+{name}={value}"] = {"preset": "paper", name: value}
+        if value != PAPER[name]:
+            out[f"paper+{name}={value}"] = {"preset": "paper", name: value}
     return out
 
 

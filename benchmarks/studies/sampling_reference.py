@@ -73,6 +73,7 @@ from pas.validation.references import (
 
 def pas_on_random_events(data, k: int, draws: int, seed: int):
     """Relative MPM errors of PAS's default estimator on ``draws`` random sets of k pool events."""
+    from pas.strategies.band import ModelBand
     from pas.strategies.base import Pairs
     from pas.strategies.pas import PAS
     from pas.strategies.screening import LFSet
@@ -86,7 +87,7 @@ def pas_on_random_events(data, k: int, draws: int, seed: int):
         tp, fp = pick[hs[pick] > 0], pick[hs[pick] == 0]
         if tp.size < PAS.min_pairs:
             continue
-        strategy = PAS(n_bootstrap=0)
+        strategy = PAS(band=ModelBand(n_bootstrap=0))
         strategy.reset(seed)
         pairs = Pairs(tp, s.lf[tp], hs[tp], s.d[tp], s.lf[fp], fp)
         try:

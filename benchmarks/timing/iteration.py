@@ -43,7 +43,7 @@ def make_pairs(lfset, m, rng):
 
 
 def time_iteration(lfset, pairs, repeats, **settings):
-    strat = PAS(**settings)
+    strat = PAS.from_flat(settings)  # flat names, e.g. hf_marginal="both"
     times, families = [], []
     for k in range(repeats):
         rng = np.random.default_rng(k)

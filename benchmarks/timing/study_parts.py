@@ -42,6 +42,7 @@ import pas.models.copulas
 import pas.models.joint
 import pas.models.joint_mixture
 import pas.stats.exceedance
+from pas.study.flat import from_flat
 
 N, N_W, P_EXP = 15000, 16364, 2.55e-3
 
@@ -84,8 +85,9 @@ def run(max_hf, n=N, n_waves=N_W, **settings):
         stamps.append((cpu_seconds(), time.perf_counter()))
 
     t0 = cpu_seconds()
-    res = pas.run_pas(lf, lambda e: float(hf[e.index]), n_waves=n_waves, p_exp=P_EXP,
-                      eps1=1e-12, seed=0, max_hf=max_hf, callback=callback, **settings)
+    objects = from_flat({"eps1": 1e-12, "max_hf": max_hf, **settings})  # flat names
+    res = pas.run_pas(lf, lambda e: float(hf[e.index]), n_waves=n_waves, p_exp=P_EXP, seed=0,
+                      callback=callback, **objects)
     cpu = np.r_[t0, [c for c, _ in stamps]]
     return res, np.diff(cpu), cpu_seconds() - cpu[-1], time.perf_counter() - stamps[-1][1]
 
@@ -93,22 +95,34 @@ def run(max_hf, n=N, n_waves=N_W, **settings):
 @contextlib.contextmanager
 def cold_all_at_once():
     """The old cold starts: every family's fit on every tenth fit of the study."""
-    import pas.strategies.pas as pas_strategy
+    import pas.strategies.estimators as estimators
 
-    saved = pas_strategy.cold_turns
-    pas_strategy.cold_turns = lambda families, n_fits, every: (
-        tuple(families) if n_fits % every == 0 else ())
+    saved = estimators.COLD_IN_TURN
+    estimators.COLD_IN_TURN = False
     try:
         yield
     finally:
-        pas_strategy.cold_turns = saved
+        estimators.COLD_IN_TURN = saved
+
+
+@contextlib.contextmanager
+def cold_in_turn():
+    """The families' cold starts in turn (``steps.cold_turns``)."""
+    import pas.strategies.estimators as estimators
+
+    saved = estimators.COLD_IN_TURN
+    estimators.COLD_IN_TURN = True
+    try:
+        yield
+    finally:
+        estimators.COLD_IN_TURN = saved
 
 
 def part_cold(max_hf):
     """Cold starts all at once (old) against the families in turn (new), no band."""
     print("-- the study's cold starts: all families every tenth fit (old) vs in turn (new)")
     out = {}
-    for label, ctx in (("old", cold_all_at_once), ("new", contextlib.nullcontext)):
+    for label, ctx in (("old", cold_all_at_once), ("new", cold_in_turn)):
         with ctx():
             res, loop, _, _ = run(max_hf, n_bootstrap=0)
         out[label] = summary(res)
@@ -172,9 +186,10 @@ def final_study(max_hf):
     lf, hf = scenario()
     seen = []
     pas.run_pas(lf, lambda e: float(hf[e.index]), n_waves=N_W, p_exp=P_EXP, eps1=1e-12, seed=0,
-                max_hf=max_hf, n_bootstrap=0, callback=lambda study, row: seen.append(study))
+                max_hf=max_hf, strategy=pas.PAS(band=pas.ModelBand(n_bootstrap=0)),
+                callback=lambda study, row: seen.append(study))
     study = seen[-1]
-    study.strategy.n_bootstrap = 50
+    study.strategy.band = pas.ModelBand(n_bootstrap=50)
     return study, lambda: np.random.default_rng([study.seed, len(study.rows), 1])
 
 
@@ -289,6 +304,7 @@ def long_record_path(new):
 
 def long_iterations(n, families, repeats):
     """``(median CPU ms, peak traced MB of one iteration, MPM)`` at ``n`` LF peaks, 80 pairs."""
+    from pas.strategies.band import ModelBand
     from pas.strategies.base import Pairs
     from pas.strategies.pas import PAS
     from pas.strategies.screening import LFSet
@@ -297,7 +313,7 @@ def long_iterations(n, families, repeats):
     lfset = LFSet(lf, n_waves=int(round(n * N_W / N)), p_exp=P_EXP)
     pos = np.unique(np.round(np.geomspace(1, lfset.n, 80)).astype(int) - 1)
     pairs = Pairs(pos, lfset.lf[pos], hf[lfset.index[pos]], lfset.d[pos])
-    strat = PAS(families=families, n_bootstrap=0)
+    strat = PAS(families=families, band=ModelBand(n_bootstrap=0))
     strat.reset(0)
     strat.predict(pairs, lfset, np.random.default_rng(0))  # the first: uniforms drawn
     times = []

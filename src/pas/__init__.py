@@ -29,6 +29,8 @@ _EXPORTS = {
     "n_waves_from_duration": "stats.exceedance", "p_exp_from_duration": "stats.exceedance",
     "quantile_exceedance": "stats.exceedance",
     "AS": "strategies.as_", "PAS": "strategies.pas",
+    "ConditionalLikelihood": "strategies.estimators", "SelectedSample": "strategies.estimators",
+    "ModelBand": "strategies.band", "Stopping": "study.settings", "Budget": "study.settings",
     "CommandOracle": "study.oracles", "OracleFailureLimit": "study.oracles",
     "TableOracle": "study.oracles", "ScreeningResult": "study.result", "Study": "study.study",
     "StudyStore": "study.store", "refit": "study.refit",
@@ -41,6 +43,7 @@ __all__ = [
     "mean_period_from_peak_period", "encounter_period", "quantile_exceedance", "__version__",
     "run_as", "AS", "StudyStore", "TableOracle", "CommandOracle", "run_rcw", "refit",
     "run_long_term", "LongTermResult",
+    "ConditionalLikelihood", "SelectedSample", "ModelBand", "Stopping", "Budget",
 ]
 
 

@@ -67,7 +67,8 @@ def test_run_with_table_oracle_writes_everything_and_matches_the_api(files, tmp_
     # the same study through the Python API gives the same answer (the values as read
     # back from the CSV files, which pandas parses to within an ulp)
     lf = pd.read_csv(d / "lf.csv")["rwe"].to_numpy()
-    ref = pas.run_pas(lf, TableOracle(d / "hf.csv", id_column="event", value_column="force"), ids=ids,
+    ref = pas.run_pas(pd.DataFrame({"lf": lf}, index=ids),
+                      TableOracle(d / "hf.csv", id_column="event", value_column="force"),
                       n_waves=NW, p_exp=P, eps1=EPS1, seed=1)
     assert summary["mpm"] == pytest.approx(ref.mpm, rel=1e-12)
     assert summary["n_hf"] == ref.n_hf and summary["family"] == ref.family

@@ -13,7 +13,7 @@ from pas.study import open_study
 from pas.study.store import StoreError
 
 P = 1e-3
-FAST = dict(p_exceed=P, seed=4, strategy=pas.PAS(n_bootstrap=0), model_band=False)
+FAST = dict(p_exceed=P, seed=4, strategy=pas.PAS(band=pas.ModelBand(n_bootstrap=0)), model_band=False)
 
 
 def _small(seed=1):
@@ -25,7 +25,7 @@ def _small(seed=1):
 def test_value_and_band_against_the_closed_form_truth(g, tolerance):
     truth = problem.true_value(P, g)
     res = pas.run_long_term(problem.table(), problem.lf_peaks(3), problem.Oracle(g), p_exceed=P,
-                            max_hf=30, seed=5, strategy=pas.PAS(n_bootstrap=20))
+                            max_hf=30, seed=5, strategy=pas.PAS(band=pas.ModelBand(n_bootstrap=20)))
     assert res.value == pytest.approx(truth, rel=tolerance)
     assert res.band[0] <= truth <= res.band[1]
     assert res.n_hf == res.contributions["n_hf"].sum() <= 30
@@ -126,7 +126,7 @@ class SlowAfter(problem.Oracle):
         return value
 
 pas.run_long_term(problem.table(n_waves=2000), problem.lf_peaks(1, n_waves=2000), SlowAfter(),
-                  p_exceed={p}, seed=4, strategy=pas.PAS(n_bootstrap=0), model_band=False,
+                  p_exceed={p}, seed=4, strategy=pas.PAS(band=pas.ModelBand(n_bootstrap=0)), model_band=False,
                   max_hf=12, study={db!r})
 """
 

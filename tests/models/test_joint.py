@@ -14,6 +14,7 @@ from pas.models.copula_densities import (
 )
 from pas.models.copulas import fit_copula, tau_inversion_parameter
 from pas.models.joint import fit_joint
+from pas.strategies.estimators import SelectedSample
 from pas.strategies.pas import PAS
 
 RNG = np.random.default_rng(0)
@@ -127,19 +128,21 @@ def test_common_random_numbers_never_change_as_the_conditioning_set_grows():
 
 def test_paper_preset_through_the_api():
     lf = np.random.default_rng(0).rayleigh(2.0, 2000)
-    study = pas.make_study("pas", lf, n_waves=2000, p_exp=1e-2, eps1=0.1, preset="paper")
+    study = pas.make_study(pas.PAS.paper(), lf, n_waves=2000, p_exp=1e-2, eps1=0.1, seed=0)
     s = study.settings()
     assert s["max_hf"] is None and s["stop_measure"] == "step"
     assert s["strategy_settings"]["estimator"] == "selected"
     assert s["strategy_settings"]["copula_fit"] == "itau"
-    own = pas.make_study("pas", lf, n_waves=2000, p_exp=1e-2, eps1=0.1, preset="paper",
-                         max_hf=40, z=20)
-    assert own.max_hf == 40 and own.strategy.z == 20     # given settings win
+    assert pas.make_study("paper", lf, n_waves=2000, p_exp=1e-2, eps1=0.1, seed=0).settings() == s
+    own = pas.make_study(pas.PAS.paper(), lf, n_waves=2000, p_exp=1e-2, max_hf=40,
+                         stopping=pas.Stopping(eps1=0.1, k1=9))
+    assert own.max_hf == 40 and own.stopping.measure == "window"     # given settings win
     assert pas.make_study("pas", lf, n_waves=2000, p_exp=1e-2, eps1=0.1).max_hf == 160
+    from pas.study.flat import from_flat
     with pytest.raises(ValueError, match="preset must be one of"):
-        pas.make_study("pas", lf, n_waves=2000, p_exp=1e-2, eps1=0.1, preset="papers")
+        from_flat({}, preset="papers")
     with pytest.raises(ValueError, match="set of PAS settings"):
-        pas.make_study("as", lf, n_waves=2000, p_exp=1e-2, eps1=0.1, preset="paper")
+        from_flat({}, strategy="as", preset="paper")
 
 
 def test_the_conditional_fit_keeps_every_pair():
@@ -153,7 +156,7 @@ def test_the_conditional_fit_keeps_every_pair():
     hf[1] += 60.0  # a genuine heavy load far off the trend
     pairs = Pairs(pos, s.lf[pos], hf, s.d[pos])
     cond = PAS().predict(pairs, s, np.random.default_rng(0))
-    sel = PAS(estimator="selected").predict(pairs, s, np.random.default_rng(0))
+    sel = PAS(estimator=SelectedSample()).predict(pairs, s, np.random.default_rng(0))
     assert cond.record["n_outliers"] == 0 and sel.record["n_outliers"] == 1
 
 

@@ -41,7 +41,7 @@ def problem():
 def _run(problem, **kw):
     lf, hf = problem
     return pas.run_pas(lf, lambda ev: hf[ev.index], n_waves=NW, p_exp=P, seed=2,
-                       n_bootstrap=0, **kw)
+                       strategy=pas.PAS(band=pas.ModelBand(n_bootstrap=0)), **kw)
 
 
 @pytest.fixture(scope="module")
@@ -54,7 +54,7 @@ def budget(problem):
 
 @pytest.fixture(scope="module")
 def converged(problem):
-    res = _run(problem, eps1=20.0, k1=3, k2=3, max_hf=40)
+    res = _run(problem, stopping=pas.Stopping(eps1=20.0, k1=3, k2=3), max_hf=40)
     assert res.converged
     return res
 
@@ -152,8 +152,9 @@ def test_convergence_figure_says_the_failure_limit_stopped_a_study(problem):
         return hf[ev.index]
 
     with pytest.raises(OracleFailureLimit) as info:
-        pas.run_pas(lf, oracle, n_waves=NW, p_exp=P, eps1=1e-6, seed=2, n_bootstrap=0,
-                    max_failures=2)
+        pas.run_pas(lf, oracle, n_waves=NW, p_exp=P, eps1=1e-6, seed=2,
+                    strategy=pas.PAS(band=pas.ModelBand(n_bootstrap=0)),
+                    budget=pas.Budget(max_failures=2))
     res = info.value.result
     assert res.n_failed == 3
     fig, ax = plot_mpm_convergence(res)

@@ -38,8 +38,10 @@ def problem():
 @pytest.fixture(scope="module")
 def result(problem):
     lf, hf = problem
-    return pas.run_pas(lf, lambda ev: hf[ev.index], n_waves=NW, p_exp=P, eps1=0.2, seed=2,
-                       max_hf=30, n_bootstrap=0, k1=9, k2=9, stop_on_convergence=False)
+    study = pas.make_study(pas.PAS(band=pas.ModelBand(n_bootstrap=0)), lf, n_waves=NW, p_exp=P,
+                           seed=2, max_hf=30, stopping=pas.Stopping(eps1=0.2, k1=9, k2=9),
+                           stop_on_convergence=False)
+    return study.optimize(lambda ev: hf[ev.index])
 
 
 @pytest.fixture(autouse=True)
@@ -189,8 +191,8 @@ def test_aic_two_panels_and_single(result, tmp_path):
 
 def test_aic_needs_a_pas_result(problem):
     lf, hf = problem
-    res = pas.run_as(lf, lambda ev: hf[ev.index], n_waves=NW, p_exp=P, eps1=0.05, seed=2,
-                     max_hf=8, stop_on_convergence=False)
+    res = pas.make_study("as", lf, n_waves=NW, p_exp=P, eps1=0.05, seed=2, max_hf=8,
+                         stop_on_convergence=False).optimize(lambda ev: hf[ev.index])
     with pytest.raises(ValueError, match="AIC"):
         plot_aic(res)
     # the other figures work for AS too

@@ -97,10 +97,13 @@ def test_bad_settings_raise(bad):
         AS(**bad)
 
 
-def test_run_as_rejects_unknown_fidelity(rayleigh):
-    with pytest.raises(ValueError, match="fidelity"):
+def test_run_as_names_the_new_place_of_an_as_setting(rayleigh):
+    with pytest.raises(TypeError, match=r"fidelity is now strategy=AS\(fidelity=...\)"):
         pas.run_as(rayleigh, lambda ev: ev.lf, n_waves=N_W, p_exp=P_EXP, eps1=0.05,
-                   fidelity="multi-level")
+                   fidelity="single")
+    with pytest.raises(TypeError, match=r"strategy must be AS\(...\)"):
+        pas.run_as(rayleigh, lambda ev: ev.lf, n_waves=N_W, p_exp=P_EXP, eps1=0.05,
+                   strategy=pas.PAS())
 
 
 # -- end to end ----------------------------------------------------------------
@@ -112,7 +115,7 @@ def test_perfect_indicator_recovers_mapped_mpm(rayleigh, fidelity):
     distribution at ``P_exp``."""
     truth = value_at_p(g(rayleigh))
     res = pas.run_as(rayleigh, lambda ev: g(ev.lf), n_waves=N_W, p_exp=P_EXP,
-                     eps1=0.005 * truth, seed=0, max_hf=60, fidelity=fidelity)
+                     eps1=0.005 * truth, seed=0, max_hf=60, strategy=AS(fidelity=fidelity))
     assert res.strategy == "as"
     assert res.converged
     assert abs(res.mpm / truth - 1) < 0.03
@@ -169,8 +172,9 @@ def test_false_positives_are_counted_and_dropped(rayleigh):
 
 def test_batches_are_distinct_and_reproducible(rayleigh):
     def run():
-        return pas.run_as(rayleigh, lambda ev: g(ev.lf), n_waves=N_W, p_exp=P_EXP, eps1=1e-9,
-                          seed=3, max_hf=12, batch_size=3, stop_on_convergence=False)
+        study = pas.make_study("as", rayleigh, n_waves=N_W, p_exp=P_EXP, eps1=1e-9, seed=3,
+                               max_hf=12, stop_on_convergence=False)
+        return study.optimize(lambda ev: g(ev.lf), batch_size=3)
 
     a, b = run(), run()
     ids = a.history["event_index"].tolist()

@@ -5,6 +5,8 @@ import pytest
 from test_estimator import _problem
 
 from pas.strategies import band
+from pas.strategies.band import ModelBand
+from pas.strategies.estimators import ConditionalLikelihood
 from pas.strategies.pas import PAS
 
 
@@ -20,7 +22,7 @@ def test_the_band_is_the_same_on_one_and_on_two_processes(lf_ranks):
     # must still find the stream where it would find it in turn
     s, pairs, _ = _problem(2, tau=0.6, p_impact=0.7, m=24)
     assert len(pairs.fp_position) > 0
-    strategy = PAS(n_bootstrap=12, band_lf_ranks=lf_ranks)
+    strategy = PAS(band=ModelBand(n_bootstrap=12, lf_ranks=lf_ranks))
     strategy.reset(0)
     strategy.predict(pairs, s, np.random.default_rng(0))
     one = _band(strategy, pairs, s, 1)
@@ -35,7 +37,7 @@ def test_warm_replicates_reach_the_cold_optima(monkeypatch):
     # the warm-started band (Student-t also cold) against every replicate started from the
     # study's fits and from the data, as before
     s, pairs, _ = _problem(1, tau=0.6, m=30)
-    strategy = PAS(n_bootstrap=12, band_marginals="fitted")
+    strategy = PAS(band=ModelBand(n_bootstrap=12, marginals="fitted"))
     strategy.reset(0)
     strategy.predict(pairs, s, np.random.default_rng(0))
     warm = _band(strategy, pairs, s, 1)
@@ -82,7 +84,9 @@ def test_kept_lf_ranks_are_those_of_the_lf_set_fitted():
     s_b = LFSet(s_a.lf ** 3, n_waves=s_a.n_waves, p_exp=s_a.p_exp)
     pos = pairs_a.position
     pairs_b = Pairs(pos, s_b.lf[pos], pairs_a.hf, s_b.d[pos])
-    strategy, fresh = (PAS(n_bootstrap=0, impact_model=False, lf_tail="gpd") for _ in range(2))
+    gpd = ConditionalLikelihood(lf_tail="gpd")
+    strategy, fresh = (PAS(impact_model=False, estimator=gpd, band=ModelBand(n_bootstrap=0))
+                       for _ in range(2))
     strategy.reset(0)
     fresh.reset(0)
     first = strategy.fit(pairs_a, s_a)
@@ -100,7 +104,7 @@ def test_pruned_replicates_fit_fewer_candidates_and_give_the_same_band(monkeypat
     import pas.models.joint as joint
 
     s, pairs, _ = _problem(3, tau=0.7, gumbel=True, m=60)
-    strategy = PAS(n_bootstrap=12)
+    strategy = PAS(band=ModelBand(n_bootstrap=12))
     strategy.reset(0)
     strategy.predict(pairs, s, np.random.default_rng(0))
     original, fitted = joint.fit_joint, []
@@ -120,7 +124,7 @@ def test_pruned_replicates_fit_fewer_candidates_and_give_the_same_band(monkeypat
 
 def test_replicate_starts_keep_the_families_within_the_margin_of_the_best():
     s, pairs, _ = _problem(3, tau=0.7, gumbel=True, m=60)
-    strategy = PAS(n_bootstrap=4)
+    strategy = PAS(band=ModelBand(n_bootstrap=4))
     strategy.reset(0)
     strategy.predict(pairs, s, np.random.default_rng(0))
     starts = strategy.final_joint_fits(pairs, s, "both")

@@ -4,7 +4,10 @@ import numpy as np
 from test_estimator import _problem
 
 import pas.models.joint as joint
-from pas.strategies.pas import COLD_EVERY, PAS
+import pas.strategies.estimators as estimators
+from pas.strategies.band import ModelBand
+from pas.strategies.estimators import COLD_EVERY
+from pas.strategies.pas import PAS
 from pas.strategies.steps import cold_turns
 
 
@@ -16,9 +19,10 @@ def test_each_family_starts_cold_once_in_cold_every_fits_and_never_two_at_once()
         assert sum(f in t for t in turns) == 3
 
 
-def test_a_study_refits_at_most_one_family_cold_per_iteration(monkeypatch):
+def test_in_turn_a_study_refits_at_most_one_family_cold_per_iteration(monkeypatch):
+    monkeypatch.setattr(estimators, "COLD_IN_TURN", True)
     s, pairs, _ = _problem(4, tau=0.6, m=40)
-    strategy = PAS(n_bootstrap=0)
+    strategy = PAS(band=ModelBand(n_bootstrap=0))
     strategy.reset(0)
     original, per_iteration = joint.fit_joint, []
 

@@ -16,12 +16,15 @@ import pyvinecopulib as pv
 from scipy import stats
 
 from pas.strategies.base import Pairs
+from pas.strategies.band import ModelBand
+from pas.strategies.estimators import ConditionalLikelihood, SelectedSample
 from pas.strategies.pas import PAS
 from pas.strategies.screening import LFSet
 
 N, P_EXP, M = 15_000, 2e-3, 80
-PAPER = dict(estimator="selected", copula_fit="itau", exclude_at_bound=False,
-             marginals_from="kept", impact_model=False, common_random_numbers=False)
+PAPER = dict(estimator=SelectedSample(copula_fit="itau", marginals_from="kept"),
+             exclude_at_bound=False, impact_model=False, common_random_numbers=False)
+NO_BAND = ModelBand(n_bootstrap=0)
 
 
 def _problem(seed, *, tau, p_impact=1.0, hf_law=None, gumbel=False, lf_ranks=False, m=M):
@@ -53,7 +56,7 @@ def _problem(seed, *, tau, p_impact=1.0, hf_law=None, gumbel=False, lf_ranks=Fal
 
 
 def _error(settings, s, pairs, truth):
-    strategy = PAS(n_bootstrap=0, **settings)
+    strategy = PAS(band=NO_BAND, **settings)
     strategy.reset(0)
     return strategy.predict(pairs, s, np.random.default_rng(0)).mpm / truth - 1
 
@@ -88,14 +91,15 @@ def test_a_lognormal_hf_marginal_is_recognised_and_fits_better():
     for seed in range(6):
         s, pairs, truth = _problem(seed, tau=0.6, hf_law=law)
         for choice in errors:
-            errors[choice].append(abs(_error({"hf_marginal": choice}, s, pairs, truth)))
-        strategy = PAS(n_bootstrap=0, hf_marginal="both")
+            fitted = {"estimator": ConditionalLikelihood(hf_marginal=choice)}
+            errors[choice].append(abs(_error(fitted, s, pairs, truth)))
+        strategy = PAS(estimator=ConditionalLikelihood(hf_marginal="both"), band=NO_BAND)
         strategy.reset(0)
         assert strategy.predict(pairs, s, np.random.default_rng(0)).record["hf_marginal"] \
             == "lognormal"
     assert np.mean(errors["both"]) < np.mean(errors["weibull"])
     with pytest.raises(ValueError, match="hf_marginal"):
-        PAS(hf_marginal="gamma")
+        ConditionalLikelihood(hf_marginal="gamma")
 
 
 @pytest.mark.slow
@@ -111,8 +115,10 @@ def test_a_bore_impulse_hf_law_is_recognised_by_the_weibull_mixture():
     for seed in range(6):
         s, pairs, truth = _problem(seed, tau=0.6, hf_law=law, m=160)
         for choice, errs in errors.items():
-            errs.append(abs(_error({"hf_marginal": choice}, s, pairs, truth)))
-        strategy = PAS(n_bootstrap=0, hf_marginal="weibull_mixture")
+            errs.append(abs(_error({"estimator": ConditionalLikelihood(hf_marginal=choice)},
+                                   s, pairs, truth)))
+        strategy = PAS(estimator=ConditionalLikelihood(hf_marginal="weibull_mixture"),
+                       band=NO_BAND)
         strategy.reset(0)
         assert strategy.predict(pairs, s, np.random.default_rng(0)).record["hf_marginal"] \
             == "weibull_mixture"
@@ -120,7 +126,8 @@ def test_a_bore_impulse_hf_law_is_recognised_by_the_weibull_mixture():
     kept = 0
     for seed in range(6):
         s, pairs, truth = _problem(seed, tau=0.6)
-        strategy = PAS(n_bootstrap=0, hf_marginal="weibull_mixture")
+        strategy = PAS(estimator=ConditionalLikelihood(hf_marginal="weibull_mixture"),
+                       band=NO_BAND)
         strategy.reset(0)
         prediction = strategy.predict(pairs, s, np.random.default_rng(0))
         if prediction.record["hf_marginal"] == "weibull":
@@ -137,7 +144,8 @@ def test_weibull_mixture_in_the_band_and_a_failed_mixture_fit_keeps_the_weibull(
     law = WeibullMixture(theta=0.0, p=0.7, alpha1=1000.0, beta1=2.0, alpha2=2500.0, beta2=0.7)
     s, pairs, _ = _problem(0, tau=0.6, hf_law=law, m=160)
     # the band's replicates ("reselected") choose among Weibull, log-normal and mixture
-    strategy = PAS(n_bootstrap=12, hf_marginal="weibull_mixture")
+    strategy = PAS(estimator=ConditionalLikelihood(hf_marginal="weibull_mixture"),
+                   band=ModelBand(n_bootstrap=12))
     strategy.reset(0)
     strategy.predict(pairs, s, np.random.default_rng(0))
     fit, kinds = strategy.fit, []
@@ -156,10 +164,11 @@ def test_weibull_mixture_in_the_band_and_a_failed_mixture_fit_keeps_the_weibull(
         raise ValueError("no optimum")
 
     monkeypatch.setattr(joint_mixture, "fit_joint_mixture", fail)
-    strategy = PAS(n_bootstrap=12, hf_marginal="weibull_mixture")
+    strategy = PAS(estimator=ConditionalLikelihood(hf_marginal="weibull_mixture"),
+                   band=ModelBand(n_bootstrap=12))
     strategy.reset(0)
     prediction = strategy.predict(pairs, s, np.random.default_rng(0))
-    default = PAS(n_bootstrap=0)
+    default = PAS(band=NO_BAND)
     default.reset(0)
     assert prediction.record["hf_marginal"] == "weibull"
     assert prediction.mpm == default.predict(pairs, s, np.random.default_rng(0)).mpm
@@ -174,7 +183,7 @@ def test_band_marginals_let_the_bootstrap_choose_or_alternate_the_hf_marginal():
     s, pairs, truth = _problem(0, tau=0.6, hf_law=stats.lognorm(1.0, scale=1000.0))
     seen, mpms = {}, {}
     for choice in ("fitted", "alternate", "reselected"):
-        strategy = PAS(n_bootstrap=12, band_marginals=choice)
+        strategy = PAS(band=ModelBand(n_bootstrap=12, marginals=choice))
         strategy.reset(0)
         mpms[choice] = strategy.predict(pairs, s, np.random.default_rng(0)).mpm
         fit, kinds = strategy.fit, []
@@ -192,8 +201,8 @@ def test_band_marginals_let_the_bootstrap_choose_or_alternate_the_hf_marginal():
     assert seen["alternate"][:4] == ["Weibull3", "LogNormal3", "Weibull3", "LogNormal3"]
     assert seen["reselected"].count("LogNormal3") > len(seen["reselected"]) / 2
     assert mpms["fitted"] == mpms["alternate"] == mpms["reselected"]
-    with pytest.raises(ValueError, match="band_marginals"):
-        PAS(band_marginals="lognormal")
+    with pytest.raises(ValueError, match="marginals must be one of"):
+        ModelBand(marginals="lognormal")
 
 
 @pytest.mark.slow
@@ -211,26 +220,26 @@ def test_at_strong_dependence_the_lf_ranks_carry_the_error_and_the_band_holds_it
     for seed in range(6):
         for lf_ranks in (False, True):
             s, pairs, truth = _problem(seed, tau=0.9, gumbel=True, lf_ranks=lf_ranks, m=30)
-            strategy = PAS(n_bootstrap=16, band_marginals="fitted")
+            strategy = PAS(band=ModelBand(n_bootstrap=16, marginals="fitted"))
             strategy.reset(0)
             errors[lf_ranks].append(abs(strategy.predict(pairs, s, np.random.default_rng(0)).mpm
                                         / truth - 1))
             if lf_ranks:
                 continue
-            tail = PAS(n_bootstrap=0, lf_tail="gpd")
+            tail = PAS(estimator=ConditionalLikelihood(lf_tail="gpd"), band=NO_BAND)
             tail.reset(0)
             errors["gpd"].append(abs(tail.predict(pairs, s, np.random.default_rng(0)).mpm
                                      / truth - 1))
             for choice in covered:
-                strategy.band_lf_ranks = choice
+                strategy.band = ModelBand(n_bootstrap=16, marginals="fitted", lf_ranks=choice)
                 low, high, _ = strategy.model_band(pairs, s, np.random.default_rng(1))
                 covered[choice] += low <= truth <= high
     assert np.mean(errors[False]) > 3 * np.mean(errors[True])
     assert np.mean(errors["gpd"]) < 0.7 * np.mean(errors[False])
     assert covered["fixed"] <= 3 and covered["redrawn"] >= 5
-    with pytest.raises(ValueError, match="band_lf_ranks"):
-        PAS(band_lf_ranks="drawn")
+    with pytest.raises(ValueError, match="lf_ranks must be one of"):
+        ModelBand(lf_ranks="drawn")
     with pytest.raises(ValueError, match="lf_tail"):
-        PAS(lf_tail="weibull")
-    with pytest.raises(ValueError, match="lf_tail"):
-        PAS(lf_tail="gpd", estimator="selected")
+        ConditionalLikelihood(lf_tail="weibull")
+    with pytest.raises(TypeError, match="lf_tail"):  # an option of the other estimator
+        SelectedSample(lf_tail="gpd")

@@ -10,9 +10,13 @@ import pytest
 
 import pas
 from pas.strategies.base import Pairs
+from pas.strategies.band import ModelBand
+from pas.strategies.estimators import ConditionalLikelihood, SelectedSample
 from pas.strategies.pas import PAS
 from pas.strategies.screening import LFSet
 from pas.strategies.stopping import distribution_change, range_grid
+
+NO_BAND = PAS(band=ModelBand(n_bootstrap=0))
 
 
 def _threshold_problem(n=300, seed=0):
@@ -35,9 +39,8 @@ def _run(study, hf, n):
 
 def test_md_samples_below_the_lowest_true_positive():
     lf, hf = _threshold_problem()
-    study = pas.make_study("pas", lf, n_waves=3000, p_exp=0.01, eps1=1.0, threshold=4.0,
-                           seed=0, stop_on_convergence=False, adaptive_threshold=False,
-                           n_bootstrap=0)
+    study = pas.make_study(NO_BAND, lf, n_waves=3000, p_exp=0.01, eps1=1.0, threshold=4.0,
+                           seed=0, stop_on_convergence=False, adaptive_threshold=False)
     _run(study, hf, 4)
     h = study.history()
     lowest = h[h.status == "false_positive"].lf.min()
@@ -58,8 +61,8 @@ def test_threshold_rises_after_five_misses_below_every_true_positive_and_count_r
     rng = np.random.default_rng(1)
     lf = np.sort(rng.rayleigh(1.0, 3000))[::-1]
     hf = np.where(np.arange(lf.size) < 30, 50.0 * lf, 0.0)
-    study = pas.make_study("pas", lf, n_waves=3000, p_exp=0.005, eps1=1.0, seed=3,
-                           stop_on_convergence=False, n_bootstrap=0)
+    study = pas.make_study(NO_BAND, lf, n_waves=3000, p_exp=0.005, eps1=1.0, seed=3,
+                           stop_on_convergence=False)
     _run(study, hf, 60)
     h = study.history()
     level = h.threshold.fillna(lf.min())
@@ -81,8 +84,8 @@ def test_threshold_does_not_rise_on_misses_above_a_true_positive():
     rng = np.random.default_rng(2)
     lf = np.sort(rng.uniform(4.0, 10.0, 300))[::-1]
     hf = np.where(np.arange(lf.size) % 2 == 0, 30.0 * lf, 0.0)
-    study = pas.make_study("pas", lf, n_waves=3000, p_exp=0.01, eps1=1.0, threshold=4.0,
-                           seed=0, stop_on_convergence=False, n_bootstrap=0, fp_run=2)
+    study = pas.make_study(NO_BAND, lf, n_waves=3000, p_exp=0.01, eps1=1.0, threshold=4.0,
+                           seed=0, stop_on_convergence=False, fp_run=2)
     _run(study, hf, 30)
     h = study.history()
     tp_min = np.minimum.accumulate(np.where(h.status == "true_positive", h.lf, np.inf))
@@ -95,7 +98,7 @@ def _pairs(s, pos, hf):
     return Pairs(pos, s.lf[pos], hf[pos], s.d[pos])
 
 
-@pytest.mark.parametrize("estimator", ["selected", "conditional"])
+@pytest.mark.parametrize("estimator", [SelectedSample(), ConditionalLikelihood()])
 def test_common_random_numbers_make_the_same_model_predict_the_same_distribution(estimator):
     rng = np.random.default_rng(0)
     lf = rng.rayleigh(1.0, 5000)
@@ -107,7 +110,8 @@ def test_common_random_numbers_make_the_same_model_predict_the_same_distribution
     def change(crn, seeds=(0, 1)):
         preds = []
         for k in seeds:
-            st = PAS(estimator=estimator, common_random_numbers=crn, n_bootstrap=0)
+            st = PAS(estimator=estimator, common_random_numbers=crn,
+                     band=ModelBand(n_bootstrap=0))
             st.reset(7)
             preds.append(st.predict(pairs, s, np.random.default_rng(k)))
         return distribution_change(preds[0].at(grid), preds[1].at(grid))

@@ -5,6 +5,7 @@ import pytest
 
 from pas.strategies.acquisition import md_select, nearest_available
 from pas.strategies.base import Pairs
+from pas.strategies.estimators import SelectedSample
 from pas.strategies.pas import PAS, conditioning_set, hf_distribution, remove_outliers
 from pas.strategies.screening import LFSet
 from pas.strategies.stopping import StoppingRule, distribution_change, range_grid
@@ -157,10 +158,10 @@ def test_outliers_leave_the_selected_space_marginals_by_default():
     hf = 2 * s.lf[pos] + 1
     hf[1] += 60.0  # one genuine heavy load far off the trend
     pairs = Pairs(pos, s.lf[pos], hf, s.d[pos])
-    all_ = PAS(estimator="selected", marginals_from="all").predict(pairs, s,
-                                                                  np.random.default_rng(0))
-    kept = PAS(estimator="selected", marginals_from="kept").predict(pairs, s,
-                                                                   np.random.default_rng(0))
+    all_ = PAS(estimator=SelectedSample(marginals_from="all")).predict(
+        pairs, s, np.random.default_rng(0))
+    kept = PAS(estimator=SelectedSample(marginals_from="kept")).predict(
+        pairs, s, np.random.default_rng(0))
     assert all_.record["n_outliers"] == kept.record["n_outliers"] == 1
     assert all_.h_mean[0] > kept.h_mean[0]  # the HF tail keeps the heavy load
 

@@ -5,6 +5,8 @@ import time
 import numpy as np
 import pytest
 
+from conftest import run_flat
+
 import pas
 from pas.study.store import StudyStore
 
@@ -23,12 +25,12 @@ def slow_hf(ev):
 
 
 def test_dask_local_cluster_batch_study(tmp_path):
-    serial = pas.run_pas(LF, slow_hf, **KW)
+    serial = run_flat(LF, slow_hf, **KW)
     db = str(tmp_path / "s.db")
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=False,
                                   dashboard_address=None) as cluster, \
             distributed.Client(cluster) as client:
-        res = pas.run_pas(LF, slow_hf, study=db, executor=client.get_executor(), **KW)
+        res = run_flat(LF, slow_hf, study=db, executor=client.get_executor(), **KW)
     assert res.n_hf == 16
     assert res.mpm == serial.mpm  # told in ask order, whatever finished first
     assert list(res.history["event_index"]) == list(serial.history["event_index"])
@@ -38,10 +40,10 @@ def test_dask_local_cluster_batch_study(tmp_path):
 
 
 def test_process_pool_workers(tmp_path):
-    serial = pas.run_pas(LF, slow_hf, **KW)
-    res = pas.run_pas(LF, slow_hf, n_workers=2, **KW)
+    serial = run_flat(LF, slow_hf, **KW)
+    res = run_flat(LF, slow_hf, n_workers=2, **KW)
     assert res.mpm == serial.mpm and res.n_hf == 16
     with pytest.raises(ValueError, match="oracle must be picklable"):
-        pas.run_pas(LF, lambda ev: 1.0, n_workers=2, **KW)
+        run_flat(LF, lambda ev: 1.0, n_workers=2, **KW)
     with pytest.raises(ValueError, match="pending"):
-        pas.run_pas(LF, slow_hf, study=str(tmp_path / "p.db"), pending="later", **KW)
+        run_flat(LF, slow_hf, study=str(tmp_path / "p.db"), pending="later", **KW)

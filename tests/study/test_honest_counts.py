@@ -115,9 +115,12 @@ def _small_case(n=300, n_waves=200):
 def test_a_generated_case_gives_its_own_run_arguments():
     d = _small_case()
     with pytest.raises(ValueError, match="n_waves_convention='spectral'"):
-        pas.run_pas(d.lf, d.oracle(), n_waves=d.n_waves, p_exp=d.p_exp, eps1=d.eps1,
-                    seed=1, max_hf=4, n_bootstrap=0)
-    res = pas.run_pas(d.lf, d.oracle(), **d.run_kwargs(), seed=1, max_hf=4, n_bootstrap=0)
+        pas.run_pas(d.lf_table(), d.oracle(), n_waves=d.n_waves, p_exp=d.p_exp, eps1=d.eps1,
+                    seed=1, max_hf=4)
+    no_band = pas.PAS(band=pas.ModelBand(n_bootstrap=0))
+    res = pas.make_study(no_band, d.lf_table(), **d.run_kwargs(), seed=1, max_hf=4).optimize(
+        d.oracle())
     assert res.n_hf == 4 and res.n_waves == d.n_waves
     assert set(res.history["event_id"]) <= set(d.ids)
-    assert len(d.run_kwargs(meta=True)["meta"]) == d.n_events
+    table = d.lf_table(meta=True)
+    assert len(table) == d.n_events and list(table.columns) == ["lf", "seed", "t_start", "t_end"]

@@ -16,6 +16,8 @@ import numpy as np
 import pandas as pd
 import pytest
 
+from conftest import make_flat, run_flat
+
 import pas
 from pas.cli import main
 from pas.strategies.screening import Event
@@ -78,9 +80,9 @@ def runs(tmp_path_factory):
     store = tmp_path_factory.mktemp("named") / "deck.sqlite"
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        on_deck = pas.run_pas(LF, all_loads, target="deck", study=store, **KW)
-        on_float = pas.run_pas(LF, deck_only, **KW)
-        on_panel = pas.run_pas(LF, all_loads, target="panel", **KW)
+        on_deck = run_flat(LF, all_loads, target="deck", study=store, **KW)
+        on_float = run_flat(LF, deck_only, **KW)
+        on_panel = run_flat(LF, all_loads, target="panel", **KW)
     return store, on_deck, on_float, on_panel
 
 
@@ -155,7 +157,7 @@ def test_refit_of_an_unknown_load_is_a_one_line_error(runs, capsys):
 
 
 def test_answers_fail_on_a_missing_or_invalid_target_never_as_zero():
-    study = pas.make_study("pas", LF, n_waves=N, p_exp=0.01, eps1=0.01, seed=5, target="deck")
+    study = make_flat("pas", LF, n_waves=N, p_exp=0.01, eps1=0.01, seed=5, target="deck")
     a, b, c, d = study.ask(4)
     assert study.tell(a, {"panel": 2.0})["error"] == \
         "oracle's answer has no load 'deck' (the target; it has panel)"
@@ -166,7 +168,7 @@ def test_answers_fail_on_a_missing_or_invalid_target_never_as_zero():
     assert study.tell(d, {"deck": 0.0, "panel": 3.0})["status"] == "false_positive"
     assert (study.n_failed, study.n_false_positive) == (3, 1)
     with pytest.raises(ValueError, match="^target must be the name of one load"):
-        pas.make_study("pas", LF, n_waves=N, p_exp=0.01, eps1=0.01, target=3)
+        make_flat("pas", LF, n_waves=N, p_exp=0.01, eps1=0.01, target=3)
 
 
 def test_several_loads_without_target_stop_at_once_and_resume_with_it(tmp_path, runs):
@@ -176,11 +178,11 @@ def test_several_loads_without_target_stop_at_once_and_resume_with_it(tmp_path, 
         warnings.simplefilter("ignore")
         with pytest.raises(ValueError, match=r"^event \d+: oracle returned 3 loads \(deck, panel, "
                                              r"sensor\) and the study has no target: .*target="):
-            pas.run_pas(LF, oracle, study=store, **KW)
+            run_flat(LF, oracle, study=store, **KW)
         assert oracle.calls == 1
         with pas.StudyStore(store, create=False) as s:
             assert len(stored_loads(s)) == 1       # the one HF run is kept
-        resumed = pas.run_pas(LF, oracle, study=store, target="deck", **KW)
+        resumed = run_flat(LF, oracle, study=store, target="deck", **KW)
     assert oracle.calls == 8                       # its answer was not asked for again
     assert resumed.mpm == pytest.approx(on_deck.mpm, rel=1e-9)
 
@@ -223,7 +225,7 @@ def test_command_result_file_may_hold_named_loads(tmp_path):
 def asked_store(tmp_path):
     """A stored study screening on deck with its 4 initial events asked."""
     db = tmp_path / "s.db"
-    study = pas.make_study("pas", LF, n_waves=N, p_exp=0.01, eps1=0.01, seed=5, target="deck",
+    study = make_flat("pas", LF, n_waves=N, p_exp=0.01, eps1=0.01, seed=5, target="deck",
                            store=db)
     events = study.ask(4)
     study.store.close()

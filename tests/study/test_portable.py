@@ -40,7 +40,7 @@ write_hf = "import sys; open(sys.argv[2], 'w').write(repr(1.2 * float(sys.argv[1
 hf = [sys.executable, "-c", write_hf, "{lf}", "{result}"]
 lf = np.random.default_rng(4).rayleigh(2.0, 600)
 res = pas.run_pas(lf, CommandOracle(hf, root="runs"), n_waves=600, p_exp=1e-2, eps1=1e-4,
-                  seed=3, max_hf=8, preset="paper", study="campaign.db")
+                  seed=3, max_hf=8, strategy=pas.PAS.paper(), study="campaign.db")
 sleeper = CommandOracle([sys.executable, "-c", "import time; time.sleep(30)"], root="slow",
                         timeout=0.5)
 try:

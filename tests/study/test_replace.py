@@ -13,6 +13,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from conftest import make_flat, run_flat
+
 import pas
 from pas.cli import main
 from pas.study import amend, open_study
@@ -30,7 +32,7 @@ def good(ev):
 
 def _campaign(db, n_events, last_value=None, **settings):
     """Ask and tell ``n_events`` events; the last one told ``last_value`` (when given)."""
-    study = pas.make_study("pas", LF, store=db, **{**KW, **settings})
+    study = make_flat("pas", LF, store=db, **{**KW, **settings})
     told = 0
     while told < n_events:
         for ev in study.ask():
@@ -104,7 +106,7 @@ def test_replace_in_python_and_an_earlier_value_keeps_the_asks(tmp_path):
 def test_a_value_after_an_error_and_a_replacement_waiting_for_the_driver(tmp_path, capsys):
     """Reproduction: a real value after --error was refused as "already told"."""
     db = str(tmp_path / "s.db")
-    study = pas.make_study("pas", LF, store=db, **KW)
+    study = make_flat("pas", LF, store=db, **KW)
     first = study.ask()
     study.tell(first[0], error="basin wave maker tripped")
     for ev in first[1:]:

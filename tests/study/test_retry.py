@@ -14,6 +14,8 @@ import numpy as np
 import pandas as pd
 import pytest
 
+from conftest import make_flat, run_flat
+
 import pas
 from pas.cli import main
 from pas.study import open_study
@@ -50,15 +52,15 @@ def _asks(db):
 def test_retry_after_substitutes_asks_what_an_uninterrupted_run_asks(tmp_path, caplog):
     """Reproduction: resumed with a larger max_failures the largest events stayed failed."""
     ref_db, db = str(tmp_path / "ref.db"), str(tmp_path / "s.db")
-    ref = pas.run_pas(LF, good, study=ref_db, **KW)
+    ref = run_flat(LF, good, study=ref_db, **KW)
     oracle = Flaky()
-    first = pas.run_pas(LF, oracle, study=db, max_failures=50, **KW)
+    first = run_flat(LF, oracle, study=db, max_failures=50, **KW)
     assert first.n_failed >= 2 and _asks(db) != _asks(ref_db)   # substitutes were asked
     with StudyStore(db, create=False) as store:
         told_before = {r.idx: r.hf for r in store.events().itertuples() if r.state == "done"}
     oracle.fixed, oracle.calls = True, []
     with caplog.at_level(logging.INFO, logger="pas"):
-        res = pas.run_pas(LF, oracle, study=db, max_failures=50, retry_failed=True, **KW)
+        res = run_flat(LF, oracle, study=db, max_failures=50, retry_failed=True, **KW)
     assert f"resuming {db}: {len(first.history)} results reused" in caplog.text
     assert res.n_failed == 0 and res.n_hf == ref.n_hf
     assert res.mpm == pytest.approx(ref.mpm, rel=1e-9)
@@ -82,7 +84,7 @@ def test_retry_after_substitutes_asks_what_an_uninterrupted_run_asks(tmp_path, c
 def test_retry_of_chosen_events_and_its_errors(tmp_path):
     db = str(tmp_path / "s.db")
     oracle = Flaky()
-    pas.run_pas(LF, oracle, study=db, max_failures=50, **{**KW, "max_hf": 6})
+    run_flat(LF, oracle, study=db, max_failures=50, **{**KW, "max_hf": 6})
     with StudyStore(db, create=False) as store:
         ev = store.events()
         failed = [str(i) for i in ev.loc[ev["state"] == "failed", "event_id"]]
@@ -97,14 +99,14 @@ def test_retry_of_chosen_events_and_its_errors(tmp_path):
         assert states.get(failed[-1]) in (None, "pending")     # re-asked or dropped
         assert all(states[k] == "failed" for k in failed[:-1] if k in states)
     with pytest.raises(ValueError, match="retry_failed=True needs study="):
-        pas.run_pas(LF, good, retry_failed=True, **KW)
+        pas.run_pas(LF, good, retry_failed=True, n_waves=N, p_exp=1e-2, eps1=1e-3)
     with pytest.raises(ValueError, match="needs a study store"):
-        pas.make_study("pas", LF, **KW).retry_failed()
+        make_flat("pas", LF, **KW).retry_failed()
 
 
 def test_a_result_told_for_a_dropped_pending_event_is_kept(tmp_path):
     db = str(tmp_path / "s.db")
-    study = pas.make_study("pas", LF, store=db, **KW)
+    study = make_flat("pas", LF, store=db, **KW)
     first = study.ask()
     for ev in first[:-1]:
         study.tell(ev, good(ev))
@@ -283,11 +285,11 @@ def test_retry_keeps_the_named_loads_of_reused_results(tmp_path):
             return {"deck": super().__call__(ev), "panel": 0.5 * ev.lf ** 1.5}
 
     ref_db, db = str(tmp_path / "ref.db"), str(tmp_path / "s.db")
-    ref = pas.run_pas(LF, loads, study=ref_db, target="deck", **KW)
+    ref = run_flat(LF, loads, study=ref_db, target="deck", **KW)
     oracle = FlakyLoads()
-    pas.run_pas(LF, oracle, study=db, target="deck", max_failures=50, **KW)
+    run_flat(LF, oracle, study=db, target="deck", max_failures=50, **KW)
     oracle.fixed = True
-    res = pas.run_pas(LF, oracle, study=db, target="deck", max_failures=50, retry_failed=True,
+    res = run_flat(LF, oracle, study=db, target="deck", max_failures=50, retry_failed=True,
                       **KW)
     assert res.n_failed == 0 and res.mpm == pytest.approx(ref.mpm, rel=1e-9)
     with StudyStore(db, create=False) as store:

@@ -19,8 +19,9 @@ def hf_of(lf):
 
 
 def fast_study(db, max_hf=16):
-    return pas.make_study("pas", RAYLEIGH_LF, n_waves=2000, p_exp=0.01, eps1=1e-12, seed=1,
-                          store=db, max_hf=max_hf, n_bootstrap=12, families=("gaussian", "gumbel"))
+    strategy = pas.PAS(band=pas.ModelBand(n_bootstrap=12), families=("gaussian", "gumbel"))
+    return pas.make_study(strategy, RAYLEIGH_LF, n_waves=2000, p_exp=0.01, eps1=1e-12, seed=1,
+                          store=db, max_hf=max_hf)
 
 
 def told(study, n):

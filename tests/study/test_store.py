@@ -11,6 +11,8 @@ import _campaign
 import numpy as np
 import pytest
 
+from conftest import make_flat, run_flat
+
 import pas
 from pas.study.store import SCHEMA_VERSION, StoreConflict, StoreError, StudyStore
 
@@ -50,9 +52,9 @@ def _n_results(db):
 @pytest.mark.slow
 def test_store_records_everything_and_resume_is_a_no_op(tmp_path):
     db = str(tmp_path / "s.db")
-    ref = pas.run_pas(LF, hf, **KW)
-    res = pas.run_pas(LF, hf, study=db, **KW)
-    again = pas.run_pas(LF, lambda ev: pytest.fail("finished event re-run"), study=db, **KW)
+    ref = run_flat(LF, hf, **KW)
+    res = run_flat(LF, hf, study=db, **KW)
+    again = run_flat(LF, lambda ev: pytest.fail("finished event re-run"), study=db, **KW)
     assert res.mpm == ref.mpm == again.mpm
     assert list(again.history["event_index"]) == list(ref.history["event_index"])
     with StudyStore(db, create=False) as store:
@@ -72,14 +74,14 @@ def test_store_records_everything_and_resume_is_a_no_op(tmp_path):
 @pytest.mark.parametrize("batch_size,crash_at", [(1, 9), (4, 9), (4, 6)])
 def test_resubmit_after_crash_matches_uninterrupted(tmp_path, batch_size, crash_at):
     db = str(tmp_path / "s.db")
-    ref = pas.run_pas(LF, hf, batch_size=batch_size, **KW)
+    ref = run_flat(LF, hf, batch_size=batch_size, **KW)
     first = CrashingOracle(crash_at)
     with pytest.raises(Crash):
-        pas.run_pas(LF, first, study=db, batch_size=batch_size, **KW)
+        run_flat(LF, first, study=db, batch_size=batch_size, **KW)
     with StudyStore(db, create=False) as store:
         assert (store.events()["state"] == "pending").sum() >= 1
     second = CrashingOracle(10**6)
-    res = pas.run_pas(LF, second, study=db, batch_size=batch_size, **KW)
+    res = run_flat(LF, second, study=db, batch_size=batch_size, **KW)
     assert not set(first.calls) & set(second.calls)  # nothing finished is run twice
     assert len(first.calls) + len(second.calls) == res.n_hf == 20
     assert res.mpm == ref.mpm
@@ -90,39 +92,39 @@ def test_resubmit_after_crash_matches_uninterrupted(tmp_path, batch_size, crash_
 def test_pending_wait_leaves_event_for_tell(tmp_path):
     db = str(tmp_path / "s.db")
     with pytest.raises(Crash):
-        pas.run_pas(LF, CrashingOracle(8), study=db, **KW)
+        run_flat(LF, CrashingOracle(8), study=db, **KW)
     with StudyStore(db, create=False) as store:
         waiting = store.events().query("state == 'pending'")
     (idx,) = waiting["idx"]
     second = CrashingOracle(10**6)
-    pas.run_pas(LF, second, study=db, pending="wait", **{**KW, "max_hf": 12})
+    run_flat(LF, second, study=db, pending="wait", **{**KW, "max_hf": 12})
     assert idx not in second.calls
     with StudyStore(db, create=False) as store:
         ev = store.events().set_index("idx")
         assert ev.loc[idx, "state"] == "pending" and ev.loc[idx, "attempts"] == 1
         store.tell_by_key(ev.loc[idx, "key"], 1.5)
-    res = pas.run_pas(LF, CrashingOracle(10**6), study=db, pending="wait", **{**KW, "max_hf": 14})
+    res = run_flat(LF, CrashingOracle(10**6), study=db, pending="wait", **{**KW, "max_hf": 14})
     assert res.n_hf == 14
     assert 1.5 in set(res.history["hf"])
 
 
 def test_settings_and_peaks_must_match(tmp_path):
     db = str(tmp_path / "s.db")
-    pas.run_pas(LF, hf, study=db, **{**KW, "max_hf": 6})
+    run_flat(LF, hf, study=db, **{**KW, "max_hf": 6})
     with pytest.raises(StoreError, match="p_exp"):
-        pas.run_pas(LF, hf, study=db, **{**KW, "p_exp": 2e-2})
+        run_flat(LF, hf, study=db, **{**KW, "p_exp": 2e-2})
     with pytest.raises(StoreError, match="threshold"):
-        pas.run_pas(LF, hf, study=db, **{**KW, "threshold": 0.1})
+        run_flat(LF, hf, study=db, **{**KW, "threshold": 0.1})
     with pytest.raises(StoreError, match="z differs"):
-        pas.run_pas(LF, hf, study=db, z=20, **KW)
+        run_flat(LF, hf, study=db, z=20, **KW)
     with pytest.raises(StoreError, match="seed"):
-        pas.run_pas(LF, hf, study=db, **{**KW, "seed": 6})
+        run_flat(LF, hf, study=db, **{**KW, "seed": 6})
     lf2 = LF.copy()
     lf2[3] += 1e-9
     with pytest.raises(StoreError, match="lf_peaks differ"):
-        pas.run_pas(lf2, hf, study=db, **KW)
+        run_flat(lf2, hf, study=db, **KW)
     # a budget may grow; seed=None takes the stored seed
-    res = pas.run_pas(LF, hf, study=db, **{**KW, "max_hf": 8, "seed": None})
+    res = run_flat(LF, hf, study=db, **{**KW, "max_hf": 8, "seed": None})
     assert res.n_hf == 8 and res.seed == 5
 
 
@@ -140,8 +142,8 @@ def test_newer_schema_is_refused(tmp_path):
 
 def test_two_drivers_conflict(tmp_path):
     db = str(tmp_path / "s.db")
-    a = pas.make_study(pas.PAS, LF, store=db, **KW)
-    b = pas.make_study(pas.PAS, LF, store=db, **KW)
+    a = make_flat(pas.PAS, LF, store=db, **KW)
+    b = make_flat(pas.PAS, LF, store=db, **KW)
     for ev in a.ask():
         a.tell(ev, hf(ev))
     with pytest.raises(StoreConflict, match="another process"):
@@ -199,8 +201,8 @@ def test_resume_after_unusable_indicator_warning(tmp_path):
               study=str(tmp_path / "s.db"))
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        first = pas.run_pas(lf, lambda ev: float(hf[ev.index]), **kw)
-        again = pas.run_pas(lf, lambda ev: float(hf[ev.index]), **kw)
+        first = run_flat(lf, lambda ev: float(hf[ev.index]), **kw)
+        again = run_flat(lf, lambda ev: float(hf[ev.index]), **kw)
     assert again.mpm == first.mpm and again.n_hf == first.n_hf == 12
 
 
@@ -213,11 +215,11 @@ STOP = dict(n_waves=2000, p_exp=1e-2, seed=5, max_hf=60, n_bootstrap=0, k1=6, k2
 @pytest.mark.parametrize("batch_size", [1, 2])
 def test_resume_with_a_tighter_eps1_asks_what_an_uninterrupted_run_asks(tmp_path, batch_size):
     db = str(tmp_path / "s.db")
-    loose = pas.run_pas(LF, hf, study=db, eps1=0.05, batch_size=batch_size, **STOP)
-    ref = pas.run_pas(LF, hf, eps1=0.03, batch_size=batch_size, **STOP)
+    loose = run_flat(LF, hf, study=db, eps1=0.05, batch_size=batch_size, **STOP)
+    ref = run_flat(LF, hf, eps1=0.03, batch_size=batch_size, **STOP)
     assert loose.converged and ref.converged and ref.n_hf > loose.n_hf  # the test has teeth
     calls = []
-    res = pas.run_pas(LF, lambda ev: calls.append(ev.index) or hf(ev), study=db, eps1=0.03,
+    res = run_flat(LF, lambda ev: calls.append(ev.index) or hf(ev), study=db, eps1=0.03,
                       batch_size=batch_size, **STOP)
     assert list(res.history["event_index"]) == list(ref.history["event_index"])
     assert res.mpm == ref.mpm and res.converged
@@ -233,13 +235,13 @@ def test_resume_with_a_tighter_eps1_asks_what_an_uninterrupted_run_asks(tmp_path
 
 def test_resume_with_looser_limits_or_smaller_budget_keeps_what_was_done(tmp_path):
     db = str(tmp_path / "s.db")
-    tight = pas.run_pas(LF, hf, study=db, eps1=0.03, **STOP)
+    tight = run_flat(LF, hf, study=db, eps1=0.03, **STOP)
     no_call = lambda ev: pytest.fail("a finished study asked for more")  # noqa: E731
     # the looser limit would have stopped earlier; the evaluated events stay, nothing new runs
-    res = pas.run_pas(LF, no_call, study=db, **{**STOP, "eps1": 0.05, "k1": 5, "eps2": 0.2})
+    res = run_flat(LF, no_call, study=db, **{**STOP, "eps1": 0.05, "k1": 5, "eps2": 0.2})
     assert res.n_hf == tight.n_hf and res.converged
     assert list(res.history["event_index"]) == list(tight.history["event_index"])
-    res = pas.run_pas(LF, no_call, study=db, **{**STOP, "eps1": 0.03, "max_hf": 8})
+    res = run_flat(LF, no_call, study=db, **{**STOP, "eps1": 0.03, "max_hf": 8})
     assert res.n_hf == tight.n_hf
     with StudyStore(db, create=False) as store:
         keys = [c["key"] for c in store.get("settings_changes")]

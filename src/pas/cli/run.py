@@ -206,7 +206,7 @@ def run(args) -> int:
     """Execute ``pas run``; returns the exit code (:data:`pas.cli.EXIT_CODES`)."""
     from ..api import make_study
     from ..strategies.screening import check_n_waves
-    from ..study.inputs import read_lf_peaks
+    from ..study.inputs import lf_table, read_lf_peaks
     from ..study.oracle_spec import keep_start_dir, oracle_from_spec
     from ..study.oracles import OracleFailureLimit
     from ..study.replay import attach
@@ -238,13 +238,12 @@ def run(args) -> int:
     try:
         stored = {} if store is None else read_settings(store)
         seed = args.seed if args.seed is not None or store is None else stored.get("seed")
-        settings = _resumable_settings(args, stored)
+        objects = _settings_objects(args, _resumable_settings(args, stored))
         inputs = {name: getattr(args, name) for name in _INPUTS}
-        study = make_study(args.strategy, lf, n_waves=args.n_waves, p_exp=args.p_exp,
-                           threshold=args.threshold, seed=seed, ids=ids, meta=meta,
-                           target=args.target,
-                           n_waves_convention="spectral",  # checked above, with option names
-                           preset=args.preset, **settings)  # 'paper' with AS is an error
+        study = make_study(objects.pop("strategy"), lf_table(lf, ids, meta, "--meta-columns"),
+                           n_waves=args.n_waves, p_exp=args.p_exp, threshold=args.threshold,
+                           seed=seed, target=args.target, **objects,
+                           n_waves_convention="spectral")  # checked above, with option names
         if store is not None:  # only now: bad inputs leave no output folder behind
             out.mkdir(parents=True, exist_ok=True)
             for ch in attach(study, store):
@@ -282,6 +281,15 @@ def run(args) -> int:
               f"written to {out}/)", file=sys.stderr)
         return EXIT_STOPPED
     return EXIT_FAILED_LEFT_OUT if result.n_failed else 0
+
+
+def _settings_objects(args, flat: dict) -> dict:
+    """The strategy, ``stopping`` and ``budget`` of the run (:func:`pas.study.flat.from_flat`)
+    from the flat settings of :func:`_resumable_settings` and ``--preset``."""
+    from ..study.flat import from_flat
+
+    given = {k: v for k, v in flat.items() if not (k == "max_hf" and v == "default")}
+    return from_flat(given, strategy=args.strategy, preset=args.preset)
 
 
 def _resumable_settings(args, stored: dict) -> dict:

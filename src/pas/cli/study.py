@@ -47,7 +47,7 @@ import os
 import sys
 from pathlib import Path
 
-from .study_config import load_config, load_peaks
+from .study_config import load_config, load_peaks, study_objects
 from .study_loads import add_parsers as add_load_parsers
 from .study_loads import refit_command, tell_loads
 
@@ -134,17 +134,18 @@ def run(args) -> int:
 # -- actions ----------------------------------------------------------------
 def _create(args) -> int:
     from ..api import make_study
+    from ..study.inputs import lf_table
 
     cfg = load_config(args.config)
     if os.path.exists(args.study):
         raise ValueError(f"{args.study} already exists (continue it with 'pas study ask')")
     lf, ids, meta = load_peaks(cfg["lf"])
-    kw = {k: cfg[k] for k in ("eps2", "threshold", "seed", "max_hf", "max_failures",
-                              "n_waves_convention", "preset", "target") if k in cfg}
+    kw = {k: cfg[k] for k in ("threshold", "seed", "n_waves_convention") if k in cfg}
+    objects = study_objects(cfg)
     try:
-        study = make_study(cfg["strategy"], lf, n_waves=cfg["n_waves"],
-                           p_exp=cfg["p_exp"], eps1=cfg["eps1"], ids=ids, meta=meta,
-                           store=args.study, **kw, **cfg.get("settings", {}))
+        study = make_study(objects.pop("strategy"), lf_table(lf, ids, meta, "lf.meta_columns"),
+                           n_waves=cfg["n_waves"], p_exp=cfg["p_exp"], store=args.study,
+                           **kw, **objects)
     except BaseException:
         for suffix in ("", "-wal", "-shm"):
             if os.path.exists(args.study + suffix):

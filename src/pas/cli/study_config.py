@@ -10,7 +10,7 @@ from __future__ import annotations
 import tomllib
 from pathlib import Path
 
-__all__ = ["load_config", "load_peaks"]
+__all__ = ["load_config", "load_peaks", "study_objects"]
 
 _TOP = {"n_waves": int, "n_waves_convention": str, "p_exp": float, "eps1": float, "eps2": float,
         "threshold": float, "strategy": str, "preset": str, "seed": int, "max_hf": int,
@@ -86,10 +86,11 @@ def _check_settings(cfg: dict, where: str) -> None:
 
     Top-level keys and the study settings of ``[settings]`` go through
     :func:`pas._support.checks.check_setting`, the strategy settings through the
-    strategy's constructor (:func:`pas.study.factory.make_strategy`).
+    strategy's objects (:func:`pas.study.flat.from_flat`).
     """
     from .._support.checks import SETTING_CHECKS, check_setting
-    from ..study.factory import STUDY_SETTINGS, make_strategy
+    from ..study.factory import STUDY_SETTINGS
+    from ..study.flat import from_flat
 
     for key in sorted(SETTING_CHECKS.keys() & cfg.keys()):
         _in_file(lambda: check_setting(key, cfg[key]), where, "", cfg)
@@ -101,7 +102,20 @@ def _check_settings(cfg: dict, where: str) -> None:
     for key in sorted(settings.keys() & set(STUDY_SETTINGS)):
         _in_file(lambda: check_setting(key, settings[key]), where, "settings", settings)
     own = {k: v for k, v in settings.items() if k not in STUDY_SETTINGS}
-    _in_file(lambda: make_strategy(cfg["strategy"], own), where, "settings", settings)
+    _in_file(lambda: from_flat(own, strategy=cfg["strategy"], preset=cfg.get("preset")), where,
+             "settings", settings)
+
+
+_FLAT_TOP = ("eps1", "eps2", "max_hf", "max_failures", "target")
+"""Top-level keys of the file that are flat study settings (:func:`pas.study.flat.from_flat`)."""
+
+
+def study_objects(cfg: dict) -> dict:
+    """The strategy, ``stopping``, ``budget`` and other study settings of a checked file."""
+    from ..study.flat import from_flat
+
+    flat = {**{k: cfg[k] for k in _FLAT_TOP if k in cfg}, **cfg.get("settings", {})}
+    return from_flat(flat, strategy=cfg["strategy"], preset=cfg.get("preset"))
 
 
 def _in_file(check, where: str, table: str, keys) -> None:

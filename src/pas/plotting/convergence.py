@@ -80,7 +80,7 @@ def plot_mpm_convergence(result, *, truth=None, ax=None, label=None, unit=None,
     >>> from pas.plotting import plot_mpm_convergence
     >>> lf = np.random.default_rng(0).rayleigh(2.0, 3000)
     >>> res = pas.run_pas(lf, lambda ev: 1.2 * ev.lf ** 1.1, n_waves=3000, p_exp=1e-2,
-    ...                   eps1=0.05, seed=1, n_bootstrap=0)
+    ...                   eps1=0.05, seed=1, strategy=pas.PAS(band=pas.ModelBand(n_bootstrap=0)))
     >>> fig, ax = plot_mpm_convergence(res, unit="m")
     >>> ax.get_ylabel()
     'MPM [m]'

@@ -113,7 +113,7 @@ def plot_distribution(result, *, lf=None, truth=None, ax=None, label=None, unit=
     >>> from pas.plotting import plot_distribution
     >>> lf = np.random.default_rng(0).rayleigh(2.0, 3000)
     >>> res = pas.run_pas(lf, lambda ev: 1.2 * ev.lf ** 1.1, n_waves=3000, p_exp=1e-2,
-    ...                   eps1=0.05, seed=1, n_bootstrap=0)
+    ...                   eps1=0.05, seed=1, strategy=pas.PAS(band=pas.ModelBand(n_bootstrap=0)))
     >>> fig, ax = plot_distribution(res, unit="m")
     >>> ax.get_xscale()
     'log'

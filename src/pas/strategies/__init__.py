@@ -2,6 +2,9 @@
 
 from .base import Pairs, Prediction, Strategy
 from .as_ import AS
+from .band import ModelBand
+from .estimators import ConditionalLikelihood, SelectedSample
 from .pas import PAS
 
-__all__ = ["Strategy", "Pairs", "Prediction", "PAS", "AS"]
+__all__ = ["Strategy", "Pairs", "Prediction", "PAS", "AS", "ConditionalLikelihood",
+           "SelectedSample", "ModelBand"]

@@ -62,17 +62,19 @@ import multiprocessing
 import os
 import sys
 import threading
+from dataclasses import dataclass
 
 import numpy as np
 
 from ..models.joint import HF_MARGINALS
 from ..models.joint_mixture import MIXTURE, pair_logliks
 from ..stats.exceedance import mpm_of_realisations
+from .._support.checks import check_int, check_option
 from .selection import impact_probability
 from .steps import conditioning_set
 
-__all__ = ["WARM_BAND", "COLD_FAMILIES", "PRUNE_AIC", "ReplicateStarts", "bootstrap_band",
-           "default_jobs", "replicate_plan", "replicate_mpms", "replicate_starts"]
+__all__ = ["ModelBand", "WARM_BAND", "COLD_FAMILIES", "PRUNE_AIC", "ReplicateStarts",
+           "bootstrap_band", "default_jobs", "replicate_plan", "replicate_mpms", "replicate_starts"]
 
 WARM_BAND = True
 """Replicates start their joint fits from the final model's fits only; False: from the
@@ -80,6 +82,41 @@ study's last fits and from the data (a cold start), as before (``benchmarks/timi
 
 COLD_FAMILIES = ("student",)
 """Families whose replicate fits also start from the data in a warm band (module docs)."""
+
+
+@dataclass(frozen=True)
+class ModelBand:
+    """The model-uncertainty band of :meth:`pas.strategies.pas.PAS.model_band` (beyond the paper).
+
+    Parameters
+    ----------
+    n_bootstrap : int, default 50
+        Bootstrap replicates (0: no model band, the paper's sampling band only).
+    marginals : {"fitted", "reselected", "alternate"}, default "reselected"
+        Conditional estimator: every replicate fits the estimator's
+        ``hf_marginal`` ("fitted"); or fits the Weibull and the log-normal and
+        keeps the one of higher likelihood, as it re-selects the copula family
+        ("reselected"; with ``hf_marginal="weibull_mixture"`` the mixture too,
+        all compared by AIC); or the replicates take the Weibull and the
+        log-normal in turn ("alternate", never the mixture).
+    lf_ranks : {"fixed", "redrawn"}, default "redrawn"
+        Conditional estimator: every replicate also draws the LF population
+        CDF at the peaks given their order (a Bayesian bootstrap,
+        :func:`pas.stats.dependence.weighted_ranks`) instead of keeping their
+        mid-ranks ("fixed"), so the band holds what the empirical LF ranks
+        cannot tell about the LF tail (``docs/departures.md``).
+    """
+
+    n_bootstrap: int = 50
+    marginals: str = "reselected"
+    lf_ranks: str = "redrawn"
+
+    def __post_init__(self):
+        object.__setattr__(self, "n_bootstrap", check_int(self.n_bootstrap, "n_bootstrap",
+                                                          minimum=0))
+        check_option(self.marginals, "marginals", {"fitted", "reselected", "alternate"})
+        check_option(self.lf_ranks, "lf_ranks", {"fixed", "redrawn"})
+
 
 PRUNE_AIC = 100.0
 """A replicate refits the families with a candidate within this AIC of its best eligible
@@ -133,7 +170,7 @@ def _lf_rank_streams(strategy, pairs, lfset, plan, lf_rng) -> list:
     for tp, fp, _, _ in plan:
         streams.append(copy.deepcopy(lf_rng))
         b = _resampled(pairs, tp, fp)
-        if b is None or strategy.estimator != "conditional":
+        if b is None or strategy.estimator.name != "conditional":
             continue
         try:
             impact = impact_probability(b.lf, b.fp_lf) if strategy.impact_model else None
@@ -146,7 +183,7 @@ def _lf_rank_streams(strategy, pairs, lfset, plan, lf_rng) -> list:
 
 def _choice_marginals(strategy, choice) -> set:
     """The HF marginals a replicate's ``hf_marginal`` choice fits (None: the study's)."""
-    choice = choice or strategy.hf_marginal
+    choice = choice or strategy.estimator.hf_marginal
     return set({"both": HF_MARGINALS, MIXTURE: ("weibull", MIXTURE),
                 "all": (*HF_MARGINALS, MIXTURE)}.get(choice, (choice,)))
 
@@ -164,7 +201,7 @@ def replicate_starts(strategy, b, lfset, starts: dict, choice) -> ReplicateStart
     n0 = conditioning_set(lfset.lf, b.lf.min()).size
     u = strategy._population_ranks(lfset, n0, impact, None)[b.position]
     aic = {k: 2.0 * starts[k].copula.npars
-           - 2.0 * float(np.sum(pair_logliks(starts[k], u, b.hf, location=strategy.hf_location)))
+           - 2.0 * float(np.sum(pair_logliks(starts[k], u, b.hf, location=strategy.estimator.hf_location)))
            for k in keys}
     eligible = [aic[k] for k in keys if not starts[k].copula.at_bound] or list(aic.values())
     # whole families: a marginal's start can be far from its replicate optimum (module docs)
@@ -225,18 +262,20 @@ def replicate_mpms(strategy, pairs, lfset, starts, plan, lf_rng=None,
         _JOB = None
 
 
-def bootstrap_band(strategy, pairs, lfset, rng: np.random.Generator, n_jobs: int | None = None):
-    """:meth:`pas.strategies.pas.PAS.model_band`: ``(low, high, replicate MPMs)`` or None
-    when fewer than 10 replicates could be fitted."""
-    reselected = "all" if strategy.hf_marginal == MIXTURE else "both"
+def bootstrap_band(strategy, band: ModelBand, pairs, lfset, rng: np.random.Generator,
+                   n_jobs: int | None = None):
+    """:meth:`pas.strategies.pas.PAS.model_band` with the settings ``band``: ``(low, high,
+    replicate MPMs)`` or None when fewer than 10 replicates could be fitted."""
+    conditional = strategy.estimator.name == "conditional"
+    reselected = "all" if conditional and strategy.estimator.hf_marginal == MIXTURE else "both"
     marginals = {"fitted": (None,), "reselected": (reselected,),
-                 "alternate": HF_MARGINALS}[strategy.band_marginals]
+                 "alternate": HF_MARGINALS}[band.marginals]
     starts = None
-    if WARM_BAND and strategy.estimator == "conditional":
+    if WARM_BAND and conditional:
         starts = strategy.final_joint_fits(pairs, lfset, reselected)
     # a stream of its own, so the resampled pairs are those of "fixed"
-    lf_rng = rng.spawn(1)[0] if strategy.band_lf_ranks == "redrawn" else None
-    plan = replicate_plan(pairs, rng, strategy.n_bootstrap, marginals)
+    lf_rng = rng.spawn(1)[0] if band.lf_ranks == "redrawn" else None
+    plan = replicate_plan(pairs, rng, band.n_bootstrap, marginals)
     mpms = [x for x in replicate_mpms(strategy, pairs, lfset, starts, plan, lf_rng, n_jobs)
             if x is not None]
     if len(mpms) < 10:

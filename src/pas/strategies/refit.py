@@ -25,7 +25,7 @@ def refit(result):
         raise ValueError("the result holds no fitted PAS model (no 'lf' column in its "
                          "distribution, or no copula family)")
     settings = dict((result.settings or {}).get("strategy_settings", {}))
-    strategy = PAS(**settings)
+    strategy = PAS.from_flat(settings, strict=False)  # stored: pas 0.1 kept every option
     strategy.reset(result.seed)
     lfset = LFSet(dist["lf"].to_numpy(float), n_waves=result.n_waves, p_exp=result.p_exp,
                   threshold=(result.settings or {}).get("threshold"))

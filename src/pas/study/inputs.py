@@ -7,7 +7,7 @@ from pathlib import Path
 
 import numpy as np
 
-__all__ = ["read_lf_peaks", "read_table", "FIELD_NAMES"]
+__all__ = ["read_lf_peaks", "read_table", "split_lf_table", "lf_table", "FIELD_NAMES"]
 
 FIELD_NAMES = {"file": "file", "column": "column", "id_column": "id_column",
                "meta_columns": "meta_columns"}
@@ -150,3 +150,64 @@ def read_lf_peaks(path, *, column=None, id_column=None, meta_columns=(), guess_c
         ids = [x.item() if hasattr(x, "item") else x for x in col.tolist()]
     meta = df[meta_columns].to_dict("records") if meta_columns else None
     return lf, ids, meta
+
+
+def split_lf_table(lf_peaks):
+    """``(lf, ids, meta)`` of the ``lf_peaks`` given to :func:`pas.run_pas`.
+
+    An array gives the LF peaks alone (ids are the positions).  A
+    :class:`pandas.DataFrame` holds one row per wave event: the column ``lf``
+    (or its only column) the LF peaks, the column ``id`` — or else its index,
+    unless that is the default ``0 … n-1`` — the event ids, and every other
+    column the event's ``meta`` handed to the oracle.  A
+    :class:`pandas.Series` gives the peaks, and its index (unless the
+    default) the ids.
+
+    Examples
+    --------
+    >>> import pandas as pd
+    >>> split_lf_table(pd.DataFrame({"lf": [1.0, 2.0], "seed": [7, 8]}, index=["a", "b"]))
+    (array([1., 2.]), ['a', 'b'], [{'seed': 7}, {'seed': 8}])
+    """
+    import pandas as pd
+
+    if isinstance(lf_peaks, pd.Series):
+        lf_peaks = lf_peaks.to_frame("lf")
+    if not isinstance(lf_peaks, pd.DataFrame):
+        return lf_peaks, None, None
+    df = lf_peaks.rename(columns=str)
+    cols = list(df.columns)
+    if "lf" not in cols and len(cols) != 1:
+        raise ValueError(f"lf_peaks: a table needs a column 'lf' with the LF peaks; it has "
+                         f"{', '.join(cols)}")
+    column = "lf" if "lf" in cols else cols[0]
+    if "id" in cols and column != "id":
+        ids = df["id"].tolist()
+    elif isinstance(df.index, pd.RangeIndex) and df.index.start == 0 and df.index.step == 1:
+        ids = None
+    else:
+        ids = df.index.tolist()
+    if ids is not None and len(set(map(str, ids))) != len(ids):
+        raise ValueError("lf_peaks: the event ids (column 'id' or the index) repeat an id")
+    ids = None if ids is None else [x.item() if hasattr(x, "item") else x for x in ids]
+    meta_cols = [c for c in cols if c not in (column, "id")]
+    meta = df[meta_cols].to_dict("records") if meta_cols else None
+    return df[column].to_numpy(dtype=float), ids, meta
+
+
+def lf_table(lf, ids=None, meta=None, meta_name: str = "meta"):
+    """The table :func:`split_lf_table` reads back into ``(lf, ids, meta)`` (of
+    :func:`read_lf_peaks`); ``meta_name`` names the meta's source in the error for a meta
+    key ``lf`` or ``id``, which the table keeps for the peaks and the ids."""
+    import pandas as pd
+
+    clash = sorted({"lf", "id"} & set(meta[0] if meta else ()))
+    if clash:
+        raise ValueError(f"{meta_name}: a column named {clash[0]!r} cannot be handed to the "
+                         "oracle as meta (the name is taken by the LF peaks or the event ids); "
+                         "rename it")
+    table = pd.DataFrame({"lf": np.asarray(lf, dtype=float)},
+                         index=None if ids is None else pd.Index(ids, dtype=object))
+    if meta:
+        table = table.join(pd.DataFrame(meta, index=table.index))
+    return table

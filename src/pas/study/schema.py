@@ -70,6 +70,7 @@ drives the study next: :func:`pas.study.loop.optimize` in ask order,
 from __future__ import annotations
 
 import hashlib
+import json
 import sqlite3
 from contextlib import contextmanager
 from datetime import datetime, timezone
@@ -77,6 +78,7 @@ from datetime import datetime, timezone
 import numpy as np
 
 from .._support.strict_json import dumps
+from .settings import DEFAULT_MAX_HF, RESUMABLE
 from .state import EventState
 
 __all__ = ["SCHEMA_VERSION", "UPGRADES", "STATES", "STORED", "RESUMABLE", "LEGACY_SETTINGS", "DEFAULT_MAX_HF",
@@ -88,12 +90,6 @@ SCHEMA_VERSION = 3
 STORED = {EventState.PENDING: "pending", EventState.TRUE_POSITIVE: "done",
           EventState.FALSE_POSITIVE: "false_positive", EventState.FAILED: "failed"}
 STATES = tuple(STORED.values())
-DEFAULT_MAX_HF = 160
-"""Default budget of HF evaluations: the most the paper needed (case 4b, Table 4).
-
-A study stops there, converged or not, so a typo cannot start thousands of
-CFD runs; ``max_hf=None`` lifts it."""
-
 LEGACY_SETTINGS = {
     "strategy_settings": {"estimator": "selected", "copula_fit": "mle",
                           "common_random_numbers": False, "hf_location": True,
@@ -108,21 +104,24 @@ and continues as it was created."""
 
 
 def with_legacy_settings(stored: dict) -> dict:
-    """``stored`` study settings with :data:`LEGACY_SETTINGS` for the keys they lack."""
+    """``stored`` study settings with :data:`LEGACY_SETTINGS` for the keys they lack, and PAS
+    settings as this version writes them: pas 0.1 kept every option whichever estimator
+    ran, and those of the other estimator, which did not act, are dropped
+    (:func:`pas.strategies.flat.pas_kwargs`)."""
+    from ..strategies.pas import PAS  # here: the command line reads this module at start-up
+
     out = dict(stored)
     if out.get("strategy") == "pas":
-        out["strategy_settings"] = {**LEGACY_SETTINGS["strategy_settings"],
-                                    **(out.get("strategy_settings") or {})}
+        flat = {**LEGACY_SETTINGS["strategy_settings"], **(out.get("strategy_settings") or {})}
+        out["strategy_settings"] = json.loads(dumps(PAS.from_flat(flat, strict=False).settings()))
     if "eps1" in out:
         for key in ("stop_measure", "legacy_md"):
             out.setdefault(key, LEGACY_SETTINGS[key])
     return out
 
 
-#: Settings that may change when a study is resumed: the stopping rule (App. C) and the
-#: budgets.  They decide when a study stops, never which event it asks for next; every
-#: change is logged in ``meta.settings_changes``.  All other settings must match.
-RESUMABLE = ("eps1", "eps2", "k1", "k2", "stop_measure", "max_hf", "max_failures")
+#: RESUMABLE (:mod:`pas.study.settings`): the stopping rule (App. C) and the budgets may
+#: change when a study is resumed; every change is logged in ``meta.settings_changes``.
 
 _SCHEMA = f"""
 CREATE TABLE IF NOT EXISTS schema_version (version INTEGER NOT NULL);

@@ -65,6 +65,8 @@ class Study(Corrections):
     target : str, optional
         With an oracle answering several named loads ``{name: load}``: the
         one to screen on (:func:`~pas.study.answers.check_hf_answer`).
+    precision : None
+        :class:`~pas.study.settings.Stopping`'s field; no rule in this version.
     legacy_md : bool, default False
         MD gaps between true positives only and the earlier reading of the
         threshold rule (pas 0.1): set for study stores written then, so they
@@ -80,9 +82,12 @@ class Study(Corrections):
     def __init__(self, lfset: LFSet, strategy: Strategy, *, eps1, eps2=0.1, k1=20, k2=20,
                  seed=None, max_hf=None, max_failures=10, stop_on_convergence=True,
                  adaptive_threshold=True, threshold_step=0.02, fp_run=5, stop_measure="window",
-                 legacy_md=False, target=None, store=None):
+                 legacy_md=False, target=None, precision=None, store=None):
         self.lfset = lfset
         self.strategy = strategy
+        if precision is not None:  # carried by Stopping; the rule is not in this version
+            raise ValueError("precision: this version of pas has no precision stopping rule; "
+                             "leave precision=None and stop on eps1/eps2")
         # the keyword settings above, by the rules the study file and 'pas study set' use
         given = {k: v for k, v in locals().items() if k in SETTING_CHECKS}
         ok = {k: check_setting(k, v) for k, v in given.items()}

@@ -88,24 +88,30 @@ class CaseData:
         return [{"seed": int(s), "t_start": float(a), "t_end": float(b)}
                 for s, a, b in zip(self.seed_no, self.t_start, self.t_end)]
 
-    def run_kwargs(self, *, meta: bool = False) -> dict:
-        """The case's own arguments of :func:`pas.run_pas` / :func:`pas.run_as`.
+    def run_kwargs(self) -> dict:
+        """The case's own arguments of :func:`pas.make_study` (and :func:`pas.run_pas` but for
+        the convention).
 
-        ``n_waves``, ``p_exp``, ``eps1``, ``threshold``, ``ids`` and
+        ``n_waves``, ``p_exp``, ``eps1``, ``threshold`` and
         ``n_waves_convention="spectral"``: the case's ``n_w`` is ``T_MCS /
         T_p,e`` as in the paper's Table 2 and may lie below its number of LF
-        peaks (cases 1 and 4), so it is stated, not counted.  ``meta=True``
-        adds the per-event :meth:`meta` (seed number and time window).
+        peaks (cases 1 and 4), so it is stated, not counted.
 
         Examples
         --------
-        ``pas.run_pas(d.lf, d.oracle(), **d.run_kwargs(), seed=1)`` on a case
-        ``d = pas.validation.generate_case("3b")``.
+        ``pas.make_study(pas.PAS(), d.lf_table(), **d.run_kwargs(), seed=1).optimize(d.oracle())``
+        on a case ``d = pas.validation.generate_case("3b")``.
         """
-        kwargs = {"n_waves": int(self.n_waves), "p_exp": float(self.p_exp),
-                  "eps1": float(self.eps1), "threshold": self.threshold,
-                  "ids": list(self.ids), "n_waves_convention": "spectral"}
-        return {**kwargs, "meta": self.meta()} if meta else kwargs
+        return {"n_waves": int(self.n_waves), "p_exp": float(self.p_exp),
+                "eps1": float(self.eps1), "threshold": self.threshold,
+                "n_waves_convention": "spectral"}
+
+    def lf_table(self, *, meta: bool = False):
+        """The LF peaks as :func:`pas.run_pas` reads a table: column ``lf``, the event ids as
+        the index and, with ``meta=True``, the per-event :meth:`meta` columns."""
+        from ..study.inputs import lf_table
+
+        return lf_table(self.lf, list(self.ids), self.meta() if meta else None)
 
     def oracle(self):
         """A table oracle: ``oracle(event) -> hf[event.index]``; counts its calls."""

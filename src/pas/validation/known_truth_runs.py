@@ -16,7 +16,8 @@ from dataclasses import asdict
 import numpy as np
 import pandas as pd
 
-from ..api import run_pas
+from ..api import make_study
+from ..study.flat import from_flat
 from .known_truth import TUNING_TYPES, Problem
 from .known_truth_held_out import HELD_OUT_TYPES
 
@@ -58,10 +59,13 @@ def run_one(problem: Problem, *, seed=None, max_hf=160, **settings) -> dict:
     t0 = time.perf_counter()
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        res = run_pas(problem.lf, problem.oracle(), n_waves=problem.n_waves,
-                      p_exp=problem.p_exp, eps1=problem.eps1, threshold=problem.threshold,
-                      seed=problem.replication if seed is None else seed, max_hf=max_hf,
-                      **settings)
+        flat = {k: v for k, v in settings.items() if k != "preset"}
+        objects = from_flat({"eps1": problem.eps1, "max_hf": max_hf, **flat},
+                            preset=settings.get("preset"))
+        res = make_study(objects.pop("strategy"), problem.lf, n_waves=problem.n_waves,
+                         p_exp=problem.p_exp, threshold=problem.threshold,
+                         seed=problem.replication if seed is None else seed,
+                         **objects).optimize(problem.oracle())
     lo, hi = res.mpm_band
     hist = res.history.dropna(subset=["mpm"])
     at = {f"err@{k}": (float(hist.loc[hist["n_hf"] <= k, "mpm"].iloc[-1]) / problem.truth_mpm - 1

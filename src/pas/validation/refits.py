@@ -15,6 +15,7 @@ import functools
 
 import numpy as np
 
+import pas.strategies.estimators as fit_module  # the module whose fit_hf_candidates PAS calls
 import pas.strategies.pas as pas_module
 from pas.strategies.base import Pairs
 from pas.strategies.screening import LFSet
@@ -67,17 +68,17 @@ def error_at(data, lfset, hf_pool, positions, seed, settings=None, joint_kw=None
     """
     settings, joint_kw = settings or {}, joint_kw or {}
     pairs = pairs_at(lfset, hf_pool, positions)
-    original = pas_module.fit_hf_candidates
-    pas_module.fit_hf_candidates = functools.partial(original, **joint_kw)
+    original = fit_module.fit_hf_candidates
+    fit_module.fit_hf_candidates = functools.partial(original, **joint_kw)
     try:
-        strategy = pas_module.PAS(**{"n_bootstrap": 0, **settings})
+        strategy = pas_module.PAS.from_flat({"n_bootstrap": 0, **settings})
         strategy.reset(seed)
         mpm = strategy.predict(pairs, lfset, np.random.default_rng(seed)).mpm
         if settings.get("n_bootstrap"):
             mpm = float(np.median(strategy.model_band(pairs, lfset,
                                                       np.random.default_rng(seed))[2]))
     finally:
-        pas_module.fit_hf_candidates = original
+        fit_module.fit_hf_candidates = original
     return mpm / data.truth_mpm - 1
 
 

@@ -23,9 +23,10 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from ..api import run_as, run_pas
+from ..api import make_study
 from ..stats.metrics import metrics
-from ..study.factory import DEFAULT_MAX_HF
+from ..study.flat import from_flat
+from ..study.settings import DEFAULT_MAX_HF
 from .episodes import run_rcw_case
 from .generate import generate_case
 from .registry import get_case
@@ -37,7 +38,7 @@ PAPER_SETTINGS = {"eps2": 0.1, "k1": 20, "k2": 20}
 
 
 STRATEGIES = ("pas", "pas-paper", "as", "rcw", "mler")
-"""Strategies :func:`run_case` knows: ``"pas-paper"`` is PAS with ``preset="paper"``; the
+"""Strategies :func:`run_case` knows: ``"pas-paper"`` is ``PAS.paper()``; the
 design waves ``rcw`` and ``mler`` are deterministic."""
 DETERMINISTIC = ("rcw", "mler")
 
@@ -95,10 +96,13 @@ def run_case(data, *, strategy="pas", seed=0, max_hf=DEFAULT_MAX_HF, settings=No
 
 
 def _run_screening(data, strategy, seed, max_hf, settings):
-    runner = {"pas": run_pas, "pas-paper": run_pas, "as": run_as}[strategy]
-    preset = {"preset": "paper"} if strategy == "pas-paper" else {}
-    return runner(data.lf, data.oracle(), **data.run_kwargs(), seed=seed, max_hf=max_hf,
-                  **{**PAPER_SETTINGS, **preset, **(settings if strategy != "as" else {})})
+    kwargs = data.run_kwargs()
+    flat = {**PAPER_SETTINGS, "eps1": kwargs.pop("eps1"), "max_hf": max_hf,
+            **(settings if strategy != "as" else {})}
+    objects = from_flat(flat, strategy="as" if strategy == "as" else "pas",
+                        preset="paper" if strategy == "pas-paper" else None)
+    return make_study(objects.pop("strategy"), data.lf_table(), seed=seed, **objects,
+                      **kwargs).optimize(data.oracle())
 
 
 def summarise(runs: pd.DataFrame, datasets: dict) -> pd.DataFrame:

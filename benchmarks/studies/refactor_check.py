@@ -1,0 +1,87 @@
+"""Check: a refactor changes no result — the MPMs of PAS (defaults, no band) and the paper preset.
+
+Runs :func:`pas.validation.reproduce.run_case` for PAS with
+``PAS(band=ModelBand(n_bootstrap=0))`` and for ``PAS.paper()`` on the analogues
+(every case, or ``--cases``) and data seeds (``--seeds``), writes
+``{"case/seed/strategy": {"mpm", "n_hf"}}`` to ``--out`` and, with
+``--compare BASELINE.json`` (the same file written before the change, e.g. by
+an earlier commit's ``pas``), prints each MPM beside the baseline's and the
+largest relative difference; the exit code is 1 when it exceeds ``--rtol``
+(default 1e-9: same machine, same code path) or an HF count differs.
+
+Run: ``python benchmarks/studies/refactor_check.py --cases 1a,3a,4a-hard --seeds 0,1
+--compare baseline.json`` (about 1–3 s a run).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+import time
+from pathlib import Path
+
+import pas
+from pas.validation import CASE_IDS, generate_case
+from pas.validation.reproduce import run_case
+
+VARIANTS = {"pas": ("pas", {"n_bootstrap": 0}), "pas-paper": ("pas-paper", {})}
+"""Label -> (strategy of run_case, its flat settings): PAS(band=ModelBand(n_bootstrap=0))
+and PAS.paper() (run_case reads them through pas.study.flat.from_flat)."""
+
+
+def run(cases, seeds) -> dict:
+    """``{"case/seed/label": {"mpm", "n_hf"}}`` of every variant, case and seed."""
+    rows = {}
+    for case in cases:
+        for seed in seeds:
+            data = generate_case(case, seed=seed)
+            for label, (strategy, settings) in VARIANTS.items():
+                t0 = time.perf_counter()
+                res, _ = run_case(data, strategy=strategy, seed=seed, settings=settings)
+                rows[f"{case}/{seed}/{label}"] = {"mpm": float(res.mpm), "n_hf": int(res.n_hf)}
+                print(f"{case} seed {seed} {label}: MPM {res.mpm:.10g}, {res.n_hf} HF "
+                      f"({time.perf_counter() - t0:.1f} s)", flush=True)
+    return rows
+
+
+def compare(rows: dict, baseline: dict) -> tuple[float, list[str]]:
+    """The largest relative MPM difference to ``baseline`` and the keys whose HF count
+    differs or that the baseline lacks."""
+    worst, differ = 0.0, []
+    for key, row in rows.items():
+        old = baseline.get(key)
+        if old is None or old["n_hf"] != row["n_hf"]:
+            differ.append(key)
+            continue
+        rel = abs(row["mpm"] - old["mpm"]) / abs(old["mpm"])
+        worst = max(worst, rel)
+        print(f"{key}: {row['mpm']:.12g} against {old['mpm']:.12g} (relative {rel:.2e})")
+    return worst, differ
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--cases", default=",".join(CASE_IDS), help="comma-separated case ids")
+    ap.add_argument("--seeds", default="0", help="comma-separated data seeds")
+    ap.add_argument("--out", default="pas-output/refactor_check.json")
+    ap.add_argument("--compare", metavar="BASELINE.json", help="MPMs written before the change")
+    ap.add_argument("--rtol", type=float, default=1e-9)
+    args = ap.parse_args(argv)
+    rows = run(args.cases.split(","), [int(s) for s in args.seeds.split(",")])
+    Path(args.out).parent.mkdir(parents=True, exist_ok=True)
+    with open(args.out, "w") as f:
+        json.dump({"pas_version": pas.__version__, **rows}, f, indent=1)
+    if not args.compare:
+        return 0
+    with open(args.compare) as f:
+        baseline = json.load(f)
+    worst, differ = compare(rows, baseline)
+    print(f"{len(rows) - len(differ)} runs compared: largest relative MPM difference "
+          f"{worst:.2e} (limit {args.rtol:g}); {len(differ)} differ in HF count or are "
+          f"missing from the baseline{': ' + ', '.join(differ) if differ else ''}")
+    return 0 if worst <= args.rtol and not differ else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
