@@ -7,6 +7,7 @@ another block.
 
 from __future__ import annotations
 
+import importlib.util
 import re
 from pathlib import Path
 
@@ -95,3 +96,12 @@ def page_blocks(path, lang: str | None = None) -> list[dict]:
         raise ValueError(f"{path}:{pending[0]}: a 'not run' marker must stand just "
                          "before a code block")
     return blocks
+
+
+def load_script(relative_path):
+    """The module of a script of the repository (``benchmarks/...``), by its path from the root."""
+    path = ROOT / relative_path
+    spec = importlib.util.spec_from_file_location(path.stem, path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module

@@ -16,6 +16,7 @@ from pathlib import Path
 
 import pandas as pd
 import pytest
+from _snippets import load_script
 
 ROOT = Path(__file__).resolve().parents[1]
 BENCHMARKS = ROOT / "benchmarks"
@@ -33,11 +34,7 @@ def _imported_modules(path: Path):
 
 
 def _load(relative: str):
-    path = BENCHMARKS / relative
-    spec = importlib.util.spec_from_file_location(path.stem, path)
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
+    return load_script(f"benchmarks/{relative}")
 
 
 def test_the_benchmarks_are_grouped_and_found():

@@ -8,13 +8,12 @@ a cluster) carries ``<!-- not run: REASON -->`` just before it.
 
 from __future__ import annotations
 
-import importlib.util
 import re
 
 import numpy as np
 import pandas as pd
 import pytest
-from _snippets import ROOT, page_blocks
+from _snippets import ROOT, load_script, page_blocks
 
 # The site's pages: docs/, the case pages it generates from cases/<id>/README.md, the README.
 PAGES = sorted(p.relative_to(ROOT).as_posix()
@@ -103,16 +102,8 @@ def test_a_marker_applies_to_the_next_block_only(tmp_path):
     assert [b["code"] for b in blocks] == ["a = 1\n", "b = 2\n"]
 
 
-def load_module(relative_path):
-    path = ROOT / relative_path
-    spec = importlib.util.spec_from_file_location(path.stem, path)
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
-
-
 def load_known_truth_table():
-    return load_module("benchmarks/studies/known_truth_table.py")
+    return load_script("benchmarks/studies/known_truth_table.py")
 
 
 def test_known_truth_table_writes_the_page_between_its_markers(tmp_path):
@@ -143,7 +134,7 @@ def test_known_truth_table_needs_the_markers(tmp_path):
 
 
 def test_the_site_shows_sphinx_roles_as_plain_code():
-    hook = load_module("docs/hooks/sphinx_roles.py")
+    hook = load_script("docs/hooks/sphinx_roles.py")
     html = ("see :func:<code>pas.run_pas</code> and :class:<code>~pas.strategies.screening.Event</code>, "
             "not :notarole:<code>x</code>")
     assert hook.on_page_content(html) == ("see <code>pas.run_pas</code> and <code>Event</code>, "

@@ -1,11 +1,11 @@
 """The known-truth generator (pas.validation.known_truth): same problems, exact truths."""
 
-import importlib.util
-from pathlib import Path
+
 
 import numpy as np
 import pandas as pd
 import pytest
+from _snippets import load_script
 from scipy import integrate
 
 from pas.validation import known_truth as kt
@@ -140,11 +140,7 @@ def test_an_unknown_mechanism_is_named_with_the_choices():
 
 
 def _known_truth_table():
-    path = Path(__file__).parents[2] / "benchmarks" / "studies" / "known_truth_table.py"
-    spec = importlib.util.spec_from_file_location("known_truth_table", path)
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
+    return load_script("benchmarks/studies/known_truth_table.py")
 
 
 def test_the_held_out_table_counts_coverage_and_errors_per_group(tmp_path):
