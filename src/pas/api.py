@@ -15,9 +15,9 @@ from .study.study import Study
 __all__ = ["run_pas", "run_as", "make_study"]
 
 
-def make_study(strategy, lf_peaks, *, n_waves, p_exp, eps1, eps2=0.1, threshold=None,
+def make_study(strategy, lf_peaks, *, n_waves, p_exp, eps1=None, eps2=0.1, threshold=None,
                seed=None, max_hf="default", ids=None, meta=None, store=None, preset=None,
-               n_waves_convention="count", **settings) -> Study:
+               n_waves_convention="count", precision=None, **settings) -> Study:
     """Validate the inputs and build a :class:`~pas.study.study.Study` for ``strategy``.
 
     Parameters
@@ -27,7 +27,7 @@ def make_study(strategy, lf_peaks, *, n_waves, p_exp, eps1, eps2=0.1, threshold=
         :class:`~pas.strategies.as_.AS` (built with the strategy settings
         found in ``settings``), or an instance (then ``settings`` holds study
         settings only).
-    lf_peaks, n_waves, p_exp, eps1, eps2, threshold, seed, max_hf, ids, meta
+    lf_peaks, n_waves, p_exp, eps1, eps2, precision, threshold, seed, max_hf, ids, meta
         As for :func:`run_pas`.
     store : str, os.PathLike or StudyStore, optional
         Makes the study crash-safe and resumable (:mod:`pas.study.store`);
@@ -62,14 +62,15 @@ def make_study(strategy, lf_peaks, *, n_waves, p_exp, eps1, eps2=0.1, threshold=
     return Study.from_settings(
         {"strategy": strategy, "strategy_settings": strategy_settings, "n_waves": n_waves,
          "p_exp": p_exp, "threshold": threshold, "eps1": eps1, "eps2": eps2, "seed": seed,
+         "precision": precision,
          "max_hf": max_hf, **study_settings},
         lf_peaks, ids=ids, meta=meta, store=store)
 
 
-def run_pas(lf_peaks, oracle, *, n_waves, p_exp, eps1, eps2=0.1, threshold=None, seed=None,
+def run_pas(lf_peaks, oracle, *, n_waves, p_exp, eps1=None, eps2=0.1, threshold=None, seed=None,
             max_hf="default", ids=None, meta=None, batch_size=1, callback=None, study=None,
             pending="resubmit", executor=None, n_workers=None, n_waves_convention="count",
-            preset=None, retry_failed=False,
+            preset=None, retry_failed=False, precision=None,
             **settings) -> ScreeningResult:
     """Predict the MPM of an HF load with Probabilistic Adaptive Screening.
 
@@ -87,11 +88,17 @@ def run_pas(lf_peaks, oracle, *, n_waves, p_exp, eps1, eps2=0.1, threshold=None,
         Number of wave encounters ``n_w`` in the LF Monte-Carlo duration.
     p_exp : float
         Target exceedance probability (:func:`pas.p_exp_from_duration`).
-    eps1 : float
+    eps1 : float, optional
         Stopping limit on the mean change of the predicted distribution,
         in load units (paper: ≈ 1–2 % of the expected maximum).
     eps2 : float, default 0.1
-        Stopping limit on the COV of the last K2 MPMs.
+        Stopping limit on the COV of the last K2 MPMs (with ``eps1``).
+    precision : float, optional
+        Stop once the U95 of the MPM (``result.mpm_band``) lies within
+        ``±precision × MPM`` of it and the last K2 MPMs inside it, e.g. 0.10
+        for ±10 % (scale-free; :mod:`pas.strategies.stopping`).  Give this or
+        ``eps1``; with both, both rules must hold.  ``result.forecast_hf``
+        says how many more HF evaluations the target is expected to take.
     threshold : float, optional
         LF threshold ``l0_input`` (Eq. 2).
     seed : int, optional
@@ -179,6 +186,7 @@ def run_pas(lf_peaks, oracle, *, n_waves, p_exp, eps1, eps2=0.1, threshold=None,
     """
     check_oracle(oracle)  # before a study store is written
     built = make_study(PAS, lf_peaks, n_waves=n_waves, p_exp=p_exp, eps1=eps1, eps2=eps2,
+                       precision=precision,
                        threshold=threshold, seed=seed, max_hf=max_hf, ids=ids, meta=meta,
                        store=_store_for_retry(study, retry_failed),
                        n_waves_convention=n_waves_convention, preset=preset, **settings)
@@ -186,10 +194,10 @@ def run_pas(lf_peaks, oracle, *, n_waves, p_exp, eps1, eps2=0.1, threshold=None,
                      executor=executor, n_workers=n_workers, pending=pending)
 
 
-def run_as(lf_peaks, oracle, *, n_waves, p_exp, eps1, eps2=0.1, threshold=None, seed=None,
+def run_as(lf_peaks, oracle, *, n_waves, p_exp, eps1=None, eps2=0.1, threshold=None, seed=None,
            max_hf="default", ids=None, meta=None, batch_size=1, callback=None, study=None,
            pending="resubmit", executor=None, n_workers=None, n_waves_convention="count",
-           retry_failed=False, **settings) -> ScreeningResult:
+           retry_failed=False, precision=None, **settings) -> ScreeningResult:
     """Predict the MPM of an HF load with Adaptive Screening (paper App. A), the GPR reference.
 
     Runs :class:`~pas.strategies.as_.AS` in the same study loop as
@@ -213,11 +221,17 @@ def run_as(lf_peaks, oracle, *, n_waves, p_exp, eps1, eps2=0.1, threshold=None, 
         Number of wave encounters ``n_w`` in the LF Monte-Carlo duration.
     p_exp : float
         Target exceedance probability (:func:`pas.p_exp_from_duration`).
-    eps1 : float
+    eps1 : float, optional
         Stopping limit on the mean change of the predicted distribution,
         in load units (paper: ≈ 1–2 % of the expected maximum).
     eps2 : float, default 0.1
-        Stopping limit on the COV of the last K2 MPMs.
+        Stopping limit on the COV of the last K2 MPMs (with ``eps1``).
+    precision : float, optional
+        Stop once the U95 of the MPM (``result.mpm_band``) lies within
+        ``±precision × MPM`` of it and the last K2 MPMs inside it, e.g. 0.10
+        for ±10 % (scale-free; :mod:`pas.strategies.stopping`).  Give this or
+        ``eps1``; with both, both rules must hold.  ``result.forecast_hf``
+        says how many more HF evaluations the target is expected to take.
     threshold : float, optional
         LF threshold ``l0_input`` (Eq. 2).
     seed : int, optional
@@ -291,6 +305,7 @@ def run_as(lf_peaks, oracle, *, n_waves, p_exp, eps1, eps2=0.1, threshold=None, 
     """
     check_oracle(oracle)  # before a study store is written
     built = make_study(AS, lf_peaks, n_waves=n_waves, p_exp=p_exp, eps1=eps1, eps2=eps2,
+                       precision=precision,
                        threshold=threshold, seed=seed, max_hf=max_hf, ids=ids, meta=meta,
                        store=_store_for_retry(study, retry_failed),
                        n_waves_convention=n_waves_convention, **settings)

@@ -34,7 +34,7 @@ STRATEGIES = {"pas": PAS, "as": AS}
 LF_SETTINGS = ("n_waves", "p_exp", "threshold")
 """Settings of the LF screening set."""
 
-STUDY_SETTINGS = ("eps1", "eps2", "k1", "k2", "stop_measure", "seed", "max_hf", "max_failures",
+STUDY_SETTINGS = ("eps1", "precision", "eps2", "k1", "k2", "stop_measure", "seed", "max_hf", "max_failures",
                   "stop_on_convergence", "adaptive_threshold", "threshold_step", "fp_run",
                   "legacy_md", "target")
 """Keyword settings of :class:`~pas.study.study.Study` (its constructor takes them all)."""
@@ -140,7 +140,7 @@ def study_settings(study) -> dict:
     lfset, stop = study.lfset, study.stopping
     return {"strategy": strategy.name, "strategy_settings": params,
             "n_waves": lfset.n_waves, "p_exp": lfset.p_exp, "threshold": lfset.threshold,
-            "eps1": stop.eps1, "eps2": stop.eps2, "k1": stop.k1, "k2": stop.k2,
+            "eps1": stop.eps1, "precision": stop.precision, "eps2": stop.eps2, "k1": stop.k1, "k2": stop.k2,
             "stop_measure": stop.measure, "legacy_md": study.legacy_md,
             "seed": study.seed, "max_hf": study.max_hf, "max_failures": study.max_failures,
             "stop_on_convergence": study.stop_on_convergence,

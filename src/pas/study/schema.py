@@ -114,7 +114,7 @@ def with_legacy_settings(stored: dict) -> dict:
 #: Settings that may change when a study is resumed: the stopping rule (App. C) and the
 #: budgets.  They decide when a study stops, never which event it asks for next; every
 #: change is logged in ``meta.settings_changes``.  All other settings must match.
-RESUMABLE = ("eps1", "eps2", "k1", "k2", "stop_measure", "max_hf", "max_failures")
+RESUMABLE = ("eps1", "precision", "eps2", "k1", "k2", "stop_measure", "max_hf", "max_failures")
 
 _SCHEMA = f"""
 CREATE TABLE IF NOT EXISTS schema_version (version INTEGER NOT NULL);
