@@ -32,8 +32,8 @@ at ``n ≥ FIRST_BAND_PAIRS`` pairs and whenever the pairs grew by
 ``BAND_GROWTH`` since the last one (the widths the forecast of
 :mod:`pas.strategies.forecast` is fitted to), and, once the cheap necessary
 conditions hold (the sampling part and the window within the target), every
-``BAND_EVERY`` fitted iterations where the forecast's lower end says the
-target may be reached.  With ``eps1`` and ``precision`` both given both rules
+``BAND_EVERY`` fitted iterations from where the forecast says the target may
+be reached (the larger of its lower end and its expected pairs / ``BAND_GROWTH``).  With ``eps1`` and ``precision`` both given both rules
 must hold; with ``eps1`` alone the rule above is unchanged.
 """
 
@@ -167,7 +167,9 @@ class StoppingRule:
         if not gate or len(self.mpms) - self.band_at[-1] < BAND_EVERY:
             return False
         ahead = self.forecast(floor)
-        return ahead is None or n_pairs >= ahead.low
+        # the interval of a fit to a few widths is wide: its lower end alone would compute
+        # the band at nearly every such iteration; the growth schedule bounds a late forecast
+        return ahead is None or n_pairs >= max(ahead.low, ahead.n_pairs / BAND_GROWTH)
 
     def record_band(self, n_pairs: int, width: float) -> None:
         """Keep the relative half-width of the narrowing band part computed at ``n_pairs``."""
