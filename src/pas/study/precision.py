@@ -106,7 +106,8 @@ def final_forecast(study, pairs, pred, model) -> dict | None:
         extra = (len(pairs), sampling)
     forecast = rule.forecast(sampling if has_model else 0.0, extra)
     row = forecast_row(study, forecast, len(pairs))
-    return {**row, "out_of_reach": forecast is not None and not np.isfinite(forecast.n_pairs)}
+    return {**row, "out_of_reach": forecast is not None and not np.isfinite(forecast.n_pairs),
+            "sampling_halfwidth": sampling if has_model else None}
 
 
 def holds(study, mpm: float, band, model_band: bool) -> bool:

@@ -367,7 +367,8 @@ def _forecast_read(stored: dict | None) -> dict | None:
         return None
     gone = float("inf") if stored.get("out_of_reach") else float("nan")
     return {**{k: gone if v is None else float(v) for k, v in stored.items()
-               if k != "out_of_reach"}, "out_of_reach": bool(stored.get("out_of_reach"))}
+               if k.startswith("forecast_")}, "out_of_reach": bool(stored.get("out_of_reach")),
+            "sampling_halfwidth": _float_or_nan(stored.get("sampling_halfwidth"))}
 
 
 def _float_or_nan(x):

@@ -41,7 +41,8 @@ def percent(x: float) -> str:
     return f"±{100 * x:.3g} %"
 
 
-def forecast_text(forecast: HFForecast | None, target: float, budget_left=None) -> str:
+def forecast_text(forecast: HFForecast | None, target: float, budget_left=None,
+                  floor: float | None = None) -> str:
     """``"about 60 more HF for ±10 % (40–95); the budget allows 40"`` and its variants.
 
     Examples
@@ -54,9 +55,11 @@ def forecast_text(forecast: HFForecast | None, target: float, budget_left=None) 
     goal = percent(target)
     if forecast is None:
         return f"too few model bands yet to forecast the HF needed for {goal}"
-    if not math.isfinite(forecast.expected):
-        text = (f"more HF are not expected to reach {goal}: the band has not narrowed with the "
-                "pairs, or its sampling part alone is wider")
+    if not math.isfinite(forecast.expected) and floor is not None and floor >= target:
+        text = (f"more HF will not reach {goal}: the sampling part alone (the z-draw band) is "
+                f"{percent(floor)}, and more pairs do not narrow it")
+    elif not math.isfinite(forecast.expected):
+        text = f"more HF are not expected to reach {goal}: the band has not narrowed with the pairs"
     else:
         high = "∞" if not math.isfinite(forecast.high) else f"{forecast.high:.0f}"
         text = (f"about {forecast.expected:.0f} more HF for {goal} "
@@ -81,8 +84,14 @@ def state(result) -> str:
     max_hf = settings.get("max_hf")
     left = None if max_hf is None else max_hf - result.n_hf
     return (f"NOT converged: U95 {percent(width)} of the MPM against the target "
-            f"{percent(target)}; {forecast_text(result.forecast_hf, target, left)}"
+            f"{percent(target)}; "
+            f"{forecast_text(result.forecast_hf, target, left, _floor(result.forecast))}"
             + (paper_gap(result) if paper else ""))
+
+
+def _floor(forecast: dict | None) -> float | None:
+    value = (forecast or {}).get("sampling_halfwidth")
+    return None if value is None or not math.isfinite(value) else float(value)
 
 
 def paper_gap(result) -> str:

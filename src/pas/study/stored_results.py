@@ -24,6 +24,7 @@ import json
 import math
 import warnings
 
+from . import stop_text
 from .schema import StoreError, _now, dumps
 
 __all__ = ["add_results_table", "log_key", "save_result", "stored_result", "summary"]
@@ -72,6 +73,8 @@ def summary(study, result) -> dict:
         "family": result.family, "E_bar": _number(last.get("E_bar")),
         "COV": _number(last.get("COV")),
         "eps1": study.stopping.eps1, "eps2": study.stopping.eps2,
+        "precision": study.stopping.precision, "forecast": result.forecast,
+        "stop_text": stop_text.state(result) if fitted else None,
         "k1": study.stopping.k1, "k2": study.stopping.k2,
         "converged": bool(study.converged), "finished": bool(study.finished),
         "converged_at_n_hf": next((r["n_hf"] for r in fitted if r.get("stop")), None),
