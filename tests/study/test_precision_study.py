@@ -94,3 +94,22 @@ def test_eps1_alone_keeps_its_rows_and_has_no_forecast():
 def test_neither_eps1_nor_precision_is_an_error():
     with pytest.raises(ValueError, match="give eps1 .* or precision"):
         run(max_hf=12)
+
+
+@pytest.mark.slow
+def test_a_resumed_precision_study_reuses_its_bands_and_decides_the_same(tmp_path, monkeypatch):
+    db = tmp_path / "s.db"
+    first = run(precision=0.03, max_hf=14, study=db)
+    calls = []
+    real = pas.strategies.pas.PAS.model_band
+
+    def counted(self, *args, **kwargs):
+        calls.append(1)
+        return real(self, *args, **kwargs)
+
+    monkeypatch.setattr(pas.strategies.pas.PAS, "model_band", counted)
+    again = run(precision=0.03, max_hf=14, study=db)
+    # the loop's band (at 10 pairs) is read from the store; only the final one is computed
+    assert first.history["model_low"].notna().sum() == 1 and len(calls) == 1
+    assert again.mpm_band == pytest.approx(first.mpm_band, rel=1e-12)
+    assert again.summary() == first.summary()

@@ -120,7 +120,8 @@ def _print_status(info, counts_text, band_text, fitted, included, left_out,
             print(f"convergence: E_bar {_fmt(info['E_bar'])} (limit eps1 {info['eps1']:g}), COV "
                   f"{_fmt(info['COV'])} (limit eps2 {info['eps2']:g}): {verdict}")
         if info["precision"] is not None:
-            print(f"precision target ±{100 * info['precision']:g} %: {verdict}; {stop_state}")
+            detail = (stop_state or "").split(": ", 1)[-1]
+            print(f"precision target ±{100 * info['precision']:g} %: {verdict}; {detail}")
     else:
         print("no model fitted yet")
     for ch in info["settings_changes"]:

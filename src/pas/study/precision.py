@@ -27,16 +27,26 @@ def _has_model_band(strategy) -> bool:
             and getattr(strategy, "n_bootstrap", 1) > 0)
 
 
-def model_band(study, pairs) -> tuple | None:
-    """``(low, high)`` of the strategy's model band for ``study`` as it stands, or None."""
+def model_band(study, pairs, row: dict | None = None) -> tuple | None:
+    """``(low, high)`` of the strategy's model band for ``study`` as it stands, or None.
+
+    ``row``: the history row of the fit; replaying a store, the band that row
+    recorded is taken instead of refitted (:func:`pas.study.replay.attach`): the
+    same pairs and draws give the same band.
+    """
     key = (study.n_told, len(study.rows), tuple(pairs.position), tuple(pairs.hf),
            tuple(pairs.fp_position))
     cached = getattr(study, "_model_band_cache", None)
     if cached is not None and cached[0] == key:
         return cached[1]
-    rng = np.random.default_rng([study.seed, study.n_told, 1])
-    mb = study.strategy.model_band(pairs, study.lfset, rng)
-    band = None if mb is None else (float(mb[0]), float(mb[1]))
+    stored = getattr(study, "_stored_bands", {}).get(row["row"]) if row is not None else None
+    if (study._replaying and stored is not None and stored.get("event_index") == row["event_index"]
+            and stored.get("hf") == row["hf"]):
+        band = (float(stored["model_low"]), float(stored["model_high"]))
+    else:
+        rng = np.random.default_rng([study.seed, study.n_told, 1])
+        mb = study.strategy.model_band(pairs, study.lfset, rng)
+        band = None if mb is None else (float(mb[0]), float(mb[1]))
     study._model_band_cache = (key, band)
     return band
 
@@ -64,7 +74,7 @@ def judge(study, pred, pairs, row: dict, paper_stop: bool) -> bool:
         floor = 0.0
     met = False
     if not has_model or rule.band_due(len(pairs), gate, floor):
-        model = model_band(study, pairs) if has_model else None
+        model = model_band(study, pairs, row) if has_model else None
         band = union(pred.mpm_band, model)
         narrowing = (row["halfwidth_sampling"] if model is None
                      else relative_half_width(pred.mpm, model))

@@ -49,13 +49,13 @@ def forecast_text(forecast: HFForecast | None, target: float, budget_left=None,
     --------
     >>> forecast_text(HFForecast(58.6, 40.2, 95.0), 0.1, 40)
     'about 59 more HF for ±10 % (40–95); the budget allows 40'
-    >>> forecast_text(None, 0.1)
-    'too few model bands yet to forecast the HF needed for ±10 %'
+    >>> forecast_text(None, 0.1, 5)
+    'too few model bands yet to forecast the HF needed for ±10 %; the budget allows 5'
     """
     goal = percent(target)
     if forecast is None:
-        return f"too few model bands yet to forecast the HF needed for {goal}"
-    if not math.isfinite(forecast.expected) and floor is not None and floor >= target:
+        text = f"too few model bands yet to forecast the HF needed for {goal}"
+    elif not math.isfinite(forecast.expected) and floor is not None and floor >= target:
         text = (f"more HF will not reach {goal}: the sampling part alone (the z-draw band) is "
                 f"{percent(floor)}, and more pairs do not narrow it")
     elif not math.isfinite(forecast.expected):
