@@ -104,3 +104,32 @@ def test_status_and_set_of_a_precision_study(tmp_path, capsys):
     with pytest.raises(SystemExit) as stop:
         main(["study", "set", str(db), "--precision", "1.5"])
     assert stop.value.code == 2 and "--precision" in capsys.readouterr().err
+
+
+STUDY_TOML = """
+n_waves = 2000
+p_exp = 0.01
+{stop}
+[lf]
+file = "lf.csv"
+column = "lf"
+"""
+
+
+@pytest.mark.parametrize("stop, expected", [('precision = "10%"', 0.1), ("precision = 0.2", 0.2),
+                                            ("eps1 = 0.5\nprecision = 0.05", 0.05)])
+def test_study_file_takes_precision_as_text_or_number(files, capsys, stop, expected):
+    (files / "s.toml").write_text(STUDY_TOML.format(stop=stop))
+    code, _, err = _cli(capsys, "study", "create", files / "s.db", "--config", files / "s.toml")
+    assert code == 0, err
+    assert pas.study.open_study(files / "s.db").stopping.precision == expected
+
+
+@pytest.mark.parametrize("stop, needle", [("", "give precision"),
+                                          ('precision = "10"', "s.toml: precision"),
+                                          ("precision = 1.5", "precision must be")])
+def test_study_file_without_a_valid_stopping_rule_is_refused(files, capsys, stop, needle):
+    (files / "s.toml").write_text(STUDY_TOML.format(stop=stop))
+    code, _, err = _cli(capsys, "study", "create", files / "s.db", "--config", files / "s.toml")
+    assert code == 2 and needle in err.strip().splitlines()[-1]
+    assert not (files / "s.db").exists()
