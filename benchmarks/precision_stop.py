@@ -18,8 +18,14 @@ Problems: known-truth types of ``benchmarks/known_truth.py`` (``--types``)
 and validation analogues (``--cases``, :func:`pas.validation.generate_case`
 with the data redrawn per set, ``--scale`` of the paper's duration).
 
+``--cost HF``: instead, the CPU time per HF of the loop on the problem of
+``benchmarks/timing.py`` (stopping off, ``HF`` evaluations) with ``eps1``
+(no model band in the loop), with a target it never reaches (the growth
+schedule alone) and with one it reaches early (the schedule and the gated
+bands), and the model bands each computed.
+
 Run: ``python benchmarks/precision_stop.py [N] [--types a,b] [--cases 1a,3a]
-[--precisions 0.05,0.1,0.2] [--budgets 160,400] [--csv runs.csv]``
+[--precisions 0.05,0.1,0.2] [--budgets 160,400] [--csv runs.csv] [--cost 80]``
 """
 
 from __future__ import annotations
@@ -34,9 +40,9 @@ import numpy as np
 import pandas as pd
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-import known_truth  # noqa: E402
+import known_truth
 
-import pas  # noqa: E402
+import pas
 
 TYPES = ("core-gumbel-t0.6", "core-gaussian-t0.75", "tail-gaussian-mix", "miss-low-gaussian-t0.7")
 CASES = ("1a", "3a")
@@ -113,6 +119,28 @@ def table(runs: pd.DataFrame, budgets) -> pd.DataFrame:
     return pd.DataFrame(out)
 
 
+def loop_cost(max_hf: int) -> pd.DataFrame:
+    """CPU seconds per HF of the loop (final band excluded) with and without the precision rule."""
+    import timing
+
+    lf, hf = timing.scenario()
+    out = []
+    for name, stop in (("eps1 (no band in the loop)", {"eps1": 1e-9}),
+                       ("precision 0.01 (never reached)", {"precision": 0.01}),
+                       ("precision 0.5 (reached early)", {"precision": 0.5})):
+        study = pas.make_study("pas", lf, n_waves=timing.N_W, p_exp=timing.P_EXP, seed=1,
+                               max_hf=max_hf, stop_on_convergence=False, **stop)
+        t0 = timing.cpu_seconds()
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            study.optimize(lambda ev: float(hf[ev.index]))
+        loop = timing.cpu_seconds() - t0
+        bands = int(study.history().get("model_low", pd.Series(dtype=float)).notna().sum())
+        out.append({"loop": name, "cpu_s_per_hf": loop / max_hf, "model_bands": bands})
+    base = out[0]["cpu_s_per_hf"]
+    return pd.DataFrame([{**r, "ratio": r["cpu_s_per_hf"] / base} for r in out])
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("n", nargs="?", type=int, default=3, help="data sets per problem")
@@ -124,7 +152,11 @@ def main(argv=None):
     ap.add_argument("--max-budget-for", default="0.05:160",
                     help="target:budget pairs lowering the largest budget for a target")
     ap.add_argument("--csv", default="precision_runs.csv")
+    ap.add_argument("--cost", type=int, metavar="HF", help="measure the loop's cost instead")
     args = ap.parse_args(argv)
+    if args.cost:
+        print(loop_cost(args.cost).to_string(index=False, float_format=lambda x: f"{x:.3g}"))
+        return
     split = [s for s in args.types.split(",") if s], [s for s in args.cases.split(",") if s]
     targets = [float(x) for x in args.precisions.split(",")]
     budgets = sorted(int(x) for x in args.budgets.split(","))

@@ -16,7 +16,8 @@ from pas.cli._stopping_options import precision_option
 N = 2000
 LF = np.random.default_rng(0).rayleigh(2.0, N)
 HF = 1.2 * LF ** 1.1 * np.random.default_rng(1).lognormal(0, 0.2, N)
-FAST = dict(n_bootstrap=12, z=5, k2=5, families=("gaussian", "gumbel"), band_marginals="fitted")
+FAST = {"n_bootstrap": 12, "z": 5, "k2": 5, "families": ("gaussian", "gumbel"),
+        "band_marginals": "fitted"}
 
 
 @pytest.mark.parametrize("text, value", [("10%", 0.1), ("0.1", 0.1), (" 10 % ", 0.1),

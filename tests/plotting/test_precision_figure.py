@@ -4,12 +4,12 @@ import matplotlib
 
 matplotlib.use("Agg")
 
-import numpy as np  # noqa: E402
-import pandas as pd  # noqa: E402
+import numpy as np
+import pandas as pd
 
-from pas.plotting import plot_mpm_convergence  # noqa: E402
-from pas.plotting.convergence import stop_text  # noqa: E402
-from pas.study.result import ScreeningResult  # noqa: E402
+from pas.plotting import plot_mpm_convergence
+from pas.plotting.convergence import stop_text
+from pas.study.result import ScreeningResult
 
 
 def precision_result(converged=False):

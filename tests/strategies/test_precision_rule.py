@@ -7,7 +7,12 @@ import pytest
 
 from pas._support.checks import check_setting
 from pas.strategies.forecast import forecast_pairs, relative_half_width
-from pas.strategies.stopping import BAND_EVERY, BAND_GROWTH, FIRST_BAND_PAIRS, StoppingRule
+from pas.strategies.stopping import (
+    BAND_EVERY,
+    BAND_GROWTH,
+    FIRST_BAND_PAIRS,
+    StoppingRule,
+)
 
 CURVE = np.zeros(41)
 

@@ -14,8 +14,8 @@ from pas.study.result import ScreeningResult
 N = 2000
 LF = np.random.default_rng(0).rayleigh(2.0, N)
 NOISE = np.random.default_rng(1).lognormal(0, 0.2, N)
-FAST = dict(n_waves=N, p_exp=1e-2, seed=1, n_bootstrap=12, z=5, k2=5, families=("gaussian", "gumbel"),
-            band_marginals="fitted")
+FAST = {"n_waves": N, "p_exp": 1e-2, "seed": 1, "n_bootstrap": 12, "z": 5, "k2": 5,
+        "families": ("gaussian", "gumbel"), "band_marginals": "fitted"}
 
 
 def oracle(ev):

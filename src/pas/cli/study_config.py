@@ -64,11 +64,13 @@ def load_config(path) -> dict:
         raise ValueError(f"{where}: give precision (e.g. precision = \"10%\": stop once the "
                          "U95 of the MPM is within ±10 % of it) or eps1 (a limit in load units)")
     if isinstance(cfg.get("precision"), str):
+        from argparse import ArgumentTypeError
+
         from ._stopping_options import precision_option
 
         try:
             cfg["precision"] = precision_option(cfg["precision"])
-        except Exception as exc:  # argparse's type error: one line naming the key
+        except ArgumentTypeError as exc:
             raise ValueError(f"{where}: precision: {exc}") from None
     lf = cfg["lf"]
     for key in lf:
