@@ -25,7 +25,8 @@ schedule alone) and with one it reaches early (the schedule and the gated
 bands), and the model bands each computed.
 
 Run: ``python benchmarks/precision_stop.py [N] [--types a,b] [--cases 1a,3a]
-[--precisions 0.05,0.1,0.2] [--budgets 160,400] [--csv runs.csv] [--cost 80]``
+[--precisions 0.05,0.1,0.2] [--budgets 160,400] [--csv runs.csv] [--markdown]
+[--from-csv runs.csv,...] [--cost 80]``
 """
 
 from __future__ import annotations
@@ -111,6 +112,8 @@ def table(runs: pd.DataFrame, budgets) -> pd.DataFrame:
                         "within_10pct": ((reached["error"].abs() <= 0.10).mean()
                                          if len(reached) else np.nan),
                         "median_hf": reached["n_hf"].median() if len(reached) else np.nan,
+                        "short_halfwidth": (g.loc[~g.index.isin(reached.index), "halfwidth"]
+                                            .median() if len(reached) < len(g) else np.nan),
                         "forecast_ok": (((ok <= FACTOR) & (ok >= 1 / FACTOR)).mean()
                                         if len(ok) else np.nan),
                         "n_forecasts": len(ok),
@@ -141,6 +144,33 @@ def loop_cost(max_hf: int) -> pd.DataFrame:
     return pd.DataFrame([{**r, "ratio": r["cpu_s_per_hf"] / base} for r in out])
 
 
+def markdown(summary: pd.DataFrame) -> str:
+    """The summary table as Markdown, shares in per cent (the docs page's table)."""
+    cols = ["problem", "precision", "budget", "n", "reached", "covered", "within_10pct",
+            "median_hf", "short_halfwidth", "n_forecasts", "forecast_ok", "forecast_ratio"]
+    head = ["problem", "target", "budget", "studies", "reached", "U95 holds truth¹",
+            "within ±10 %¹", "median HF¹", "U95 of the others²", "halfway forecasts¹",
+            "within ×1.5", "median ratio"]
+
+    def cell(col, x):
+        if isinstance(x, float) and np.isnan(x):
+            return "–"
+        if col == "precision":
+            return f"±{100 * x:g} %"
+        if col in ("reached", "covered", "within_10pct", "forecast_ok"):
+            return f"{100 * x:.0f} %"
+        if col == "short_halfwidth":
+            return f"±{100 * x:.0f} %"
+        if col == "forecast_ratio":
+            return f"{x:.2f}"
+        return f"{x:.0f}" if isinstance(x, float) else str(x)
+
+    lines = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
+    for _, r in summary.iterrows():
+        lines.append("| " + " | ".join(cell(c, r[c]) for c in cols) + " |")
+    return "\n".join(lines)
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("n", nargs="?", type=int, default=3, help="data sets per problem")
@@ -153,13 +183,20 @@ def main(argv=None):
                     help="target:budget pairs lowering the largest budget for a target")
     ap.add_argument("--csv", default="precision_runs.csv")
     ap.add_argument("--cost", type=int, metavar="HF", help="measure the loop's cost instead")
+    ap.add_argument("--from-csv", metavar="A.csv,B.csv",
+                    help="tabulate the runs of earlier --csv files instead of running")
+    ap.add_argument("--markdown", action="store_true", help="print the table as Markdown")
     args = ap.parse_args(argv)
+    budgets = sorted(int(x) for x in args.budgets.split(","))
+    if args.from_csv:
+        runs = pd.concat([pd.read_csv(f) for f in args.from_csv.split(",")], ignore_index=True)
+        _print(table(runs, budgets), args.markdown)
+        return
     if args.cost:
         print(loop_cost(args.cost).to_string(index=False, float_format=lambda x: f"{x:.3g}"))
         return
     split = [s for s in args.types.split(",") if s], [s for s in args.cases.split(",") if s]
     targets = [float(x) for x in args.precisions.split(",")]
-    budgets = sorted(int(x) for x in args.budgets.split(","))
     cap = {float(k): int(v) for k, v in
            (item.split(":") for item in args.max_budget_for.split(",") if item)}
     rows = []
@@ -174,7 +211,13 @@ def main(argv=None):
                   f"forecast halfway {row['forecast_halfway']:.3g} vs {row['needed_halfway']:.3g}"
                   f", {row['n_bands']} bands, {row['seconds']:.0f} s", flush=True)
             pd.DataFrame(rows).to_csv(args.csv, index=False)
-    summary = table(pd.DataFrame(rows), budgets)
+    _print(table(pd.DataFrame(rows), budgets), args.markdown)
+
+
+def _print(summary: pd.DataFrame, as_markdown: bool) -> None:
+    if as_markdown:
+        print(markdown(summary))
+        return
     with pd.option_context("display.width", 200, "display.max_columns", 20):
         print(summary.to_string(index=False, float_format=lambda x: f"{x:.3g}"))
 

@@ -76,7 +76,7 @@ def summary(study, result) -> dict:
         "precision": study.stopping.precision, "forecast": result.forecast,
         "stop_text": stop_text.state(result) if fitted else None,
         "k1": study.stopping.k1, "k2": study.stopping.k2,
-        "converged": bool(study.converged), "finished": bool(study.finished),
+        "converged": bool(result.converged), "finished": bool(study.finished),
         "converged_at_n_hf": next((r["n_hf"] for r in fitted if r.get("stop")), None),
         "counts_text": result.counts_text(), "band_text": result.band_text() if fitted else None,
     }
