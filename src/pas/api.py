@@ -32,7 +32,7 @@ def make_study(strategy, lf_peaks, *, n_waves, p_exp, eps1=None, eps2=0.1, thres
     store : str, os.PathLike or StudyStore, optional
         Makes the study crash-safe and resumable (:mod:`pas.study.store`);
         with ``seed=None`` an existing store's seed is used.  The stopping
-        settings (``eps1``, ``eps2``, ``k1``, ``k2``) and budgets (``max_hf``,
+        settings (``eps1``, ``precision``, ``eps2``, ``k1``, ``k2``) and budgets (``max_hf``,
         ``max_failures``) may differ from the stored ones: the new values
         are used from the first stored iteration on and recorded in the store.
     n_waves_convention : {"count", "spectral"}, default "count"

@@ -24,7 +24,6 @@ import json
 import math
 import warnings
 
-from . import stop_text
 from .schema import StoreError, _now, dumps
 
 __all__ = ["add_results_table", "log_key", "save_result", "stored_result", "summary"]
@@ -55,6 +54,8 @@ def log_key(c) -> tuple[str, int]:
 
 def summary(study, result) -> dict:
     """What ``pas study status`` shows of ``study`` and its ``result``, as JSON values."""
+    from . import stop_text  # not at import: 'pas study tell' opens stores without it
+
     fitted = [r for r in study.rows if r.get("mpm") is not None]
     last = fitted[-1] if fitted else {}
 
