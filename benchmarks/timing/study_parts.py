@@ -29,13 +29,10 @@ from __future__ import annotations
 import argparse
 import contextlib
 import json
-import resource
 import time
 import tracemalloc
 
 import numpy as np
-import pyvinecopulib as pv
-from scipy import stats
 
 import pas
 import pas.models.copulas
@@ -43,18 +40,7 @@ import pas.models.joint
 import pas.models.joint_mixture
 import pas.stats.exceedance
 from pas.study.flat import from_flat
-
-N, N_W, P_EXP = 15000, 16364, 2.55e-3
-
-
-def scenario(n=N, seed=1):
-    """LF peaks and the oracle's HF value for each (a Gumbel copula, Weibull HF)."""
-    rng = np.random.default_rng(seed)
-    lf = rng.rayleigh(2.5, n)
-    u = stats.rankdata(lf) / (n + 1.0)
-    cop = pv.Bicop(family=pv.BicopFamily.gumbel, parameters=np.array([[3.0]]))
-    v = cop.hinv1(np.column_stack([u, rng.uniform(size=n)]))
-    return lf, stats.weibull_min(1.5, scale=5.0).ppf(np.clip(v, 1e-12, 1 - 1e-12))
+from pas.validation.timing_problem import N_W, P_EXP, N, cpu_seconds, scenario
 
 
 @contextlib.contextmanager
@@ -67,12 +53,6 @@ def numerical_student():
         yield
     finally:
         pas.models.joint.GRADIENT_FAMILIES, pas.models.joint_mixture.GRADIENT_FAMILIES = saved
-
-
-def cpu_seconds():
-    """CPU seconds of this process and of its waited-for children (forked band workers)."""
-    return sum(resource.getrusage(who).ru_utime + resource.getrusage(who).ru_stime
-               for who in (resource.RUSAGE_SELF, resource.RUSAGE_CHILDREN))
 
 
 def run(max_hf, n=N, n_waves=N_W, **settings):
@@ -160,7 +140,7 @@ def student_iterations(max_hf):
 
 def part_fit(max_hf):
     """The Student-t gradient: the whole run and Student-t alone, numerical vs analytic."""
-    print(f"-- Student-t joint fit: numerical differences (old) vs analytic gradient (new)")
+    print("-- Student-t joint fit: numerical differences (old) vs analytic gradient (new)")
     out = {}
     for label, ctx in (("old", numerical_student), ("new", contextlib.nullcontext)):
         with ctx():

@@ -93,6 +93,25 @@ def check_finite(value, name: str) -> float:
     return v
 
 
+def check_precision(value, name: str = "precision") -> float:
+    """A precision target as a fraction of the MPM, strictly between 0 and 1 (``0.1`` = ±10 %).
+
+    Examples
+    --------
+    >>> check_precision(0.1)
+    0.1
+    >>> check_precision(10)
+    Traceback (most recent call last):
+    ...
+    ValueError: precision must be a fraction of the MPM between 0 and 1 (0.1 for ±10 %), got 10
+    """
+    v = check_finite(value, name)
+    if not 0.0 < v < 1.0:
+        raise ValueError(f"{name} must be a fraction of the MPM between 0 and 1 (0.1 for ±10 %), "
+                         f"got {value!r}")
+    return v
+
+
 def check_option(value, name: str, options) -> str:
     """Return ``value`` if it is one of ``options``."""
     if value not in options:
@@ -132,7 +151,7 @@ def _stop_measure(value, name):
 
 SETTING_CHECKS = {
     "n_waves": check_positive_int, "p_exp": check_open_unit, "threshold": _optional(check_finite),
-    "eps1": check_positive, "eps2": check_positive, "k1": _int_from(1), "k2": _int_from(1),
+    "eps1": _optional(check_positive), "precision": _optional(check_precision), "eps2": check_positive, "k1": _int_from(1), "k2": _int_from(1),
     "stop_measure": _stop_measure, "seed": _optional(_int_from(0)),
     "max_hf": _optional(check_positive_int), "max_failures": _int_from(0),
     "stop_on_convergence": check_bool, "adaptive_threshold": check_bool,

@@ -10,7 +10,7 @@ from __future__ import annotations
 import math
 import sys
 
-__all__ = ["Progress", "RunStopped", "failure_line", "stopped", "stopped_message",
+__all__ = ["Progress", "RunStopped", "failure_line", "precision_text", "stopped", "stopped_message",
            "EXIT_INTERRUPTED", "EXIT_BROKEN_PIPE"]
 
 #: Exit codes of an early stop: Ctrl-C (128 + SIGINT) and a closed pipe (128 + SIGPIPE),
@@ -89,13 +89,43 @@ class Progress:
         if _finite(row.get("mpm")):
             fam = f" {row['family']}" if row.get("family") else ""
             model = (f"MPM {row['mpm']:.4g} (sampling band {_num(row.get('mpm_low'), '.4g')}–"
-                     f"{_num(row.get('mpm_high'), '.4g')}){fam}  "
-                     f"E_bar {_num(row.get('E_bar'))} (eps1 {study.stopping.eps1:g})  "
-                     f"COV {_num(row.get('COV'))} (eps2 {study.stopping.eps2:g})")
+                     f"{_num(row.get('mpm_high'), '.4g')}){fam}")
+            rule = study.stopping
+            if rule.eps1 is not None:
+                model += (f"  E_bar {_num(row.get('E_bar'))} (eps1 {rule.eps1:g})  "
+                          f"COV {_num(row.get('COV'))} (eps2 {rule.eps2:g})")
+            if rule.precision is not None:
+                model += "  " + precision_text(row, rule.precision)
             if row.get("stop"):
                 model += "  converged"
         return (f"[pas] it {row['row'] + 1:>4}  n_HF {study.n_hf:>4}  event {row['event_id']}  "
                 f"LF {row['lf']:.4g}  {what}  {model}")
+
+
+def precision_text(row, target: float) -> str:
+    """The precision part of a progress line: the U95's half-width where this fit computed it
+    (else the sampling part's) against the target, and the forecast of further HF.
+
+    Examples
+    --------
+    >>> precision_text({"halfwidth": 0.142, "halfwidth_sampling": 0.03, "forecast_hf": 58.6,
+    ...                 "forecast_hf_low": 40.2, "forecast_hf_high": 95.0}, 0.1)
+    'U95 ±14.2 % (target ±10 %), about 59 more HF (40–95)'
+    >>> precision_text({"halfwidth_sampling": 0.031}, 0.1)
+    'sampling part ±3.1 % (target ±10 %)'
+    """
+    from ..study.stop_text import HFForecast, forecast_text, percent
+
+    if _finite(row.get("halfwidth")):
+        text = f"U95 {percent(row['halfwidth'])} (target {percent(target)})"
+    else:
+        text = f"sampling part {percent(row.get('halfwidth_sampling', math.nan))} " \
+               f"(target {percent(target)})"
+    expected = row.get("forecast_hf")
+    if expected is not None and not math.isnan(expected):
+        ahead = HFForecast(expected, row["forecast_hf_low"], row["forecast_hf_high"])
+        text += ", " + forecast_text(ahead, target).replace(f" for {percent(target)}", "")
+    return text
 
 
 def stopped(command: str, exc: BaseException, study, **where) -> RunStopped:

@@ -2,7 +2,7 @@
 
 ::
 
-    pas run LF_FILE --oracle KIND:ARGS --n-waves N --p-exp P --eps1 E [options]
+    pas run LF_FILE --oracle KIND:ARGS --n-waves N --p-exp P (--precision P | --eps1 E) [options]
 
 ``LF_FILE`` is a CSV or Parquet table (one row per wave event; ``--lf-column``
 names the LF peak column, ``--id-column`` the event ids) or a NumPy ``.npy``
@@ -45,7 +45,7 @@ The output folder receives ``history.csv``, ``distribution.csv``,
 — everything ``pas plot`` needs to redraw the figures — and, unless
 ``--no-store``, the crash-safe study store ``study.sqlite``: run the same
 command again after a crash and no HF result is lost or re-run (stderr says
-how many results it reused).  On a resumed study ``--eps1``, ``--eps2``,
+how many results it reused).  On a resumed study ``--eps1``, ``--precision``, ``--eps2``,
 ``--max-hf`` and ``--max-failures`` change the stored values only when given.
 More than ``--max-failures`` failed HF evaluations stop the run (exit code 1);
 ``--retry-failed`` on the same ``--out`` runs the failed events again once
@@ -62,6 +62,7 @@ import sys
 from pathlib import Path
 
 from ..study.schema import DEFAULT_MAX_HF, RESUMABLE
+from ._stopping_options import optional_number, precision_option
 
 __all__ = ["add_parser", "run"]
 
@@ -70,6 +71,10 @@ examples:
   # basin or HF Monte-Carlo results keyed by event id (columns "id" and "hf")
   pas run lf_peaks.csv --lf-column rwe --oracle table:basin.csv \\
       --n-waves 16364 --p-exp 2.55e-3 --eps1 0.1 --threshold 12 --out run1
+
+  # stop once the design load is known to +-10 %, whatever its unit
+  pas run lf_peaks.csv --oracle table:basin.csv --n-waves 16364 --p-exp 2.55e-3 \
+      --precision 10% --out run2
 
   # the same table with other column names, AS instead of PAS, JSON summary
   pas run lf_peaks.csv --oracle table:basin.csv:event:force_kN --n-waves 16364 \\
@@ -93,7 +98,7 @@ exit codes: 0 done; 1 stopped at the failure limit (partial result written); 2 b
 
 
 _INPUTS = ("lf_file", "lf_column", "id_column", "oracle", "n_waves", "n_waves_convention", "p_exp",
-           "eps1", "eps2", "threshold", "strategy", "preset", "max_hf", "batch_size", "unit",
+           "eps1", "precision", "eps2", "threshold", "strategy", "preset", "max_hf", "batch_size", "unit",
            "lf_unit", "target")
 """The options written to ``summary.json`` as the run's ``inputs``."""
 
@@ -163,8 +168,12 @@ def add_parser(sub) -> None:
                         "Table 2), may lie below the number of peaks")
     p.add_argument("--p-exp", required=True, type=float, metavar="P",
                    help="target exceedance probability (e.g. T_1/T_exp)")
-    p.add_argument("--eps1", required=True, type=float, metavar="E",
-                   help="stopping limit on the distribution change, load units (~1-2%% of the max)")
+    p.add_argument("--eps1", type=optional_number, default=_NotGiven(None), metavar="E",
+                   help="stopping limit on the distribution change, load units (~1-2%% of the "
+                        "max; the paper's rule); 'none' drops it from a resumed study")
+    p.add_argument("--precision", type=precision_option, default=_NotGiven(None), metavar="P",
+                   help="stop once the U95 of the MPM is within +-P of it, e.g. 10%% or 0.1 "
+                        "(scale-free); give this, --eps1 or both (both must hold)")
     p.add_argument("--eps2", type=float, default=_NotGiven(0.1), metavar="C",
                    help="stopping limit on the COV of the MPM (default 0.1)")
     p.add_argument("--threshold", type=float, metavar="L0", help="LF threshold l0_input")
@@ -238,7 +247,11 @@ def run(args) -> int:
     try:
         stored = {} if store is None else read_settings(store)
         seed = args.seed if args.seed is not None or store is None else stored.get("seed")
-        objects = _settings_objects(args, _resumable_settings(args, stored))
+        settings = _resumable_settings(args, stored)
+        if settings.get("eps1") is None and settings.get("precision") is None:
+            raise ValueError("give --precision P (e.g. 10%: stop once the U95 of the MPM is "
+                             "within ±10 % of it) or --eps1 E (a limit in load units)")
+        objects = _settings_objects(args, settings)
         inputs = {name: getattr(args, name) for name in _INPUTS}
         study = make_study(objects.pop("strategy"), lf_table(lf, ids, meta, "--meta-columns"),
                            n_waves=args.n_waves, p_exp=args.p_exp, threshold=args.threshold,
@@ -363,7 +376,7 @@ def _check_numbers(args) -> None:
         raise ValueError(f"--p-exp must lie in (0, 1), got {args.p_exp:g}")
     for name in ("eps1", "eps2"):
         v = getattr(args, name)
-        if isinstance(v, _NotGiven):
+        if isinstance(v, _NotGiven) or v is None:
             continue
         if not (math.isfinite(v) and v > 0):
             raise ValueError(f"--{name} must be a positive number, got {v:g}")

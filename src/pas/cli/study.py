@@ -7,7 +7,8 @@
     pas study tell STUDY.db EVENT VALUE | EVENT --error MSG | EVENT --load N=V ... | --csv FILE
         [--replace]
     pas study status STUDY.db [--json] [--events] [--refresh]
-    pas study set STUDY.db [--eps1 E] [--eps2 C] [--k1 K] [--k2 K] [--max-hf N] [--max-failures N]
+    pas study set STUDY.db [--precision P] [--eps1 E] [--eps2 C] [--k1 K] [--k2 K] [--max-hf N]
+        [--max-failures N]
     pas study refit STUDY.db --target NAME [--out DIR]   (pas.cli.study_loads)
     pas study run STUDY.db [-q Q] [--workers N] [--pending resubmit|wait]
     pas study retry STUDY.db [EVENT ...]
@@ -20,7 +21,8 @@ The TOML file (paths relative to it; every key in ``docs/study-file.md``)::
 
     n_waves = 16364          # required: wave encounters in the LF run
     p_exp = 2.55e-3          # required: target exceedance probability
-    eps1 = 0.1               # required: stopping limit, load units
+    precision = "10%"        # stop once the U95 of the MPM is within ±10 % (or eps1 =
+                             # a limit in load units, the paper's rule; one is required)
     [lf]
     file = "peaks.csv"       # .csv, .parquet or .npy
     column = "lf"            # required for .csv/.parquet
@@ -47,6 +49,7 @@ import os
 import sys
 from pathlib import Path
 
+from ._stopping_options import precision_option
 from .study_config import load_config, load_peaks, study_objects
 from .study_loads import add_parsers as add_load_parsers
 from .study_loads import refit_command, tell_loads
@@ -112,6 +115,8 @@ def add_parser(sub) -> None:
                    help="replay the log and recompute the result (default: the stored one)")
     c = cmds.add_parser("set", help="change the stopping limits or the budget of a study")
     c.add_argument("study", metavar="STUDY.db")
+    c.add_argument("--precision", type=precision_option, metavar="P",
+                   help="precision target, e.g. 10%% or 0.1 (the U95 within +-P of the MPM)")
     c.add_argument("--eps1", type=float, metavar="E", help="limit on the distribution change")
     c.add_argument("--eps2", type=float, metavar="C", help="limit on the COV of the MPM")
     c.add_argument("--k1", type=int, metavar="K", help="window of the distribution change")
@@ -345,7 +350,7 @@ def _set(args) -> int:
     from ..study.resume import open_study
     from ..study.store import StudyStore
 
-    names = {"eps1": "--eps1", "eps2": "--eps2", "k1": "--k1", "k2": "--k2",
+    names = {"precision": "--precision", "eps1": "--eps1", "eps2": "--eps2", "k1": "--k1", "k2": "--k2",
              "max_hf": "--max-hf", "max_failures": "--max-failures"}
     changes = {k: getattr(args, k) for k in names if getattr(args, k) is not None}
     if not changes:

@@ -12,12 +12,13 @@ from pathlib import Path
 
 __all__ = ["load_config", "load_peaks", "study_objects"]
 
-_TOP = {"n_waves": int, "n_waves_convention": str, "p_exp": float, "eps1": float, "eps2": float,
+_TOP = {"n_waves": int, "n_waves_convention": str, "p_exp": float, "eps1": float,
+        "precision": (float, str), "eps2": float,
         "threshold": float, "strategy": str, "preset": str, "seed": int, "max_hf": int,
         "max_failures": int, "batch_size": int, "target": str,
         "lf": dict, "settings": dict, "oracle": dict}
 _LF = {"file": str, "column": str, "id_column": str, "meta_columns": list}
-_REQUIRED = ("n_waves", "p_exp", "eps1", "lf")
+_REQUIRED = ("n_waves", "p_exp", "lf")
 _ORACLE = {"command": list, "root": str, "timeout": float, "result_name": str, "table": str,
            "id_column": str, "value_column": (str, list)}
 
@@ -59,6 +60,18 @@ def load_config(path) -> dict:
         if key not in raw:
             raise ValueError(f"{where}: {key} is missing")
     cfg = {k: _typed(v, _TOP[k], k, where) for k, v in raw.items()}
+    if "eps1" not in cfg and "precision" not in cfg:
+        raise ValueError(f"{where}: give precision (e.g. precision = \"10%\": stop once the "
+                         "U95 of the MPM is within ±10 % of it) or eps1 (a limit in load units)")
+    if isinstance(cfg.get("precision"), str):
+        from argparse import ArgumentTypeError
+
+        from ._stopping_options import precision_option
+
+        try:
+            cfg["precision"] = precision_option(cfg["precision"])
+        except ArgumentTypeError as exc:
+            raise ValueError(f"{where}: precision: {exc}") from None
     lf = cfg["lf"]
     for key in lf:
         if key not in _LF:
@@ -106,7 +119,7 @@ def _check_settings(cfg: dict, where: str) -> None:
              "settings", settings)
 
 
-_FLAT_TOP = ("eps1", "eps2", "max_hf", "max_failures", "target")
+_FLAT_TOP = ("eps1", "precision", "eps2", "max_hf", "max_failures", "target")
 """Top-level keys of the file that are flat study settings (:func:`pas.study.flat.from_flat`)."""
 
 

@@ -42,6 +42,8 @@ def status(args) -> int:
     included = len(waiting) - left_out
     used_converged = shown.pop("used_converged", shown["converged"])
     counts_text, band_text = shown.pop("counts_text"), shown.pop("band_text")
+    shown.setdefault("precision", None)  # a result stored before precision targets
+    stop_state = shown.pop("stop_text", None)
     fitted = shown.pop("fitted")
     info = {"study": args.study, **shown, "n_pending": len(pend),
             "results_not_yet_used": len(waiting),
@@ -58,7 +60,7 @@ def status(args) -> int:
         from .._support.strict_json import dumps
         print(dumps(info))
         return 0
-    _print_status(info, counts_text, band_text, fitted, included, left_out)
+    _print_status(info, counts_text, band_text, fitted, included, left_out, stop_state)
     if not from_store:
         why = "--refresh" if getattr(args, "refresh", False) else "no result stored for it"
         print(f"(computed by replaying the log of {n_told} used results: {why})")
@@ -89,7 +91,8 @@ def _replayed(store, waiting, key) -> tuple[dict, int]:
     return {**shown, "used_converged": used_converged}, n_told
 
 
-def _print_status(info, counts_text, band_text, fitted, included, left_out) -> None:
+def _print_status(info, counts_text, band_text, fitted, included, left_out,
+                  stop_state=None) -> None:
     print(f"{info['study']}: {info['strategy'].upper()}, seed {info['seed']}")
     print(f"{counts_text}, pending {info['n_pending']}"
           + (f", budget {info['max_hf']}" if info["max_hf"] else ""))
@@ -113,8 +116,12 @@ def _print_status(info, counts_text, band_text, fitted, included, left_out) -> N
                        + ")")
         elif left_out:
             verdict = "open until the waiting results are used"
-        print(f"convergence: E_bar {_fmt(info['E_bar'])} (limit eps1 {info['eps1']:g}), COV "
-              f"{_fmt(info['COV'])} (limit eps2 {info['eps2']:g}): {verdict}")
+        if info["eps1"] is not None:
+            print(f"convergence: E_bar {_fmt(info['E_bar'])} (limit eps1 {info['eps1']:g}), COV "
+                  f"{_fmt(info['COV'])} (limit eps2 {info['eps2']:g}): {verdict}")
+        if info["precision"] is not None:
+            detail = (stop_state or "").split(": ", 1)[-1]
+            print(f"precision target ±{100 * info['precision']:g} %: {verdict}; {detail}")
     else:
         print("no model fitted yet")
     for ch in info["settings_changes"]:

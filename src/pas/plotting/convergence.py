@@ -70,7 +70,10 @@ def plot_mpm_convergence(result, *, truth=None, ax=None, label=None, unit=None,
     A study that did not converge gets a dashed line at its last sample and
     says why it ended (:func:`stop_text`: budget, failure limit, or not
     converged yet), also as the title of a figure made here (which names
-    the convergence point when there is one).  A design-wave
+    the convergence point when there is one).  With a precision target the
+    figure adds the target ``MPM × (1 ± precision)`` (dotted), the U95 where
+    the loop computed it and, for a study short of its target, the forecast
+    of the further HF it needs (a bar over its interval from the last sample).  A design-wave
     result (:func:`pas.run_rcw`) is one point at its number of episodes.
     The legend sits under the x axis label, where it covers no curve.
 
@@ -106,6 +109,9 @@ def plot_mpm_convergence(result, *, truth=None, ax=None, label=None, unit=None,
         ax.errorbar([n[-1]], [mpm], yerr=[[max(mpm - lo, 0.0)], [max(hi - mpm, 0.0)]], fmt="none",
                     ecolor=c, elinewidth=1.0, capsize=4,
                     label=f"{name}: final U95 {lo:.4g}–{hi:.4g}")
+    target = (getattr(result, "settings", None) or {}).get("precision")
+    if target is not None:
+        _precision_marks(ax, result, fitted, float(target), c, name)
     running = pd.to_numeric(hist["mpm"], errors="coerce").ffill().bfill()
     for status, marker, mcolor, text in (("false_positive", "x", _FP_COLOR, "false positive (HF = 0)"),
                                          ("failed", "v", _FAIL_COLOR, "failed HF call")):
@@ -132,6 +138,35 @@ def plot_mpm_convergence(result, *, truth=None, ax=None, label=None, unit=None,
     return _finish_convergence_axes(ax, quantity, unit, truth, own_figure)
 
 
+def _precision_marks(ax, result, fitted, target, color, name):
+    """A precision study's target (``MPM × (1 ± precision)``, dotted), the U95 where the loop
+    computed it (thin bars) and the forecast of further HF from the last sample (a bar over
+    its interval, the expected count marked)."""
+    n = fitted["n_hf"].to_numpy(dtype=float)
+    mpm = fitted["mpm"].to_numpy(dtype=float)
+    for sign in (-1.0, 1.0):
+        ax.plot(n, mpm * (1.0 + sign * target), ls=":", lw=0.9, color=color,
+                label=f"{name}: target MPM ±{100 * target:g} %" if sign > 0 else None)
+    if {"model_low", "model_high"} <= set(fitted):
+        at = fitted["model_low"].notna().to_numpy()
+        if at.any():
+            low = np.minimum(fitted["model_low"], fitted["mpm_low"]).to_numpy(dtype=float)[at]
+            high = np.maximum(fitted["model_high"], fitted["mpm_high"]).to_numpy(dtype=float)[at]
+            ax.errorbar(n[at], mpm[at], yerr=[mpm[at] - low, high - mpm[at]], fmt="none",
+                        ecolor="0.35", elinewidth=0.8, capsize=2,
+                        label=f"{name}: U95 where the loop computed it")
+    ahead = getattr(result, "forecast_hf", None)
+    if ahead is None or getattr(result, "converged", False) or not np.isfinite(ahead.expected):
+        return
+    level = float(getattr(result, "mpm", mpm[-1]))
+    high = ahead.high if np.isfinite(ahead.high) else 2.0 * ahead.expected + 1.0
+    ax.plot([n[-1] + ahead.low, n[-1] + high], [level, level], lw=3, alpha=0.35, color=color,
+            solid_capstyle="butt")
+    ax.plot([n[-1] + ahead.expected], [level], marker=">", ms=7, color=color, ls="none",
+            label=f"{name}: forecast, about {ahead.expected:.0f} more HF for ±{100 * target:g} % "
+                  f"({ahead.low:.0f}–{'∞' if not np.isfinite(ahead.high) else f'{high:.0f}'})")
+
+
 def stop_text(result) -> str:
     """Why a study that did not converge ended where it did, for the convergence figure.
 
@@ -145,9 +180,16 @@ def stop_text(result) -> str:
         return (f"stopped by the failure limit ({n_failed} failed, "
                 f"max_failures = {int(max_failures)}) — not converged")
     max_hf = settings.get("max_hf")
+    gap = ""
+    if settings.get("precision") is not None:
+        from ..strategies.forecast import relative_half_width
+
+        width = relative_half_width(float(result.mpm), tuple(result.mpm_band))
+        if np.isfinite(width):
+            gap = f": U95 ±{100 * width:.3g} % against ±{100 * settings['precision']:g} %"
     if max_hf is not None and int(result.n_hf) >= int(max_hf):
-        return f"budget reached (max_hf = {int(max_hf)}) — not converged"
-    return f"not converged at {int(result.n_hf)} HF samples"
+        return f"budget reached (max_hf = {int(max_hf)}) — not converged{gap}"
+    return f"not converged at {int(result.n_hf)} HF samples{gap}"
 
 
 def _design_wave_mpm(ax, result, name, color, unit):

@@ -21,6 +21,20 @@ window change asks that the distribution has moved less than ``ε1`` over the
 whole window.  For a steady drift it is ``K1`` times stricter than Eq. 28 with
 the same ``ε1``.  App. C's Eq. 30 prints the windows as 50 while its text says 20;
 the defaults follow the text.
+
+``precision`` (beyond the paper, scale-free) stops on the band instead: when
+the U95 of the MPM lies within ``±precision × MPM`` of it, read
+conservatively as ``max(high − MPM, MPM − low) ≤ precision × MPM``, and the
+last ``K2`` MPMs lie inside that band.  The U95 is the union of the sampling
+part (Eq. 10) and the model part (a bootstrap, seconds of refits), so the
+model part is computed only when it can matter (:meth:`StoppingRule.band_due`):
+at ``n ≥ FIRST_BAND_PAIRS`` pairs and whenever the pairs grew by
+``BAND_GROWTH`` since the last one (the widths the forecast of
+:mod:`pas.strategies.forecast` is fitted to), and, once the cheap necessary
+conditions hold (the sampling part and the window within the target), every
+``BAND_EVERY`` fitted iterations from where the forecast says the target may
+be reached (the larger of its lower end and its expected pairs / ``BAND_GROWTH``).  With ``eps1`` and ``precision`` both given both rules
+must hold; with ``eps1`` alone the rule above is unchanged.
 """
 
 from __future__ import annotations
@@ -30,7 +44,19 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-__all__ = ["range_grid", "distribution_change", "StoppingRule"]
+from .forecast import Forecast, forecast_pairs, relative_half_width
+
+__all__ = ["range_grid", "distribution_change", "StoppingRule", "FIRST_BAND_PAIRS",
+           "BAND_GROWTH", "BAND_EVERY"]
+
+FIRST_BAND_PAIRS = 10
+"""Pairs at which a precision study first computes the model band."""
+
+BAND_GROWTH = 1.5
+"""A precision study computes the model band again once its pairs grew by this factor."""
+
+BAND_EVERY = 3
+"""Fitted iterations between model bands once the cheap conditions of the precision rule hold."""
 
 
 def range_grid(p_exp: float, n: int = 41) -> np.ndarray:
@@ -54,21 +80,31 @@ class StoppingRule:
 
     Call :meth:`update` once per true-positive iteration with that iteration's
     distribution on :func:`range_grid` and its MPM; it returns the measures
-    ``(E, E_bar, COV, stop)``.
+    ``(E, E_bar, COV, stop)``, ``stop`` by ``eps1`` and ``eps2`` (True without
+    ``eps1``).  With ``precision`` the study then asks :meth:`band_due`,
+    records a computed model band with :meth:`record_band` and stops when
+    :meth:`precision_met` holds too.
     """
 
-    eps1: float
+    eps1: float | None = None
     eps2: float = 0.1
     k1: int = 20
     k2: int = 20
     measure: str = "window"
+    precision: float | None = None
     changes: list = field(default_factory=list)
     mpms: list = field(default_factory=list)
     curves: list = field(default_factory=list)
+    band_pairs: list = field(default_factory=list)
+    band_widths: list = field(default_factory=list)
+    band_at: list = field(default_factory=list)
 
     def __post_init__(self):
         if self.measure not in ("window", "step"):
             raise ValueError(f"stop_measure must be 'window' or 'step', got {self.measure!r}")
+        if self.eps1 is None and self.precision is None:
+            raise ValueError("give eps1 (a limit in load units, the paper's rule) or precision "
+                             "(e.g. 0.10 to stop once the U95 of the MPM is within ±10 % of it)")
 
     @property
     def min_iterations(self) -> int:
@@ -93,5 +129,59 @@ class StoppingRule:
         window = np.asarray(self.mpms[-self.k2:])
         cov = float(np.std(window) / abs(np.mean(window))) if np.mean(window) != 0 else float("inf")
         j = len(self.mpms)
+        if self.eps1 is None:
+            return e, e_bar, cov, True
         stop = bool(j >= self.min_iterations and e_bar < self.eps1 and cov < self.eps2)
         return e, e_bar, cov, stop
+
+    # -- the precision target ------------------------------------------------
+    def _window_within(self, low: float, high: float) -> bool:
+        window = self.mpms[-self.k2:]
+        return len(self.mpms) >= self.k2 and all(low <= m <= high for m in window)
+
+    def precision_gate(self, mpm: float, sampling_band) -> bool:
+        """The cheap necessary conditions of :meth:`precision_met`: ``K2`` MPMs, the sampling
+        part of the band and the window within ``±precision × MPM`` (the U95 holds the
+        sampling part, and lies within that range when it meets the target)."""
+        if self.precision is None:
+            return False
+        reach = self.precision * abs(mpm)
+        return (relative_half_width(mpm, sampling_band) <= self.precision
+                and self._window_within(mpm - reach, mpm + reach))
+
+    def precision_met(self, mpm: float, band) -> bool:
+        """True when ``band`` (the U95) lies within ``±precision × MPM`` of ``mpm`` and the
+        last ``K2`` MPMs inside it."""
+        return (self.precision is not None
+                and relative_half_width(mpm, band) <= self.precision
+                and self._window_within(*band))
+
+    def band_due(self, n_pairs: int, gate: bool, floor: float) -> bool:
+        """Whether this iteration computes the model band (module docs); ``gate``:
+        :meth:`precision_gate` and the ``eps1`` rule hold; ``floor``: the sampling part's
+        relative half-width."""
+        if self.precision is None or n_pairs < FIRST_BAND_PAIRS:
+            return False
+        if not self.band_pairs or n_pairs >= BAND_GROWTH * self.band_pairs[-1]:
+            return True
+        if not gate or len(self.mpms) - self.band_at[-1] < BAND_EVERY:
+            return False
+        ahead = self.forecast(floor)
+        # the interval of a fit to a few widths is wide: its lower end alone would compute
+        # the band at nearly every such iteration; the growth schedule bounds a late forecast
+        return ahead is None or n_pairs >= max(ahead.low, ahead.n_pairs / BAND_GROWTH)
+
+    def record_band(self, n_pairs: int, width: float) -> None:
+        """Keep the relative half-width of the narrowing band part computed at ``n_pairs``."""
+        self.band_pairs.append(int(n_pairs))
+        self.band_widths.append(float(width))
+        self.band_at.append(len(self.mpms))
+
+    def forecast(self, floor: float = 0.0, extra=None) -> Forecast | None:
+        """:func:`~pas.strategies.forecast.forecast_pairs` of the recorded widths (and an
+        ``extra`` ``(n_pairs, width)`` measured since) against ``precision``."""
+        n, w = list(self.band_pairs), list(self.band_widths)
+        if extra is not None and (not n or extra[0] > n[-1]):
+            n.append(extra[0])
+            w.append(extra[1])
+        return forecast_pairs(n, w, self.precision, floor) if self.precision else None

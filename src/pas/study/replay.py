@@ -64,6 +64,8 @@ def attach(study, store) -> list[dict]:
             adopted = adopt_target(store, settings)
             changes = store.check(settings, study.lfset) + ([adopted] if adopted else [])
     study._replaying = True
+    # the model bands a precision study computed in its loop, reused rather than refitted
+    study._stored_bands = {r["row"]: r for r in store.history() if r.get("model_low") is not None}
     try:
         for n, op in enumerate(store.ops()):
             if op[0] == "ask":
@@ -75,7 +77,7 @@ def attach(study, store) -> list[dict]:
             else:
                 study.tell(op[1], op[2], error=op[3], replace=op[0] == "replace")
     finally:
-        study._replaying = False
+        study._replaying, study._stored_bands = False, {}
     stored = store.history()
     if stored and study.rows and stored[-1].get("mpm") is not None:
         replayed = study.rows[len(stored) - 1].get("mpm")

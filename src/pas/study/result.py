@@ -12,6 +12,7 @@ import pandas as pd
 
 from .._support.strict_json import json_data
 from ..stats.exceedance import quantile_exceedance, value_at_exceedance
+from . import precision, stop_text
 
 __all__ = ["ScreeningResult", "OUTPUT_FILES"]
 
@@ -65,6 +66,10 @@ class ScreeningResult:
         (:func:`pas.study.refit.refit`): ``target`` (the load analysed),
         ``chosen_for`` (the load the events were chosen for) and ``n_missing``
         (events lacking ``target``, counted failed); None for a study's own result.
+    forecast : dict or None
+        With a precision target: the further HF evaluations expected to reach it
+        (``forecast_hf``, ``forecast_hf_low``, ``forecast_hf_high``; NaN before
+        enough bands were measured), :attr:`forecast_hf`.
     """
 
     strategy: str
@@ -86,6 +91,7 @@ class ScreeningResult:
     family: str | None = None
     settings: dict = field(default_factory=dict)
     refit: dict | None = None
+    forecast: dict | None = None
 
     @classmethod
     def from_study(cls, study, *, model_band: bool = True) -> ScreeningResult:
@@ -93,6 +99,7 @@ class ScreeningResult:
         pairs, pred = study.pairs(), study.last
         nan = float("nan")
         mpm, band, sampling, model, family = nan, (nan, nan), (nan, nan), None, None
+        forecast, converged = None, study.converged
         distribution = distribution_frame([], [], [], [])
         pair_frame = pd.DataFrame({"lf": pairs.lf, "hf": pairs.hf})
         if pred is not None:
@@ -106,11 +113,9 @@ class ScreeningResult:
             mpm, band = pred.mpm, pred.mpm_band
             sampling, family = pred.mpm_band, pred.record.get("family")
             if model_band:
-                rng = np.random.default_rng([study.seed, study.n_told, 1])
-                mb = study.strategy.model_band(pairs, study.lfset, rng)
-                if mb is not None:
-                    model = (mb[0], mb[1])
-                    band = (min(band[0], mb[0]), max(band[1], mb[1]))
+                model = precision.model_band(study, pairs)
+                band = precision.union(band, model)
+            forecast = precision.final_forecast(study, pairs, pred, model if model_band else None)
             distribution = distribution_frame(pred.d, pred.h_mean, pred.h_low, pred.h_high,
                                               **pred.columns)
             clip = clipped_from(distribution, study.n_false_positive)
@@ -127,11 +132,12 @@ class ScreeningResult:
         result = cls(
             strategy=study.strategy.name, mpm=mpm, mpm_band=band, mpm_band_sampling=sampling,
             mpm_band_model=model, n_hf=study.n_hf, n_false_positive=study.n_false_positive,
-            n_failed=study.n_failed, converged=study.converged,
+            n_failed=study.n_failed,
+            converged=converged and precision.holds(study, mpm, band, model_band),
             history=study.history(), distribution=distribution, pairs=pair_frame,
             range_curves=pd.DataFrame.from_dict(study.curves, orient="index", columns=study.grid),
             p_exp=study.lfset.p_exp, n_waves=study.lfset.n_waves, seed=study.seed, family=family,
-            settings=study.settings())
+            settings=study.settings(), forecast=forecast)
         if model_band and pred is not None and study.store is not None and not study._replaying:
             from .stored_results import save_result
             save_result(study.store, study, result)
@@ -194,7 +200,7 @@ class ScreeningResult:
         ``unit`` (e.g. ``"kN"``) is appended to the MPM and its band.
         """
         fam = f", copula {self.family}" if self.family else ""
-        state = "converged" if self.converged else f"NOT converged{self._stop_gap()}"
+        state = stop_text.state(self)
         counts = f"{self.counts_text()}; {state}"
         counts += self._refit_note()
         if not np.isfinite(self.mpm):
@@ -246,23 +252,15 @@ class ScreeningResult:
         return (f"{self.n_evaluated} evaluated: {self.n_loads} loads, {self.n_no_impact} "
                 f"no impact, {failed}")
 
-    def _stop_gap(self) -> str:
-        """How far the last iteration was from stopping: its Ē and COV against ε1, ε2."""
-        settings = self.settings or {}
-        fitted = self.fitted if "mpm" in self.history else pd.DataFrame()
-        if fitted.empty or "eps1" not in settings or "E_bar" not in fitted:
-            return ""
-        last = fitted.iloc[-1]
-        if not np.isfinite(last["E_bar"]):
-            return ""
-        eps2 = settings.get("eps2", np.nan)
-        over = ([f"last Ē {last['E_bar']:.3g} against ε1 {settings['eps1']:.3g}"]
-                if not last["E_bar"] < settings["eps1"] else [])
-        over += [f"COV {last['COV']:.2g} against ε2 {eps2:.2g}"] if not last["COV"] < eps2 else []
-        if not over:
-            return (" (Ē and COV within ε1 and ε2: too few fitted iterations, or a "
-                    "predicted range short of 2·P_exp)")
-        return f" ({', '.join(over)})"
+    @property
+    def forecast_hf(self) -> stop_text.HFForecast | None:
+        """Further HF evaluations expected to reach the precision target: ``(expected, low,
+        high)``, 0 once reached, ``inf`` out of reach; None without a target or a forecast yet.
+
+        From a power law fitted to how the model band narrowed with the pairs
+        (:mod:`pas.strategies.forecast`); ``low``–``high`` is its 95 % interval.
+        """
+        return stop_text.hf_forecast(self.forecast)
 
     def __repr__(self) -> str:
         return f"<ScreeningResult {self.summary()}>"
@@ -279,6 +277,7 @@ class ScreeningResult:
             "p_exp": self.p_exp, "n_waves": self.n_waves, "seed": self.seed,
             "clipped_from": self.clipped_from, "settings": self.settings,
             **({} if self.refit is None else {"refit": self.refit}),
+            **({} if self.forecast is None else {"forecast": self.forecast}),
         }
 
     def save(self, out, *, inputs=None, lfset=None) -> dict:
@@ -334,6 +333,7 @@ class ScreeningResult:
             pairs=pd.read_csv(path / "pairs.csv"), range_curves=curves, p_exp=float(s["p_exp"]),
             n_waves=int(s["n_waves"]), seed=s.get("seed"), family=s.get("family"),
             settings=s.get("settings"), refit=s.get("refit"),
+            forecast=_forecast_read(s.get("forecast")),
         )
 
 
@@ -359,6 +359,16 @@ def read_summary(path) -> dict:
 
 def _range(band) -> str:
     return f"{band[0]:.4g}–{band[1]:.4g}"
+
+
+def _forecast_read(stored: dict | None) -> dict | None:
+    """A stored forecast, its nulls back as inf where it was out of reach, else NaN."""
+    if stored is None:
+        return None
+    gone = float("inf") if stored.get("out_of_reach") else float("nan")
+    return {**{k: gone if v is None else float(v) for k, v in stored.items()
+               if k.startswith("forecast_")}, "out_of_reach": bool(stored.get("out_of_reach")),
+            "sampling_halfwidth": _float_or_nan(stored.get("sampling_halfwidth"))}
 
 
 def _float_or_nan(x):

@@ -56,6 +56,8 @@ def log_key(c, scope: str = "") -> tuple[str, int]:
 
 def summary(study, result) -> dict:
     """What ``pas study status`` shows of ``study`` and its ``result``, as JSON values."""
+    from . import stop_text  # not at import: 'pas study tell' opens stores without it
+
     fitted = [r for r in study.rows if r.get("mpm") is not None]
     last = fitted[-1] if fitted else {}
 
@@ -74,8 +76,10 @@ def summary(study, result) -> dict:
         "family": result.family, "E_bar": _number(last.get("E_bar")),
         "COV": _number(last.get("COV")),
         "eps1": study.stopping.eps1, "eps2": study.stopping.eps2,
+        "precision": study.stopping.precision, "forecast": result.forecast,
+        "stop_text": stop_text.state(result) if fitted else None,
         "k1": study.stopping.k1, "k2": study.stopping.k2,
-        "converged": bool(study.converged), "finished": bool(study.finished),
+        "converged": bool(result.converged), "finished": bool(study.finished),
         "converged_at_n_hf": next((r["n_hf"] for r in fitted if r.get("stop")), None),
         "counts_text": result.counts_text(), "band_text": result.band_text() if fitted else None,
     }

@@ -19,7 +19,7 @@ from .._support.checks import SETTING_CHECKS, check_int, check_setting
 from ..strategies.base import Pairs, Prediction, Strategy
 from ..strategies.screening import Event, LFSet
 from ..strategies.stopping import StoppingRule, range_grid
-from . import loop
+from . import loop, precision
 from .answers import check_hf_answer, check_target, lacks_target
 from .corrections import Corrections
 from .factory import LF_SETTINGS, STUDY_SETTINGS, make_strategy, study_settings
@@ -40,10 +40,13 @@ class Study(Corrections):
         LF peaks over threshold (steps 1–4).
     strategy : Strategy
         :class:`~pas.strategies.pas.PAS` or :class:`~pas.strategies.as_.AS`.
-    eps1 : float
+    eps1 : float, optional
         Stopping limit on the mean distribution change, in load units.
+    precision : float, optional
+        Stop once the U95 of the MPM is within ``±precision × MPM`` and holds the last ``k2``
+        MPMs (e.g. 0.10; :mod:`pas.strategies.stopping`); this, ``eps1`` or both (both hold).
     eps2 : float, default 0.1
-        Stopping limit on the COV of the MPM.
+        Stopping limit on the COV of the MPM (with ``eps1``).
     k1, k2 : int, default 20
         Stopping windows (App. C).
     seed : int, optional
@@ -65,8 +68,6 @@ class Study(Corrections):
     target : str, optional
         With an oracle answering several named loads ``{name: load}``: the
         one to screen on (:func:`~pas.study.answers.check_hf_answer`).
-    precision : None
-        :class:`~pas.study.settings.Stopping`'s field; no rule in this version.
     legacy_md : bool, default False
         MD gaps between true positives only and the earlier reading of the
         threshold rule (pas 0.1): set for study stores written then, so they
@@ -79,24 +80,19 @@ class Study(Corrections):
         the study lives in memory only.
     """
 
-    def __init__(self, lfset: LFSet, strategy: Strategy, *, eps1, eps2=0.1, k1=20, k2=20,
+    def __init__(self, lfset: LFSet, strategy: Strategy, *, eps1=None, eps2=0.1, k1=20, k2=20,
                  seed=None, max_hf=None, max_failures=10, stop_on_convergence=True,
                  adaptive_threshold=True, threshold_step=0.02, fp_run=5, stop_measure="window",
                  legacy_md=False, target=None, precision=None, store=None):
         self.lfset = lfset
         self.strategy = strategy
-        if precision is not None:  # carried by Stopping; the rule is not in this version
-            raise ValueError("precision: this version of pas has no precision stopping rule; "
-                             "leave precision=None and stop on eps1/eps2")
         # the keyword settings above, by the rules the study file and 'pas study set' use
         given = {k: v for k, v in locals().items() if k in SETTING_CHECKS}
         ok = {k: check_setting(k, v) for k, v in given.items()}
         self.stopping = StoppingRule(eps1=ok["eps1"], eps2=ok["eps2"], k1=ok["k1"], k2=ok["k2"],
-                                     measure=ok["stop_measure"])
+                                     measure=ok["stop_measure"], precision=ok["precision"])
         seed = ok["seed"]
-        if seed is None:
-            seed = int(np.random.SeedSequence().entropy % (2**63))
-        self.seed = int(seed)
+        self.seed = int(np.random.SeedSequence().entropy % (2**63) if seed is None else seed)
         strategy.reset(self.seed)
         self.max_hf = None if max_hf is None else check_int(max_hf, "max_hf", strategy.n_initial)
         self.max_failures = ok["max_failures"]
@@ -336,6 +332,8 @@ class Study(Corrections):
         if self._range_short(pred):
             stop = False
             row["range_short"] = True
+        if self.stopping.precision is not None:  # may compute the model band
+            stop = precision.judge(self, pred, pairs, row, stop)
         self.curves[row["row"]] = h_range
         row.update(pred.record)
         row.update(mpm=pred.mpm, mpm_low=pred.mpm_band[0], mpm_high=pred.mpm_band[1],

@@ -1,0 +1,222 @@
+"""Benchmark: the precision stopping rule and its forecast on problems with known truths (issue 28).
+
+Per problem type, precision target (``--precisions``, default 0.05, 0.10,
+0.20) and budget (``--budgets``, default 160 and 400), over ``N`` data sets:
+the share of studies that reach the target within the budget; of those, the
+share whose U95 holds the truth and whose MPM is within ±10 % of it; the
+median HF count at the stop; and the forecast made halfway (in HF count) to
+where a study reached the target against the HF it then still needed
+(the share within a factor 1.5, and the median ratio).
+
+A run with budget 400 asks what the run with budget 160 asks up to 160 HF
+(the budget decides when a study stops, never which event it asks for), so
+each (problem, data set, target) is run once, to the largest budget, and the
+smaller budgets are read off it (``--max-budget-for`` lowers the largest for
+a target, to keep the measurement modest).
+
+Problems: known-truth types of :mod:`pas.validation.known_truth` (``--types``)
+and validation analogues (``--cases``, :func:`pas.validation.generate_case`
+with the data redrawn per set, ``--scale`` of the paper's duration).
+
+``--cost HF``: instead, the CPU time per HF of the loop on the problem of
+``pas.validation.timing_problem`` (that of ``benchmarks/timing/study_parts.py``) (stopping off, ``HF`` evaluations) with ``eps1``
+(no model band in the loop), with a target it never reaches (the growth
+schedule alone) and with one it reaches early (the schedule and the gated
+bands), and the model bands each computed.
+
+Run: ``python benchmarks/studies/precision_stop.py [N] [--types a,b] [--cases 1a,3a]
+[--precisions 0.05,0.1,0.2] [--budgets 160,400] [--csv runs.csv] [--markdown]
+[--from-csv runs.csv,...] [--cost 80]``
+"""
+
+from __future__ import annotations
+
+import argparse
+import time
+import warnings
+
+import numpy as np
+import pandas as pd
+
+import pas
+from pas.validation import timing_problem
+from pas.validation.known_truth import make_problem
+from pas.validation.known_truth_runs import TYPES as KNOWN_TRUTH
+
+TYPES = ("core-gumbel-t0.6", "core-gaussian-t0.75", "tail-gaussian-mix", "miss-low-gaussian-t0.7")
+CASES = ("1a", "3a")
+FACTOR = 1.5  # "within a factor 1.5" of the HF still needed
+
+
+def problems(types, cases, n, scale):
+    """``(problem name, data set, lf, oracle, run_pas arguments, truth)`` for every data set."""
+    for name in types:
+        for rep in range(1, n + 1):
+            p = make_problem(KNOWN_TRUTH[name], rep)
+            yield name, rep, p.lf, p.oracle(), {"n_waves": p.n_waves, "p_exp": p.p_exp,
+                                                "threshold": p.threshold}, p.truth_mpm
+    for case in cases:
+        from pas.validation import generate_case
+
+        for rep in range(1, n + 1):
+            d = generate_case(case, seed=rep, scale=scale)
+            kw = {k: v for k, v in d.run_kwargs().items() if k != "eps1"}
+            yield f"analogue-{case}", rep, d.lf, d.oracle(), kw, d.truth_mpm
+
+
+def halfway_forecast(fitted: pd.DataFrame, n_stop: int):
+    """``(forecast further HF, HF then still needed)`` from the last fit at or below half of
+    ``n_stop`` HF with a finite forecast, or ``(nan, nan)``."""
+    if "forecast_hf" not in fitted:
+        return np.nan, np.nan
+    early = fitted[(fitted["n_hf"] <= n_stop / 2) & np.isfinite(fitted["forecast_hf"])]
+    if early.empty:
+        return np.nan, np.nan
+    row = early.iloc[-1]
+    return float(row["forecast_hf"]), float(n_stop - row["n_hf"])
+
+
+def run_one(lf, oracle, kw, truth, *, seed, target, max_hf) -> dict:
+    """One study with ``precision=target``; what the table needs of it."""
+    t0 = time.perf_counter()
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        res = pas.run_pas(lf, oracle, **kw, precision=target, seed=seed, max_hf=max_hf)
+    lo, hi = res.mpm_band
+    forecast, needed = (halfway_forecast(res.fitted, res.n_hf) if res.converged
+                        else (np.nan, np.nan))
+    return {"precision": target, "max_hf": max_hf, "converged": bool(res.converged),
+            "n_hf": res.n_hf, "mpm": res.mpm, "truth": truth, "error": res.mpm / truth - 1,
+            "band_low": lo, "band_high": hi, "covered": bool(lo <= truth <= hi),
+            "halfwidth": max(hi - res.mpm, res.mpm - lo) / res.mpm,
+            "forecast_halfway": forecast, "needed_halfway": needed,
+            "n_bands": int(res.history.get("halfwidth", pd.Series(dtype=float)).notna().sum()),
+            "seconds": time.perf_counter() - t0}
+
+
+def table(runs: pd.DataFrame, budgets) -> pd.DataFrame:
+    """Per problem, target and budget: the shares the module docs list."""
+    out = []
+    for (name, target), g in runs.groupby(["problem", "precision"], sort=False):
+        for budget in budgets:
+            if g["max_hf"].max() < budget:
+                continue
+            reached = g[g["converged"] & (g["n_hf"] <= budget)]
+            ratio = reached["forecast_halfway"] / reached["needed_halfway"]
+            ok = ratio.dropna()
+            out.append({"problem": name, "precision": target, "budget": budget, "n": len(g),
+                        "reached": len(reached) / len(g),
+                        "covered": reached["covered"].mean() if len(reached) else np.nan,
+                        "within_10pct": ((reached["error"].abs() <= 0.10).mean()
+                                         if len(reached) else np.nan),
+                        "median_hf": reached["n_hf"].median() if len(reached) else np.nan,
+                        "short_halfwidth": (g.loc[~g.index.isin(reached.index), "halfwidth"]
+                                            .median() if len(reached) < len(g) else np.nan),
+                        "forecast_ok": (((ok <= FACTOR) & (ok >= 1 / FACTOR)).mean()
+                                        if len(ok) else np.nan),
+                        "n_forecasts": len(ok),
+                        "forecast_ratio": ok.median() if len(ok) else np.nan,
+                        "seconds": g["seconds"].median()})
+    return pd.DataFrame(out)
+
+
+def loop_cost(max_hf: int) -> pd.DataFrame:
+    """CPU seconds per HF of the loop (final band excluded) with and without the precision rule."""
+    lf, hf = timing_problem.scenario()
+    out = []
+    for name, stop in (("eps1 (no band in the loop)", {"eps1": 1e-9}),
+                       ("precision 0.01 (never reached)", {"precision": 0.01}),
+                       ("precision 0.5 (reached early)", {"precision": 0.5})):
+        study = pas.make_study("pas", lf, n_waves=timing_problem.N_W, p_exp=timing_problem.P_EXP, seed=1,
+                               max_hf=max_hf, stop_on_convergence=False, **stop)
+        t0 = timing_problem.cpu_seconds()
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            study.optimize(lambda ev: float(hf[ev.index]))
+        loop = timing_problem.cpu_seconds() - t0
+        bands = int(study.history().get("model_low", pd.Series(dtype=float)).notna().sum())
+        out.append({"loop": name, "cpu_s_per_hf": loop / max_hf, "model_bands": bands})
+    base = out[0]["cpu_s_per_hf"]
+    return pd.DataFrame([{**r, "ratio": r["cpu_s_per_hf"] / base} for r in out])
+
+
+def markdown(summary: pd.DataFrame) -> str:
+    """The summary table as Markdown, shares in per cent (the docs page's table)."""
+    cols = ["problem", "precision", "budget", "n", "reached", "covered", "within_10pct",
+            "median_hf", "short_halfwidth", "n_forecasts", "forecast_ok", "forecast_ratio"]
+    head = ["problem", "target", "budget", "studies", "reached", "U95 holds truth¹",
+            "within ±10 %¹", "median HF¹", "U95 of the others²", "halfway forecasts¹",
+            "within ×1.5", "median ratio"]
+
+    def cell(col, x):
+        if isinstance(x, float) and np.isnan(x):
+            return "–"
+        if col == "precision":
+            return f"±{100 * x:g} %"
+        if col in ("reached", "covered", "within_10pct", "forecast_ok"):
+            return f"{100 * x:.0f} %"
+        if col == "short_halfwidth":
+            return f"±{100 * x:.0f} %"
+        if col == "forecast_ratio":
+            return f"{x:.2f}"
+        return f"{x:.0f}" if isinstance(x, float) else str(x)
+
+    lines = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
+    for _, r in summary.iterrows():
+        lines.append("| " + " | ".join(cell(c, r[c]) for c in cols) + " |")
+    return "\n".join(lines)
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("n", nargs="?", type=int, default=3, help="data sets per problem")
+    ap.add_argument("--types", default=",".join(TYPES))
+    ap.add_argument("--cases", default=",".join(CASES))
+    ap.add_argument("--scale", type=float, default=0.5, help="analogue duration / the paper's")
+    ap.add_argument("--precisions", default="0.05,0.1,0.2")
+    ap.add_argument("--budgets", default="160,400")
+    ap.add_argument("--max-budget-for", default="0.05:160",
+                    help="target:budget pairs lowering the largest budget for a target")
+    ap.add_argument("--csv", default="precision_runs.csv")
+    ap.add_argument("--cost", type=int, metavar="HF", help="measure the loop's cost instead")
+    ap.add_argument("--from-csv", metavar="A.csv,B.csv",
+                    help="tabulate the runs of earlier --csv files instead of running")
+    ap.add_argument("--markdown", action="store_true", help="print the table as Markdown")
+    args = ap.parse_args(argv)
+    budgets = sorted(int(x) for x in args.budgets.split(","))
+    if args.from_csv:
+        runs = pd.concat([pd.read_csv(f) for f in args.from_csv.split(",")], ignore_index=True)
+        _print(table(runs, budgets), args.markdown)
+        return
+    if args.cost:
+        print(loop_cost(args.cost).to_string(index=False, float_format=lambda x: f"{x:.3g}"))
+        return
+    split = [s for s in args.types.split(",") if s], [s for s in args.cases.split(",") if s]
+    targets = [float(x) for x in args.precisions.split(",")]
+    cap = {float(k): int(v) for k, v in
+           (item.split(":") for item in args.max_budget_for.split(",") if item)}
+    rows = []
+    for name, rep, lf, oracle, kw, truth in problems(*split, args.n, args.scale):
+        for target in targets:
+            budget = min(budgets[-1], cap.get(target, budgets[-1]))
+            row = {"problem": name, "data_set": rep,
+                   **run_one(lf, oracle, kw, truth, seed=rep, target=target, max_hf=budget)}
+            rows.append(row)
+            print(f"{name} set {rep} ±{target:.0%}: {'reached' if row['converged'] else 'not'} "
+                  f"at {row['n_hf']} HF, error {row['error']:+.1%}, covered {row['covered']}, "
+                  f"forecast halfway {row['forecast_halfway']:.3g} vs {row['needed_halfway']:.3g}"
+                  f", {row['n_bands']} bands, {row['seconds']:.0f} s", flush=True)
+            pd.DataFrame(rows).to_csv(args.csv, index=False)
+    _print(table(pd.DataFrame(rows), budgets), args.markdown)
+
+
+def _print(summary: pd.DataFrame, as_markdown: bool) -> None:
+    if as_markdown:
+        print(markdown(summary))
+        return
+    with pd.option_context("display.width", 200, "display.max_columns", 20):
+        print(summary.to_string(index=False, float_format=lambda x: f"{x:.3g}"))
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,128 @@
+"""The precision target of a study: when to compute the model band, the stop, the forecast.
+
+:meth:`Study._iterate <pas.study.study.Study>` calls :func:`judge` after each
+fit of a study with ``precision``; the rule and its schedule of model bands are
+:class:`~pas.strategies.stopping.StoppingRule`'s, the forecast
+:mod:`pas.strategies.forecast`'s.  :func:`model_band` is the one place the
+strategy's model band is computed for a study, in the loop and for the
+result (:meth:`ScreeningResult.from_study
+<pas.study.result.ScreeningResult.from_study>`): it draws from
+``default_rng([seed, n_told, 1])`` and keeps the last band, so the result of
+a study that stopped on its band reports that band without refitting it.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..strategies.forecast import relative_half_width
+
+__all__ = ["model_band", "judge", "forecast_row", "union"]
+
+
+def _has_model_band(strategy) -> bool:
+    from ..strategies.base import Strategy
+
+    return (type(strategy).model_band is not Strategy.model_band
+            and getattr(strategy, "n_bootstrap", 1) > 0)
+
+
+def model_band(study, pairs, row: dict | None = None) -> tuple | None:
+    """``(low, high)`` of the strategy's model band for ``study`` as it stands, or None.
+
+    ``row``: the history row of the fit; replaying a store, the band that row
+    recorded is taken instead of refitted (:func:`pas.study.replay.attach`): the
+    same pairs and draws give the same band.
+    """
+    key = (study.n_told, len(study.rows), tuple(pairs.position), tuple(pairs.hf),
+           tuple(pairs.fp_position))
+    cached = getattr(study, "_model_band_cache", None)
+    if cached is not None and cached[0] == key:
+        return cached[1]
+    stored = getattr(study, "_stored_bands", {}).get(row["row"]) if row is not None else None
+    if (study._replaying and stored is not None and stored.get("event_index") == row["event_index"]
+            and stored.get("hf") == row["hf"]):
+        band = (float(stored["model_low"]), float(stored["model_high"]))
+    else:
+        rng = np.random.default_rng([study.seed, study.n_told, 1])
+        mb = study.strategy.model_band(pairs, study.lfset, rng)
+        band = None if mb is None else (float(mb[0]), float(mb[1]))
+    study._model_band_cache = (key, band)
+    return band
+
+
+def union(sampling, model) -> tuple:
+    """The U95: the sampling part, widened to hold the model part (when there is one)."""
+    if model is None:
+        return tuple(sampling)
+    return min(sampling[0], model[0]), max(sampling[1], model[1])
+
+
+def judge(study, pred, pairs, row: dict, paper_stop: bool) -> bool:
+    """Whether the precision rule stops the study at this fit; writes its columns to ``row``.
+
+    ``halfwidth_sampling`` every fit; where the model band was computed,
+    ``model_low``/``model_high`` and ``halfwidth`` (the U95's relative
+    half-width); and the forecast's further HF evaluations (:func:`forecast_row`).
+    """
+    rule = study.stopping
+    floor = relative_half_width(pred.mpm, pred.mpm_band)
+    row["halfwidth_sampling"] = floor
+    gate = paper_stop and rule.precision_gate(pred.mpm, pred.mpm_band)
+    has_model = _has_model_band(study.strategy)
+    if not has_model:  # the sampling part is the U95, and the part that narrows
+        floor = 0.0
+    met = False
+    if not has_model or rule.band_due(len(pairs), gate, floor):
+        model = model_band(study, pairs, row) if has_model else None
+        band = union(pred.mpm_band, model)
+        narrowing = (row["halfwidth_sampling"] if model is None
+                     else relative_half_width(pred.mpm, model))
+        rule.record_band(len(pairs), narrowing)
+        row.update(halfwidth=relative_half_width(pred.mpm, band))
+        if model is not None:
+            row.update(model_low=model[0], model_high=model[1])
+        met = gate and rule.precision_met(pred.mpm, band)
+    row.update(forecast_row(study, rule.forecast(floor), len(pairs)))
+    return met
+
+
+def forecast_row(study, forecast, n_pairs: int) -> dict:
+    """The further HF evaluations a forecast expects, as history columns (NaN when none).
+
+    Pairs are turned into evaluations at the study's ratio so far (false
+    positives cost an evaluation and give no pair).
+    """
+    nan = float("nan")
+    if forecast is None:
+        return {"forecast_hf": nan, "forecast_hf_low": nan, "forecast_hf_high": nan}
+    per_pair = study.n_hf / max(n_pairs, 1)
+    expected, low, high = forecast.further(n_pairs, per_pair)
+    return {"forecast_hf": expected, "forecast_hf_low": low, "forecast_hf_high": high}
+
+
+def final_forecast(study, pairs, pred, model) -> dict | None:
+    """The forecast of a result: the study's band widths and the final band's (``model``),
+    with ``out_of_reach`` saying whether an infinite forecast was meant (JSON keeps no inf)."""
+    rule = study.stopping
+    if rule.precision is None:
+        return None
+    sampling = relative_half_width(pred.mpm, pred.mpm_band)
+    has_model = _has_model_band(study.strategy)
+    extra = None
+    if model is not None:
+        extra = (len(pairs), relative_half_width(pred.mpm, model))
+    elif not has_model:
+        extra = (len(pairs), sampling)
+    forecast = rule.forecast(sampling if has_model else 0.0, extra)
+    row = forecast_row(study, forecast, len(pairs))
+    return {**row, "out_of_reach": forecast is not None and not np.isfinite(forecast.n_pairs),
+            "sampling_halfwidth": sampling if has_model else None}
+
+
+def holds(study, mpm: float, band, model_band: bool) -> bool:
+    """For the result of a study that stopped: whether its reported band still meets the
+    precision target (True without one, or without the model band: the stop was judged on
+    the U95).  Told results after the stop (the rest of a batch) can widen it."""
+    rule = study.stopping
+    return rule.precision is None or not model_band or rule.precision_met(mpm, band)

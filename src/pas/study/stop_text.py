@@ -1,0 +1,113 @@
+"""How far a result is from stopping, in words: the ``converged`` part of its summary.
+
+With ``eps1`` (the paper's rule) the last ``Ē`` and COV against their limits;
+with a precision target the U95's half-width in % of the MPM against the
+target, and the forecast of the further HF evaluations it needs beside what
+the budget allows (:mod:`pas.study.precision`).
+"""
+
+from __future__ import annotations
+
+import math
+from typing import NamedTuple
+
+import numpy as np
+import pandas as pd
+
+from ..strategies.forecast import relative_half_width
+
+__all__ = ["HFForecast", "hf_forecast", "state", "forecast_text", "percent"]
+
+
+class HFForecast(NamedTuple):
+    """Further HF evaluations expected to reach the precision target, with a 95 % interval."""
+
+    expected: float
+    low: float
+    high: float
+
+
+def hf_forecast(forecast: dict | None) -> HFForecast | None:
+    """The :class:`HFForecast` of a result's ``forecast`` dict, None when there is none."""
+    if not forecast or not np.isfinite(forecast.get("forecast_hf", math.nan)) and \
+            not forecast.get("out_of_reach"):
+        return None
+    return HFForecast(*(float(forecast[k]) for k in
+                        ("forecast_hf", "forecast_hf_low", "forecast_hf_high")))
+
+
+def percent(x: float) -> str:
+    """A fraction as a percentage for a summary line: ``0.1`` → ``'±10 %'``."""
+    return f"±{100 * x:.3g} %"
+
+
+def forecast_text(forecast: HFForecast | None, target: float, budget_left=None,
+                  floor: float | None = None) -> str:
+    """``"about 60 more HF for ±10 % (40–95); the budget allows 40"`` and its variants.
+
+    Examples
+    --------
+    >>> forecast_text(HFForecast(58.6, 40.2, 95.0), 0.1, 40)
+    'about 59 more HF for ±10 % (40–95); the budget allows 40'
+    >>> forecast_text(None, 0.1, 5)
+    'too few model bands yet to forecast the HF needed for ±10 %; the budget allows 5'
+    """
+    goal = percent(target)
+    if forecast is None:
+        text = f"too few model bands yet to forecast the HF needed for {goal}"
+    elif not math.isfinite(forecast.expected) and floor is not None and floor >= target:
+        text = (f"more HF will not reach {goal}: the sampling part alone (the z-draw band) is "
+                f"{percent(floor)}, and more pairs do not narrow it")
+    elif not math.isfinite(forecast.expected):
+        text = f"more HF are not expected to reach {goal}: the band has not narrowed with the pairs"
+    else:
+        high = "∞" if not math.isfinite(forecast.high) else f"{forecast.high:.0f}"
+        text = (f"about {forecast.expected:.0f} more HF for {goal} "
+                f"({forecast.low:.0f}–{high})")
+    if budget_left is not None:
+        text += f"; the budget allows {max(int(budget_left), 0)}"
+    return text
+
+
+def state(result) -> str:
+    """``converged`` / ``NOT converged (...)`` for :meth:`ScreeningResult.summary`."""
+    settings = result.settings or {}
+    target = settings.get("precision")
+    if target is None:
+        return "converged" if result.converged else f"NOT converged{paper_gap(result)}"
+    width = relative_half_width(result.mpm, result.mpm_band)
+    paper = " and the eps1 rule" if settings.get("eps1") is not None else ""
+    if result.converged:
+        return f"converged: U95 within {percent(target)} of the MPM ({percent(width)}){paper}"
+    if not math.isfinite(width):
+        return f"NOT converged (target {percent(target)} of the MPM)"
+    max_hf = settings.get("max_hf")
+    left = None if max_hf is None else max_hf - result.n_hf
+    return (f"NOT converged: U95 {percent(width)} of the MPM against the target "
+            f"{percent(target)}; "
+            f"{forecast_text(result.forecast_hf, target, left, _floor(result.forecast))}"
+            + (paper_gap(result) if paper else ""))
+
+
+def _floor(forecast: dict | None) -> float | None:
+    value = (forecast or {}).get("sampling_halfwidth")
+    return None if value is None or not math.isfinite(value) else float(value)
+
+
+def paper_gap(result) -> str:
+    """How far the last iteration was from stopping: its Ē and COV against ε1, ε2."""
+    settings = result.settings or {}
+    fitted = result.fitted if "mpm" in result.history else pd.DataFrame()
+    if fitted.empty or settings.get("eps1") is None or "E_bar" not in fitted:
+        return ""
+    last = fitted.iloc[-1]
+    if not np.isfinite(last["E_bar"]):
+        return ""
+    eps2 = settings.get("eps2", np.nan)
+    over = ([f"last Ē {last['E_bar']:.3g} against ε1 {settings['eps1']:.3g}"]
+            if not last["E_bar"] < settings["eps1"] else [])
+    over += [f"COV {last['COV']:.2g} against ε2 {eps2:.2g}"] if not last["COV"] < eps2 else []
+    if not over:
+        return (" (Ē and COV within ε1 and ε2: too few fitted iterations, or a "
+                "predicted range short of 2·P_exp)")
+    return f" ({', '.join(over)})"

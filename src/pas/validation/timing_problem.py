@@ -1,0 +1,32 @@
+"""The problem the timing benchmarks share (``benchmarks/timing/study_parts.py``,
+``benchmarks/studies/precision_stop.py --cost``): 15 000 Rayleigh LF peaks, ``n_w``
+16 364, a Gumbel (θ = 3) copula to a Weibull HF load, and the CPU clock they read."""
+
+from __future__ import annotations
+
+import resource
+
+import numpy as np
+
+__all__ = ["N", "N_W", "P_EXP", "scenario", "cpu_seconds"]
+
+N, N_W, P_EXP = 15000, 16364, 2.55e-3
+
+
+def scenario(n=N, seed=1):
+    """LF peaks and the oracle's HF value for each (a Gumbel copula, Weibull HF)."""
+    import pyvinecopulib as pv
+    from scipy import stats
+
+    rng = np.random.default_rng(seed)
+    lf = rng.rayleigh(2.5, n)
+    u = stats.rankdata(lf) / (n + 1.0)
+    cop = pv.Bicop(family=pv.BicopFamily.gumbel, parameters=np.array([[3.0]]))
+    v = cop.hinv1(np.column_stack([u, rng.uniform(size=n)]))
+    return lf, stats.weibull_min(1.5, scale=5.0).ppf(np.clip(v, 1e-12, 1 - 1e-12))
+
+
+def cpu_seconds():
+    """CPU seconds of this process and of its waited-for children (forked band workers)."""
+    return sum(resource.getrusage(who).ru_utime + resource.getrusage(who).ru_stime
+               for who in (resource.RUSAGE_SELF, resource.RUSAGE_CHILDREN))
