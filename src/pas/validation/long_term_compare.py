@@ -234,3 +234,65 @@ def compare(data, p_exceed, *, kept=None, methods=METHODS, seed=0, progress=None
                      f"{r['truth']:.4g}), {r['n_hf']} HF, {r['seconds']:.1f} s")
     return pd.DataFrame(rows)
 
+
+
+LONG_TERM_IDS = ("long-term-3", "long-term-2")
+"""The ids ``pas reproduce`` knows for the long-term analogues."""
+P_VALIDATED = 2e-6
+"""The per-encounter exceedance the long-term analogues are validated at."""
+KEPT_HOURS = 100
+"""One-hour realisations per kept cell at ``scale=1``; the other cells get the pilot's 4."""
+
+
+def long_term_data(analogue, *, seed=1, scale=1.0, p_exceed=P_VALIDATED, min_share=3e-3,
+                   cache=True, progress=None):
+    """The data set used by :func:`reproduce_long_term` and the benchmark, and the cell plan."""
+    from .long_term import generate_long_term, plan_cells
+
+    plan = plan_cells(analogue, p_exceed, min_share=min_share, cache=cache)
+    h = max(4, round(KEPT_HOURS * float(scale)))
+    pilot = plan.attrs["pilot_hours"]
+    hours = {n: (h if k else pilot) for n, k in zip(plan["name"], plan["kept"])}
+    data = generate_long_term(analogue, seed=seed, hours=hours, cells=plan, cache=cache,
+                              progress=progress)
+    return data, plan
+
+
+def reproduce_long_term(case_id, *, seed=1, scale=1.0, p_exceed=P_VALIDATED, out=None,
+                        methods=METHODS, cache=True, progress=None):
+    """``pas reproduce long-term-3`` / ``long-term-2``: the four methods on one data set.
+
+    Returns
+    -------
+    dict
+        ``table`` (one row per method), ``plan`` (the scatter cells, kept or
+        not, with their estimated shares), ``data`` and ``files``.
+    """
+    if case_id not in LONG_TERM_IDS:
+        raise ValueError(f"unknown long-term case {case_id!r}; choose from "
+                         f"{', '.join(LONG_TERM_IDS)}")
+    data, plan = long_term_data(case_id[-1], seed=seed, scale=scale, p_exceed=p_exceed,
+                                cache=cache)
+    kept = list(plan["name"][plan["kept"]])
+    table = compare(data, p_exceed, kept=kept, methods=methods, seed=0, progress=progress)
+    table.insert(0, "case", case_id)
+    files = []
+    if out is not None:
+        from pathlib import Path
+        out = Path(out)
+        out.mkdir(parents=True, exist_ok=True)
+        table.to_csv(out / f"{case_id}.csv", index=False)
+        plan.to_csv(out / f"{case_id}_cells.csv", index=False)
+        files += [out / f"{case_id}.csv", out / f"{case_id}_cells.csv"]
+    return {"table": table, "plan": plan, "data": data, "files": files}
+
+
+def format_long_term(table):
+    """The comparison table as aligned text."""
+    t = table[["case", "method", "truth", "value", "error", "band_low", "band_high", "covered",
+               "n_hf", "seconds"]].copy()
+    for c in ("truth", "value", "band_low", "band_high"):
+        t[c] = t[c].map(lambda v: f"{v:.4g}")
+    t["error"] = t["error"].map(lambda v: f"{100 * v:+.1f}%" if np.isfinite(v) else "n/a")
+    t["seconds"] = t["seconds"].map(lambda v: f"{v:.1f}")
+    return t.to_string(index=False)
