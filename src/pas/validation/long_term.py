@@ -270,6 +270,8 @@ def value_at_exceedance_long_term(p, weights, hf_by_state):
     if p < cum[0]:
         return float("nan")
     k = int(np.searchsorted(cum, p))
+    if k == 0:
+        return float(vals[0])
     if k >= vals.size:
         return float(vals[-1])
     if vals[k] <= 0.0 and vals[k - 1] > 0.0 and p > cum[k - 1]:
