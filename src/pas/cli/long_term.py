@@ -180,7 +180,7 @@ def run(args) -> int:
     except (ValueError, FileNotFoundError) as exc:
         raise type(exc)(f"--oracle: {exc}") from None
     try:
-        from .. import run_long_term
+        from ..longterm import run_long_term
     except (ImportError, AttributeError):
         print("pas long-term: error: pas.run_long_term is not part of this build (issue 29); "
               "update pas", file=sys.stderr)

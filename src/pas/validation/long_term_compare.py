@@ -182,7 +182,7 @@ def _lf_only(data, p_exceed):
 
 def _pas_long_term(data, p_exceed, seed, max_hf):
     try:
-        from .. import run_long_term
+        from ..longterm import run_long_term
     except (ImportError, AttributeError):
         return np.nan, (np.nan, np.nan), 0, {"note": "pas.run_long_term not available in this "
                                              "build (issue 29, helper h5): not run"}
