@@ -100,20 +100,37 @@ def _table_oracle(hf):
 
 def _uniform(data, kept, p_exceed, seed, max_hf):
     w, tot = data.weights, float(sum(data.weights.values()))
-    mean, low, high, n_hf = {}, {}, {}, 0
+    mean, low, high, n_hf, skipped = {}, {}, {}, 0, []
     for s in kept:
         n = int(data.sea_states.set_index("name").loc[s, "n_waves"])
         p_s = float(np.clip(p_exceed * tot / w[s], 2.0 / n, 0.1))
-        res = run_pas(data.lf[s], _table_oracle(data.hf[s]), n_waves=n, p_exp=p_s, seed=seed, max_hf=max_hf,
-                      ids=list(data.ids[s]), threshold=_case(data).threshold,
-                      **_pas_kwargs(data))
+        res, note = _cell_study(data, s, n, p_s, seed, max_hf)
+        if res is None:
+            skipped.append(f"{s} ({note})")
+            continue
         dist = res.distribution
         d = dist["exceedance_probability"].to_numpy()
         mean[s], low[s], high[s] = ((d, dist[c].to_numpy()) for c in ("h_mean", "h_low", "h_high"))
         n_hf += res.n_hf
     value = combine_curves(p_exceed, w, mean)
     band = (combine_curves(p_exceed, w, low), combine_curves(p_exceed, w, high))
-    return value, band, n_hf, {"studies": len(kept)}
+    info = {"studies": len(mean)}
+    if skipped:
+        info["no study"] = ", ".join(skipped)
+    return value, band, n_hf, info
+
+
+def _cell_study(data, s, n, p_s, seed, max_hf):
+    """PAS on one cell; without the case's LF threshold when too few peaks exceed it."""
+    note = None
+    for threshold in dict.fromkeys((_case(data).threshold, None)):
+        try:
+            return run_pas(data.lf[s], _table_oracle(data.hf[s]), n_waves=n, p_exp=p_s,
+                           seed=seed, max_hf=max_hf, ids=list(data.ids[s]),
+                           threshold=threshold, **_pas_kwargs(data)), None
+        except ValueError as exc:
+            note = str(exc).split(";")[0]
+    return None, note
 
 
 def iform_contour(beta, *, model=None, n=12):
