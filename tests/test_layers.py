@@ -30,6 +30,7 @@ LAYERS = (
     ("models", {"models"}),
     ("strategies", {"strategies"}),
     ("study", {"study"}),
+    ("longterm", {"longterm"}),
     ("waves", {"waves"}),
     ("runners", {"api", "design_waves"}),
     ("records", {"records"}),

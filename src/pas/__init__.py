@@ -32,6 +32,7 @@ _EXPORTS = {
     "CommandOracle": "study.oracles", "OracleFailureLimit": "study.oracles",
     "TableOracle": "study.oracles", "ScreeningResult": "study.result", "Study": "study.study",
     "StudyStore": "study.store", "refit": "study.refit",
+    "run_long_term": "longterm.runner", "LongTermResult": "longterm.result",
 }
 
 __all__ = [
@@ -39,6 +40,7 @@ __all__ = [
     "PAS", "m1", "m2", "m3", "metrics", "p_exp_from_duration", "n_waves_from_duration",
     "mean_period_from_peak_period", "encounter_period", "quantile_exceedance", "__version__",
     "run_as", "AS", "StudyStore", "TableOracle", "CommandOracle", "run_rcw", "refit",
+    "run_long_term", "LongTermResult",
 ]
 
 

@@ -45,6 +45,9 @@ class Event:
         Its LF exceedance probability ``k / n_w``.
     meta : dict
         Whatever the user attached to the event (seed, time window, ...).
+    sea_state : str, optional
+        The sea state the event belongs to in a long-term analysis
+        (:func:`pas.run_long_term`); None for a single-sea-state study.
     """
 
     index: int
@@ -52,6 +55,7 @@ class Event:
     lf: float
     d: float
     meta: dict = field(default_factory=dict, compare=False, repr=False)
+    sea_state: str | None = None
 
 
 def peaks_over_threshold(lf, threshold=None) -> np.ndarray:
@@ -145,10 +149,12 @@ class LFSet:
         Per-event metadata passed to the oracle on :class:`Event`.
     min_peaks : int, default 4
         Fewest peaks above the threshold PAS can work with.
+    sea_state : str, optional
+        Name of the sea state, carried on every :class:`Event` (long-term analysis).
     """
 
     def __init__(self, lf_peaks, *, n_waves, p_exp, threshold=None, ids=None, meta=None,
-                 min_peaks: int = 4):
+                 min_peaks: int = 4, sea_state: str | None = None):
         lf_all = check_peaks(lf_peaks, "lf_peaks")
         self.n_waves = check_positive_int(n_waves, "n_waves")
         self.p_exp = check_open_unit(p_exp, "p_exp")
@@ -183,6 +189,7 @@ class LFSet:
             )
         self._ids = ids
         self._meta = meta
+        self.sea_state = sea_state
 
     def event(self, position: int) -> Event:
         """The :class:`Event` at ``position`` in the descending order."""
@@ -193,6 +200,7 @@ class LFSet:
             lf=float(self.lf[position]),
             d=float(self.d[position]),
             meta=dict(self._meta[i]) if self._meta is not None else {},
+            sea_state=self.sea_state,
         )
 
     def position_of(self, index: int) -> int:

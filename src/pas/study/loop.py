@@ -39,7 +39,7 @@ from .loads import answers_from_loads, record_loads
 from .oracles import OracleFailureLimit, call_oracle_loads, check_oracle
 from .state import EventState
 
-__all__ = ["optimize", "PENDING_POLICIES"]
+__all__ = ["optimize", "execute", "failure_limit", "PENDING_POLICIES"]
 
 PENDING_POLICIES = ("resubmit", "wait")
 
@@ -245,16 +245,23 @@ class _Loop:
 
     def _execute(self, events):
         """Yield ``(event, (value, error, loads))`` as the oracle calls finish."""
-        target = self.study.target
-        if self.executor is None:
-            for ev in events:
-                yield ev, call_oracle_loads(self.oracle, ev, target)
-            return
-        futures = {self.executor.submit(call_oracle_loads, self.oracle, ev, target): ev
-                   for ev in events}
-        for fut in as_completed(futures):
-            try:
-                out = fut.result()
-            except Exception as exc:  # the worker died or the call could not be shipped
-                out = (None, f"executor: {type(exc).__name__}: {exc}", None)
-            yield futures[fut], out
+        yield from execute(self.oracle, events, self.study.target, self.executor)
+
+
+def execute(oracle, events, target=None, executor: Executor | None = None):
+    """Yield ``(event, (value, error, loads))`` as the oracle calls of ``events`` finish.
+
+    In this process one after another without ``executor``, else all
+    submitted at once; a call the executor could not run is a failure.
+    """
+    if executor is None:
+        for ev in events:
+            yield ev, call_oracle_loads(oracle, ev, target)
+        return
+    futures = {executor.submit(call_oracle_loads, oracle, ev, target): ev for ev in events}
+    for fut in as_completed(futures):
+        try:
+            out = fut.result()
+        except Exception as exc:  # the worker died or the call could not be shipped
+            out = (None, f"executor: {type(exc).__name__}: {exc}", None)
+        yield futures[fut], out

@@ -87,6 +87,11 @@ class TableOracle:
         load: panels, sensors, forces) make the oracle answer ``{column:
         value}`` (a study then screens on its ``target``; ``pas run --oracle
         table:FILE:ID:COL1,COL2``).
+    sea_state_column : str, default "sea_state"
+        When the table has this column, rows are keyed by sea state and event
+        id, and an event is looked up by ``(event.sea_state, event.id)`` (a
+        long-term analysis, :func:`pas.run_long_term`, where ids may repeat
+        across sea states); an event of no sea state by its id alone.
 
     Notes
     -----
@@ -103,7 +108,8 @@ class TableOracle:
     1.5
     """
 
-    def __init__(self, table, *, id_column: str = "id", value_column: str = "hf"):
+    def __init__(self, table, *, id_column: str = "id", value_column: str = "hf",
+                 sea_state_column: str = "sea_state"):
         import pandas as pd
 
         if isinstance(table, pd.DataFrame):
@@ -120,20 +126,35 @@ class TableOracle:
                 raise ValueError(f"{field}: column {c!r} is missing from {name} "
                                  f"(columns: {', '.join(map(str, df.columns))})")
         keys = df[id_column].astype(str)
+        self.by_sea_state = sea_state_column in df.columns and sea_state_column != id_column
+        if self.by_sea_state:
+            keys = df[sea_state_column].astype(str) + "\x1f" + keys
         dup = keys[keys.duplicated()]
         if len(dup):
-            raise ValueError(f"{id_column}: event id {dup.iloc[0]!r} appears more than once in {name}")
+            where = " (within its sea state)" if self.by_sea_state else ""
+            raise ValueError(f"{id_column}: event id {dup.iloc[0].split(chr(31))[-1]!r} appears "
+                             f"more than once{where} in {name}")
         values = [pd.to_numeric(df[c], errors="coerce").to_numpy(dtype=float).tolist()
                   for c in columns]
         self.name = name
         self.columns = columns if named else None
         self.values = dict(zip(keys, zip(*values)))
+        if self.by_sea_state:  # a single-sea-state study looks up its ids alone, if unique
+            plain = df[id_column].astype(str)
+            once = set(plain[~plain.duplicated(keep=False)])
+            self.values.update({k.split("\x1f", 1)[1]: v for k, v in self.values.items()
+                                if k.split("\x1f", 1)[1] in once})
 
     def __call__(self, event):
         key = str(event.id)
-        if key not in self.values:
+        lookup = key
+        sea_state = getattr(event, "sea_state", None)
+        if self.by_sea_state and sea_state is not None:
+            lookup = f"{sea_state}\x1f{key}"
+            key = f"{key} of sea state {sea_state}"
+        if lookup not in self.values:
             raise OracleError(f"event {key} is not in {self.name}")
-        row = self.values[key]
+        row = self.values[lookup]
         if self.columns is not None:
             return dict(zip(self.columns, row))
         if not math.isfinite(row[0]):

@@ -1,0 +1,170 @@
+"""The long-term exceedance per wave encounter from the short-term distributions of the sea states.
+
+``Q(x) = Σ_s p_s ν_s Q_s(x) / Σ_s p_s ν_s`` (``p_s`` the share of time,
+``ν_s`` the encounter rate), the sum over the scatter diagram by which
+class rules build the long-term distribution of a response; the design
+value solves ``Q(x) = p_exceed``.
+
+Each sea state's ``Q_s`` is the PAS distribution of its study (the mean
+distribution and the ends of its U95 band, :class:`PASCurve`), read as an
+exceedance per wave encounter on ``ln d``.  PAS predicts ``Q_s`` between the
+largest LF peak (``d = 1/n_w``) and the lowest conditioning peak (``d_end``).
+Outside that range:
+
+above the record (``d < 1/n_w``)
+    a Weibull tail, a straight line on ``ln(-ln Q)`` against ``ln x``
+    through the distribution at ``1/n_w`` and ``10/n_w`` (exact for a
+    Rayleigh or Weibull short-term distribution); where the record cannot
+    give two points, nothing is exceeded there (``Q_s = 0``);
+below the range (``d > d_end``)
+    the sea state's own LF exceedance at ``x`` scaled by the ratio HF/LF at
+    ``d_end``, continuous there: the LF-only proxy.  It is used at a level
+    ``x`` only when ``Q_s(x) > d_end``, and ``Q_s ≥ d_end`` holds whatever the
+    proxy says, so the long-term value is bounded from both sides whatever
+    the extension: :func:`extension_bounds` computes the value with the
+    proxy replaced by ``d_end`` (its lower bound) and by 1 (its upper bound).
+    A sea state whose conditioning set reaches below the design level (by
+    default every LF peak is in the pool, and MD samples down to the lowest)
+    never reads the proxy at the value, and the bounds then coincide with
+    the value.
+
+Sea states without a fitted PAS model (no HF events, or too few) use the
+LF-only proxy throughout (:class:`ProxyCurve`): their LF exceedance at
+``x / r``, with ``r`` the HF/LF ratio at the design level of the fitted sea
+states (1 before any fit, when the analysis is the LF-only one).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+__all__ = ["PASCurve", "ProxyCurve", "long_term_exceedance", "level_at", "extension_bounds",
+           "TAIL_RANK"]
+
+TAIL_RANK = 10
+"""The rank whose distribution value, with the top one's, sets the tail above the record."""
+
+
+class PASCurve:
+    """One sea state's HF exceedance per encounter from a PAS distribution ``(d, h)``.
+
+    Parameters
+    ----------
+    d : array, ascending
+        Exceedance probabilities per encounter (``k / n_w``).
+    h : array
+        The distribution (mean or a band end) at ``d``, non-increasing.
+    state : SeaState
+        For the LF-only proxy below the range.
+    lf_end : float
+        The LF peak at ``d[-1]`` (the lowest conditioning peak).
+    below : {"proxy", "low", "high"}
+        Below the range: the proxy, or its bounds ``d[-1]`` and 1.
+    """
+
+    def __init__(self, d, h, state, lf_end, below="proxy"):
+        self.d = np.asarray(d, dtype=float)
+        self.h = np.minimum.accumulate(np.asarray(h, dtype=float))
+        self.state, self.lf_end, self.below = state, float(lf_end), below
+        self.tail = _weibull_tail(self.d, self.h)
+
+    @property
+    def h_end(self) -> float:
+        """The lowest value PAS predicts (at ``d[-1]``)."""
+        return float(self.h[-1])
+
+    def with_below(self, below: str) -> PASCurve:
+        """This curve with another rule below the range (:func:`extension_bounds`)."""
+        return PASCurve(self.d, self.h, self.state, self.lf_end, below)
+
+    def exceedance(self, x) -> np.ndarray:
+        """``Q_s(x)``, the exceedance probability per wave encounter at levels ``x``."""
+        x = np.atleast_1d(np.asarray(x, dtype=float))
+        inside = np.exp(np.interp(x, self.h[::-1], np.log(self.d[::-1])))
+        q = np.where(x > self.h[0], self._above(x), inside)
+        under = x < self.h[-1]
+        if under.any():
+            q[under] = self._under(x[under])
+        return q
+
+    def _above(self, x):
+        if self.tail is None:
+            return np.zeros_like(x)
+        a, b = self.tail
+        with np.errstate(divide="ignore"):
+            return np.exp(-np.exp(a + b * np.log(np.maximum(x, 1e-300))))
+
+    def _under(self, x):
+        if self.below == "low":
+            return np.full_like(x, self.d[-1])
+        if self.below == "high" or self.h_end <= 0 or self.lf_end <= 0:
+            return np.full_like(x, 1.0 if self.below == "high" else self.d[-1])
+        return np.maximum(self.state.lf_exceedance(x * self.lf_end / self.h_end), self.d[-1])
+
+
+def _weibull_tail(d, h):
+    """``(a, b)`` of ``ln(-ln Q) = a + b ln x`` through ranks 1 and :data:`TAIL_RANK`, or None."""
+    if d.size < TAIL_RANK:
+        return None
+    x1, x2 = h[0], h[TAIL_RANK - 1]
+    if not (x2 > 0 and x1 > x2):
+        return None
+    y1, y2 = np.log(-np.log(d[0])), np.log(-np.log(d[TAIL_RANK - 1]))
+    b = (y1 - y2) / (np.log(x1) - np.log(x2))
+    return (float(y1 - b * np.log(x1)), float(b)) if b > 0 else None
+
+
+class ProxyCurve:
+    """A sea state without a PAS model: its LF exceedance at ``x / ratio`` (the LF-only proxy)."""
+
+    def __init__(self, state, ratio: float):
+        self.state, self.ratio = state, float(ratio)
+
+    def exceedance(self, x) -> np.ndarray:
+        return self.state.lf_exceedance(np.atleast_1d(np.asarray(x, dtype=float)) / self.ratio)
+
+    def with_below(self, below: str) -> ProxyCurve:
+        return self
+
+
+def long_term_exceedance(curves, weights, x) -> np.ndarray:
+    """``Q(x) = Σ_s w_s Q_s(x)`` with ``w_s = p_s ν_s / Σ p ν``."""
+    x = np.atleast_1d(np.asarray(x, dtype=float))
+    return sum(w * c.exceedance(x) for c, w in zip(curves, weights) if w > 0)
+
+
+def level_at(curves, weights, p: float, start: float) -> float:
+    """The level ``x`` where the long-term exceedance falls to ``p`` (bisection).
+
+    ``start`` is a level of the right order (e.g. the largest LF peak); the
+    bracket is widened from it until it holds the level.  ``nan`` when no
+    level reaches ``p`` (every sea state's exceedance stays below it).
+    """
+    def q(v):
+        return float(long_term_exceedance(curves, weights, v)[0])
+
+    lo = hi = max(abs(float(start)), 1e-12)
+    for _ in range(200):
+        if q(lo) >= p:
+            break
+        lo /= 2
+    else:
+        return float("nan")
+    for _ in range(200):
+        if q(hi) < p:
+            break
+        hi *= 2
+    else:
+        return float("inf")
+    for _ in range(100):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if q(mid) >= p else (lo, mid)
+        if hi - lo <= 1e-12 * hi:
+            break
+    return 0.5 * (lo + hi)
+
+
+def extension_bounds(curves, weights, p: float, start: float) -> tuple[float, float]:
+    """The value with the proxy below each PAS range replaced by its lower and upper bound."""
+    return tuple(level_at([c.with_below(b) for c in curves], weights, p, start)
+                 for b in ("low", "high"))

@@ -1,0 +1,263 @@
+"""Running the long-term analysis: one PAS study per sea state, one HF budget, one store.
+
+Each sea state that can reach the design level gets an ordinary
+:class:`~pas.study.study.Study`, driven through its ask/tell interface, so
+its failures, budget and crash safety are a study's; the HF events go where
+:mod:`pas.longterm.allocation` says.  With ``study=PATH`` every sea state's
+study lives in the one store file, scoped by the sea-state name
+(:mod:`pas.study.schema`, version 3), next to the analysis's own settings
+(scope ``""``, key ``longterm``): a killed run resumes where it stopped,
+asks nothing twice and loses no result.
+"""
+
+from __future__ import annotations
+
+import copy
+
+import numpy as np
+
+from ..strategies.screening import LFSet
+from ..study.loop import execute, failure_limit
+from ..study.oracles import OracleFailureLimit, check_oracle
+from ..study.schema import StoreError, dumps
+from ..study.store import StudyStore
+from ..study.study import Study
+from .allocation import curves_of, gains, proxy_ratios, reaches
+from .combination import ProxyCurve, level_at
+from .inputs import design_exceedance, encounter_weights, read_sea_states
+from .result import LongTermResult
+
+__all__ = ["run_long_term", "LONG_TERM_KEY", "DEFAULT_LONG_TERM_MAX_HF"]
+
+LONG_TERM_KEY = "longterm"
+DEFAULT_LONG_TERM_MAX_HF = 400
+"""Default HF budget of the whole analysis (the goal issue 29 sets for a green-water load)."""
+
+
+def run_long_term(sea_states, lf_peaks, oracle, *, p_exceed=None, return_period=None,
+                  hours_per_year=8766.0, max_hf=DEFAULT_LONG_TERM_MAX_HF, seed=None, study=None,
+                  strategy=None, eps1=None, study_settings=None, batch_size=1, executor=None,
+                  callback=None, model_band=True) -> LongTermResult:
+    """The long-term design value of an HF load over a scatter diagram, one HF budget shared.
+
+    Parameters
+    ----------
+    sea_states : pandas.DataFrame
+        One row per sea state: ``name``, ``probability`` (share of time,
+        summing to 1), ``n_waves`` (wave encounters of its LF run),
+        ``duration`` (s, of its LF run), optionally ``threshold`` (its LF
+        threshold) and any descriptive columns (``hs``, ``tp`` ...).
+    lf_peaks : mapping
+        ``name -> array`` of the LF indicator peaks of that sea state's run,
+        one per wave event, or ``name -> DataFrame`` with ``lf``, ``id`` and
+        metadata columns (handed to the oracle on ``event.meta``).
+    oracle : callable
+        ``oracle(event) -> float``, one for all sea states; ``event.sea_state``
+        names the row, ``event.index`` the position in its array.
+    p_exceed : float, optional
+        Long-term exceedance probability per wave encounter of the design value.
+    return_period : float, optional
+        Instead of ``p_exceed``: years; ``p_exceed = 1 / (return_period ×
+        encounters per year)``.
+    hours_per_year : float, default 8766
+        Hours at sea per year (with ``return_period``).
+    max_hf : int, default 400
+        HF evaluations of all sea states together.
+    seed : int, optional
+        Seeds every sea state's study; drawn and stored when None.
+    study : str or os.PathLike, optional
+        The one store file of the analysis: created when missing, else
+        checked against this call and continued.
+    strategy : Strategy, optional
+        Each sea state's strategy, copied per sea state (default
+        :class:`~pas.strategies.pas.PAS` with its defaults).
+    eps1 : float, optional
+        Stopping limit of each sea state's study (load units, as for
+        :func:`pas.run_pas`): a study that converged gets no more events.
+        None: the studies do not stop by themselves; the budget and the
+        allocation decide.
+    study_settings : dict, optional
+        Further settings of every :class:`~pas.study.study.Study` (``eps2``,
+        ``k1``, ``max_failures``, ``adaptive_threshold`` ...).
+    batch_size : int, default 1
+        Sea states served per round; their HF runs go to ``executor`` together.
+    executor : concurrent.futures.Executor, optional
+        Runs the oracle calls of a round concurrently (e.g. a Dask
+        ``distributed.Client(...).get_executor()``): sea states in parallel.
+    callback : callable, optional
+        ``callback(name, study, row)`` after every told HF result.
+    model_band : bool, default True
+        Add each fitted study's model band to the result's band.
+
+    Returns
+    -------
+    LongTermResult
+    """
+    check_oracle(oracle)
+    states = read_sea_states(sea_states, lf_peaks)
+    p = design_exceedance(states, p_exceed, return_period, hours_per_year)
+    weights = encounter_weights(states)
+    batch_size = int(batch_size)
+    if batch_size < 1:
+        raise ValueError(f"batch_size must be a positive integer, got {batch_size}")
+    top = max(float(s.lf.max()) for s in states)
+    lf_value = level_at([ProxyCurve(s, 1.0) for s in states], weights, p, top)
+    settings = {"p_exceed": p, "max_hf": max_hf, "eps1": eps1,
+                "sea_states": [[s.name, s.probability, s.n_waves, s.duration] for s in states]}
+    root, seed = _open_root(study, settings, seed)
+    strategy = _default_strategy() if strategy is None else strategy
+    studies = []
+    for i, s in enumerate(states):
+        q_lf = reaches(s, lf_value) if np.isfinite(lf_value) else 0.0
+        studies.append(None if q_lf <= 0 else _make_study(
+            s, i, q_lf, strategy, seed, max_hf, eps1, study_settings or {}, study))
+    run = _Run(states, weights, studies, oracle, executor, callback, max_hf)
+    try:
+        run.left_over()
+        run.allocate(p, batch_size, top)
+    finally:
+        if root is not None:
+            root.close()
+    return LongTermResult.build(states, weights, studies, p, lf_value, seed, model_band, top)
+
+
+def _default_strategy():
+    from ..strategies.pas import PAS
+
+    return PAS()
+
+
+def _open_root(path, settings, seed):
+    """The store's own scope with the analysis's settings (checked when it exists), and the seed."""
+    if path is None:
+        return None, _seed(seed)
+    root = StudyStore(path, scope="")
+    stored = root.get(LONG_TERM_KEY)
+    if stored is None:
+        seed = _seed(seed)
+        root.put(LONG_TERM_KEY, {**settings, "seed": seed})
+        return root, seed
+    for key in sorted(settings):
+        old, new = stored.get(key), settings[key]
+        if key == "max_hf" or dumps(old) == dumps(new):
+            continue
+        root.close()
+        raise StoreError(f"{key} differs from the long-term store {path}: it was created with "
+                         f"{key}={old!r}, this call has {key}={new!r}")
+    if seed is not None and int(seed) != stored["seed"]:
+        root.close()
+        raise StoreError(f"seed differs from the long-term store {path}: it was created with "
+                         f"seed={stored['seed']}, this call has seed={seed}")
+    if stored.get("max_hf") != settings["max_hf"]:
+        root.put(LONG_TERM_KEY, {**stored, "max_hf": settings["max_hf"]})
+    return root, int(stored["seed"])
+
+
+def _seed(seed) -> int:
+    if seed is None:
+        return int(np.random.SeedSequence().entropy % (2**63))
+    return int(seed)
+
+
+def _make_study(state, i, q_lf, strategy, seed, max_hf, eps1, settings, path) -> Study:
+    """The sea state's study, at ``p_exp`` = its LF exceedance at the LF-only long-term level."""
+    n_initial = strategy.n_initial
+    mask = state.lf > state.threshold if state.threshold is not None else slice(None)
+    p_exp = min(q_lf, np.asarray(state.lf)[mask].size / state.n_waves)
+    lfset = LFSet(state.lf, n_waves=state.n_waves, p_exp=p_exp, threshold=state.threshold,
+                  ids=state.ids, meta=state.meta, min_peaks=max(4, n_initial),
+                  sea_state=state.name)
+    own_seed = int(np.random.SeedSequence([seed, i]).generate_state(1, dtype=np.uint64)[0]
+                   % (2**63))
+    store = None if path is None else StudyStore(path, scope=state.name)
+    return Study(lfset, copy.deepcopy(strategy), eps1=1.0 if eps1 is None else eps1,
+                 stop_on_convergence=eps1 is not None, seed=own_seed, max_hf=max_hf,
+                 store=store, **settings)
+
+
+class _Run:
+    """The allocation loop over the sea states' studies."""
+
+    def __init__(self, states, weights, studies, oracle, executor, callback, max_hf):
+        self.states, self.weights, self.studies = states, weights, studies
+        self.oracle, self.executor, self.callback, self.max_hf = oracle, executor, callback, max_hf
+        self.closed: set[int] = set()
+
+    def spent(self) -> int:
+        return sum(s.n_hf + s._n_pending for s in self.studies if s is not None)
+
+    def left_over(self) -> None:
+        """Events a killed run left asked but not told: told from the store or run again."""
+        asks = []
+        for i, st in enumerate(self.studies):
+            if st is None:
+                continue
+            rows = st.store.outstanding() if st.store is not None else []
+            events = [st.lfset.event(st.lfset.position_of(r[0])) for r in rows] or st.pending
+            if events:
+                asks.append((i, events))
+        if asks:
+            self.round(asks)
+
+    def value_now(self, p, top):
+        ratios = proxy_ratios(self.studies)
+        triples = [curves_of(s, st, ratios) for s, st in zip(self.states, self.studies)]
+        x = level_at([t[1] for t in triples], self.weights, p, top * ratios[1])
+        return triples, x
+
+    def allocate(self, p, batch_size, top) -> None:
+        while self.spent() < self.max_hf:
+            triples, x = self.value_now(p, top)
+            if not np.isfinite(x):
+                return
+            n_hf = [0 if st is None else st.n_hf for st in self.studies]
+            fitted = [st is not None and st.last is not None for st in self.studies]
+            gain = gains(triples, self.weights, x, n_hf, fitted)
+            asks, room = [], self.max_hf - self.spent()
+            for i in np.argsort(-gain, kind="stable"):
+                st = self.studies[i]
+                if len(asks) == batch_size or gain[i] <= 0:
+                    break
+                if st is None or i in self.closed or (st._initial is None
+                                                      and st.strategy.n_initial > room):
+                    continue
+                events = st.ask(1)
+                if not events:
+                    self.closed.add(int(i))
+                    continue
+                room -= len(events)
+                asks.append((int(i), events))
+            if not asks:
+                return
+            self.round(asks)
+
+    def round(self, asks) -> None:
+        """Run the HF events of ``asks`` (``[(sea-state position, events)]``), store, then tell."""
+        results, todo = {}, []
+        for i, events in asks:
+            st = self.studies[i]
+            stored = {r[0]: (r[1], r[2]) for r in st.store.outstanding() if r[3]} \
+                if st.store is not None else {}
+            mine = [ev for ev in events if ev.index not in stored]
+            results.update({(i, idx): v for idx, v in stored.items()})
+            todo += [(i, ev) for ev in mine]
+            if st.store is not None and mine:
+                st.store.mark_submitted(mine)
+        where = {id(ev): i for i, ev in todo}
+        for ev, (value, error, _loads) in execute(self.oracle, [ev for _, ev in todo],
+                                                  None, self.executor):
+            i = where[id(ev)]
+            st = self.studies[i]
+            if st.store is not None:
+                st.store.record_result(ev, value, error, loads=_loads)
+            results[(i, ev.index)] = (value, error)
+        for i, events in asks:
+            st = self.studies[i]
+            for ev in events:
+                value, error = results[(i, ev.index)]
+                row = st.tell(ev, value, error=error)
+                if self.callback is not None:
+                    self.callback(self.states[i].name, st, row)
+                if (failure := failure_limit(st)) is not None:
+                    raise OracleFailureLimit(f"sea state {self.states[i].name}: {failure}",
+                                             result=failure.result)
