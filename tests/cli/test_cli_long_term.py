@@ -105,3 +105,12 @@ def test_end_to_end_writes_summary(problem, capsys):
     w = dict(zip(table["name"], table["probability"] * table["n_waves"] / table["duration"]))
     truth = value_at_exceedance_long_term(1e-4, w, hf)
     assert abs(summary["value"] / truth - 1) < 0.1, (summary, truth)
+
+
+@pytest.mark.parametrize("cases, message", [
+    (["long-term-9"], "unknown long-term case 'long-term-9'; choose from long-term-3, long-term-2"),
+    (["long-term-3", "1a"], "give the long-term cases (long-term-3, long-term-2) on their own"),
+])
+def test_reproduce_long_term_names(capsys, cases, message):
+    assert main(["reproduce", *cases]) == 2
+    assert message in capsys.readouterr().err
