@@ -6,10 +6,10 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from pas.validation.long_term import (LongTermData, generate_cell, generate_long_term,
-                                      long_term_exceedance, scatter_diagram, tz_over_tp,
-                                      value_at_exceedance_long_term)
+from pas.validation.long_term import (generate_cell, long_term_exceedance, scatter_diagram,
+                                      tz_over_tp, value_at_exceedance_long_term)
 from pas.validation.long_term_compare import combine_curves, iform_contour
+from pas.validation.long_term_data import LongTermData, generate_long_term
 
 
 def _two_states():

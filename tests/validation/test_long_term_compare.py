@@ -1,13 +1,12 @@
 """The long-term methods on tiny data sets: LF-only by hand, uniform allocation end to end."""
 
-import importlib.util
-
 import numpy as np
 import pandas as pd
 import pytest
 
-from pas.validation.long_term import LongTermData, generate_long_term, tz_over_tp
+from pas.validation.long_term import tz_over_tp
 from pas.validation.long_term_compare import _lf_load, reproduce_long_term, run_method
+from pas.validation.long_term_data import LongTermData, generate_long_term
 
 
 def _two_states():
@@ -36,13 +35,6 @@ def test_unknown_method_and_case():
         run_method(_two_states(), "guess", 0.3)
     with pytest.raises(ValueError, match="unknown long-term case"):
         reproduce_long_term("long-term-5")
-
-
-@pytest.mark.skipif(importlib.util.find_spec("pas.longterm") is not None,
-                    reason="pas.run_long_term is in this build")
-def test_pas_long_term_without_the_api_says_so():
-    row = run_method(_two_states(), "pas-long-term", 0.3)
-    assert np.isnan(row["value"]) and row["n_hf"] == 0 and "not available" in row["note"]
 
 
 @pytest.mark.slow

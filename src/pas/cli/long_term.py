@@ -25,7 +25,6 @@ from __future__ import annotations
 import argparse
 import json
 import math
-import sys
 from pathlib import Path
 
 __all__ = ["add_parser", "lf_files", "run"]
@@ -179,12 +178,8 @@ def run(args) -> int:
                                   timeout=args.timeout)
     except (ValueError, FileNotFoundError) as exc:
         raise type(exc)(f"--oracle: {exc}") from None
-    try:
-        from ..longterm import run_long_term
-    except (ImportError, AttributeError):
-        print("pas long-term: error: pas.run_long_term is not part of this build (issue 29); "
-              "update pas", file=sys.stderr)
-        return 2
+    from ..longterm import run_long_term
+
     study = None if args.no_store else Path(args.study or out / "long-term.sqlite")
     out.mkdir(parents=True, exist_ok=True)
     result = run_long_term(table, peaks, oracle, p_exceed=args.p_exceed,

@@ -1,8 +1,7 @@
-"""The four long-term methods side by side on one :class:`~.long_term.LongTermData`.
+"""The four long-term methods side by side on one :class:`~.long_term_data.LongTermData`.
 
 * ``"pas-long-term"`` — :func:`pas.run_long_term`, one HF budget shared by all
-  sea states (the issue's API; when it is not importable the row says so and
-  nothing is run).
+  sea states.
 * ``"uniform"`` — every kept (contributing) sea state its own
   :func:`pas.run_pas` study with the default budget of 160, at the sea
   state's own target ``p_s = p_exceed Σw / w_s`` (the level where it alone
@@ -198,11 +197,8 @@ def _lf_only(data, p_exceed):
 
 
 def _pas_long_term(data, p_exceed, seed, max_hf):
-    try:
-        from ..longterm import run_long_term
-    except (ImportError, AttributeError):
-        return np.nan, (np.nan, np.nan), 0, {"note": "pas.run_long_term not available in this "
-                                             "build (issue 29, helper h5): not run"}
+    from ..longterm import run_long_term
+
     peaks = {s: pd.DataFrame({"lf": data.lf[s], "id": data.ids[s]}) for s in data.lf}
     res = run_long_term(data.sea_states, peaks, data.oracle(), p_exceed=p_exceed, seed=seed,
                         max_hf=max_hf, eps1=_case(data).eps1)
@@ -264,7 +260,7 @@ KEPT_HOURS = 100
 def long_term_data(analogue, *, seed=1, scale=1.0, p_exceed=P_VALIDATED, min_share=3e-3,
                    cache=True, progress=None):
     """The data set used by :func:`reproduce_long_term` and the benchmark, and the cell plan."""
-    from .long_term import generate_long_term, plan_cells
+    from .long_term_data import generate_long_term, plan_cells
 
     plan = plan_cells(analogue, p_exceed, min_share=min_share, cache=cache)
     h = max(4, round(KEPT_HOURS * float(scale)))
