@@ -113,32 +113,36 @@ def tables(dirs):
     runs = (runs.assign(ran=runs["value"].notna()).sort_values("ran", kind="stable")
             .drop_duplicates(["analogue", "data_seed", "method"], keep="last")
             .sort_index(kind="stable"))
-    name = {"3": "green water (kN)", "2": "hogging VBM (N m)"}
+    labels = {"3": "green water (kN)", "2": "hogging VBM (N m)"}
+
+    def name(a):
+        return labels[str(int(float(a)))]
+
     comp = ["| analogue | method | data sets | median \\|error\\| | worst \\|error\\| | "
             "median error | U95 coverage | median band width | HF spent (median) | "
             "wall time (median) |", "|---|---|---|---|---|---|---|---|---|---|"]
     for (a, m), g in runs.groupby(["analogue", "method"], sort=False):
         if g["value"].isna().all():
-            comp.append(f"| {name[str(a)]} | {m} | {len(g)} | not run: {g['note'].iloc[0]} "
+            comp.append(f"| {name(a)} | {m} | {len(g)} | not run: {g['note'].iloc[0]} "
                         "| | | | | | |")
             continue
         err = g["error"].abs()
         cov = g["covered"].dropna()
         width = ((g["band_high"] - g["band_low"]) / g["truth"]).median()
-        comp.append(f"| {name[str(a)]} | {m} | {len(g)} | {100 * err.median():.1f} % | "
+        comp.append(f"| {name(a)} | {m} | {len(g)} | {100 * err.median():.1f} % | "
                     f"{100 * err.max():.1f} % | {_pct(g['error'].median())} | "
                     + (f"{int(cov.astype(bool).sum())}/{len(cov)}" if len(cov) else "–")
-                    + f" | {_pct(width) if np.isfinite(width) else '–'} | "
+                    + f" | {f'{100 * width:.1f} %' if np.isfinite(width) else '–'} | "
                     f"{g['n_hf'].median():g} | {g['seconds'].median():.0f} s |")
     conv = ["| analogue | data set | HF events | truth 5e-6 | halves | truth 2e-6 | halves | "
-            "truth 1e-6 | halves | 20-year level | brute force | LF-only | generation |",
+            "truth 1e-6 | halves | 20-year level | brute force | LF-only | build (cache) |",
             "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for _, r in truth.iterrows():
         cols = []
         for p in LEVELS:
             cols += [_fmt(r[f"truth_{p:g}"]),
                      f"{_fmt(r[f'half0_{p:g}'])} / {_fmt(r[f'half1_{p:g}'])}"]
-        conv.append(f"| {name[str(r['analogue'])]} | {int(r['data_seed'])} | "
+        conv.append(f"| {name(r['analogue'])} | {int(r['data_seed'])} | "
                     f"{int(r['hf_events'])} | " + " | ".join(cols)
                     + f" | {r['p_20y']:.3g} | {_fmt(r['truth_20y'])} (not validated) | "
                     f"{_fmt(r['lf_only_20y'])} | {r['generation_s']:.0f} s |")
@@ -148,18 +152,18 @@ def tables(dirs):
         for p in LEVELS:
             t = g[f"truth_{p:g}"]
             half = (g[f"half0_{p:g}"] - g[f"half1_{p:g}"]).abs() / t
-            spread.append(f"| {name[str(a)]} | {p:g} | {100 * t.std() / t.mean():.1f} % | "
+            spread.append(f"| {name(a)} | {p:g} | {100 * t.std() / t.mean():.1f} % | "
                           f"{100 * half.median():.1f} % |")
     plan = ["| analogue | cells | kept | dropped: estimated share of Q | largest dropped | "
             "dropped: measured share (data sets, median) | its 95 % upper bound | l_min (LF) |",
             "|---|---|---|---|---|---|---|---|"]
     for a, c in cells.items():
         dropped = c[~c["kept"]]
-        t = truth[truth["analogue"].astype(str) == a]
+        t = truth[truth["analogue"].astype(float) == float(a)]
         measured = (f"{100 * t['dropped_share'].median():.2f} % | "
                     f"{100 * t['dropped_share_u95'].median():.1f} %"
                     if "dropped_share" in t else "– | –")
-        plan.append(f"| {name[a]} | {len(c)} | {int(c['kept'].sum())} | "
+        plan.append(f"| {name(a)} | {len(c)} | {int(c['kept'].sum())} | "
                     f"{100 * dropped['share_rayleigh'].sum():.2f} % | "
                     f"{100 * dropped['share_rayleigh'].max():.2f} % | {measured} | "
                     f"{_fmt(c['l_min'].iloc[0])} |")
