@@ -21,7 +21,8 @@ PAGES = sorted(p.relative_to(ROOT).as_posix()
                for p in [*(ROOT / "docs").rglob("*.md"), *(ROOT / "cases").glob("*/README.md")])
 PAGES.append("README.md")
 # Pages whose code runs a whole study (tens of seconds on two shared cores).
-SLOW_PAGES = {"README.md", "docs/guide/quickstart.md", "docs/guide/hf-tool.md"}
+SLOW_PAGES = {"README.md", "docs/guide/quickstart.md", "docs/guide/hf-tool.md",
+              "docs/guide/long-term.md"}
 
 
 def runnable(page):

@@ -120,3 +120,31 @@ def test_command_oracle_checks_and_pickles(tmp_path, script):
     with ProcessPoolExecutor(2) as pool:
         got = list(pool.map(call_oracle, [oracle] * 3, events))
     assert got == [(1.0, None), (2.0, None), (3.0, None)]
+
+
+def test_table_oracle_keys_on_sea_state_and_id_when_the_table_has_sea_states():
+    table = pd.DataFrame({"sea_state": ["a", "a", "b"], "id": [1, 2, 1], "hf": [1.0, 2.0, 3.0]})
+    oracle = TableOracle(table)
+    assert oracle(Event(index=0, id=1, lf=1.0, d=0.1, sea_state="b")) == 3.0
+    assert oracle(Event(index=0, id=1, lf=1.0, d=0.1, sea_state="a")) == 1.0
+    with pytest.raises(OracleError, match="event 2 of sea state b is not in the table"):
+        oracle(Event(index=1, id=2, lf=1.0, d=0.1, sea_state="b"))
+    # a study of no sea state looks up the ids that appear once only
+    assert oracle(Event(index=1, id=2, lf=1.0, d=0.1)) == 2.0
+    with pytest.raises(OracleError, match="event 1 is not in the table"):
+        oracle(Event(index=0, id=1, lf=1.0, d=0.1))
+    with pytest.raises(ValueError, match=r"event id '1' appears more than once \(within its "
+                                         r"sea state\)"):
+        TableOracle(pd.DataFrame({"sea_state": ["a", "a"], "id": [1, 1], "hf": [1.0, 2.0]}))
+
+
+def test_events_of_two_sea_states_with_one_id_run_in_two_folders(tmp_path):
+    from pas.study.workdirs import event_dir
+
+    a, b = (Event(index=5, id=5, lf=1.0, d=0.1, sea_state=s) for s in ("Hs 2 m", "Hs 4 m"))
+    assert event_dir(a) != event_dir(b)
+    assert event_dir(Event(index=5, id=5, lf=1.0, d=0.1)) == "5"  # a single study: as before
+    assert event_dir(Event(index=5, id=5, lf=1.0, d=0.1, sea_state="H1")) == "H1/5".replace(
+        "/", __import__("os").sep)
+    oracle = CommandOracle([sys.executable, "cfd.py", "{sea_state}", "{id}"], root=tmp_path)
+    assert oracle.command(a, "w")[-2:] == ["Hs 2 m", "5"]

@@ -16,7 +16,7 @@ import pytest
 import pas
 from pas.cli import main
 from pas.study import amend, open_study
-from pas.study.store import StoreError, StudyStore
+from pas.study.store import SCHEMA_VERSION, StoreError, StudyStore
 
 N = 400
 LF = np.random.default_rng(0).rayleigh(1.0, N)
@@ -156,8 +156,8 @@ def test_a_version_1_store_is_upgraded_and_takes_a_replacement(tmp_path):
     assert study.rows[-1]["mpm"] != mpm
     study.store.close()
     with sqlite3.connect(path) as c:
-        assert c.execute("PRAGMA user_version").fetchone()[0] == 2
-        assert c.execute("SELECT version FROM schema_version").fetchone()[0] == 2
+        assert c.execute("PRAGMA user_version").fetchone()[0] == SCHEMA_VERSION
+        assert c.execute("SELECT version FROM schema_version").fetchone()[0] == SCHEMA_VERSION
     again = open_study(path)
     assert again.rows[-1]["mpm"] == pytest.approx(study.rows[-1]["mpm"], rel=1e-12)
     again.store.close()

@@ -11,9 +11,10 @@ band fitted to ``n`` events narrows like ``1/√n``, so one more event in sea
 state ``s`` narrows the long-term band by about ``gain_s = share_s · width_s
 · (1 − √(n_s / (n_s + 1)))``; the next event goes to the sea state with the
 largest gain (a new sea state gets its strategy's initial samples at once).
-Only sea states whose LF record reaches the LF-only long-term level get a
-study at all (:func:`reaches`), and a sea state whose share at the current
-value is 0 has no gain, so neither gets an HF event.  The gains use the
+Only sea states that reach the LF-only long-term level — whose LF-only
+share there is at least :data:`REACH_SHARE` (:func:`lf_shares`) — get a
+study at all, and a sea state whose share at the current value is 0 has no
+gain, so neither gets an HF event.  The gains use the
 sampling band of each study's last fit (cheap, after every event); the
 result's band adds the model band (:mod:`pas.longterm.result`).
 """
@@ -23,17 +24,26 @@ from __future__ import annotations
 import numpy as np
 
 from ..stats.exceedance import value_at_exceedance
-from .combination import PASCurve, ProxyCurve, long_term_exceedance
+from .combination import PASCurve, RecordBand, proxy_curve
 
-__all__ = ["curves_of", "proxy_ratios", "shares", "gains", "reaches", "UNFITTED_WIDTH"]
+__all__ = ["curves_of", "proxy_ratios", "shares", "gains", "lf_shares", "REACH_SHARE",
+           "UNFITTED_WIDTH"]
 
 UNFITTED_WIDTH = 1.0
 """Relative width of the short-term band of a sea state with no PAS model yet."""
 
 
-def reaches(state, lf_level: float) -> float:
-    """The sea state's LF exceedance at the LF-only long-term level (0: it cannot reach it)."""
-    return float(state.lf_exceedance(lf_level)[0])
+REACH_SHARE = 1e-3
+"""A sea state whose LF-only share of the long-term exceedance at the LF-only design level
+is below this cannot reach the design level: it gets no study and no HF event."""
+
+
+def lf_shares(states, weights, lf_level: float) -> tuple[np.ndarray, np.ndarray]:
+    """``(share, Q_s)``: each sea state's LF-only share and LF exceedance at ``lf_level``
+    (its record, and the Weibull tail above it)."""
+    q = np.array([float(proxy_curve(s, 1.0).exceedance(lf_level)[0]) for s in states])
+    parts = np.asarray(weights) * q
+    return (parts / parts.sum() if parts.sum() > 0 else parts), q
 
 
 def _hf_lf_ratio(study) -> float:
@@ -51,17 +61,28 @@ def proxy_ratios(studies) -> tuple[float, float, float]:
     return float(min(r)), float(np.median(r)), float(max(r))
 
 
-def curves_of(state, study, ratios, model_band=None) -> tuple:
+def curves_of(state, study, ratios, model_band=None, record=True) -> tuple:
     """``(low, mean, high)`` exceedance curves of one sea state.
 
     From its study's last PAS distribution and the ends of its U95 band (the
     sampling band, widened to the model band ``(low, high)`` of the MPM
     scaled along the distribution when given), or the LF-only proxy at the
-    ``ratios`` when it has no model yet.
+    ``ratios`` when it has no model yet; both ends widened to the spread of
+    an exceedance read off a record of its length
+    (:class:`~pas.longterm.combination.RecordBand`) unless ``record`` is False
+    (the gains: HF events do not narrow that part).
     """
+    low, mean, high = _band_ends(state, study, ratios, model_band)
+    if not record:
+        return low, mean, high
+    return (RecordBand(low, mean, state.n_waves, -1), mean,
+            RecordBand(high, mean, state.n_waves, +1))
+
+
+def _band_ends(state, study, ratios, model_band):
     pred = None if study is None else study.last
     if pred is None:
-        return tuple(ProxyCurve(state, r) for r in ratios)
+        return tuple(proxy_curve(state, r) for r in ratios)
     low, high = np.asarray(pred.h_low, float), np.asarray(pred.h_high, float)
     if model_band is not None and pred.mpm > 0:
         low = np.minimum(low, pred.h_mean * model_band[0] / pred.mpm)
@@ -91,9 +112,3 @@ def gains(triples, weights, x: float, n_hf, fitted) -> np.ndarray:
         n = n_hf[i]
         out[i] = share[i] * max(width, 0.0) * (1.0 - np.sqrt(n / (n + 1.0)))
     return out
-
-
-def long_term_at(triples, weights, x: float) -> tuple[float, float, float]:
-    """``Q(x)`` of the low, mean and high curves."""
-    return tuple(float(long_term_exceedance([t[k] for t in triples], weights, x)[0])
-                 for k in range(3))

@@ -12,10 +12,10 @@ largest LF peak (``d = 1/n_w``) and the lowest conditioning peak (``d_end``).
 Outside that range:
 
 above the record (``d < 1/n_w``)
-    a Weibull tail, a straight line on ``ln(-ln Q)`` against ``ln x``
-    through the distribution at ``1/n_w`` and ``10/n_w`` (exact for a
-    Rayleigh or Weibull short-term distribution); where the record cannot
-    give two points, nothing is exceeded there (``Q_s = 0``);
+    a Weibull tail, the least-squares line on ``ln(-ln Q)`` against ``ln x``
+    through the top :data:`TAIL_RANKS` ranks of the distribution (exact for a
+    Rayleigh or a two-parameter Weibull short-term distribution); where the
+    record cannot give it, nothing is exceeded there (``Q_s = 0``);
 below the range (``d > d_end``)
     the sea state's own LF exceedance at ``x`` scaled by the ratio HF/LF at
     ``d_end``, continuous there: the LF-only proxy.  It is used at a level
@@ -29,20 +29,24 @@ below the range (``d > d_end``)
     the value.
 
 Sea states without a fitted PAS model (no HF events, or too few) use the
-LF-only proxy throughout (:class:`ProxyCurve`): their LF exceedance at
+LF-only proxy throughout (:func:`proxy_curve`): their LF exceedance at
 ``x / r``, with ``r`` the HF/LF ratio at the design level of the fitted sea
-states (1 before any fit, when the analysis is the LF-only one).
+states (1 before any fit, when the analysis is the LF-only one), and the
+same tail above their LF record.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["PASCurve", "ProxyCurve", "long_term_exceedance", "level_at", "extension_bounds",
-           "TAIL_RANK"]
+from ..strategies.base import Z95
 
-TAIL_RANK = 10
-"""The rank whose distribution value, with the top one's, sets the tail above the record."""
+__all__ = ["PASCurve", "proxy_curve", "long_term_exceedance", "level_at", "extension_bounds",
+           "RecordBand",
+           "TAIL_RANKS"]
+
+TAIL_RANKS = 20
+"""The top ranks of a distribution whose Weibull-plot line gives the tail above the record."""
 
 
 class PASCurve:
@@ -62,6 +66,8 @@ class PASCurve:
         Below the range: the proxy, or its bounds ``d[-1]`` and 1.
     """
 
+    is_proxy = False  #: True for the LF-only proxy (:func:`proxy_curve`)
+
     def __init__(self, d, h, state, lf_end, below="proxy"):
         self.d = np.asarray(d, dtype=float)
         self.h = np.minimum.accumulate(np.asarray(h, dtype=float))
@@ -75,6 +81,8 @@ class PASCurve:
 
     def with_below(self, below: str) -> PASCurve:
         """This curve with another rule below the range (:func:`extension_bounds`)."""
+        if self.is_proxy:
+            return self
         return PASCurve(self.d, self.h, self.state, self.lf_end, below)
 
     def exceedance(self, x) -> np.ndarray:
@@ -103,28 +111,58 @@ class PASCurve:
 
 
 def _weibull_tail(d, h):
-    """``(a, b)`` of ``ln(-ln Q) = a + b ln x`` through ranks 1 and :data:`TAIL_RANK`, or None."""
-    if d.size < TAIL_RANK:
+    """``(a, b)`` of the least-squares line ``ln(-ln Q) = a + b ln x`` through the top
+    :data:`TAIL_RANKS` ranks, or None when fewer than 3 positive values lie there or the
+    line does not fall."""
+    top = slice(0, min(TAIL_RANKS, d.size))
+    x, q = h[top], d[top]
+    keep = (x > 0) & (q < 1)
+    if keep.sum() < 3 or np.ptp(x[keep]) <= 0:
         return None
-    x1, x2 = h[0], h[TAIL_RANK - 1]
-    if not (x2 > 0 and x1 > x2):
-        return None
-    y1, y2 = np.log(-np.log(d[0])), np.log(-np.log(d[TAIL_RANK - 1]))
-    b = (y1 - y2) / (np.log(x1) - np.log(x2))
-    return (float(y1 - b * np.log(x1)), float(b)) if b > 0 else None
+    b, a = np.polyfit(np.log(x[keep]), np.log(-np.log(q[keep])), 1)
+    return (float(a), float(b)) if b > 0 else None
 
 
-class ProxyCurve:
-    """A sea state without a PAS model: its LF exceedance at ``x / ratio`` (the LF-only proxy)."""
+def proxy_curve(state, ratio: float, n_points: int = 400) -> PASCurve:
+    """The LF-only proxy of a sea state without a PAS model: its LF record scaled by ``ratio``.
 
-    def __init__(self, state, ratio: float):
-        self.state, self.ratio = state, float(ratio)
+    The record's exceedance ``k / n_w`` at the top :data:`TAIL_RANKS` ranks and
+    at ``n_points`` ranks spaced on ``ln k`` below (interpolated between them
+    on ``ln d``, as a PAS distribution is), with the same Weibull tail above
+    the record.
+    """
+    lf = np.sort(state.lf)[::-1]
+    k = np.unique(np.concatenate([np.arange(1, min(TAIL_RANKS, lf.size) + 1),
+                                  np.round(np.geomspace(1, lf.size, n_points)).astype(int)]))
+    curve = PASCurve(k / state.n_waves, ratio * lf[k - 1], state, lf[-1])
+    curve.is_proxy = True
+    return curve
+
+
+class RecordBand:
+    """A band end of one sea state widened to the spread of an exceedance read off its record.
+
+    ``Q_s`` at a level is known from ``n_w`` encounters only: its binomial
+    standard deviation ``sqrt(Q_s (1 − Q_s) / n_w)`` is the part of the
+    uncertainty no HF event removes (a model that predicted every HF load
+    exactly would still carry it).  The band end is the farther of the
+    PAS band's end and ``Q_s ± 1.96`` of those deviations (the union, as the
+    MPM's band unites its sampling and model parts).
+    """
+
+    def __init__(self, end, mean, n_waves: int, side: int):
+        self.end, self.mean, self.n_waves, self.side = end, mean, int(n_waves), side
 
     def exceedance(self, x) -> np.ndarray:
-        return self.state.lf_exceedance(np.atleast_1d(np.asarray(x, dtype=float)) / self.ratio)
+        q = self.mean.exceedance(x)
+        spread = Z95 * np.sqrt(q * (1 - q) / self.n_waves)
+        if self.side > 0:
+            return np.maximum(self.end.exceedance(x), np.minimum(q + spread, 1.0))
+        return np.minimum(self.end.exceedance(x), np.maximum(q - spread, 0.0))
 
-    def with_below(self, below: str) -> ProxyCurve:
-        return self
+    def with_below(self, below: str) -> RecordBand:
+        return RecordBand(self.end.with_below(below), self.mean.with_below(below),
+                          self.n_waves, self.side)
 
 
 def long_term_exceedance(curves, weights, x) -> np.ndarray:
@@ -165,6 +203,11 @@ def level_at(curves, weights, p: float, start: float) -> float:
 
 
 def extension_bounds(curves, weights, p: float, start: float) -> tuple[float, float]:
-    """The value with the proxy below each PAS range replaced by its lower and upper bound."""
-    return tuple(level_at([c.with_below(b) for c in curves], weights, p, start)
+    """The value with the proxy below each PAS range replaced by its lower and upper bound.
+
+    The lower one is 0 when, with every proxy at its lower bound, no level
+    reaches ``p``: nothing below the PAS ranges bounds the value from below then.
+    """
+    low, high = (level_at([c.with_below(b) for c in curves], weights, p, start)
                  for b in ("low", "high"))
+    return (0.0 if np.isnan(low) else low), high

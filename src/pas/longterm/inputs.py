@@ -70,10 +70,14 @@ def read_sea_states(sea_states, lf_peaks) -> list[SeaState]:
         ``n_waves`` (wave encounters of its LF run), ``duration`` (s, of its
         LF run), optionally ``threshold`` (its LF threshold), and any
         descriptive columns.
-    lf_peaks : mapping
+    lf_peaks : mapping or pandas.DataFrame
         ``name -> array`` of LF peaks, or ``name -> DataFrame`` with ``lf``
-        (and ``id``; the other columns become each event's ``meta``).
+        (and ``id``; the other columns become each event's ``meta``), or one
+        DataFrame with a ``sea_state`` column besides those.
     """
+    if isinstance(lf_peaks, pd.DataFrame) and "sea_state" in lf_peaks.columns:
+        lf_peaks = {str(k): g.drop(columns="sea_state").reset_index(drop=True)
+                    for k, g in lf_peaks.groupby(lf_peaks["sea_state"].astype(str), sort=False)}
     if not isinstance(sea_states, pd.DataFrame):
         raise ValueError(f"sea_states must be a pandas DataFrame with columns "
                          f"{', '.join(REQUIRED_COLUMNS)}, got {type(sea_states).__name__}")
@@ -90,9 +94,9 @@ def read_sea_states(sea_states, lf_peaks) -> list[SeaState]:
     if len(dup):
         raise ValueError(f"sea_states: name {dup.iloc[0]!r} appears more than once")
     if not hasattr(lf_peaks, "keys"):
-        raise ValueError(f"lf_peaks must be a mapping sea-state name -> LF peaks, got "
-                         f"{type(lf_peaks).__name__}")
-    unknown = [str(k) for k in lf_peaks.keys() if str(k) not in names]
+        raise ValueError(f"lf_peaks must be a mapping sea-state name -> LF peaks (or a table "
+                         f"with a sea_state column), got {type(lf_peaks).__name__}")
+    unknown = [str(k) for k in lf_peaks if str(k) not in names]
     if unknown:
         raise ValueError(f"lf_peaks: sea state {unknown[0]!r} is not in sea_states (names: "
                          f"{', '.join(names[:8])}{' ...' if len(names) > 8 else ''})")

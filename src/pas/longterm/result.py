@@ -22,7 +22,7 @@ import numpy as np
 import pandas as pd
 
 from .allocation import curves_of, proxy_ratios, shares
-from .combination import ProxyCurve, extension_bounds, level_at
+from .combination import extension_bounds, level_at
 
 __all__ = ["LongTermResult"]
 
@@ -50,8 +50,9 @@ class LongTermResult:
         ``n_hf``, ``n_false_positive``, ``n_failed``, ``p_exp`` of its study,
         ``mpm`` (short-term MPM at that ``p_exp``), ``mpm_low``, ``mpm_high``,
         ``read_off`` (where its exceedance at the value comes from: ``pas``,
-        ``tail`` above its record, ``proxy`` below its PAS range or LF-only,
-        ``none`` when it has no study).
+        ``tail`` above its record, ``proxy`` below its PAS range, ``lf`` the
+        LF-only proxy of a sea state without a PAS model, ``lf tail`` that
+        proxy above its LF record).
     lf_value : float
         The LF-only long-term value of the LF indicator (what chose the studies).
     extension_bounds : tuple of float
@@ -104,7 +105,7 @@ class LongTermResult:
                 "mpm": np.nan if r is None else r.mpm,
                 "mpm_low": np.nan if r is None else r.mpm_band[0],
                 "mpm_high": np.nan if r is None else r.mpm_band[1],
-                "read_off": "none" if st is None else _read_off(t[1], value)})
+                "read_off": _read_off(t[1], value)})
         bounds = extension_bounds([t[1] for t in triples], weights, p, start)
         return cls(value=value, band=(low, high), p_exceed=p,
                    n_hf=sum(st.n_hf for st in studies if st is not None),
@@ -122,11 +123,12 @@ class LongTermResult:
         for row in c.head(5).itertuples():
             lines.append(f"  {row.sea_state}: share {row.share:.1%}, {row.n_hf} HF, "
                          f"read off {row.read_off}")
-        off = c.loc[c["read_off"].isin(["tail", "proxy"]), "share"].sum()
+        off = c.loc[c["read_off"] != "pas", "share"].sum()
         if off > 0.1:
-            lines.append(f"note: {off:.0%} of the exceedance at the value is read off an "
-                         "extension (above a record or below a PAS range), not a PAS "
-                         f"distribution; the proxy bounds give {self.extension_bounds[0]:.4g} – "
+            lines.append(f"note: {off:.0%} of the exceedance at the value is not read off a PAS "
+                         "distribution but off a tail above a record or an LF-only proxy "
+                         "(column read_off); with the proxy below the PAS ranges at its bounds "
+                         f"the value is {self.extension_bounds[0]:.4g} – "
                          f"{self.extension_bounds[1]:.4g}")
         return "\n".join(lines)
 
@@ -142,8 +144,11 @@ def _probabilities(p) -> np.ndarray:
 
 
 def _read_off(curve, x) -> str:
-    if isinstance(curve, ProxyCurve) or not np.isfinite(x):
-        return "proxy"
+    """Where the sea state's exceedance at ``x`` comes from (:attr:`LongTermResult.contributions`)."""
+    if not np.isfinite(x):
+        return "none"
     if x > curve.h[0]:
-        return "tail"
+        return "lf tail" if curve.is_proxy else "tail"
+    if curve.is_proxy:
+        return "lf"
     return "proxy" if x < curve.h_end else "pas"

@@ -22,8 +22,8 @@ from ..study.oracles import OracleFailureLimit, check_oracle
 from ..study.schema import StoreError, dumps
 from ..study.store import StudyStore
 from ..study.study import Study
-from .allocation import curves_of, gains, proxy_ratios, reaches
-from .combination import ProxyCurve, level_at
+from .allocation import REACH_SHARE, curves_of, gains, lf_shares, proxy_ratios
+from .combination import level_at, proxy_curve
 from .inputs import design_exceedance, encounter_weights, read_sea_states
 from .result import LongTermResult
 
@@ -37,7 +37,7 @@ DEFAULT_LONG_TERM_MAX_HF = 400
 def run_long_term(sea_states, lf_peaks, oracle, *, p_exceed=None, return_period=None,
                   hours_per_year=8766.0, max_hf=DEFAULT_LONG_TERM_MAX_HF, seed=None, study=None,
                   strategy=None, eps1=None, study_settings=None, batch_size=1, executor=None,
-                  callback=None, model_band=True) -> LongTermResult:
+                  callback=None, model_band=True, retry_failed=False) -> LongTermResult:
     """The long-term design value of an HF load over a scatter diagram, one HF budget shared.
 
     Parameters
@@ -88,12 +88,27 @@ def run_long_term(sea_states, lf_peaks, oracle, *, p_exceed=None, return_period=
         ``callback(name, study, row)`` after every told HF result.
     model_band : bool, default True
         Add each fitted study's model band to the result's band.
+    retry_failed : bool, default False
+        With ``study``: run the failed events of every sea state's stored
+        study again (:meth:`Study.retry_failed
+        <pas.study.study.Study.retry_failed>`): each study continues as if they
+        had not failed; the events already given to other sea states stay
+        theirs.
 
     Returns
     -------
     LongTermResult
+
+    Raises
+    ------
+    OracleFailureLimit
+        A sea state's study saw more than ``max_failures`` failed calls; the
+        message names the sea state, every result is stored.
     """
     check_oracle(oracle)
+    if retry_failed and study is None:
+        raise ValueError("retry_failed=True needs study=... (the store of the analysis whose "
+                         "failed events should run again)")
     states = read_sea_states(sea_states, lf_peaks)
     p = design_exceedance(states, p_exceed, return_period, hours_per_year)
     weights = encounter_weights(states)
@@ -101,16 +116,19 @@ def run_long_term(sea_states, lf_peaks, oracle, *, p_exceed=None, return_period=
     if batch_size < 1:
         raise ValueError(f"batch_size must be a positive integer, got {batch_size}")
     top = max(float(s.lf.max()) for s in states)
-    lf_value = level_at([ProxyCurve(s, 1.0) for s in states], weights, p, top)
+    lf_value = level_at([proxy_curve(s, 1.0) for s in states], weights, p, top)
     settings = {"p_exceed": p, "max_hf": max_hf, "eps1": eps1,
                 "sea_states": [[s.name, s.probability, s.n_waves, s.duration] for s in states]}
     root, seed = _open_root(study, settings, seed)
     strategy = _default_strategy() if strategy is None else strategy
-    studies = []
-    for i, s in enumerate(states):
-        q_lf = reaches(s, lf_value) if np.isfinite(lf_value) else 0.0
-        studies.append(None if q_lf <= 0 else _make_study(
-            s, i, q_lf, strategy, seed, max_hf, eps1, study_settings or {}, study))
+    share_lf, q_lf = lf_shares(states, weights, lf_value) if np.isfinite(lf_value) else \
+        (np.zeros(len(states)), np.zeros(len(states)))
+    studies = [None if share_lf[i] < REACH_SHARE else _make_study(
+        s, i, q_lf[i], strategy, seed, max_hf, eps1, study_settings or {}, study)
+        for i, s in enumerate(states)]
+    for st in studies if retry_failed else ():
+        if st is not None and st.n_failed:
+            st.retry_failed()
     run = _Run(states, weights, studies, oracle, executor, callback, max_hf)
     try:
         run.left_over()
@@ -133,6 +151,10 @@ def _open_root(path, settings, seed):
         return None, _seed(seed)
     root = StudyStore(path, scope="")
     stored = root.get(LONG_TERM_KEY)
+    if stored is None and not root.is_new:
+        root.close()
+        raise StoreError(f"study store {path} holds a single study, not a long-term analysis: "
+                         "give run_long_term another file")
     if stored is None:
         seed = _seed(seed)
         root.put(LONG_TERM_KEY, {**settings, "seed": seed})
@@ -160,10 +182,11 @@ def _seed(seed) -> int:
 
 
 def _make_study(state, i, q_lf, strategy, seed, max_hf, eps1, settings, path) -> Study:
-    """The sea state's study, at ``p_exp`` = its LF exceedance at the LF-only long-term level."""
+    """The sea state's study, at ``p_exp`` = its LF exceedance at the LF-only long-term level
+    (within its record: ``1/n_w`` for a level above it)."""
     n_initial = strategy.n_initial
     mask = state.lf > state.threshold if state.threshold is not None else slice(None)
-    p_exp = min(q_lf, np.asarray(state.lf)[mask].size / state.n_waves)
+    p_exp = min(max(q_lf, 1.0 / state.n_waves), np.asarray(state.lf)[mask].size / state.n_waves)
     lfset = LFSet(state.lf, n_waves=state.n_waves, p_exp=p_exp, threshold=state.threshold,
                   ids=state.ids, meta=state.meta, min_peaks=max(4, n_initial),
                   sea_state=state.name)
@@ -201,7 +224,8 @@ class _Run:
 
     def value_now(self, p, top):
         ratios = proxy_ratios(self.studies)
-        triples = [curves_of(s, st, ratios) for s, st in zip(self.states, self.studies)]
+        triples = [curves_of(s, st, ratios, record=False)
+                   for s, st in zip(self.states, self.studies)]
         x = level_at([t[1] for t in triples], self.weights, p, top * ratios[1])
         return triples, x
 
@@ -244,12 +268,13 @@ class _Run:
             if st.store is not None and mine:
                 st.store.mark_submitted(mine)
         where = {id(ev): i for i, ev in todo}
-        for ev, (value, error, _loads) in execute(self.oracle, [ev for _, ev in todo],
-                                                  None, self.executor):
+        target = next((st.target for st in self.studies if st is not None), None)
+        for ev, (value, error, loads) in execute(self.oracle, [ev for _, ev in todo], target,
+                                                 self.executor):
             i = where[id(ev)]
             st = self.studies[i]
             if st.store is not None:
-                st.store.record_result(ev, value, error, loads=_loads)
+                st.store.record_result(ev, value, error, loads=loads)
             results[(i, ev.index)] = (value, error)
         for i, events in asks:
             st = self.studies[i]

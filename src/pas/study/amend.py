@@ -53,12 +53,12 @@ REPLACED_AFTER_USE = ("the study had used the old value: the asks it made since 
 REPLACED_BEFORE_USE = "the study had not used the old value yet: nothing it decided depended on it"
 
 
-def _archive(c, rows, retry_seq, reason_of, reusable_of) -> None:
+def _archive(store, c, rows, retry_seq, reason_of, reusable_of) -> None:
     now = _now()
     c.executemany(
-        f"INSERT INTO dropped ({', '.join(_EVENT_COLUMNS)}, retry_seq, reason, reusable, "
-        f"dropped_at) VALUES ({', '.join('?' * (len(_EVENT_COLUMNS) + 4))})",
-        [(*r, retry_seq, reason_of(r), int(reusable_of(r)), now) for r in rows])
+        f"INSERT INTO dropped (study, {', '.join(_EVENT_COLUMNS)}, retry_seq, reason, reusable, "
+        f"dropped_at) VALUES ({', '.join('?' * (len(_EVENT_COLUMNS) + 5))})",
+        [(store.scope, *r, retry_seq, reason_of(r), int(reusable_of(r)), now) for r in rows])
 
 
 def rewind_failed(store, c, keys=None) -> dict:
@@ -67,14 +67,16 @@ def rewind_failed(store, c, keys=None) -> dict:
     Returns ``{"retried": [ids], "dropped": n asks taken out of the log,
     "kept": n of those holding a result kept for reuse, "cut": seq or None}``.
     """
-    failed = c.execute("SELECT idx, key, tell_seq FROM events WHERE state = ?",
-                       (STORED[EventState.FAILED],)).fetchall()
+    scope = store.scope
+    failed = c.execute("SELECT idx, key, tell_seq FROM events WHERE study = ? AND state = ?",
+                       (scope, STORED[EventState.FAILED])).fetchall()
     if keys is not None:
         wanted = [str(k) for k in keys]
         have = {k for _, k, _ in failed}
         for k in wanted:
             if k not in have:
-                row = c.execute("SELECT state FROM events WHERE key = ?", (k,)).fetchone()
+                row = c.execute("SELECT state FROM events WHERE study = ? AND key = ?",
+                                (scope, k)).fetchone()
                 why = "was never asked for" if row is None else f"is {row[0]}, not failed"
                 raise StoreError(f"event {k} {why} in {store.path}: only failed events can be "
                                  "retried")
@@ -89,56 +91,64 @@ def rewind_failed(store, c, keys=None) -> dict:
     cols = ", ".join(_EVENT_COLUMNS)
     if told:
         cut = report["cut"] = min(told)
-        later = c.execute(f"SELECT {cols} FROM events WHERE batch > ?", (cut,)).fetchall()
+        later = c.execute(f"SELECT {cols} FROM events WHERE study = ? AND batch > ?",
+                          (scope, cut)).fetchall()
 
         def reusable(r):
             return r[7] is not None and r[0] not in retry_idx
 
-        _archive(c, later, retry_seq, lambda r: "retried failure" if r[0] in retry_idx
+        _archive(store, c, later, retry_seq, lambda r: "retried failure" if r[0] in retry_idx
                  else "asked after a retried failure", reusable)
         report["dropped"], report["kept"] = len(later), sum(map(reusable, later))
-        c.execute("DELETE FROM events WHERE batch > ?", (cut,))
-        c.execute("UPDATE events SET tell_seq = NULL WHERE tell_seq >= ?", (cut,))
-        c.execute("UPDATE replacements SET consumed_seq = NULL WHERE consumed_seq > ?", (cut,))
-        c.execute("UPDATE replacements SET consumed_seq = 0 WHERE idx NOT IN "
-                  "(SELECT idx FROM events WHERE tell_seq IS NOT NULL)")
-        n_ops = (c.execute("SELECT COUNT(*) FROM events WHERE tell_seq IS NOT NULL").fetchone()[0]
-                 + c.execute("SELECT COUNT(*) FROM replacements WHERE consumed_seq > 0"
-                             ).fetchone()[0])
-        c.execute("DELETE FROM history WHERE row >= ?", (n_ops,))
+        c.execute("DELETE FROM events WHERE study = ? AND batch > ?", (scope, cut))
+        c.execute("UPDATE events SET tell_seq = NULL WHERE study = ? AND tell_seq >= ?",
+                  (scope, cut))
+        c.execute("UPDATE replacements SET consumed_seq = NULL WHERE study = ? AND "
+                  "consumed_seq > ?", (scope, cut))
+        c.execute("UPDATE replacements SET consumed_seq = 0 WHERE study = ? AND idx NOT IN "
+                  "(SELECT idx FROM events WHERE study = ? AND tell_seq IS NOT NULL)",
+                  (scope, scope))
+        n_ops = (c.execute("SELECT COUNT(*) FROM events WHERE study = ? AND tell_seq IS NOT NULL",
+                           (scope,)).fetchone()[0]
+                 + c.execute("SELECT COUNT(*) FROM replacements WHERE study = ? AND "
+                             "consumed_seq > 0", (scope,)).fetchone()[0])
+        c.execute("DELETE FROM history WHERE study = ? AND row >= ?", (scope, n_ops))
     marks = ", ".join("?" * len(retry_idx))
-    still = c.execute(f"SELECT {cols} FROM events WHERE idx IN ({marks})",
-                      tuple(retry_idx)).fetchall()
-    _archive(c, still, retry_seq, lambda r: "retried failure", lambda r: False)
-    c.execute(f"DELETE FROM event_loads WHERE idx IN ({marks})", tuple(retry_idx))
+    still = c.execute(f"SELECT {cols} FROM events WHERE study = ? AND idx IN ({marks})",
+                      (scope, *retry_idx)).fetchall()
+    _archive(store, c, still, retry_seq, lambda r: "retried failure", lambda r: False)
+    c.execute(f"DELETE FROM event_loads WHERE study = ? AND idx IN ({marks})",
+              (scope, *retry_idx))
     c.execute(f"UPDATE events SET state = ?, hf = NULL, error = NULL, result_seq = NULL, "
-              f"tell_seq = NULL, result_at = NULL, source = NULL WHERE idx IN ({marks})",
-              (STORED[EventState.PENDING], *retry_idx))
+              f"tell_seq = NULL, result_at = NULL, source = NULL WHERE study = ? AND "
+              f"idx IN ({marks})", (STORED[EventState.PENDING], scope, *retry_idx))
     return report
 
 
-def dropped_index(c, key: str) -> int:
+def dropped_index(store, c, key: str) -> int:
     """The event index of the latest ask of ``key`` a retry took out of the log."""
-    return c.execute("SELECT idx FROM dropped WHERE key = ? ORDER BY id DESC LIMIT 1",
-                     (key,)).fetchone()[0]
+    return c.execute("SELECT idx FROM dropped WHERE study = ? AND key = ? ORDER BY id DESC "
+                     "LIMIT 1", (store.scope, key)).fetchone()[0]
 
 
 def reuse_dropped(store, c, idx: int, seq: int) -> None:
     """Give the newly asked event ``idx`` the result a retry dropped, when there is one to reuse."""
     row = c.execute("SELECT id, state, hf, error, attempts, result_at, source FROM dropped "
-                    "WHERE idx = ? AND reusable = 1 AND reused_seq IS NULL ORDER BY id DESC "
-                    "LIMIT 1", (idx,)).fetchone()
+                    "WHERE study = ? AND idx = ? AND reusable = 1 AND reused_seq IS NULL "
+                    "ORDER BY id DESC LIMIT 1", (store.scope, idx)).fetchone()
     if row is None:
         return
     c.execute("UPDATE events SET state = ?, hf = ?, error = ?, attempts = ?, result_at = ?, "
-              "source = ?, result_seq = ? WHERE idx = ?", (*row[1:], store._next_seq(c), idx))
+              "source = ?, result_seq = ? WHERE study = ? AND idx = ?",
+              (*row[1:], store._next_seq(c), store.scope, idx))
     c.execute("UPDATE dropped SET reused_seq = ? WHERE id = ?", (seq, row[0]))
 
 
 def tell_dropped(store, c, key: str, value, error, source) -> bool:
     """Keep a result told for an event a retry took out of the log; False when none is waiting."""
-    row = c.execute("SELECT id FROM dropped WHERE key = ? AND result_seq IS NULL "
-                    "AND reused_seq IS NULL ORDER BY id DESC LIMIT 1", (key,)).fetchone()
+    row = c.execute("SELECT id FROM dropped WHERE study = ? AND key = ? AND result_seq IS NULL "
+                    "AND reused_seq IS NULL ORDER BY id DESC LIMIT 1",
+                    (store.scope, key)).fetchone()
     if row is None:
         return False
     state = STORED[EventState.of_result(value, error)]
@@ -151,19 +161,20 @@ def tell_dropped(store, c, key: str, value, error, source) -> bool:
 def replace_result(store, c, idx: int, value, error, source) -> bool:
     """Replace the stored result of event ``idx`` (audited); False when it is identical."""
     key, hf, err, old_source, result_at, tell_seq = c.execute(
-        "SELECT key, hf, error, source, result_at, tell_seq FROM events WHERE idx = ?",
-        (idx,)).fetchone()
+        "SELECT key, hf, error, source, result_at, tell_seq FROM events WHERE study = ? AND "
+        "idx = ?", (store.scope, idx)).fetchone()
     if (hf, err) == (value, error):
         return False
     used = tell_seq is not None
-    c.execute("INSERT INTO replacements (idx, key, old_hf, old_error, old_source, old_result_at, "
-              "new_hf, new_error, source, seq, consumed_seq, replaced_at, note) "
-              "VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)",
-              (idx, key, hf, err, old_source, result_at, value, error, source, store._next_seq(c),
+    c.execute("INSERT INTO replacements (study, idx, key, old_hf, old_error, old_source, "
+              "old_result_at, new_hf, new_error, source, seq, consumed_seq, replaced_at, note) "
+              "VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)",
+              (store.scope, idx, key, hf, err, old_source, result_at, value, error, source, store._next_seq(c),
                None if used else 0, _now(), REPLACED_AFTER_USE if used else REPLACED_BEFORE_USE))
     c.execute("UPDATE events SET state = ?, hf = ?, error = ?, source = ?, result_at = ? "
-              "WHERE idx = ?",
-              (STORED[EventState.of_result(value, error)], value, error, source, _now(), idx))
+              "WHERE study = ? AND idx = ?",
+              (STORED[EventState.of_result(value, error)], value, error, source, _now(),
+               store.scope, idx))
     return True
 
 
@@ -173,9 +184,9 @@ def apply_replacement(store, c, idx: int, value, error) -> None:
     Records the replacement first when no stored one waits (a Python ``tell``).
     """
     def waiting():
-        return c.execute("SELECT id FROM replacements WHERE idx = ? AND consumed_seq IS NULL "
-                         "AND new_hf IS ? AND new_error IS ? ORDER BY id LIMIT 1",
-                         (idx, value, error)).fetchone()
+        return c.execute("SELECT id FROM replacements WHERE study = ? AND idx = ? AND "
+                         "consumed_seq IS NULL AND new_hf IS ? AND new_error IS ? ORDER BY id "
+                         "LIMIT 1", (store.scope, idx, value, error)).fetchone()
 
     row = waiting()
     if row is None:

@@ -7,7 +7,7 @@ lost and :func:`pas.study.refit.refit` can analyse another load on the same
 events.  An answer of one bare number is the screened load only (``events.hf``)
 and writes no row.
 
-``event_loads(idx, name, value, error)``
+``event_loads(study, idx, name, value, error)``
     One row per named load of an event: ``value`` (NULL when the load was NaN,
     negative or not a number) and ``error`` (why, else NULL); the loads of the
     event's result, kept by event index also when a retry takes the event's
@@ -27,9 +27,9 @@ __all__ = ["add_event_loads", "put_loads", "record_loads", "stored_loads", "load
 
 EVENT_LOADS = """
 CREATE TABLE IF NOT EXISTS event_loads (
-    idx INTEGER NOT NULL, name TEXT NOT NULL,
+    study TEXT NOT NULL DEFAULT '', idx INTEGER NOT NULL, name TEXT NOT NULL,
     value REAL, error TEXT,
-    PRIMARY KEY (idx, name))
+    PRIMARY KEY (study, idx, name))
 """
 
 
@@ -42,17 +42,18 @@ def add_event_loads(c) -> None:
     c.execute(EVENT_LOADS)
 
 
-def put_loads(c, idx: int, loads, path) -> None:
-    """Store ``loads`` (``{name: (value, error)}``) of event ``idx`` in transaction ``c``.
+def put_loads(c, idx: int, loads, path, scope: str = "") -> None:
+    """Store ``loads`` (``{name: (value, error)}``) of event ``idx`` of study ``scope`` in ``c``.
 
     Identical rows are left as they are; a different value for a stored load
     raises :class:`~pas.study.schema.StoreError` (as a second, different result does).
     """
     for name, (value, error) in (loads or {}).items():
-        row = c.execute("SELECT value, error FROM event_loads WHERE idx = ? AND name = ?",
-                        (idx, name)).fetchone()
+        row = c.execute("SELECT value, error FROM event_loads WHERE study = ? AND idx = ? AND "
+                        "name = ?", (scope, idx, name)).fetchone()
         if row is None:
-            c.execute("INSERT INTO event_loads VALUES (?, ?, ?, ?)", (idx, name, value, error))
+            c.execute("INSERT INTO event_loads VALUES (?, ?, ?, ?, ?)",
+                      (scope, idx, name, value, error))
         elif tuple(row) != (value, error):
             raise StoreError(f"load {name!r} of event index {idx} is already stored in {path} "
                              f"(value={row[0]}, error={row[1]!r}); refusing to overwrite it")
@@ -61,14 +62,14 @@ def put_loads(c, idx: int, loads, path) -> None:
 def record_loads(store, event, loads) -> None:
     """Store the named loads of ``event`` alone, its result still to come (no target yet)."""
     with store.transaction() as c:
-        put_loads(c, int(event.index), loads, store.path)
+        put_loads(c, int(event.index), loads, store.path, store.scope)
 
 
 def stored_loads(store, name=None) -> dict:
     """``{idx: {name: (value, error)}}`` of the stored loads (of load ``name`` only if given)."""
-    sql, args = "SELECT idx, name, value, error FROM event_loads", ()
+    sql, args = "SELECT idx, name, value, error FROM event_loads WHERE study = ?", (store.scope,)
     if name is not None:
-        sql, args = sql + " WHERE name = ?", (name,)
+        sql, args = sql + " AND name = ?", (store.scope, name)
     out: dict = {}
     with store._read() as c:
         for idx, n, value, error in c.execute(sql + " ORDER BY idx, rowid", args):
@@ -80,7 +81,8 @@ def load_names(store) -> list[str]:
     """Names of the loads stored in ``store``, in order of first appearance."""
     with store._read() as c:
         return [r[0] for r in c.execute(
-            "SELECT name FROM event_loads GROUP BY name ORDER BY MIN(rowid)")]
+            "SELECT name FROM event_loads WHERE study = ? GROUP BY name ORDER BY MIN(rowid)",
+            (store.scope,))]
 
 
 def answers_from_loads(store, indices, target) -> dict:
@@ -104,8 +106,8 @@ def adopt_target(store, settings: dict) -> dict | None:
     with store.transaction() as c:
         stored = store._meta(c, "settings") or {}
         old, new = stored.get("target"), settings.get("target")
-        if old == new or c.execute("SELECT COUNT(*) FROM events WHERE result_seq IS NOT NULL"
-                                   ).fetchone()[0]:
+        if old == new or c.execute("SELECT COUNT(*) FROM events WHERE study = ? AND "
+                                   "result_seq IS NOT NULL", (store.scope,)).fetchone()[0]:
             return None
         store._set_meta(c, "settings", {**stored, "target": new})
         change = {"key": "target", "old": old, "new": new, "n_told": 0, "at": _now()}

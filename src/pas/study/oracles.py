@@ -17,7 +17,6 @@ from __future__ import annotations
 import json
 import math
 import os
-import re
 import subprocess
 import time
 from pathlib import Path
@@ -27,6 +26,7 @@ import numpy as np
 from ._processes import OWN_SESSION, kill_group, try_lock
 from .answers import check_hf_answer, check_hf_value, check_target, lacks_target
 from .inputs import read_table
+from .workdirs import event_dir
 
 __all__ = ["OracleError", "OracleFailureLimit", "check_hf_value", "check_hf_answer",
            "lacks_target", "check_oracle", "call_oracle", "call_oracle_loads", "check_target",
@@ -162,14 +162,6 @@ class TableOracle:
         return row[0]
 
 
-_SAFE = re.compile(r"[^A-Za-z0-9._-]")
-
-
-def _event_dir(event) -> str:
-    name = _SAFE.sub("_", str(event.id))
-    return name if name == str(event.id) and name not in (".", "..") else f"{name}-{event.index}"
-
-
 def parse_result(text: str):
     """An HF answer from a result file: a number, a JSON number or ``{"value": x}``,
     or several named loads as a JSON object ``{"deck_force": 812.0, "panel_p3": 41.2}``.
@@ -240,7 +232,8 @@ class CommandOracle:
     args : sequence of str
         Argument-list template, e.g. ``["python", "cfd.py", "--event", "{id}",
         "--lf", "{lf}", "--out", "{result}"]``.  Placeholders: ``{id}``,
-        ``{index}``, ``{lf}``, ``{d}``, ``{workdir}``, ``{result}``,
+        ``{index}``, ``{lf}``, ``{d}``, ``{sea_state}`` (long-term analysis),
+        ``{workdir}``, ``{result}``,
         ``{cwd}`` and every key of the event's ``meta`` (``{seed}``,
         ``{t_start}`` …).  For a design-wave
         :class:`~pas.waves.episode.Episode` (:func:`pas.run_rcw`) also
@@ -248,8 +241,9 @@ class CommandOracle:
         series and wave components, written into the working directory, and
         its ``{level}``, ``{target}`` and ``{t0}``.
     root : str or os.PathLike
-        Each event runs in its own working directory ``root/<event id>``,
-        with ``stdout.log`` and ``stderr.log``; relative to ``cwd``.
+        Each event runs in its own working directory ``root/<event id>``
+        (``root/<sea state>/<event id>`` in a long-term analysis), with
+        ``stdout.log`` and ``stderr.log``; relative to ``cwd``.
     cwd : str or os.PathLike, optional
         The directory the campaign is started from (default: the current
         one when the oracle is made): relative paths in ``args`` and
@@ -316,6 +310,8 @@ class CommandOracle:
         """The argument list for ``event`` (``files``: extra placeholders, e.g. an episode's)."""
         fields = {str(k): v for k, v in event.meta.items()}
         fields.update(files or {})
+        if getattr(event, "sea_state", None) is not None:  # else a meta key of that name
+            fields["sea_state"] = event.sea_state
         fields.update(id=event.id, index=event.index, lf=repr(float(event.lf)),
                       d=repr(float(event.d)), workdir=workdir, cwd=self.cwd,
                       result=os.path.join(workdir, self.result_name))
@@ -326,7 +322,7 @@ class CommandOracle:
                               "meta") from None
 
     def __call__(self, event) -> float:
-        workdir = os.path.join(self.root, _event_dir(event))
+        workdir = os.path.join(self.root, event_dir(event))
         os.makedirs(workdir, exist_ok=True)
         result = os.path.join(workdir, self.result_name)
         lock = os.open(os.path.join(workdir, ".lock"), os.O_RDWR | os.O_CREAT, 0o644)

@@ -26,7 +26,8 @@ def open_study(store, *, consume: bool = True, changes: dict | None = None) -> S
         store = StudyStore(store, create=False)
     s = store.settings()
     if not s:
-        raise StoreError(f"study store {store.path} holds no study")
+        what = " but a long-term analysis (pas.run_long_term)" if store.get("longterm") else ""
+        raise StoreError(f"study store {store.path} holds no single study{what}")
     s = with_legacy_settings(s)
     for key in changes or {}:
         if key not in RESUMABLE:

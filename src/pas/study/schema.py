@@ -3,8 +3,16 @@
 :class:`~pas.study.store.StudyStore` writes and reads these tables;
 :mod:`pas.study.replay` rebuilds a study from them.
 
-Schema (version 2)
+Schema (version 3)
 ------------------
+Version 3 scopes every study table by a ``study`` key (first column): one
+file holds one study (key ``""``, what a single study always uses) or the
+studies of a long-term analysis, one per sea state (key: the sea-state name,
+:mod:`pas.longterm`), each with its own settings, sequence numbers and log;
+the keys and unique columns below hold within one study.  A store of
+version 1 or 2 is rebuilt in place when opened (:func:`upgrade_to_3`), its
+rows under the key ``""``, so it opens and replays as before.
+
 ``schema_version(version)``
     One row, also ``PRAGMA user_version``.  A store written by a newer schema
     is refused with an error asking to upgrade pas; an older one is upgraded
@@ -75,7 +83,7 @@ __all__ = ["SCHEMA_VERSION", "UPGRADES", "STATES", "STORED", "RESUMABLE", "LEGAC
            "with_legacy_settings", "StoreError", "StoreConflict", "named_errors",
            "dumps"]
 
-SCHEMA_VERSION = 2
+SCHEMA_VERSION = 3
 #: How each :class:`~pas.study.state.EventState` is written in ``events.state`` (schema 1).
 STORED = {EventState.PENDING: "pending", EventState.TRUE_POSITIVE: "done",
           EventState.FALSE_POSITIVE: "false_positive", EventState.FAILED: "failed"}
@@ -159,8 +167,70 @@ def upgrade_to_2(c) -> None:
     _run_script(c, _SCHEMA_2)
 
 
+#: The tables of version 3: ``(name, columns and constraints)``, each led by ``study``.
+_SCHEMA_3 = (
+    ("meta", "key TEXT NOT NULL, value TEXT NOT NULL, PRIMARY KEY (study, key)"),
+    ("lf_peaks", "idx INTEGER NOT NULL, key TEXT NOT NULL, event_id TEXT NOT NULL, "
+                 "lf REAL NOT NULL, d REAL NOT NULL, meta TEXT NOT NULL, "
+                 "PRIMARY KEY (study, idx), UNIQUE (study, key)"),
+    ("events", "idx INTEGER NOT NULL, key TEXT NOT NULL, event_id TEXT NOT NULL, "
+               "lf REAL NOT NULL, d REAL NOT NULL, "
+               f"state TEXT NOT NULL CHECK (state IN {STATES!r}), hf REAL, error TEXT, "
+               "batch INTEGER NOT NULL, batch_pos INTEGER NOT NULL, result_seq INTEGER, "
+               "tell_seq INTEGER, attempts INTEGER NOT NULL DEFAULT 0, asked_at TEXT NOT NULL, "
+               "submitted_at TEXT, result_at TEXT, source TEXT, PRIMARY KEY (study, idx), "
+               "UNIQUE (study, key), UNIQUE (study, tell_seq), "
+               "FOREIGN KEY (study, idx) REFERENCES lf_peaks (study, idx)"),
+    ("history", "row INTEGER NOT NULL, idx INTEGER NOT NULL, data TEXT NOT NULL, "
+                "written_at TEXT NOT NULL, PRIMARY KEY (study, row)"),
+    ("replacements", "id INTEGER PRIMARY KEY, idx INTEGER NOT NULL, key TEXT NOT NULL, "
+                     "old_hf REAL, old_error TEXT, old_source TEXT, old_result_at TEXT, "
+                     "new_hf REAL, new_error TEXT, source TEXT, seq INTEGER NOT NULL, "
+                     "consumed_seq INTEGER, replaced_at TEXT NOT NULL, note TEXT NOT NULL"),
+    ("dropped", "id INTEGER PRIMARY KEY, idx INTEGER NOT NULL, key TEXT NOT NULL, "
+                "state TEXT NOT NULL, hf REAL, error TEXT, batch INTEGER, batch_pos INTEGER, "
+                "result_seq INTEGER, tell_seq INTEGER, attempts INTEGER, asked_at TEXT, "
+                "submitted_at TEXT, result_at TEXT, source TEXT, retry_seq INTEGER NOT NULL, "
+                "reason TEXT NOT NULL, reusable INTEGER NOT NULL, reused_seq INTEGER, "
+                "dropped_at TEXT NOT NULL"),
+    ("event_loads", "idx INTEGER NOT NULL, name TEXT NOT NULL, value REAL, error TEXT, "
+                    "PRIMARY KEY (study, idx, name)"),
+    ("results", "log_key TEXT NOT NULL, n_told INTEGER NOT NULL, data TEXT NOT NULL, "
+                "written_at TEXT NOT NULL, PRIMARY KEY (study, log_key)"),
+)
+
+#: The tables version 3 found created on opening in older stores, as they were then.
+_OPENED_TABLES = """
+CREATE TABLE IF NOT EXISTS event_loads (
+    idx INTEGER NOT NULL, name TEXT NOT NULL, value REAL, error TEXT, PRIMARY KEY (idx, name));
+CREATE TABLE IF NOT EXISTS results (
+    log_key TEXT PRIMARY KEY, n_told INTEGER NOT NULL, data TEXT NOT NULL,
+    written_at TEXT NOT NULL)
+"""
+
+
+def upgrade_to_3(c) -> None:
+    """Schema 2 -> 3: every table rebuilt with a leading ``study`` key, the rows under ``""``.
+
+    Parents before children (``lf_peaks`` before ``events``), children
+    dropped first, so the foreign key holds at every step; the row order of
+    each table (``rowid``) is kept.
+    """
+    _run_script(c, _OPENED_TABLES)
+    for name, _ in _SCHEMA_3:
+        c.execute(f"ALTER TABLE {name} RENAME TO _v2_{name}")
+    for name, columns in _SCHEMA_3:
+        c.execute(f"CREATE TABLE {name} (study TEXT NOT NULL DEFAULT '', {columns})")
+        old = [r[1] for r in c.execute(f"PRAGMA table_info(_v2_{name})")]
+        cols = ", ".join(old)
+        c.execute(f"INSERT INTO {name} (study, {cols}) SELECT '', {cols} FROM _v2_{name} "
+                  "ORDER BY rowid")
+    for name, _ in reversed(_SCHEMA_3):
+        c.execute(f"DROP TABLE _v2_{name}")
+
+
 #: One function per schema version, taking a store from the version before to this one.
-UPGRADES = {2: upgrade_to_2}
+UPGRADES = {2: upgrade_to_2, 3: upgrade_to_3}
 
 
 def create_or_upgrade(c, version: int) -> None:
@@ -168,8 +238,6 @@ def create_or_upgrade(c, version: int) -> None:
     if version == 0:
         _run_script(c, _SCHEMA)
         c.execute("INSERT INTO schema_version VALUES (1)")
-        for k, v in (("seq", 0), ("op_seq", 0)):
-            c.execute("INSERT INTO meta VALUES (?, ?)", (k, dumps(v)))
         version = 1
     for to in range(version + 1, SCHEMA_VERSION + 1):
         UPGRADES[to](c)

@@ -1,6 +1,8 @@
 """Crash-safe study store: every HF result is on disk the moment it arrives.
 
-One SQLite file per study (standard-library :mod:`sqlite3`), WAL journal,
+One SQLite file per study — or per long-term analysis, one study per sea
+state, each in its own ``scope`` (schema 3) — (standard-library
+:mod:`sqlite3`), WAL journal,
 ``synchronous=FULL``, every write in a ``BEGIN IMMEDIATE`` transaction with a
 busy time-out, so a driver process and any number of ``pas study tell``
 processes can write at the same time without losing a result.  Everything is
@@ -55,10 +57,15 @@ class StudyStore(StoreViews):
         Create the file when missing; False raises ``FileNotFoundError``.
     timeout : float, default 120
         Seconds to wait for another process's write transaction.
+    scope : str, default ""
+        The study in the file (schema 3): ``""`` for a single study, a
+        sea-state name for one study of a long-term analysis
+        (:mod:`pas.longterm`).  Every read and write stays inside it.
     """
 
-    def __init__(self, path, *, create: bool = True, timeout: float = 120.0):
+    def __init__(self, path, *, create: bool = True, timeout: float = 120.0, scope: str = ""):
         self.path = os.fspath(path)
+        self.scope = str(scope)
         if not create and not os.path.exists(self.path):
             raise FileNotFoundError(f"study store {self.path} does not exist "
                                     "(create it with 'pas study create')")
@@ -79,6 +86,8 @@ class StudyStore(StoreViews):
                     create_or_upgrade(c, version)
                 add_event_loads(c)
                 add_results_table(c)
+                c.executemany("INSERT OR IGNORE INTO meta VALUES (?, ?, ?)",
+                              [(self.scope, k, dumps(0)) for k in ("seq", "op_seq")])
 
     # -- plumbing ----------------------------------------------------------
     def close(self) -> None:
@@ -91,7 +100,8 @@ class StudyStore(StoreViews):
         self.close()
 
     def __repr__(self) -> str:
-        return f"StudyStore({self.path!r})"
+        return f"StudyStore({self.path!r})" if not self.scope else \
+            f"StudyStore({self.path!r}, scope={self.scope!r})"
 
     @contextmanager
     def transaction(self):
@@ -132,11 +142,12 @@ class StudyStore(StoreViews):
                 self._conn.execute("COMMIT")
 
     def _meta(self, c, key, default=None):
-        row = c.execute("SELECT value FROM meta WHERE key = ?", (key,)).fetchone()
+        row = c.execute("SELECT value FROM meta WHERE study = ? AND key = ?",
+                        (self.scope, key)).fetchone()
         return default if row is None else json.loads(row[0])
 
     def _set_meta(self, c, key, value) -> None:
-        c.execute("INSERT OR REPLACE INTO meta VALUES (?, ?)", (key, dumps(value)))
+        c.execute("INSERT OR REPLACE INTO meta VALUES (?, ?, ?)", (self.scope, key, dumps(value)))
 
     def _next_seq(self, c) -> int:
         seq = self._meta(c, "seq") + 1
@@ -172,7 +183,8 @@ class StudyStore(StoreViews):
         with self.transaction() as c:
             if self._meta(c, "settings") is not None:
                 raise StoreError(f"study store {self.path} already holds a study")
-            c.executemany("INSERT INTO lf_peaks VALUES (?, ?, ?, ?, ?, ?)", records)
+            c.executemany("INSERT INTO lf_peaks VALUES (?, ?, ?, ?, ?, ?, ?)",
+                          [(self.scope, *r) for r in records])
             for k, v in (("settings", settings), ("lf_sha256", _pool_hash(records)),
                          ("created_at", _now()), ("pas_version", __version__)):
                 self._set_meta(c, k, v)
@@ -198,7 +210,8 @@ class StudyStore(StoreViews):
                 elif old != new:
                     changes.append({"key": key, "old": old, "new": new})
             if _pool_hash(_pool_records(lfset)) != self._meta(c, "lf_sha256"):
-                n = c.execute("SELECT COUNT(*) FROM lf_peaks").fetchone()[0]
+                n = c.execute("SELECT COUNT(*) FROM lf_peaks WHERE study = ?",
+                              (self.scope,)).fetchone()[0]
                 raise StoreError(
                     f"lf_peaks differ from those the study store {self.path} was created with "
                     f"({n} peaks over threshold stored, {lfset.n} given; values, ids or meta "
@@ -206,8 +219,8 @@ class StudyStore(StoreViews):
             if stored != settings:
                 self._set_meta(c, "settings", settings)
             if changes:
-                n_told = c.execute("SELECT COUNT(*) FROM events WHERE tell_seq IS NOT NULL"
-                                   ).fetchone()[0]
+                n_told = c.execute("SELECT COUNT(*) FROM events WHERE study = ? AND "
+                                   "tell_seq IS NOT NULL", (self.scope,)).fetchone()[0]
                 now = _now()
                 for ch in changes:
                     ch.update(n_told=n_told, at=now)
@@ -243,9 +256,9 @@ class StudyStore(StoreViews):
             seq = self._claim_op(c)
             now = _now()
             c.executemany(
-                "INSERT INTO events (idx, key, event_id, lf, d, state, batch, batch_pos, asked_at) "
-                "VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?)",
-                [(ev.index, str(ev.id), dumps(ev.id), ev.lf, ev.d, STORED[EventState.PENDING],
+                "INSERT INTO events (study, idx, key, event_id, lf, d, state, batch, batch_pos, "
+                "asked_at) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?)",
+                [(self.scope, ev.index, str(ev.id), dumps(ev.id), ev.lf, ev.d, STORED[EventState.PENDING],
                   seq, i, now)
                  for i, ev in enumerate(events)])
             for ev in events:
@@ -255,8 +268,9 @@ class StudyStore(StoreViews):
     def mark_submitted(self, events) -> None:
         """Count a hand-over of ``events`` to an HF tool (``attempts`` + 1)."""
         with self.transaction() as c:
-            c.executemany("UPDATE events SET attempts = attempts + 1, submitted_at = ? WHERE idx = ?",
-                          [(_now(), ev.index) for ev in events])
+            c.executemany("UPDATE events SET attempts = attempts + 1, submitted_at = ? "
+                          "WHERE study = ? AND idx = ?",
+                          [(_now(), self.scope, ev.index) for ev in events])
 
     def record_result(self, event, value, error=None, *, source=None, loads=None) -> None:
         """Store the HF result (``value``) or failure (``error``) of a pending event, and ``loads``.
@@ -266,11 +280,11 @@ class StudyStore(StoreViews):
         idx = event if isinstance(event, (int, np.integer)) else event.index
         with self.transaction() as c:
             self._put_result(c, int(idx), value, error, source)
-            put_loads(c, int(idx), loads, self.path)
+            put_loads(c, int(idx), loads, self.path, self.scope)
 
     def _put_result(self, c, idx, value, error, source):
-        row = c.execute("SELECT key, state, hf, error, result_seq FROM events WHERE idx = ?",
-                        (idx,)).fetchone()
+        row = c.execute("SELECT key, state, hf, error, result_seq FROM events "
+                        "WHERE study = ? AND idx = ?", (self.scope, idx)).fetchone()
         if row is None:
             raise StoreError(f"event index {idx} was never asked for in {self.path}")
         key, state, hf, err, rseq = row
@@ -282,17 +296,17 @@ class StudyStore(StoreViews):
                              f"hf={hf}, error={err!r}); refusing to overwrite it")
         state = STORED[EventState.of_result(value, error)]
         c.execute("UPDATE events SET state = ?, hf = ?, error = ?, result_seq = ?, result_at = ?, "
-                  "source = ? WHERE idx = ?",
-                  (state, value, error, self._next_seq(c), _now(), source, idx))
+                  "source = ? WHERE study = ? AND idx = ?",
+                  (state, value, error, self._next_seq(c), _now(), source, self.scope, idx))
 
     def record_tell(self, event, row: dict) -> None:
         """Store that the study consumed ``event``'s result, with its history row."""
         with self.transaction() as c:
             self._put_result(c, event.index, row.get("hf"), row.get("error"), None)
             seq = self._claim_op(c)
-            c.execute("UPDATE events SET tell_seq = ? WHERE idx = ?", (seq, event.index))
-            c.execute("INSERT INTO history VALUES (?, ?, ?, ?)",
-                      (row["row"], event.index, dumps(row), _now()))
+            c.execute("UPDATE events SET tell_seq = ? WHERE study = ? AND idx = ?",
+                      (seq, self.scope, event.index))
+            self._put_history(c, event, row)
 
     def tell_by_key(self, key, value=None, *, error=None, source=None, loads=None,
                     replace: bool = False) -> bool:
@@ -307,12 +321,13 @@ class StudyStore(StoreViews):
         the log is kept there and used if the study asks for it again.
         """
         with self.transaction() as c:
-            row = c.execute("SELECT idx, state, result_seq, hf, error FROM events WHERE key = ?",
-                            (str(key),)).fetchone()
+            row = c.execute("SELECT idx, state, result_seq, hf, error FROM events "
+                            "WHERE study = ? AND key = ?", (self.scope, str(key))).fetchone()
             value = None if error is not None else float(value)
             if row is None:
                 if amend.tell_dropped(self, c, str(key), value, error, source):
-                    put_loads(c, amend.dropped_index(c, str(key)), loads, self.path)
+                    put_loads(c, amend.dropped_index(self, c, str(key)), loads, self.path,
+                              self.scope)
                     return True
                 raise StoreError(f"event {key} was not asked for in {self.path}")
             if row[2] is not None:
@@ -328,15 +343,18 @@ class StudyStore(StoreViews):
                                  f"error={row[4]!r}); to correct it, tell it again with "
                                  "--replace (replace=True)")
             self._put_result(c, row[0], value, error, source)
-            put_loads(c, row[0], loads, self.path)
+            put_loads(c, row[0], loads, self.path, self.scope)
             return True
 
     def record_replacement(self, event, row: dict) -> None:
         """Store that the study applied a replacement of ``event``'s result, with its history row."""
         with self.transaction() as c:
             amend.apply_replacement(self, c, event.index, row.get("hf"), row.get("error"))
-            c.execute("INSERT INTO history VALUES (?, ?, ?, ?)",
-                      (row["row"], event.index, dumps(row), _now()))
+            self._put_history(c, event, row)
+
+    def _put_history(self, c, event, row: dict) -> None:
+        c.execute("INSERT INTO history VALUES (?, ?, ?, ?, ?)",
+                  (self.scope, row["row"], event.index, dumps(row), _now()))
 
     def retry_failed(self, keys=None) -> dict:
         """Rewind the log so failed events run again (:func:`pas.study.amend.rewind_failed`)."""
@@ -352,12 +370,13 @@ class StudyStore(StoreViews):
         op so later writes can detect another driver.
         """
         with self._read() as c:
-            asks = c.execute("SELECT batch, idx FROM events ORDER BY batch, batch_pos").fetchall()
+            asks = c.execute("SELECT batch, idx FROM events WHERE study = ? "
+                             "ORDER BY batch, batch_pos", (self.scope,)).fetchall()
             tells = c.execute("SELECT tell_seq, idx, hf, error FROM events "
-                              "WHERE tell_seq IS NOT NULL").fetchall()
+                              "WHERE study = ? AND tell_seq IS NOT NULL", (self.scope,)).fetchall()
             replaced = c.execute("SELECT consumed_seq, idx, old_hf, old_error, new_hf, new_error "
-                                 "FROM replacements WHERE consumed_seq IS NOT 0 ORDER BY id"
-                                 ).fetchall()
+                                 "FROM replacements WHERE study = ? AND consumed_seq IS NOT 0 "
+                                 "ORDER BY id", (self.scope,)).fetchall()
             self._op_seq = self._meta(c, "op_seq")
         ops: dict[int, tuple] = {}
         for batch, idx in asks:

@@ -22,7 +22,8 @@ class StoreViews:
     def pool(self):
         """``(idx, ids, lf, meta)`` of the stored LF pool, ordered by ``idx``."""
         with self._read() as c:
-            rows = c.execute("SELECT idx, event_id, lf, meta FROM lf_peaks ORDER BY idx").fetchall()
+            rows = c.execute("SELECT idx, event_id, lf, meta FROM lf_peaks WHERE study = ? "
+                             "ORDER BY idx", (self.scope,)).fetchall()
         return (np.array([r[0] for r in rows], dtype=int), [json.loads(r[1]) for r in rows],
                 np.array([r[2] for r in rows], dtype=float), [json.loads(r[3]) for r in rows])
 
@@ -58,18 +59,18 @@ class StoreViews:
         a replacement of a result the study used is then applied as one.
         """
         with self._read() as c:
-            rows = c.execute("SELECT result_seq, idx, hf, error FROM events WHERE result_seq "
-                             "IS NOT NULL AND tell_seq IS NULL").fetchall()
+            rows = c.execute("SELECT result_seq, idx, hf, error FROM events WHERE study = ? AND "
+                             "result_seq IS NOT NULL AND tell_seq IS NULL", (self.scope,)).fetchall()
             rows += c.execute("SELECT seq, idx, new_hf, new_error FROM replacements "
-                              "WHERE consumed_seq IS NULL").fetchall()
+                              "WHERE study = ? AND consumed_seq IS NULL", (self.scope,)).fetchall()
         return [r[1:] for r in sorted(rows)]
 
     def outstanding(self) -> list[tuple]:
         """``(idx, hf, error, has_result)`` of events not consumed yet, in ask order."""
         with self._read() as c:
             return [(r[0], r[1], r[2], r[3] is not None) for r in c.execute(
-                "SELECT idx, hf, error, result_seq FROM events WHERE tell_seq IS NULL "
-                "ORDER BY batch, batch_pos")]
+                "SELECT idx, hf, error, result_seq FROM events WHERE study = ? AND tell_seq IS NULL "
+                "ORDER BY batch, batch_pos", (self.scope,))]
 
     def events(self):
         """All events sent to the HF tool as a :class:`pandas.DataFrame`, in ask order.
@@ -79,10 +80,10 @@ class StoreViews:
         import pandas as pd
 
         with self._read() as c:
-            cur = c.execute("SELECT e.*, p.meta FROM events e JOIN lf_peaks p USING (idx) "
-                            "ORDER BY batch, batch_pos")
+            cur = c.execute("SELECT e.*, p.meta FROM events e JOIN lf_peaks p USING (study, idx) "
+                            "WHERE study = ? ORDER BY batch, batch_pos", (self.scope,))
             cols = [d[0] for d in cur.description]
-            df = pd.DataFrame(cur.fetchall(), columns=cols)
+            df = pd.DataFrame(cur.fetchall(), columns=cols).drop(columns="study")
         df["event_id"] = [json.loads(x) for x in df["event_id"]]
         df["meta"] = [json.loads(x) for x in df["meta"]]
         return df
@@ -90,7 +91,8 @@ class StoreViews:
     def history(self) -> list[dict]:
         """The stored history rows, in order."""
         with self._read() as c:
-            return [json.loads(r[0]) for r in c.execute("SELECT data FROM history ORDER BY row")]
+            return [json.loads(r[0]) for r in c.execute(
+                "SELECT data FROM history WHERE study = ? ORDER BY row", (self.scope,))]
 
 
     def replacements(self) -> list[dict]:
@@ -103,6 +105,6 @@ class StoreViews:
 
     def _table(self, name) -> list[dict]:
         with self._read() as c:
-            cur = c.execute(f"SELECT * FROM {name} ORDER BY id")
+            cur = c.execute(f"SELECT * FROM {name} WHERE study = ? ORDER BY id", (self.scope,))
             cols = [d[0] for d in cur.description]
-            return [dict(zip(cols, r)) for r in cur.fetchall()]
+            return [{k: v for k, v in zip(cols, r) if k != "study"} for r in cur.fetchall()]

@@ -10,7 +10,7 @@ is current only while the fingerprint is unchanged; any later tell,
 replacement, retry or settings change gives another one, so a stale result is
 never shown as current.
 
-``results(log_key, n_told, data, written_at)``
+``results(study, log_key, n_told, data, written_at)``
     One row per fingerprint ``log_key`` (hex SHA-256): ``n_told`` consumed
     tells, ``data`` the JSON summary (:func:`summary`).  Created when a store
     is opened (:func:`add_results_table`), so older stores gain it empty and
@@ -30,8 +30,8 @@ __all__ = ["add_results_table", "log_key", "save_result", "stored_result", "summ
 
 RESULTS = """
 CREATE TABLE IF NOT EXISTS results (
-    log_key TEXT PRIMARY KEY, n_told INTEGER NOT NULL,
-    data TEXT NOT NULL, written_at TEXT NOT NULL)
+    study TEXT NOT NULL DEFAULT '', log_key TEXT NOT NULL, n_told INTEGER NOT NULL,
+    data TEXT NOT NULL, written_at TEXT NOT NULL, PRIMARY KEY (study, log_key))
 """
 
 
@@ -40,13 +40,15 @@ def add_results_table(c) -> None:
     c.execute(RESULTS)
 
 
-def log_key(c) -> tuple[str, int]:
-    """``(fingerprint, n_told)`` of the consumed state of the log read in connection ``c``."""
-    tells = c.execute("SELECT tell_seq, idx, hf, error FROM events WHERE tell_seq IS NOT NULL "
-                      "ORDER BY tell_seq").fetchall()
+def log_key(c, scope: str = "") -> tuple[str, int]:
+    """``(fingerprint, n_told)`` of the consumed state of study ``scope``'s log read in ``c``."""
+    tells = c.execute("SELECT tell_seq, idx, hf, error FROM events WHERE study = ? AND "
+                      "tell_seq IS NOT NULL ORDER BY tell_seq", (scope,)).fetchall()
     replaced = c.execute("SELECT id, idx, consumed_seq, old_hf, old_error, new_hf, new_error "
-                         "FROM replacements WHERE consumed_seq IS NOT NULL ORDER BY id").fetchall()
-    settings = c.execute("SELECT value FROM meta WHERE key = 'settings'").fetchone()
+                         "FROM replacements WHERE study = ? AND consumed_seq IS NOT NULL "
+                         "ORDER BY id", (scope,)).fetchall()
+    settings = c.execute("SELECT value FROM meta WHERE study = ? AND key = 'settings'",
+                         (scope,)).fetchone()
     text = dumps([[list(r) for r in tells], [list(r) for r in replaced],
                   None if settings is None else json.loads(settings[0])])
     return hashlib.sha256(text.encode()).hexdigest(), len(tells)
@@ -94,15 +96,15 @@ def save_result(store, study, result, expected_key=None) -> None:
     """
     try:
         with store.transaction() as c:
-            stored = c.execute("SELECT value FROM meta WHERE key = 'settings'").fetchone()
-            if stored is None or json.loads(stored[0]) != json.loads(dumps(study.settings())):
+            stored = store._meta(c, "settings")
+            if stored is None or stored != json.loads(dumps(study.settings())):
                 return
-            key, n_told = log_key(c)
+            key, n_told = log_key(c, store.scope)
             if key != expected_key if expected_key is not None else \
                     store._meta(c, "op_seq") != store._op_seq:
                 return
-            c.execute("INSERT OR REPLACE INTO results VALUES (?, ?, ?, ?)",
-                      (key, n_told, dumps(summary(study, result)), _now()))
+            c.execute("INSERT OR REPLACE INTO results VALUES (?, ?, ?, ?, ?)",
+                      (store.scope, key, n_told, dumps(summary(study, result)), _now()))
     except StoreError as exc:
         warnings.warn(f"the result was not stored for 'pas study status' ({exc})", stacklevel=3)
 
@@ -110,6 +112,7 @@ def save_result(store, study, result, expected_key=None) -> None:
 def stored_result(store) -> tuple[dict | None, int, str]:
     """``(summary, n_told, log_key)`` of the current log state (summary None if none stored)."""
     with store._read() as c:
-        key, n_told = log_key(c)
-        row = c.execute("SELECT data FROM results WHERE log_key = ?", (key,)).fetchone()
+        key, n_told = log_key(c, store.scope)
+        row = c.execute("SELECT data FROM results WHERE study = ? AND log_key = ?",
+                        (store.scope, key)).fetchone()
     return (None if row is None else json.loads(row[0])), n_told, key

@@ -144,7 +144,8 @@ class Study(Corrections):
         strategy = make_strategy(settings["strategy"], settings.get("strategy_settings"))
         lfset = LFSet(lf_peaks, n_waves=settings["n_waves"], p_exp=settings["p_exp"],
                       threshold=settings.get("threshold"), ids=ids, meta=meta,
-                      min_peaks=max(4, strategy.n_initial))
+                      min_peaks=max(4, strategy.n_initial),
+                      sea_state=getattr(store, "scope", None) or None)
         study_kw = {k: settings[k] for k in STUDY_SETTINGS if k in settings}
         if store is not None and study_kw.get("seed") is None:
             stored = store.settings() if isinstance(store, StudyStore) else read_settings(store)
