@@ -91,10 +91,15 @@ def test_inputs_read_with_ids_and_meta(problem):
 @pytest.mark.slow
 def test_end_to_end_writes_summary(problem, capsys):
     out = problem / "out"
-    code = main(_argv(problem, "--p-exceed", "1e-4", "--max-hf", "60", "--seed", "1",
-                      "--out", str(out), "--json", "--no-store"))
-    assert code == 0
+    argv = _argv(problem, "--p-exceed", "1e-4", "--max-hf", "60", "--seed", "1",
+                 "--out", str(out), "--json")
+    assert main(argv) == 0
     summary = json.loads((out / "summary.json").read_text())
+    assert summary["study"] == str(out / "long-term.sqlite") and (out / "long-term.sqlite").is_file()
+    assert main(argv) == 0   # the same command again: resumed from the store, nothing re-run
+    again = json.loads((out / "summary.json").read_text())
+    assert again["n_hf"] == summary["n_hf"]
+    assert again["value"] == pytest.approx(summary["value"], rel=1e-9)
     assert summary["n_hf"] <= 60 and np.isfinite(summary["value"])
     assert (out / "contributions.csv").is_file()
     # the truth by brute force over the same files: HF = 2 LF (+1 in the storm)
