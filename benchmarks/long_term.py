@@ -110,6 +110,12 @@ def tables(dirs):
     cells = {f.stem[-1]: pd.read_csv(f) for d in dirs for f in sorted(Path(d).glob("cells_*.csv"))}
     # a later folder (e.g. a rerun of one method) wins; a method that was run beats "not run"
     truth = truth.drop_duplicates(["analogue", "data_seed"], keep="last")
+    # rows of a process started before pas.run_long_term was in the build: not a result
+    runs = runs[~runs["note"].fillna("").str.contains("not available in this build")]
+    from pas.validation.long_term_compare import METHODS
+    runs = runs.assign(order=runs["method"].map(METHODS.index)).sort_values(
+        ["analogue", "order", "data_seed"], ascending=[False, True, True], kind="stable")
+    truth = truth.sort_values(["analogue", "data_seed"], ascending=[False, True], kind="stable")
     runs = (runs.assign(ran=runs["value"].notna()).sort_values("ran", kind="stable")
             .drop_duplicates(["analogue", "data_seed", "method"], keep="last")
             .sort_index(kind="stable"))
