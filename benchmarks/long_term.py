@@ -108,6 +108,8 @@ def tables(dirs):
     truth = pd.concat([pd.read_csv(f) for d in dirs
                        for f in sorted(Path(d).glob("truth_*.csv"))])
     cells = {f.stem[-1]: pd.read_csv(f) for d in dirs for f in sorted(Path(d).glob("cells_*.csv"))}
+    for t in (runs, truth):
+        t["analogue"] = [str(int(float(a))) for a in t["analogue"]]
     # a later folder (e.g. a rerun of one method) wins; a method that was run beats "not run"
     truth = truth.drop_duplicates(["analogue", "data_seed"], keep="last")
     # rows of a process started before pas.run_long_term was in the build: not a result
@@ -127,7 +129,19 @@ def tables(dirs):
     comp = ["| analogue | method | data sets | median \\|error\\| | worst \\|error\\| | "
             "median error | U95 coverage | median band width | HF spent (median) | "
             "wall time (median) |", "|---|---|---|---|---|---|---|---|---|---|"]
-    for (a, m), g in runs.groupby(["analogue", "method"], sort=False):
+    runs = runs.assign(order=runs["method"].map(METHODS.index)).sort_values(
+        ["analogue", "order", "data_seed"], ascending=[False, True, True], kind="stable")
+    common = {a: set.intersection(*(set(g2["data_seed"]) for _, g2 in g.groupby("method")))
+              for a, g in runs.groupby("analogue")}
+    same = runs[[s in common[a] for a, s in zip(runs["analogue"], runs["data_seed"])]]
+    per_run = ["| analogue | data set | method | truth | value | error | U95 | HF | wall time |",
+               "|---|---|---|---|---|---|---|---|---|"]
+    for _, r in runs.iterrows():
+        per_run.append(f"| {name(r['analogue'])} | {int(r['data_seed'])} | {r['method']} | "
+                       f"{_fmt(r['truth'])} | {_fmt(r['value'])} | {_pct(r['error'])} | "
+                       f"{_fmt(r['band_low'])} … {_fmt(r['band_high'])} | {int(r['n_hf'])} | "
+                       f"{r['seconds']:.0f} s |")
+    for (a, m), g in same.groupby(["analogue", "method"], sort=False):
         if g["value"].isna().all():
             comp.append(f"| {name(a)} | {m} | {len(g)} | not run: {g['note'].iloc[0]} "
                         "| | | | | | |")
@@ -173,7 +187,8 @@ def tables(dirs):
                     f"{100 * dropped['share_rayleigh'].sum():.2f} % | "
                     f"{100 * dropped['share_rayleigh'].max():.2f} % | {measured} | "
                     f"{_fmt(c['l_min'].iloc[0])} |")
-    return {"comparison": "\n".join(comp), "convergence": "\n".join(conv),
+    return {"comparison": "\n".join(comp), "runs": "\n".join(per_run),
+            "convergence": "\n".join(conv),
             "spread": "\n".join(spread), "cells": "\n".join(plan)}
 
 
