@@ -33,6 +33,8 @@ examples:
   pas reproduce 2a 2b --strategies rcw,mler  # design waves only (one episode per level)
   pas reproduce 3a 4a --scale 0.2 --quiet    # quick, shorter Monte-Carlo
   pas reproduce --all --properties           # data properties of all twelve analogues
+  pas reproduce long-term-3                  # long-term green water: PAS long-term, uniform,
+                                             # contour and LF-only on one data set (minutes)
 cases: 1a 1b (2nd-order crests), 2a 2b (hog/sag VBM), 3a 3b (green water), 4a 4b (slamming);
   3a-hard 3b-hard 4a-hard 4b-hard: the first impact analogues (upper-tail dependent, misses
   at the threshold), kept as a robustness test
@@ -70,6 +72,9 @@ def run(args) -> int:
     from ..validation.properties import format_properties
     from ..validation.reproduce import format_table, parse_strategies, reproduce
 
+    long_term = [c for c in args.cases if c.strip().lower().startswith("long-term")]
+    if long_term:
+        return _run_long_term(args, long_term)
     if args.all and args.cases:
         raise ValueError("give case ids or --all, not both")
     if not args.all and not args.cases:
@@ -93,4 +98,34 @@ def run(args) -> int:
             print(format_table(table))
         if args.out:
             print(f"written: {', '.join(str(f) for f in res['files'])}")
+    return 0
+
+
+def _run_long_term(args, cases) -> int:
+    """``pas reproduce long-term-3 long-term-2``: the four long-term methods side by side."""
+    from ..validation.long_term_compare import (
+        LONG_TERM_IDS,
+        format_long_term,
+        reproduce_long_term,
+    )
+
+    if len(cases) != len(args.cases) or args.all:
+        raise ValueError("give the long-term cases (long-term-3, long-term-2) on their own")
+    progress = None if args.quiet else (lambda msg: print(msg, file=sys.stderr, flush=True))
+    for case in cases:
+        key = case.strip().lower()
+        if key not in LONG_TERM_IDS:
+            raise ValueError(f"unknown long-term case {case!r}; choose from "
+                             f"{', '.join(LONG_TERM_IDS)}")
+        res = reproduce_long_term(key, seed=args.seed + 1, scale=args.scale, out=args.out,
+                                  cache=not args.no_cache, progress=progress)
+        if args.json:
+            print(json.dumps(json.loads(res["table"].to_json(orient="records")), indent=1))
+            continue
+        kept = res["plan"]
+        print(f"{key}: synthetic long-term analogue, {int(kept['kept'].sum())} of {len(kept)} "
+              f"scatter cells kept (estimated share of the dropped ones "
+              f"{kept['share_rayleigh'][~kept['kept']].sum():.2%}); value at p_exceed "
+              f"{res['table']['p_exceed'].iloc[0]:.3g} per encounter vs the brute-force truth:")
+        print(format_long_term(res["table"]))
     return 0
