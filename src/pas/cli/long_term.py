@@ -167,17 +167,10 @@ def read_inputs(args):
 
 def run(args) -> int:
     """Execute ``pas long-term``; returns the exit code (:data:`pas.cli.EXIT_CODES`)."""
-    from ..study.oracle_spec import oracle_from_spec
+    from .run import output_and_oracle
 
     table, peaks = read_inputs(args)
-    out = Path(args.out)
-    if out.exists() and not out.is_dir():
-        raise ValueError(f"--out {out} is a file; give a folder (it is created when missing)")
-    try:
-        oracle = oracle_from_spec(args.oracle, root=(out / "hf-runs").resolve(),
-                                  timeout=args.timeout)
-    except (ValueError, FileNotFoundError) as exc:
-        raise type(exc)(f"--oracle: {exc}") from None
+    out, oracle = output_and_oracle(args)
     from ..longterm import run_long_term
 
     study = None if args.no_store else Path(args.study or out / "long-term.sqlite")

@@ -211,12 +211,28 @@ def add_parser(sub) -> None:
     p.set_defaults(func=run)
 
 
+
+def output_and_oracle(args):
+    """``(--out folder, the oracle of --oracle)``, each checked with a one-line error; the
+    oracle's runs go to ``OUT/hf-runs`` (``pas run``, ``pas long-term``)."""
+    from ..study.oracle_spec import oracle_from_spec
+
+    out = Path(args.out)
+    if out.exists() and not out.is_dir():
+        raise ValueError(f"--out {out} is a file; give a folder (it is created when missing)")
+    try:
+        oracle = oracle_from_spec(args.oracle, root=(out / "hf-runs").resolve(),
+                                  timeout=args.timeout)
+    except (ValueError, FileNotFoundError) as exc:
+        raise type(exc)(f"--oracle: {exc}") from None
+    return out, oracle
+
 def run(args) -> int:
     """Execute ``pas run``; returns the exit code (:data:`pas.cli.EXIT_CODES`)."""
     from ..api import make_study
     from ..strategies.screening import check_n_waves
     from ..study.inputs import lf_table, read_lf_peaks
-    from ..study.oracle_spec import keep_start_dir, oracle_from_spec
+    from ..study.oracle_spec import keep_start_dir
     from ..study.oracles import OracleFailureLimit
     from ..study.replay import attach
     from ..study.store import StoreError, read_settings
@@ -232,14 +248,7 @@ def run(args) -> int:
                                 "convention": "--n-waves-convention spectral"})
     if note is not None:
         print(f"pas run: warning: {note}", file=sys.stderr)
-    out = Path(args.out)
-    if out.exists() and not out.is_dir():
-        raise ValueError(f"--out {out} is a file; give a folder (it is created when missing)")
-    try:
-        oracle = oracle_from_spec(args.oracle, root=(out / "hf-runs").resolve(),
-                                  timeout=args.timeout)
-    except (ValueError, FileNotFoundError) as exc:
-        raise type(exc)(f"--oracle: {exc}") from None
+    out, oracle = output_and_oracle(args)
     store = None if args.no_store else out / "study.sqlite"
     if args.retry_failed and store is None:
         raise ValueError("--retry-failed needs the study store of an earlier run: drop --no-store")
