@@ -86,8 +86,7 @@ def _check_told_values(history, table):
 def test_readme_python_command_oracle_snippet(user_folder):
     folder, table = user_folder
     code = _snippet("python", "pas.CommandOracle(")
-    names = {"pas": pas, "lf": table["lf"].to_numpy(), "ids": list(table["id"]),
-             "meta": table[["seed", "t_start"]].to_dict("records")}
+    names = {"pas": pas, "pd": pd}  # the snippet reads lf_peaks.csv (ids, lf, metadata) itself
     exec(compile(code, PAGE, "exec"), names)
     result = names["result"]
     assert result.n_failed == 0 and result.n_hf >= 4 and math.isfinite(result.mpm)

@@ -28,6 +28,7 @@ import pandas as pd
 from scipy.stats import norm
 
 from ..api import run_pas
+from ..study.settings import Stopping
 from . import case_impacts
 from .long_term import (
     ANALOGUES,
@@ -51,7 +52,7 @@ def _case(data):
 
 def _pas_kwargs(data):
     spec = _case(data)
-    return {"eps1": spec.eps1, "eps2": 0.1, "k1": 20, "k2": 20}
+    return {"stopping": Stopping(eps1=spec.eps1, eps2=0.1, k1=20, k2=20)}
 
 
 def _curve_exceedance(x, d, h):
@@ -124,8 +125,9 @@ def _cell_study(data, s, n, p_s, seed, max_hf):
     note = None
     for threshold in dict.fromkeys((_case(data).threshold, None)):
         try:
-            return run_pas(data.lf[s], _table_oracle(data.hf[s]), n_waves=n, p_exp=p_s,
-                           seed=seed, max_hf=max_hf, ids=list(data.ids[s]),
+            lf = pd.DataFrame({"lf": data.lf[s]}, index=list(data.ids[s]))  # ids: the index
+            return run_pas(lf, _table_oracle(data.hf[s]), n_waves=n, p_exp=p_s,
+                           seed=seed, max_hf=max_hf,
                            threshold=threshold, **_pas_kwargs(data)), None
         except ValueError as exc:
             note = str(exc).split(";")[0]
