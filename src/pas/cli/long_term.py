@@ -27,6 +27,8 @@ import json
 import math
 from pathlib import Path
 
+from .run import _positive_int  # the same rule as pas run's options
+
 __all__ = ["add_parser", "lf_files", "run"]
 
 EPILOG = """\
@@ -41,16 +43,6 @@ examples:
 exit codes: 0 done; 2 bad input; 130 interrupted (see 'pas --help')
 """
 _LF_SUFFIXES = (".csv", ".parquet", ".npy", ".txt")
-
-
-def _positive_int(text):
-    try:
-        v = int(text)
-    except ValueError:
-        v = 0
-    if v <= 0:
-        raise argparse.ArgumentTypeError(f"expected a positive integer, got {text!r}")
-    return v
 
 
 def add_parser(sub) -> None:

@@ -81,8 +81,6 @@ def optimize(study, oracle, *, batch_size: int = 1, executor: Executor | None = 
     check_oracle(oracle)
     check_option(pending, "pending", PENDING_POLICIES)
     batch_size = check_positive_int(batch_size, "batch_size")
-    if not callable(oracle):
-        raise ValueError(f"oracle must be a callable oracle(event) -> float, got {oracle!r}")
     own = None
     if executor is None and n_workers is not None:
         own = executor = ProcessPoolExecutor(check_positive_int(n_workers, "n_workers"))
