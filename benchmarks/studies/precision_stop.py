@@ -47,12 +47,12 @@ import pas
 from pas.validation import timing_problem
 from pas.validation.known_truth import make_problem
 from pas.validation.known_truth_runs import TYPES as KNOWN_TRUTH
-from pas.validation.result_tables import write_between_markers
+from pas.validation.result_tables import rewrite_page
 
 TYPES = ("core-gumbel-t0.6", "core-gaussian-t0.75", "tail-gaussian-mix", "miss-low-gaussian-t0.7")
 CASES = ("1a", "3a")
 FACTOR = 1.5  # "within a factor 1.5" of the HF still needed
-PAGE = Path("docs/results/precision.md")
+PAGE, TAG = Path("docs/results/precision.md"), "precision_stop.py"
 
 
 def problems(types, cases, n, scale):
@@ -183,13 +183,6 @@ def cost_markdown(cost: pd.DataFrame) -> str:
     return "\n".join(lines)
 
 
-def write_page(page: Path, blocks: dict[str, str]) -> None:
-    """Put ``blocks`` between the page's ``precision_stop.py`` markers."""
-    text = write_between_markers(page.read_text(encoding="utf-8"), blocks, "precision_stop.py")
-    page.write_text(text, encoding="utf-8")
-    print(f"wrote {', '.join(blocks)} in {page}")
-
-
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("n", nargs="?", type=int, default=3, help="data sets per problem")
@@ -216,7 +209,7 @@ def main(argv=None):
         cost = loop_cost(args.cost)
         print(cost.to_string(index=False, float_format=lambda x: f"{x:.3g}"))
         if args.write:
-            write_page(args.write, {"cost": cost_markdown(cost)})
+            rewrite_page(args.write, {"cost": cost_markdown(cost)}, TAG)
         return
     split = [s for s in args.types.split(",") if s], [s for s in args.cases.split(",") if s]
     targets = [float(x) for x in args.precisions.split(",")]
@@ -245,7 +238,7 @@ def _report(summary: pd.DataFrame, args) -> None:
         with pd.option_context("display.width", 200, "display.max_columns", 20):
             print(summary.to_string(index=False, float_format=lambda x: f"{x:.3g}"))
     if args.write:
-        write_page(args.write, {"summary": markdown(summary)})
+        rewrite_page(args.write, {"summary": markdown(summary)}, TAG)
 
 
 if __name__ == "__main__":

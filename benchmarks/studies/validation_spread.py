@@ -34,7 +34,7 @@ import pandas as pd
 from pas.validation import CASE_IDS, generate_case
 from pas.validation.known_truth_runs import settings_from_args
 from pas.validation.reproduce import _strategies, parse_strategies, run_case
-from pas.validation.result_tables import readme_summary, validation_tables, write_between_markers
+from pas.validation.result_tables import readme_summary, rewrite_page, validation_tables
 
 PAGE, README = Path("docs/results/validation.md"), Path("README.md")
 TAG = "validation_spread.py"
@@ -53,18 +53,13 @@ def summarise(runs: pd.DataFrame) -> pd.DataFrame:
 
 def write_pages(runs: pd.DataFrame, known_truth, max_hf) -> None:
     """Rewrite the tables of the validation page and, given the known-truth runs, the README's."""
-    _rewrite(PAGE, validation_tables(runs))
+    rewrite_page(PAGE, validation_tables(runs), TAG)
     if known_truth:
         defaults, paper = (pd.read_csv(p) for p in known_truth)
-        _rewrite(README, {"readme-summary": readme_summary(runs, defaults, paper, max_hf)})
+        rewrite_page(README, {"readme-summary": readme_summary(runs, defaults, paper, max_hf)},
+                     TAG)
     else:
         print(f"{README} left as it is: --known-truth DEFAULTS.csv PAPER.csv writes its table")
-
-
-def _rewrite(page: Path, blocks: dict[str, str]) -> None:
-    page.write_text(write_between_markers(page.read_text(encoding="utf-8"), blocks, TAG),
-                    encoding="utf-8")
-    print(f"wrote {', '.join(blocks)} in {page}")
 
 
 def main(argv=None):

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import re
 from collections.abc import Sequence
+from pathlib import Path
 
 import pandas as pd
 
@@ -40,7 +41,8 @@ def write_between_markers(text: str, blocks: dict[str, str], tag: str) -> str:
         Block text by marker name.
     tag : str
         The markers' tag: a block ``NAME`` goes between ``<!-- BEGIN tag NAME -->``
-        and ``<!-- END tag NAME -->`` (the markers stay).
+        and ``<!-- END tag NAME -->`` (the markers stay).  Markers indented
+        (a table inside a list item) get the block indented as they are.
 
     Returns
     -------
@@ -54,13 +56,35 @@ def write_between_markers(text: str, blocks: dict[str, str], tag: str) -> str:
     """
     for name, block in blocks.items():
         begin, end = f"<!-- BEGIN {tag} {name} -->", f"<!-- END {tag} {name} -->"
-        pattern = re.compile(re.escape(begin) + r"\n.*?" + re.escape(end), re.DOTALL)
-        if not pattern.search(text):
+        pattern = re.compile(r"^([ \t]*)" + re.escape(begin) + r"\n.*?" + re.escape(end),
+                             re.DOTALL | re.MULTILINE)
+        found = pattern.search(text)
+        if not found:
             raise ValueError(f"--write: the page has no '{begin}' … '{end}' markers; "
                              "add them where the table goes")
-        replacement = f"{begin}\n{block}\n{end}"
-        text = pattern.sub(lambda _, new=replacement: new, text, count=1)
+        indent = found.group(1)
+        inner = "\n".join(indent + line if line else line for line in block.split("\n"))
+        replacement = f"{indent}{begin}\n{inner}\n{indent}{end}"
+        text = text[:found.start()] + replacement + text[found.end():]
     return text
+
+
+def rewrite_page(page, blocks: dict[str, str], tag: str) -> None:
+    """Put each block between its markers in the page file ``page`` (:func:`write_between_markers`).
+
+    Parameters
+    ----------
+    page : str or path-like
+        The Markdown file, rewritten in place.
+    blocks : dict of str to str
+        Block text by marker name.
+    tag : str
+        The markers' tag, the name of the script that writes them.
+    """
+    page = Path(page)
+    page.write_text(write_between_markers(page.read_text(encoding="utf-8"), blocks, tag),
+                    encoding="utf-8")
+    print(f"wrote {', '.join(blocks)} in {page}")
 
 
 def _ordered_groups(runs: pd.DataFrame):
@@ -287,4 +311,50 @@ def properties_spread_table(table: pd.DataFrame) -> str:
         ordered = int((rows["lambda_l"] >= rows["lambda_u"]).sum())
         cells.insert(2, f"{ordered}/{len(rows)}")
         lines.append(f"| {case} | " + " | ".join(cells) + " |")
+    return "\n".join(lines)
+
+
+def median_worst(errors, decimals: int | None = None) -> str:
+    """``median / worst %`` of the absolute relative errors.
+
+    ``decimals`` of a per cent each, or (None) as :func:`short_pct` shows them;
+    "–" without errors.
+    """
+    magnitude = pd.Series(errors, dtype=float).abs().dropna()
+    if magnitude.empty:
+        return "–"
+    show = short_pct if decimals is None else (lambda f: f"{100 * f:.{decimals}f}")
+    return f"{show(magnitude.median())} / {show(magnitude.max())} %"
+
+
+def grid_table(results: pd.DataFrame, corner: str, rows, columns, cell=median_worst) -> str:
+    """A Markdown table whose cells summarise the ``error`` of the matching results.
+
+    Parameters
+    ----------
+    results : DataFrame
+        One row per run, with an ``error`` column and the columns the selectors name.
+    corner : str
+        The heading of the first column.
+    rows, columns : sequence of (str, dict)
+        A label and a selector (column name to value); a cell takes the results
+        that match its row's and its column's selectors.
+    cell : callable
+        The summary of a cell's errors (default :func:`median_worst`).
+
+    Returns
+    -------
+    str
+        Markdown, "–" where no result matches.
+    """
+    lines = ["| " + " | ".join([corner, *(label for label, _ in columns)]) + " |",
+             "|---" * (len(columns) + 1) + "|"]
+    for label, row in rows:
+        cells = []
+        for _, column in columns:
+            keep = pd.Series(True, index=results.index)
+            for key, value in {**row, **column}.items():
+                keep &= results[key] == value
+            cells.append(cell(results.loc[keep, "error"]))
+        lines.append("| " + " | ".join([label, *cells]) + " |")
     return "\n".join(lines)
