@@ -137,3 +137,21 @@ def test_records_case1_mpm_table():
     assert table.split("\n")[2:] == ["| linear | 8.64 m | 8.70 m | 8.62 m | Rayleigh 8.68 m |",
                                      "| second order | 10.60 m | 10.66 m | 10.53 m | "
                                      "Forristall 10.37 m |"]
+
+
+def test_validation_summary_from_the_spread_fixture():
+    """Worked by hand from tests/data/spread_runs.csv: 1a has two PAS runs (|M2| 0.004,
+    0.032: median 1.8 %, one covered), 1b and 2b one each, 2a none; 4a two (|M2| 0.128,
+    0.226); of the eight PAS runs six hold the truth."""
+    from pas.validation.result_tables import validation_summary
+
+    runs = pd.read_csv(ROOT / "tests" / "data" / "spread_runs.csv")
+    summary = load_script("benchmarks/studies/validation_spread.py").summarise(runs)
+    lines = validation_summary(summary).split("\n")
+    assert lines[2] == ("| 1a / 1b / 2a / 2b | 1.8 / 1.4 / – / 1.5 % | 3.2 / 1.4 / – / 1.5 % | "
+                        "22.5 / 28 / – / 31 | 2/2 / 1/1 / – / 0/1 | 1/2 / 1/1 / – / 1/1 | "
+                        "0.3 / – / – / – % | 0.4 / – / – / – % |")
+    assert lines[4] == ("| 4a / 4b | 17.7 / – % | 22.6 / – % | 160 / – | 0 / – of 2 | "
+                        "2 / – of 2 | – / – | – / – |")
+    assert lines[-1] == ("The U95 of PAS holds the data set's truth in 6 of 8 runs "
+                         "(75 %; nominal 95 %).")

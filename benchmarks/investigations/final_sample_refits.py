@@ -44,7 +44,8 @@ from pas.validation.refits import (
     pool_of,
 )
 from pas.validation.reproduce import run_case
-from pas.validation.result_tables import grid_table, median_worst, rewrite_page
+from pas.validation.error_tables import grid_table, median_worst
+from pas.validation.result_tables import rewrite_page
 
 # name: (PAS settings, keyword of the joint fit)
 VARIANTS = {

@@ -96,3 +96,23 @@ def test_has_write_reads_the_argparse_calls(tmp_path):
     without.write_text("import argparse\nap = argparse.ArgumentParser()\n"
                        "ap.add_argument('--csv')\n# --write\n")
     assert has_write(with_write) and not has_write(without)
+
+
+def rendered_tables(text: str) -> int:
+    import markdown
+
+    html = markdown.markdown(text, extensions=["tables", "admonition", "pymdownx.superfences"])
+    return html.count("<table>")
+
+
+@pytest.mark.parametrize("page", PAGES, ids=lambda p: p.name)
+def test_every_written_table_renders_as_a_table(page):
+    """A marker line right above a table nested in a list item hides it from Markdown."""
+    text = page.read_text(encoding="utf-8")
+    assert rendered_tables(text) == len(re.findall(r"^\s*\|---", text, re.MULTILINE))
+
+
+def test_the_render_check_sees_a_hidden_table():
+    hidden = "- a\n  - b\n\n    <!-- BEGIN a.py t -->\n    | x |\n    |---|\n    | 1 |\n"
+    assert rendered_tables(hidden) == 0
+    assert rendered_tables(hidden.replace("-->\n", "-->\n\n")) == 1

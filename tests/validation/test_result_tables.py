@@ -11,8 +11,6 @@ import pytest
 
 from pas.validation.result_tables import (
     VALIDATION_HEADER,
-    grid_table,
-    median_worst,
     properties_seed_table,
     properties_spread_table,
     readme_summary,
@@ -131,22 +129,5 @@ def test_the_properties_page_is_the_writers_output_on_the_measured_data():
 def test_write_between_markers_indents_the_block_as_its_markers():
     page = "- item\n\n  <!-- BEGIN t a -->\n  old\n  <!-- END t a -->\n"
     assert (write_between_markers(page, {"a": "| x |\n\n|---|"}, "t")
-            == "- item\n\n  <!-- BEGIN t a -->\n  | x |\n\n  |---|\n  <!-- END t a -->\n")
+            == "- item\n\n  <!-- BEGIN t a -->\n\n  | x |\n\n  |---|\n\n  <!-- END t a -->\n")
 
-
-def test_median_worst_of_the_absolute_errors():
-    # |errors| 0.05, 0.12, 0.30: median 12 %, worst 30 %; one decimal below 10 %
-    assert median_worst([0.05, -0.12, 0.30]) == "12 / 30 %"
-    assert median_worst([0.031, -0.052, 0.08]) == "5.2 / 8.0 %"
-    assert median_worst([0.05, -0.12, 0.30], decimals=1) == "12.0 / 30.0 %"
-    assert median_worst([]) == "–"
-
-
-def test_grid_table_takes_the_results_of_its_row_and_column():
-    results = pd.DataFrame({"case": ["3a", "3a", "3a", "4a", "4a"],
-                            "setting": ["x", "x", "y", "x", "x"],
-                            "error": [0.10, -0.30, 0.02, 0.5, 0.7]})
-    table = grid_table(results, "setting", [("x", {"setting": "x"}), ("y", {"setting": "y"})],
-                       [("3a", {"case": "3a"}), ("4a", {"case": "4a"})])
-    assert table.split("\n") == ["| setting | 3a | 4a |", "|---|---|---|",
-                                 "| x | 20 / 30 % | 60 / 70 % |", "| y | 2.0 / 2.0 % | – |"]

@@ -42,7 +42,8 @@ def write_between_markers(text: str, blocks: dict[str, str], tag: str) -> str:
     tag : str
         The markers' tag: a block ``NAME`` goes between ``<!-- BEGIN tag NAME -->``
         and ``<!-- END tag NAME -->`` (the markers stay).  Markers indented
-        (a table inside a list item) get the block indented as they are.
+        (a table inside a list item) get the block indented as they are, with a
+        blank line either side.
 
     Returns
     -------
@@ -64,7 +65,9 @@ def write_between_markers(text: str, blocks: dict[str, str], tag: str) -> str:
                              "add them where the table goes")
         indent = found.group(1)
         inner = "\n".join(indent + line if line else line for line in block.split("\n"))
-        replacement = f"{indent}{begin}\n{inner}\n{indent}{end}"
+        # in a list item Markdown reads a table only after a blank line
+        gap = "\n\n" if indent else "\n"
+        replacement = f"{indent}{begin}{gap}{inner}{gap}{indent}{end}"
         text = text[:found.start()] + replacement + text[found.end():]
     return text
 
@@ -314,47 +317,60 @@ def properties_spread_table(table: pd.DataFrame) -> str:
     return "\n".join(lines)
 
 
-def median_worst(errors, decimals: int | None = None) -> str:
-    """``median / worst %`` of the absolute relative errors.
 
-    ``decimals`` of a per cent each, or (None) as :func:`short_pct` shows them;
-    "–" without errors.
-    """
-    magnitude = pd.Series(errors, dtype=float).abs().dropna()
-    if magnitude.empty:
-        return "–"
-    show = short_pct if decimals is None else (lambda f: f"{100 * f:.{decimals}f}")
-    return f"{show(magnitude.median())} / {show(magnitude.max())} %"
+SUMMARY_GROUPS = (("1a / 1b / 2a / 2b", ("1a", "1b", "2a", "2b")), ("3a / 3b", ("3a", "3b")),
+                  ("4a / 4b", ("4a", "4b")),
+                  ("3a-hard / 3b-hard / 4a-hard / 4b-hard",
+                   ("3a-hard", "3b-hard", "4a-hard", "4b-hard")))
+"""The rows of the validation page's summary: a label and the cases it lists."""
 
 
-def grid_table(results: pd.DataFrame, corner: str, rows, columns, cell=median_worst) -> str:
-    """A Markdown table whose cells summarise the ``error`` of the matching results.
+def validation_summary(summary: pd.DataFrame) -> str:
+    """The summary of ``docs/results/validation.md``: per group of cases, PAS's accuracy,
+    HF, stops and U95 coverage beside the paper preset's and AS's accuracy.
 
     Parameters
     ----------
-    results : DataFrame
-        One row per run, with an ``error`` column and the columns the selectors name.
-    corner : str
-        The heading of the first column.
-    rows, columns : sequence of (str, dict)
-        A label and a selector (column name to value); a cell takes the results
-        that match its row's and its column's selectors.
-    cell : callable
-        The summary of a cell's errors (default :func:`median_worst`).
+    summary : DataFrame
+        The ``summary.csv`` of ``validation_spread.py``: one row per case and
+        strategy with ``n`` (replications), ``absM2_median``, ``absM2_max``,
+        ``n_hf_median``, ``converged`` and ``covered`` (shares).
 
     Returns
     -------
     str
-        Markdown, "–" where no result matches.
+        Markdown, one value per case in each cell, then the U95 coverage of
+        all PAS runs.
     """
-    lines = ["| " + " | ".join([corner, *(label for label, _ in columns)]) + " |",
-             "|---" * (len(columns) + 1) + "|"]
-    for label, row in rows:
-        cells = []
-        for _, column in columns:
-            keep = pd.Series(True, index=results.index)
-            for key, value in {**row, **column}.items():
-                keep &= results[key] == value
-            cells.append(cell(results.loc[keep, "error"]))
-        lines.append("| " + " | ".join([label, *cells]) + " |")
-    return "\n".join(lines)
+    by = summary.set_index(["case", "strategy"])
+
+    def cells(strategy, cases, show, unit=" %"):
+        values = [show(by.loc[(c, strategy)]) if (c, strategy) in by.index else "–"
+                  for c in cases]
+        return " / ".join(values) + ("" if all(v == "–" for v in values) else unit)
+
+    def counted(key, cases):
+        """``k / k / … of n``, or ``k/n / …`` where the replications differ."""
+        present = [c for c in cases if (c, "pas") in by.index]
+        ns = {int(by.loc[(c, "pas"), "n"]) for c in present}
+        shown = (lambda r: f"{round(r[key] * r['n']):.0f}") if len(ns) == 1 else (
+            lambda r: f"{round(r[key] * r['n']):.0f}/{r['n']:.0f}")
+        return cells("pas", cases, shown, f" of {ns.pop()}" if len(ns) == 1 else "")
+
+    def pct(key):
+        return lambda r: f"{100 * r[key]:.1f}"
+
+    lines = ["| cases | PAS median \\|M2\\| | PAS worst \\|M2\\| | PAS HF (median) | PAS converged | "
+             "PAS U95 holds the truth | paper preset median \\|M2\\| | AS median \\|M2\\| |",
+             "|---" * 8 + "|"]
+    for label, cases in SUMMARY_GROUPS:
+        lines.append(f"| {label} | {cells('pas', cases, pct('absM2_median'))} | "
+                     f"{cells('pas', cases, pct('absM2_max'))} | "
+                     f"{cells('pas', cases, lambda r: f'{r.n_hf_median:g}', '')} | "
+                     f"{counted('converged', cases)} | {counted('covered', cases)} | "
+                     f"{cells('pas-paper', cases, pct('absM2_median'))} | "
+                     f"{cells('as', cases, pct('absM2_median'))} |")
+    pas = summary[summary["strategy"] == "pas"]
+    held, runs = float((pas["covered"] * pas["n"]).sum()), int(pas["n"].sum())
+    return ("\n".join(lines) + f"\n\nThe U95 of PAS holds the data set's truth in {held:.0f} of "
+            f"{runs} runs ({100 * held / max(runs, 1):.0f} %; nominal 95 %).")

@@ -1,0 +1,58 @@
+"""Tables of relative errors over data sets, for the pages of investigations.
+
+``benchmarks/investigations/final_sample_refits.py --write`` saves one error
+per case, mode, setting and data seed and lays them out with
+:func:`grid_table`; each cell is :func:`median_worst` of its errors.
+"""
+
+from __future__ import annotations
+
+import pandas as pd
+
+from .result_tables import short_pct
+
+
+def median_worst(errors, decimals: int | None = None) -> str:
+    """``median / worst %`` of the absolute relative errors.
+
+    ``decimals`` of a per cent each, or (None) as :func:`short_pct` shows them;
+    "–" without errors.
+    """
+    magnitude = pd.Series(errors, dtype=float).abs().dropna()
+    if magnitude.empty:
+        return "–"
+    show = short_pct if decimals is None else (lambda f: f"{100 * f:.{decimals}f}")
+    return f"{show(magnitude.median())} / {show(magnitude.max())} %"
+
+
+def grid_table(results: pd.DataFrame, corner: str, rows, columns, cell=median_worst) -> str:
+    """A Markdown table whose cells summarise the ``error`` of the matching results.
+
+    Parameters
+    ----------
+    results : DataFrame
+        One row per run, with an ``error`` column and the columns the selectors name.
+    corner : str
+        The heading of the first column.
+    rows, columns : sequence of (str, dict)
+        A label and a selector (column name to value); a cell takes the results
+        that match its row's and its column's selectors.
+    cell : callable
+        The summary of a cell's errors (default :func:`median_worst`).
+
+    Returns
+    -------
+    str
+        Markdown, "–" where no result matches.
+    """
+    lines = ["| " + " | ".join([corner, *(label for label, _ in columns)]) + " |",
+             "|---" * (len(columns) + 1) + "|"]
+    for label, row in rows:
+        cells = []
+        for _, column in columns:
+            keep = pd.Series(True, index=results.index)
+            for key, value in {**row, **column}.items():
+                keep &= results[key] == value
+            cells.append(cell(results.loc[keep, "error"]))
+        lines.append("| " + " | ".join([label, *cells]) + " |")
+    return "\n".join(lines)
