@@ -135,8 +135,8 @@ def test_records_case1_mpm_table():
                 SimpleNamespace(mpm_pooled=10.6, mpm_seed_maxima=10.664, mpm_fit=10.53)]
     table = script.mpm_table(analyses, (("Rayleigh", 8.68), ("Forristall", 10.371)))
     assert table.split("\n")[2:] == ["| linear | 8.64 m | 8.70 m | 8.62 m | Rayleigh 8.68 m |",
-                                     "| second order | 10.60 m | 10.66 m | 10.53 m | "
-                                     "Forristall 10.37 m |"]
+                                     ("| second order | 10.60 m | 10.66 m | 10.53 m | "
+                                      "Forristall 10.37 m |")]
 
 
 def test_validation_summary_from_the_spread_fixture():

@@ -37,6 +37,12 @@ import numpy as np
 import pandas as pd
 
 from pas.validation import generate_case
+from pas.validation.error_tables import (
+    add_write_options,
+    grid_table,
+    median_worst,
+    saved_results,
+)
 from pas.validation.refits import (
     error_at,
     evaluated_positions,
@@ -44,7 +50,6 @@ from pas.validation.refits import (
     pool_of,
 )
 from pas.validation.reproduce import run_case
-from pas.validation.error_tables import grid_table, median_worst
 from pas.validation.result_tables import rewrite_page
 
 # name: (PAS settings, keyword of the joint fit)
@@ -120,18 +125,10 @@ def main(argv=None):
         mode.add_argument(flag, dest="mode", action="store_const", const=flag)
     ap.add_argument("--only", default=",".join(VARIANTS),
                     help=f"comma-separated settings of: {', '.join(VARIANTS)}")
-    ap.add_argument("--csv", type=Path, help="save every error to this file")
-    ap.add_argument("--from-csv", metavar="A.csv,B.csv",
-                    help="with --write: the --csv files of earlier runs")
-    ap.add_argument("--write", nargs="?", const=PAGE, type=Path, metavar="PAGE",
-                    help=f"run nothing: write the tables between the markers of PAGE "
-                         f"(default {PAGE}) from --from-csv")
+    add_write_options(ap, PAGE)
     args = ap.parse_args(argv)
     if args.write:
-        if not args.from_csv:
-            ap.error("--write needs --from-csv A.csv,B.csv (the --csv files of earlier runs)")
-        results = pd.concat([pd.read_csv(f) for f in args.from_csv.split(",")],
-                            ignore_index=True)
+        results = saved_results(ap, args)
         return rewrite_page(args.write, tables(results), TAG)
     if args.case is None:
         ap.error("give a CASE (e.g. 3a), or --write --from-csv A.csv,B.csv")

@@ -51,6 +51,7 @@ import pandas as pd
 from scipy import optimize, stats
 
 from pas.validation import generate_case
+from pas.validation.error_tables import add_write_options, saved_results
 from pas.validation.references import (
     copula_at_tau,
     lf_reference_nll,
@@ -163,8 +164,8 @@ def _pct(value: float) -> str:
 
 def markdown(cases: pd.DataFrame) -> str:
     """The page's ``move20`` table, one row per case of ``--csv``."""
-    lines = ["| case | ε1 / truth | PAS (default) at its end | known law | known law + LF (Gumbel) "
-             "| references within ε1 | their median \\|error\\| at k |", "|---" * 7 + "|"]
+    lines = [("| case | ε1 / truth | PAS (default) at its end | known law | known law + LF (Gumbel) "
+              "| references within ε1 | their median \\|error\\| at k |"), "|---" * 7 + "|"]
     for _, r in cases.iterrows():
         end = "at 160 HF" if r["pas_stopped"] == 0 else "at its stop or 160 HF"
         lines.append(
@@ -185,17 +186,10 @@ def main(argv=None):
     ap.add_argument("--draws", type=int, default=100, help="draws of each reference")
     ap.add_argument("--max-hf", type=int, default=None,
                     help="also run the default rule with this HF budget")
-    ap.add_argument("--csv", type=Path, help="save one summary row per case to this file")
-    ap.add_argument("--from-csv", metavar="A.csv,B.csv",
-                    help="with --write: the --csv files of earlier runs")
-    ap.add_argument("--write", nargs="?", const=PAGE, type=Path, metavar="PAGE",
-                    help=f"run nothing: write the table between the markers of PAGE "
-                         f"(default {PAGE}) from --from-csv")
+    add_write_options(ap, PAGE)
     args = ap.parse_args(argv)
     if args.write:
-        if not args.from_csv:
-            ap.error("--write needs --from-csv A.csv,B.csv (the --csv files of earlier runs)")
-        rows = pd.concat([pd.read_csv(f) for f in args.from_csv.split(",")], ignore_index=True)
+        rows = saved_results(ap, args)
         return rewrite_page(args.write, {"move20": markdown(rows)}, TAG)
     cases, draws, budget, n = args.cases.split(","), args.draws, args.max_hf, args.n
     summary = []

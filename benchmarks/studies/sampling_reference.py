@@ -70,6 +70,7 @@ import numpy as np
 import pandas as pd
 
 from pas.validation import generate_case
+from pas.validation.error_tables import add_write_options, saved_results
 from pas.validation.references import (
     COPULAS,
     copula_association,
@@ -139,13 +140,13 @@ def tables(rows: pd.DataFrame) -> dict[str, str]:
     """The page's three tables from the ``--csv`` rows of one or more runs (a row that two
     runs share is taken from the first)."""
     rows = rows.drop_duplicates(["case", "k", "reference"])
-    impacts = ["| case | k | truth's estimator: median / p90 \\|error\\| | P(10 ≤ 25 %) | "
-               "empirical quantile: median / p90 | PAS (validation): median / worst \\|M2\\| |",
+    impacts = [("| case | k | truth's estimator: median / p90 \\|error\\| | P(10 ≤ 25 %) | "
+                "empirical quantile: median / p90 | PAS (validation): median / worst \\|M2\\| |"),
                "|---" * 6 + "|"]
-    pool = ["| case | PAS's estimator, random pool events: median / p90 \\|error\\| | "
-            "P(10 ≤ 25 %) | PAS (MD): median / worst \\|M2\\| |", "|---" * 4 + "|"]
-    models = ["| case | τ | k | known law: median · P(targets) | + LF, Gaussian: median · P | "
-              "+ LF, Gumbel: median · P | PAS: median / worst \\|M2\\| |", "|---" * 7 + "|"]
+    pool = [("| case | PAS's estimator, random pool events: median / p90 \\|error\\| | "
+             "P(10 ≤ 25 %) | PAS (MD): median / worst \\|M2\\| |"), "|---" * 4 + "|"]
+    models = [("| case | τ | k | known law: median · P(targets) | + LF, Gaussian: median · P | "
+               "+ LF, Gumbel: median · P | PAS: median / worst \\|M2\\| |"), "|---" * 7 + "|"]
     for case, of_case in rows.groupby("case", sort=False):
         by = {name: g.sort_values("k") for name, g in of_case.groupby("reference")}
         if "truth-estimator" in by:
@@ -181,17 +182,10 @@ def main(argv=None):
                     help="with --pas-runs: take PAS's pair counts, skip PAS on random events")
     ap.add_argument("--pas-runs", default=None,
                     help="runs.csv of validation_spread.py: adds k = PAS's median pairs")
-    ap.add_argument("--csv", type=Path, help="save every printed row to this file")
-    ap.add_argument("--from-csv", metavar="A.csv,B.csv",
-                    help="with --write: the --csv files of earlier runs")
-    ap.add_argument("--write", nargs="?", const=PAGE, type=Path, metavar="PAGE",
-                    help=f"run nothing: write the tables between the markers of PAGE "
-                         f"(default {PAGE}) from --from-csv")
+    add_write_options(ap, PAGE)
     args = ap.parse_args(argv)
     if args.write:
-        if not args.from_csv:
-            ap.error("--write needs --from-csv A.csv,B.csv (the --csv files of earlier runs)")
-        saved = pd.concat([pd.read_csv(f) for f in args.from_csv.split(",")], ignore_index=True)
+        saved = saved_results(ap, args)
         return rewrite_page(args.write, tables(saved), TAG)
     cases = args.cases.split(",")
     saved = []

@@ -1,11 +1,17 @@
-"""Tables of relative errors over data sets, for the pages of investigations.
+"""Results the investigation scripts save, and tables of relative errors over data sets.
 
-``benchmarks/investigations/final_sample_refits.py --write`` saves one error
-per case, mode, setting and data seed and lays them out with
-:func:`grid_table`; each cell is :func:`median_worst` of its errors.
+A script that writes a table of ``docs/results/investigations.md`` saves its
+results with ``--csv FILE`` and, in a later call, reads them back with
+``--write --from-csv A,B,…`` (:func:`add_write_options`,
+:func:`saved_results`).  ``final_sample_refits.py`` saves one error per case,
+mode, setting and data seed and lays them out with :func:`grid_table`; each
+cell is :func:`median_worst` of its errors.
 """
 
 from __future__ import annotations
+
+import argparse
+from pathlib import Path
 
 import pandas as pd
 
@@ -56,3 +62,28 @@ def grid_table(results: pd.DataFrame, corner: str, rows, columns, cell=median_wo
             cells.append(cell(results.loc[keep, "error"]))
         lines.append("| " + " | ".join([label, *cells]) + " |")
     return "\n".join(lines)
+
+
+def add_write_options(parser: argparse.ArgumentParser, page) -> None:
+    """Give a script ``--csv FILE``, ``--from-csv A,B,…`` and ``--write [PAGE]``.
+
+    Parameters
+    ----------
+    parser : argparse.ArgumentParser
+        The script's parser.
+    page : str or path-like
+        The page ``--write`` writes when given no path.
+    """
+    parser.add_argument("--csv", type=Path, help="save the results to this file")
+    parser.add_argument("--from-csv", metavar="A.csv,B.csv",
+                        help="with --write: the --csv files of earlier runs")
+    parser.add_argument("--write", nargs="?", const=Path(page), type=Path, metavar="PAGE",
+                        help=f"run nothing: write the tables between the markers of PAGE "
+                             f"(default {page}) from --from-csv")
+
+
+def saved_results(parser: argparse.ArgumentParser, args) -> pd.DataFrame:
+    """The rows of the ``--from-csv`` files, one table; a usage error without them."""
+    if not args.from_csv:
+        parser.error("--write needs --from-csv A.csv,B.csv (the --csv files of earlier runs)")
+    return pd.concat([pd.read_csv(f) for f in args.from_csv.split(",")], ignore_index=True)
