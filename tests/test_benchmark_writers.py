@@ -155,3 +155,18 @@ def test_validation_summary_from_the_spread_fixture():
                         "2 / – of 2 | – / – | – / – |")
     assert lines[-1] == ("The U95 of PAS holds the data set's truth in 6 of 8 runs "
                          "(75 %; nominal 95 %).")
+
+
+def test_a_write_leaves_the_tables_it_has_no_results_for(tmp_path, capsys):
+    """Results of one --every-event run fill the censoring and HF-marginal tables; the
+    estimator-settings table (final samples of 3a, 3b) keeps its rows."""
+    _refits([("4a", "every", "default", 0, -0.3)]).to_csv(tmp_path / "e.csv", index=False)
+    copy = _copy(INVESTIGATIONS, tmp_path)
+    load_script("benchmarks/investigations/final_sample_refits.py").main(
+        ["--write", str(copy), "--from-csv", str(tmp_path / "e.csv")])
+    tag = "final_sample_refits.py settings"
+    block = re.compile(rf"<!-- BEGIN {tag} -->.*?<!-- END {tag} -->", re.DOTALL)
+    assert (block.search(copy.read_text(encoding="utf-8")).group()
+            == block.search(INVESTIGATIONS.read_text(encoding="utf-8")).group())
+    assert "| 0 (default) | 30.0 / 30.0 % | – | – | – |" in copy.read_text(encoding="utf-8")
+    assert "left as they were" in capsys.readouterr().out

@@ -42,6 +42,7 @@ from pas.validation.error_tables import (
     grid_table,
     median_worst,
     saved_results,
+    write_tables,
 )
 from pas.validation.refits import (
     error_at,
@@ -50,7 +51,6 @@ from pas.validation.refits import (
     pool_of,
 )
 from pas.validation.reproduce import run_case
-from pas.validation.result_tables import rewrite_page
 
 # name: (PAS settings, keyword of the joint fit)
 VARIANTS = {
@@ -108,6 +108,14 @@ def tables(results: pd.DataFrame) -> dict[str, str]:
     return {name: grid_table(results, *spec) for name, spec in TABLES.items()}
 
 
+def save_errors(path, case: str, mode: str, errors: dict) -> None:
+    """Write ``errors`` (setting: one error per data seed, in seed order) to ``path`` (if given)."""
+    if path:
+        pd.DataFrame([{"case": case, "mode": mode, "setting": name, "seed": seed, "error": e}
+                      for name, es in errors.items() for seed, e in enumerate(es)]
+                     ).to_csv(path, index=False)
+
+
 def refit_error(data, res, seed, settings, joint_kw):
     """:func:`error_at` on the events ``res`` evaluated (None: every event of the data set)."""
     lfset, hf_pool = pool_of(data)
@@ -129,7 +137,7 @@ def main(argv=None):
     args = ap.parse_args(argv)
     if args.write:
         results = saved_results(ap, args)
-        return rewrite_page(args.write, tables(results), TAG)
+        return write_tables(args.write, tables(results), TAG)
     if args.case is None:
         ap.error("give a CASE (e.g. 3a), or --write --from-csv A.csv,B.csv")
     case, n, flags = args.case, args.n, (args.mode,)
@@ -140,6 +148,7 @@ def main(argv=None):
     variants = {name: VARIANTS[name] for name in only}
     errors = {name: [] for name in variants}
     for seed in range(int(n)):
+        save_errors(args.csv, case, MODES[args.mode], errors)  # the data seeds done so far
         data = generate_case(case, seed=seed)
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
@@ -185,10 +194,7 @@ def main(argv=None):
                 errors[name].append(refit_error(data, res, seed, settings, joint_kw))
                 line.append(f"{name} {errors[name][-1]:+.2f}")
         print(" | ".join(line), flush=True)
-    if args.csv:
-        pd.DataFrame([{"case": case, "mode": MODES[args.mode], "setting": name, "seed": seed,
-                       "error": e} for name, es in errors.items()
-                      for seed, e in enumerate(es)]).to_csv(args.csv, index=False)
+    save_errors(args.csv, case, MODES[args.mode], errors)
     for name, e in errors.items():
         if e:
             a = np.abs(e)

@@ -51,7 +51,7 @@ import pandas as pd
 from scipy import optimize, stats
 
 from pas.validation import generate_case
-from pas.validation.error_tables import add_write_options, saved_results
+from pas.validation.error_tables import add_write_options, saved_results, write_tables
 from pas.validation.references import (
     copula_at_tau,
     lf_reference_nll,
@@ -59,7 +59,6 @@ from pas.validation.references import (
     truth_law,
 )
 from pas.validation.reproduce import run_case
-from pas.validation.result_tables import rewrite_page
 
 WINDOW = 20
 PAGE, TAG = Path("docs/results/investigations.md"), "stop_movement.py"
@@ -190,7 +189,7 @@ def main(argv=None):
     args = ap.parse_args(argv)
     if args.write:
         rows = saved_results(ap, args)
-        return rewrite_page(args.write, {"move20": markdown(rows)}, TAG)
+        return write_tables(args.write, {"move20": markdown(rows)}, TAG)
     cases, draws, budget, n = args.cases.split(","), args.draws, args.max_hf, args.n
     summary = []
     warnings.simplefilter("ignore")

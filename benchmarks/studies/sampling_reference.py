@@ -70,7 +70,7 @@ import numpy as np
 import pandas as pd
 
 from pas.validation import generate_case
-from pas.validation.error_tables import add_write_options, saved_results
+from pas.validation.error_tables import add_write_options, saved_results, write_tables
 from pas.validation.references import (
     COPULAS,
     copula_association,
@@ -80,7 +80,7 @@ from pas.validation.references import (
     targets_met,
     top_association,
 )
-from pas.validation.result_tables import rewrite_page, short_pct
+from pas.validation.result_tables import short_pct
 
 PAGE, TAG = Path("docs/results/investigations.md"), "sampling_reference.py"
 
@@ -186,7 +186,7 @@ def main(argv=None):
     args = ap.parse_args(argv)
     if args.write:
         saved = saved_results(ap, args)
-        return rewrite_page(args.write, tables(saved), TAG)
+        return write_tables(args.write, tables(saved), TAG)
     cases = args.cases.split(",")
     saved = []
 

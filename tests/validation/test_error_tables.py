@@ -2,7 +2,7 @@
 
 import pandas as pd
 
-from pas.validation.error_tables import grid_table, median_worst
+from pas.validation.error_tables import grid_table, has_results, median_worst
 
 
 def test_median_worst_of_the_absolute_errors():
@@ -21,3 +21,10 @@ def test_grid_table_takes_the_results_of_its_row_and_column():
                        [("3a", {"case": "3a"}), ("4a", {"case": "4a"})])
     assert table.split("\n") == ["| setting | 3a | 4a |", "|---|---|---|",
                                  "| x | 20 / 30 % | 60 / 70 % |", "| y | 2.0 / 2.0 % | – |"]
+
+
+def test_has_results_sees_a_value_beside_a_label():
+    head = "| setting | 3a |\n|---|---|\n"
+    assert has_results(head + "| x | – |\n| y | 2.0 / 2.0 % |")
+    assert not has_results(head + "| x | – |\n| y | – |")
+    assert not has_results(head.rstrip("\n"))

@@ -15,7 +15,7 @@ from pathlib import Path
 
 import pandas as pd
 
-from .result_tables import short_pct
+from .result_tables import rewrite_page, short_pct
 
 
 def median_worst(errors, decimals: int | None = None) -> str:
@@ -87,3 +87,21 @@ def saved_results(parser: argparse.ArgumentParser, args) -> pd.DataFrame:
     if not args.from_csv:
         parser.error("--write needs --from-csv A.csv,B.csv (the --csv files of earlier runs)")
     return pd.concat([pd.read_csv(f) for f in args.from_csv.split(",")], ignore_index=True)
+
+
+def has_results(table: str) -> bool:
+    """Whether a Markdown table has a row with a value other than "–" beside its label."""
+    rows = [line.strip().strip("|").split("|") for line in table.split("\n")[2:]]
+    return any(cell.strip() not in ("", "–") for row in rows for cell in row[1:])
+
+
+def write_tables(page, blocks: dict[str, str], tag: str) -> None:
+    """:func:`~pas.validation.result_tables.rewrite_page` with the tables that hold results;
+    those without any are left in the page as they were, and said so."""
+    empty = [name for name, table in blocks.items() if not has_results(table)]
+    kept = {name: table for name, table in blocks.items() if name not in empty}
+    if kept:
+        rewrite_page(page, kept, tag)
+    if empty:
+        print(f"left as they were in {page} (no results for them in --from-csv): "
+              + ", ".join(empty))
