@@ -14,19 +14,36 @@ error along the way: whether a miss is an early stop or stays.
 design would include it (:func:`pas.validation.refits.md_design_positions`): the fit PAS's samples
 scatter about, without their sampling noise.
 
+``--csv FILE`` saves every error (case, mode, setting, data seed; the
+study's own error as setting ``study``); ``--write [PAGE] --from-csv A,B,…``
+runs nothing and writes the three tables of
+``docs/results/investigations.md`` from such files, between its
+``final_sample_refits.py`` markers.
+
 Run: python benchmarks/investigations/final_sample_refits.py CASE [N] [--to-budget | --every-event |
-     --md-weighted] [--only NAME,NAME]
+     --md-weighted] [--only NAME,NAME] [--csv FILE]
+     python benchmarks/investigations/final_sample_refits.py --write --from-csv A.csv,B.csv,…
 """
 
 from __future__ import annotations
 
 import argparse
 import dataclasses
+import functools
 import warnings
+from pathlib import Path
 
 import numpy as np
+import pandas as pd
 
 from pas.validation import generate_case
+from pas.validation.error_tables import (
+    add_write_options,
+    grid_table,
+    median_worst,
+    saved_results,
+    write_tables,
+)
 from pas.validation.refits import (
     error_at,
     evaluated_positions,
@@ -50,6 +67,55 @@ VARIANTS = {
 }
 
 
+PAGE, TAG = Path("docs/results/investigations.md"), "final_sample_refits.py"
+MODES = {None: "final", "--every-event": "every", "--md-weighted": "md-weighted",
+         "--to-budget": "to-budget"}
+"""The ``mode`` column of ``--csv`` for each mode flag (none: PAS's final samples)."""
+
+STUDY = ("PAS's studies themselves (not refitted)", {"setting": "study"})
+IMPACT_CASES = [(case, {"case": case}) for case in ("3a", "3b", "4a", "4b")]
+TABLES = {
+    "censoring": ("c", [STUDY, ("0 (default)", {"setting": "default"})]
+                  + [(f"{c}", {"setting": f"censor {c}"}) for c in (0.2, 0.3, 0.5, 0.7)],
+                  [(f"{case}, {label}", {"case": case, "mode": mode})
+                   for mode, label in (("every", "every event told"),
+                                       ("final", "PAS's final samples")) for case in ("4a", "4b")],
+                  functools.partial(median_worst, decimals=1)),
+    "hf-marginal": ("HF marginal", [
+        ("Weibull (default), every event told", {"mode": "every", "setting": "default"}),
+        ("Weibull mixture, every event told",
+         {"mode": "every", "setting": "hf_marginal=weibull_mixture"}),
+        ("Weibull (default), PAS's final samples refitted",
+         {"mode": "final", "setting": "default"}),
+        ("Weibull mixture, PAS's final samples refitted",
+         {"mode": "final", "setting": "hf_marginal=weibull_mixture"}),
+        ("Weibull mixture, every event weighted as MD includes events (`--md-weighted`, below)",
+         {"mode": "md-weighted", "setting": "hf_marginal=weibull_mixture"})], IMPACT_CASES),
+    "settings": ("setting", [
+        STUDY, ("default, refitted", {"setting": "default"}),
+        ("`hf_location=False`", {"setting": "hf_location=False"}),
+        ('`hf_marginal="both"`', {"setting": "hf_marginal=both"}),
+        *((f"the smallest {100 * c:.0f} % of the loads left-censored",
+           {"setting": f"censor {c}"}) for c in (0.2, 0.3, 0.5, 0.7)),
+        ("the median of the 50 bootstrap MPMs", {"setting": "bootstrap median"})],
+        [(case, {"case": case, "mode": "final"}) for case in ("3a", "3b")]),
+}
+"""The page's tables: marker name to (corner, rows, columns[, cell]) of :func:`grid_table`."""
+
+
+def tables(results: pd.DataFrame) -> dict[str, str]:
+    """The three tables of the page, median / worst |error| over the data sets in each cell."""
+    return {name: grid_table(results, *spec) for name, spec in TABLES.items()}
+
+
+def save_errors(path, case: str, mode: str, errors: dict) -> None:
+    """Write ``errors`` (setting: one error per data seed, in seed order) to ``path`` (if given)."""
+    if path:
+        pd.DataFrame([{"case": case, "mode": mode, "setting": name, "seed": seed, "error": e}
+                      for name, es in errors.items() for seed, e in enumerate(es)]
+                     ).to_csv(path, index=False)
+
+
 def refit_error(data, res, seed, settings, joint_kw):
     """:func:`error_at` on the events ``res`` evaluated (None: every event of the data set)."""
     lfset, hf_pool = pool_of(data)
@@ -60,14 +126,20 @@ def refit_error(data, res, seed, settings, joint_kw):
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__,
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("case")
+    ap.add_argument("case", nargs="?")
     ap.add_argument("n", nargs="?", type=int, default=10, help="data seeds 0 … N-1")
     mode = ap.add_mutually_exclusive_group()
     for flag in ("--to-budget", "--every-event", "--md-weighted"):
         mode.add_argument(flag, dest="mode", action="store_const", const=flag)
     ap.add_argument("--only", default=",".join(VARIANTS),
                     help=f"comma-separated settings of: {', '.join(VARIANTS)}")
+    add_write_options(ap, PAGE)
     args = ap.parse_args(argv)
+    if args.write:
+        results = saved_results(ap, args)
+        return write_tables(args.write, tables(results), TAG)
+    if args.case is None:
+        ap.error("give a CASE (e.g. 3a), or --write --from-csv A.csv,B.csv")
     case, n, flags = args.case, args.n, (args.mode,)
     only = args.only.split(",")
     unknown = [name for name in only if name not in VARIANTS]
@@ -76,6 +148,7 @@ def main(argv=None):
     variants = {name: VARIANTS[name] for name in only}
     errors = {name: [] for name in variants}
     for seed in range(int(n)):
+        save_errors(args.csv, case, MODES[args.mode], errors)  # the data seeds done so far
         data = generate_case(case, seed=seed)
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
@@ -115,11 +188,13 @@ def main(argv=None):
                 errors.setdefault("default", []).append(row["M2"])
                 continue
             res, row = run_case(data, seed=seed)
+            errors.setdefault("study", []).append(row["M2"])
             line = [f"{case} {seed} study {row['M2']:+.2f} ({row['n_hf']} HF)"]
             for name, (settings, joint_kw) in variants.items():
                 errors[name].append(refit_error(data, res, seed, settings, joint_kw))
                 line.append(f"{name} {errors[name][-1]:+.2f}")
         print(" | ".join(line), flush=True)
+    save_errors(args.csv, case, MODES[args.mode], errors)
     for name, e in errors.items():
         if e:
             a = np.abs(e)

@@ -11,12 +11,15 @@ Prints the crest MPM from the pooled peaks, the seed maxima and a Weibull fit
 RMS error R(N) of fresh N-seed campaigns estimated from subsets of the 50 seeds
 (W = 500 subsets, fits on 100 subsets; finite-population corrected) at
 N = 1, 5, 10, 25, 40, and the seeds needed for R ≤ 3 % of Hs.
-Not a test. Run: ``python benchmarks/investigations/records_case1.py [--plot DIR]``.
+``--write [PAGE]`` also puts the MPM table between the ``records_case1.py``
+markers of ``docs/results/investigations.md``.
+Not a test. Run: ``python benchmarks/investigations/records_case1.py [--plot DIR] [--write]``.
 """
 
 import argparse
 import time
 import warnings
+from pathlib import Path
 
 import numpy as np
 
@@ -29,10 +32,12 @@ from pas.records import (
     rayleigh_crest_mpm,
 )
 from pas.stats import matched_peaks, mean_period_from_peak_period
+from pas.validation.result_tables import rewrite_page
 
 HS, TP, GAMMA, DEPTH = 10.0, 11.0, 3.3, 30.0
 N_SEEDS, DURATION, DT = 50, 3600.0, 0.1
 CRITERION = 0.03 * HS
+PAGE = Path("docs/results/investigations.md")
 
 
 def spectrum(w):
@@ -54,7 +59,21 @@ def record():
     return lin, nl, np.array(enc), float(np.mean(m0))
 
 
-def main(plot_dir=None):
+def mpm_table(analyses, theory) -> str:
+    """The page's table: each crest's MPM by the three estimators and by theory.
+
+    ``analyses``: :func:`pas.records.analyse_record` of the linear and the
+    second-order crest; ``theory``: ``(label, MPM)`` of each.
+    """
+    lines = ["| crest | pooled peaks | seed maxima (0.368 quantile) | Weibull, top 30 % | theory |",
+             "|---|---|---|---|---|"]
+    for crest, a, (label, value) in zip(("linear", "second order"), analyses, theory):
+        lines.append(f"| {crest} | {a.mpm_pooled:.2f} m | {a.mpm_seed_maxima:.2f} m | "
+                     f"{a.mpm_fit:.2f} m | {label} {value:.2f} m |")
+    return "\n".join(lines)
+
+
+def main(plot_dir=None, page=None):
     t0 = time.perf_counter()
     lin, nl, enc, m0 = record()
     t_gen = time.perf_counter() - t0
@@ -63,8 +82,10 @@ def main(plot_dir=None):
     print(f"case-1 analogue, condition A: {N_SEEDS} x 1 h seeds, {enc.sum()} linear zero "
           f"up-crossings ({n_t:.1f} per hour, P_t = 1/{n_t:.1f} = {1 / n_t:.3e}); "
           f"realised Hs {4 * np.sqrt(m0):.3f} m; generated in {t_gen:.1f} s")
-    print(f"theory over {n_t:.0f} waves: Rayleigh {rayleigh_crest_mpm(4 * np.sqrt(m0), n_t):.2f} m, "
-          f"Forristall 2D (T1 = Tp/1.198 = {t1:.2f} s) {forristall_crest_mpm(HS, t1, DEPTH, n_t):.2f} m")
+    theory = (("Rayleigh", rayleigh_crest_mpm(4 * np.sqrt(m0), n_t)),
+              ("Forristall (2000, long-crested)", forristall_crest_mpm(HS, t1, DEPTH, n_t)))
+    print(f"theory over {n_t:.0f} waves: Rayleigh {theory[0][1]:.2f} m, "
+          f"Forristall 2D (T1 = Tp/1.198 = {t1:.2f} s) {theory[1][1]:.2f} m")
     results = {}
     for name, peaks in (("linear crest", lin), ("2nd-order crest", nl)):
         a = analyse_record(peaks, enc, top_fraction=0.3)
@@ -76,6 +97,9 @@ def main(plot_dir=None):
         table = mpm_pooled(nl, 16364, exposure_encounters=1 / 2.55e-3)
     print(f"2nd-order crest MPM with the paper's Table 2 convention (n_w = 16 364, "
           f"P_exp = 2.55e-3): {table:.2f} m (paper: 10.53 m)")
+    if page:
+        rewrite_page(page, {"mpm": mpm_table(list(results.values()), theory)},
+                     "records_case1.py")
 
     for name, peaks, w_fit in (("linear crest", lin, 0), ("2nd-order crest", nl, 100)):
         t0 = time.perf_counter()
@@ -112,4 +136,7 @@ if __name__ == "__main__":
     ap = argparse.ArgumentParser(description=__doc__,
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--plot", metavar="DIR", help="also save the figures to DIR")
-    main(ap.parse_args().plot)
+    ap.add_argument("--write", nargs="?", const=PAGE, type=Path, metavar="PAGE",
+                    help=f"also write the MPM table between the markers of PAGE (default {PAGE})")
+    args = ap.parse_args()
+    main(args.plot, args.write)

@@ -30,18 +30,28 @@ reach on an analogue at all:
 ``--max-hf B`` also runs the default rule with the HF budget raised to B and
 prints where it stops.
 
+``--csv FILE`` saves one summary row per case; ``--write [PAGE] --from-csv
+A,B,…`` runs nothing and writes the ``move20`` table of
+``docs/results/investigations.md`` from such files, between its
+``stop_movement.py`` markers.
+
 Run: python benchmarks/investigations/stop_movement.py [N] [--cases 4a,4b,3b] [--draws 100] [--max-hf B]
+     [--csv FILE]
+     python benchmarks/investigations/stop_movement.py --write --from-csv A.csv,B.csv
 """
 
 from __future__ import annotations
 
 import argparse
 import warnings
+from pathlib import Path
 
 import numpy as np
+import pandas as pd
 from scipy import optimize, stats
 
 from pas.validation import generate_case
+from pas.validation.error_tables import add_write_options, saved_results, write_tables
 from pas.validation.references import (
     copula_at_tau,
     lf_reference_nll,
@@ -51,6 +61,7 @@ from pas.validation.references import (
 from pas.validation.reproduce import run_case
 
 WINDOW = 20
+PAGE, TAG = Path("docs/results/investigations.md"), "stop_movement.py"
 MEASURES = (("window", {}), ("step", {"stop_measure": "step"}))
 
 
@@ -126,6 +137,46 @@ def _summary(values) -> str:
     return f"{np.median(v):.3f} [{v.min():.3f}, {v.max():.3f}]"
 
 
+def case_row(case, eps, pas_runs, k, law, lf) -> dict:
+    """One case's summary for ``--csv``: ε1 / truth, PAS's ``move20`` at its end, and the
+    references' ``move20``, share within ε1 and median |error| at k (``law``, ``lf``:
+    ``(move20, errors)`` per data set)."""
+    moves = [r["move20"] for r in pas_runs]
+    row = {"case": case, "k": k, "eps1_rel": float(np.median(eps)),
+           "pas_move20": float(np.median(moves)), "pas_move20_min": float(np.min(moves)),
+           "pas_move20_max": float(np.max(moves)),
+           "pas_stopped": int(sum(r["stopped"] for r in pas_runs)),
+           "pas_max_hf": int(max(r["n_hf"] for r in pas_runs))}
+    for name, per_set in (("law", law), ("lf", lf)):
+        draws = len(per_set[0][0])
+        moved, errors = (np.concatenate(parts) for parts in zip(*per_set))
+        row.update({f"{name}_move20": float(np.median(moved)),
+                    f"{name}_within_eps1": float(np.mean(moved < np.repeat(eps, draws))),
+                    f"{name}_draws": int(moved.size),
+                    f"{name}_error": float(np.median(np.abs(errors)))})
+    return row
+
+
+def _pct(value: float) -> str:
+    return f"{100 * value:.1f}"
+
+
+def markdown(cases: pd.DataFrame) -> str:
+    """The page's ``move20`` table, one row per case of ``--csv``."""
+    lines = [("| case | ε1 / truth | PAS (default) at its end | known law | known law + LF (Gumbel) "
+              "| references within ε1 | their median \\|error\\| at k |"), "|---" * 7 + "|"]
+    for _, r in cases.iterrows():
+        end = "at 160 HF" if r["pas_stopped"] == 0 else "at its stop or 160 HF"
+        lines.append(
+            f"| {r['case']} (k {r['k']}) | {_pct(r['eps1_rel'])} % | {_pct(r['pas_move20'])} % "
+            f"[{_pct(r['pas_move20_min'])}, {_pct(r['pas_move20_max'])}] {end} | "
+            f"{_pct(r['law_move20'])} % | {_pct(r['lf_move20'])} % | "
+            f"{100 * r['law_within_eps1']:.0f} % of {r['law_draws']}, "
+            f"{100 * r['lf_within_eps1']:.0f} % of {r['lf_draws']} | "
+            f"{_pct(r['law_error'])} / {_pct(r['lf_error'])} % |")
+    return "\n".join(lines)
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__,
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -134,8 +185,13 @@ def main(argv=None):
     ap.add_argument("--draws", type=int, default=100, help="draws of each reference")
     ap.add_argument("--max-hf", type=int, default=None,
                     help="also run the default rule with this HF budget")
+    add_write_options(ap, PAGE)
     args = ap.parse_args(argv)
+    if args.write:
+        rows = saved_results(ap, args)
+        return write_tables(args.write, {"move20": markdown(rows)}, TAG)
     cases, draws, budget, n = args.cases.split(","), args.draws, args.max_hf, args.n
+    summary = []
     warnings.simplefilter("ignore")
     for case in cases:
         runs = {name: [] for name, _ in MEASURES}
@@ -170,6 +226,9 @@ def main(argv=None):
         lf = [known_law_lf_movement(d, k, lf_draws, s) for s, d in enumerate(datasets)]
         print(_reference_line("known law + LF (gumbel)", *map(np.concatenate, zip(*lf)), eps,
                               lf_draws, k) + "\n", flush=True)
+        summary.append(case_row(case, eps, runs["window"], k, law, lf))
+        if args.csv:
+            pd.DataFrame(summary).to_csv(args.csv, index=False)
 
 
 if __name__ == "__main__":

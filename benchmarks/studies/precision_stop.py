@@ -24,9 +24,13 @@ with the data redrawn per set, ``--scale`` of the paper's duration).
 schedule alone) and with one it reaches early (the schedule and the gated
 bands), and the model bands each computed.
 
+``--write [PAGE]`` puts the table it made (the summary, or with ``--cost``
+the cost table) between the markers of ``docs/results/precision.md``
+(``<!-- BEGIN precision_stop.py summary -->`` and ``… cost``).
+
 Run: ``python benchmarks/studies/precision_stop.py [N] [--types a,b] [--cases 1a,3a]
 [--precisions 0.05,0.1,0.2] [--budgets 160,400] [--csv runs.csv] [--markdown]
-[--from-csv runs.csv,...] [--cost 80]``
+[--from-csv runs.csv,...] [--cost 80] [--write]``
 """
 
 from __future__ import annotations
@@ -34,6 +38,7 @@ from __future__ import annotations
 import argparse
 import time
 import warnings
+from pathlib import Path
 
 import numpy as np
 import pandas as pd
@@ -42,10 +47,12 @@ import pas
 from pas.validation import timing_problem
 from pas.validation.known_truth import make_problem
 from pas.validation.known_truth_runs import TYPES as KNOWN_TRUTH
+from pas.validation.result_tables import rewrite_page
 
 TYPES = ("core-gumbel-t0.6", "core-gaussian-t0.75", "tail-gaussian-mix", "miss-low-gaussian-t0.7")
 CASES = ("1a", "3a")
 FACTOR = 1.5  # "within a factor 1.5" of the HF still needed
+PAGE, TAG = Path("docs/results/precision.md"), "precision_stop.py"
 
 
 def problems(types, cases, n, scale):
@@ -167,6 +174,15 @@ def markdown(summary: pd.DataFrame) -> str:
     return "\n".join(lines)
 
 
+def cost_markdown(cost: pd.DataFrame) -> str:
+    """The cost table of :func:`loop_cost` as Markdown (the docs page's second table)."""
+    lines = ["| loop | CPU s per HF | model bands | ratio |", "|---|---|---|---|"]
+    for _, r in cost.iterrows():
+        lines.append(f"| {r['loop']} | {r['cpu_s_per_hf']:.3g} | {int(r['model_bands'])} | "
+                     f"{r['ratio']:.3g} |")
+    return "\n".join(lines)
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("n", nargs="?", type=int, default=3, help="data sets per problem")
@@ -182,14 +198,18 @@ def main(argv=None):
     ap.add_argument("--from-csv", metavar="A.csv,B.csv",
                     help="tabulate the runs of earlier --csv files instead of running")
     ap.add_argument("--markdown", action="store_true", help="print the table as Markdown")
+    ap.add_argument("--write", nargs="?", const=PAGE, type=Path, metavar="PAGE",
+                    help=f"write the table between the markers of PAGE (default {PAGE})")
     args = ap.parse_args(argv)
     budgets = sorted(int(x) for x in args.budgets.split(","))
     if args.from_csv:
         runs = pd.concat([pd.read_csv(f) for f in args.from_csv.split(",")], ignore_index=True)
-        _print(table(runs, budgets), args.markdown)
-        return
+        return _report(table(runs, budgets), args)
     if args.cost:
-        print(loop_cost(args.cost).to_string(index=False, float_format=lambda x: f"{x:.3g}"))
+        cost = loop_cost(args.cost)
+        print(cost.to_string(index=False, float_format=lambda x: f"{x:.3g}"))
+        if args.write:
+            rewrite_page(args.write, {"cost": cost_markdown(cost)}, TAG)
         return
     split = [s for s in args.types.split(",") if s], [s for s in args.cases.split(",") if s]
     targets = [float(x) for x in args.precisions.split(",")]
@@ -207,15 +227,18 @@ def main(argv=None):
                   f"forecast halfway {row['forecast_halfway']:.3g} vs {row['needed_halfway']:.3g}"
                   f", {row['n_bands']} bands, {row['seconds']:.0f} s", flush=True)
             pd.DataFrame(rows).to_csv(args.csv, index=False)
-    _print(table(pd.DataFrame(rows), budgets), args.markdown)
+    _report(table(pd.DataFrame(rows), budgets), args)
 
 
-def _print(summary: pd.DataFrame, as_markdown: bool) -> None:
-    if as_markdown:
+def _report(summary: pd.DataFrame, args) -> None:
+    """Print the summary (as Markdown with ``--markdown``) and write it with ``--write``."""
+    if args.markdown:
         print(markdown(summary))
-        return
-    with pd.option_context("display.width", 200, "display.max_columns", 20):
-        print(summary.to_string(index=False, float_format=lambda x: f"{x:.3g}"))
+    else:
+        with pd.option_context("display.width", 200, "display.max_columns", 20):
+            print(summary.to_string(index=False, float_format=lambda x: f"{x:.3g}"))
+    if args.write:
+        rewrite_page(args.write, {"summary": markdown(summary)}, TAG)
 
 
 if __name__ == "__main__":

@@ -49,17 +49,28 @@ impacts and also spends HF on misses, is measured on the same data sets by
 ``benchmarks/studies/validation_spread.py``; compare at its number of true-positive
 pairs (``--pas-runs`` reads them from that script's runs.csv).
 
+``--csv FILE`` saves every printed row (case, k, reference, median, p90,
+P(worst of 10 ≤ 25 %), P(targets), τ; PAS's own median / worst |M2| as
+reference ``pas``); ``--write [PAGE] --from-csv A,B,…`` runs nothing and
+writes the three tables of ``docs/results/investigations.md`` from such files
+between its ``sampling_reference.py`` markers (the model references at k =
+PAS's pairs and the largest k).
+
 Run: python benchmarks/studies/sampling_reference.py [N] [--k 50,100,160] [--cases 3a,3b,4a,4b]
-[--subsamples 40] [--pas-runs pas-output/spread/runs.csv] [--skip-random-events]
+[--subsamples 40] [--pas-runs pas-output/spread/runs.csv] [--skip-random-events] [--csv FILE]
+     python benchmarks/studies/sampling_reference.py --write --from-csv A.csv,B.csv
 """
 
 from __future__ import annotations
 
 import argparse
+from pathlib import Path
 
 import numpy as np
+import pandas as pd
 
 from pas.validation import generate_case
+from pas.validation.error_tables import add_write_options, saved_results, write_tables
 from pas.validation.references import (
     COPULAS,
     copula_association,
@@ -69,6 +80,9 @@ from pas.validation.references import (
     targets_met,
     top_association,
 )
+from pas.validation.result_tables import short_pct
+
+PAGE, TAG = Path("docs/results/investigations.md"), "sampling_reference.py"
 
 
 def pas_on_random_events(data, k: int, draws: int, seed: int):
@@ -98,10 +112,64 @@ def pas_on_random_events(data, k: int, draws: int, seed: int):
     return np.asarray(errors)
 
 
-def _row(errors):
+def _stats(errors) -> dict:
     a = np.abs(errors)
-    return (f"{100 * np.median(a):5.1f} % {100 * np.quantile(a, 0.9):6.1f} % "
-            f"{np.mean(a <= 0.25) ** 10:6.2f}")
+    return {"median": float(np.median(a)), "p90": float(np.quantile(a, 0.9)),
+            "p_all10": float(np.mean(a <= 0.25) ** 10)}
+
+
+def _row(errors):
+    r = _stats(errors)
+    return f"{100 * r['median']:5.1f} % {100 * r['p90']:6.1f} % {r['p_all10']:6.2f}"
+
+
+def _joined(values, fmt) -> str:
+    return " / ".join(format(v, fmt) for v in values)
+
+
+def _pas_cell(rows: pd.DataFrame, pairs: bool = False) -> str:
+    pas = rows[rows.reference == "pas"]
+    if pas.empty:
+        return "–"
+    r = pas.iloc[0]
+    cell = f"{short_pct(r['median'])} / {short_pct(r['worst'])} %"
+    return cell + (f" ({r['k']} pairs)" if pairs else "")
+
+
+def tables(rows: pd.DataFrame) -> dict[str, str]:
+    """The page's three tables from the ``--csv`` rows of one or more runs (a row that two
+    runs share is taken from the first)."""
+    rows = rows.drop_duplicates(["case", "k", "reference"])
+    impacts = [("| case | k | truth's estimator: median / p90 \\|error\\| | P(10 ≤ 25 %) | "
+                "empirical quantile: median / p90 | PAS (validation): median / worst \\|M2\\| |"),
+               "|---" * 6 + "|"]
+    pool = [("| case | PAS's estimator, random pool events: median / p90 \\|error\\| | "
+             "P(10 ≤ 25 %) | PAS (MD): median / worst \\|M2\\| |"), "|---" * 4 + "|"]
+    models = [("| case | τ | k | known law: median · P(targets) | + LF, Gaussian: median · P | "
+               "+ LF, Gumbel: median · P | PAS: median / worst \\|M2\\| |"), "|---" * 7 + "|"]
+    for case, of_case in rows.groupby("case", sort=False):
+        by = {name: g.sort_values("k") for name, g in of_case.groupby("reference")}
+        if "truth-estimator" in by:
+            t, e = by["truth-estimator"], by["empirical"]
+            impacts.append(
+                f"| {case} | {_joined(t.k, 'd')} | {_joined(100 * t['median'], '.0f')} % · "
+                f"{_joined(100 * t.p90, '.0f')} % | {_joined(t.p_all10, '.2f')} | "
+                f"{_joined(100 * e['median'], '.0f')} % · {_joined(100 * e.p90, '.0f')} % | "
+                f"{_pas_cell(of_case, pairs=True)} |")
+        if "pas-random-events" in by:
+            r = by["pas-random-events"].iloc[0]
+            pool.append(f"| {case} | {100 * r['median']:.1f} / {100 * r['p90']:.1f} % | "
+                        f"{r['p_all10']:.2f} | {_pas_cell(of_case)} |")
+        if "known law" in by:
+            pas_k = by["pas"].k.tolist() if "pas" in by else []
+            keep = sorted(set(pas_k) | {by["known law"].k.max()})
+            cells = ["; ".join(f"{100 * r['median']:.1f} % · {r['p_targets']:.2f}"
+                               for _, r in by[name][by[name].k.isin(keep)].iterrows())
+                     for name in ("known law", *COPULAS)]
+            models.append(f"| {case} | {of_case.tau.median():.2f} | {_joined(keep, 'd')} | "
+                          + " | ".join(cells) + f" | {_pas_cell(of_case)} |")
+    return {"random-impacts": "\n".join(impacts), "random-pool-events": "\n".join(pool),
+            "model-references": "\n".join(models)}
 
 
 def main(argv=None):
@@ -114,22 +182,37 @@ def main(argv=None):
                     help="with --pas-runs: take PAS's pair counts, skip PAS on random events")
     ap.add_argument("--pas-runs", default=None,
                     help="runs.csv of validation_spread.py: adds k = PAS's median pairs")
+    add_write_options(ap, PAGE)
     args = ap.parse_args(argv)
+    if args.write:
+        saved = saved_results(ap, args)
+        return write_tables(args.write, tables(saved), TAG)
     cases = args.cases.split(",")
-    ks = {c: [int(x) for x in args.k.split(",")] for c in cases}
-    if args.pas_runs:
-        import pandas as pd
+    saved = []
 
+    def save(case, k, reference, errors=None, **values):
+        taus = [d.tau for d in data_sets[case]]
+        saved.append({"case": case, "k": k, "reference": reference,
+                      "tau": float(np.median(taus)),
+                      **(_stats(errors) if errors is not None else {}), **values})
+        if args.csv:
+            pd.DataFrame(saved).to_csv(args.csv, index=False)
+
+    ks = {c: [int(x) for x in args.k.split(",")] for c in cases}
+    data_sets = {c: [generate_case(c, seed=s) for s in range(args.n)] for c in cases}
+    if args.pas_runs:
         runs = pd.read_csv(args.pas_runs)
         runs = runs[runs.strategy == "pas"]
         for c in cases:
             g = runs[runs.case == c]
             if len(g):
-                ks[c] = sorted(set(ks[c]) | {int(np.median(g.n_hf - g.n_false_positive))})
+                pairs = int(np.median(g.n_hf - g.n_false_positive))
+                ks[c] = sorted(set(ks[c]) | {pairs})
+                save(c, pairs, "pas", median=float(g.M2.abs().median()),
+                     worst=float(g.M2.abs().max()))
     print("| case | k impacts | truth-estimator: median / p90 \\|error\\| / P(worst of 10 ≤ 25 %) "
           "| empirical quantile: same |")
     print("|---|---|---|---|")
-    data_sets = {c: [generate_case(c, seed=s) for s in range(args.n)] for c in cases}
     for c in cases:
         data = data_sets[c]
         for k in ks[c]:
@@ -137,6 +220,8 @@ def main(argv=None):
             t = np.concatenate([e[0] for e in errs])
             e = np.concatenate([e[1] for e in errs])
             print(f"| {c} | {k} | {_row(t)} | {_row(e)} |", flush=True)
+            save(c, k, "truth-estimator", t)
+            save(c, k, "empirical", e)
     print("\n| case | k impacts | known law (family and location told, ML): median / p90 "
           "\\|error\\| / P(worst of 10 ≤ 25 %) / P(median ≤ 10 % and worst ≤ 25 %) "
           + "".join(f"| known law + LF, {c} copula at the data's τ: same " for c in COPULAS) + "|")
@@ -146,10 +231,12 @@ def main(argv=None):
             plain = [known_law_errors(d, k, 5 * args.subsamples, s)
                      for s, d in enumerate(data_sets[c])]
             cells = [f"{_row(np.concatenate(plain))} {targets_met(plain):6.2f}"]
+            save(c, k, "known law", np.concatenate(plain), p_targets=targets_met(plain))
             for copula in COPULAS:
                 with_lf = [known_law_lf_errors(d, k, 5 * args.subsamples, s, copula)
                            for s, d in enumerate(data_sets[c])]
                 cells.append(f"{_row(np.concatenate(with_lf))} {targets_met(with_lf):6.2f}")
+                save(c, k, copula, np.concatenate(with_lf), p_targets=targets_met(with_lf))
             print(f"| {c} | {k} | " + " | ".join(cells) + " |", flush=True)
     print("\n| case | P(HF in its top 30 % \\| LF in its top 10 %), impacts over the threshold: "
           "data (median of the data sets) | " + " | ".join(f"{c} at the data's τ" for c in COPULAS)
@@ -177,6 +264,7 @@ def main(argv=None):
         errs = np.concatenate([pas_on_random_events(d, int(g.n_hf[s]), 5, s)
                                for s, d in enumerate(data_sets[c]) if s in g.index])
         pas_m2 = g.M2.abs()
+        save(c, int(np.median(g.n_hf)), "pas-random-events", errs)
         print(f"| {c} | {_row(errs)} | {100 * pas_m2.median():.1f} % / {100 * pas_m2.max():.1f} % |",
               flush=True)
 

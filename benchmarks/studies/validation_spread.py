@@ -17,7 +17,8 @@ Run: python benchmarks/studies/validation_spread.py [N] [--cases 1a,3a] [--strat
 Writes runs.csv and summary.csv to DIR (default pas-output/spread).
 
 ``--write`` runs nothing: it re-reads ``DIR/runs.csv`` and writes the two
-tables of ``docs/results/validation.md`` between that page's markers (with
+tables of ``docs/results/validation.md`` and its summary (from the same rows as
+``summary.csv``) between that page's markers (with
 ``--known-truth DEFAULTS.csv PAPER.csv``, the ``runs.csv`` of
 ``known_truth.py`` and ``known_truth.py --preset paper``, also the summary
 table of ``README.md``).
@@ -34,7 +35,12 @@ import pandas as pd
 from pas.validation import CASE_IDS, generate_case
 from pas.validation.known_truth_runs import settings_from_args
 from pas.validation.reproduce import _strategies, parse_strategies, run_case
-from pas.validation.result_tables import readme_summary, validation_tables, write_between_markers
+from pas.validation.result_tables import (
+    readme_summary,
+    rewrite_page,
+    validation_summary,
+    validation_tables,
+)
 
 PAGE, README = Path("docs/results/validation.md"), Path("README.md")
 TAG = "validation_spread.py"
@@ -48,23 +54,20 @@ def summarise(runs: pd.DataFrame) -> pd.DataFrame:
         M1_median=("M1", "median"), M2_median=("M2", "median"),
         absM2_median=("absM2", "median"), absM2_max=("absM2", "max"),
         M2_min=("M2", "min"), M2_max=("M2", "max"), M3_median=("M3", "median"),
-        converged=("converged", "mean"), covered=("covered", "mean")).reset_index()
+        converged=("converged", "mean"), covered=("covered", "mean"),
+        n=("M2", "size")).reset_index()
 
 
 def write_pages(runs: pd.DataFrame, known_truth, max_hf) -> None:
     """Rewrite the tables of the validation page and, given the known-truth runs, the README's."""
-    _rewrite(PAGE, validation_tables(runs))
+    rewrite_page(PAGE, {**validation_tables(runs), "summary": validation_summary(summarise(runs))},
+                 TAG)
     if known_truth:
         defaults, paper = (pd.read_csv(p) for p in known_truth)
-        _rewrite(README, {"readme-summary": readme_summary(runs, defaults, paper, max_hf)})
+        rewrite_page(README, {"readme-summary": readme_summary(runs, defaults, paper, max_hf)},
+                     TAG)
     else:
         print(f"{README} left as it is: --known-truth DEFAULTS.csv PAPER.csv writes its table")
-
-
-def _rewrite(page: Path, blocks: dict[str, str]) -> None:
-    page.write_text(write_between_markers(page.read_text(encoding="utf-8"), blocks, TAG),
-                    encoding="utf-8")
-    print(f"wrote {', '.join(blocks)} in {page}")
 
 
 def main(argv=None):

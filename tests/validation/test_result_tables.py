@@ -124,3 +124,10 @@ def test_the_properties_page_is_the_writers_output_on_the_measured_data():
     assert _block(page, "case_properties.py", "seed-0") == properties_seed_table(
         PROPERTIES[PROPERTIES["seed"] == 0])
     assert _block(page, "case_properties.py", "spread") == properties_spread_table(PROPERTIES)
+
+
+def test_write_between_markers_indents_the_block_as_its_markers():
+    page = "- item\n\n  <!-- BEGIN t a -->\n  old\n  <!-- END t a -->\n"
+    assert (write_between_markers(page, {"a": "| x |\n\n|---|"}, "t")
+            == "- item\n\n  <!-- BEGIN t a -->\n\n  | x |\n\n  |---|\n\n  <!-- END t a -->\n")
+

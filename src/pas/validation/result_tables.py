@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import re
 from collections.abc import Sequence
+from pathlib import Path
 
 import pandas as pd
 
@@ -40,7 +41,9 @@ def write_between_markers(text: str, blocks: dict[str, str], tag: str) -> str:
         Block text by marker name.
     tag : str
         The markers' tag: a block ``NAME`` goes between ``<!-- BEGIN tag NAME -->``
-        and ``<!-- END tag NAME -->`` (the markers stay).
+        and ``<!-- END tag NAME -->`` (the markers stay).  Markers indented
+        (a table inside a list item) get the block indented as they are, with a
+        blank line either side.
 
     Returns
     -------
@@ -54,13 +57,37 @@ def write_between_markers(text: str, blocks: dict[str, str], tag: str) -> str:
     """
     for name, block in blocks.items():
         begin, end = f"<!-- BEGIN {tag} {name} -->", f"<!-- END {tag} {name} -->"
-        pattern = re.compile(re.escape(begin) + r"\n.*?" + re.escape(end), re.DOTALL)
-        if not pattern.search(text):
+        pattern = re.compile(r"^([ \t]*)" + re.escape(begin) + r"\n.*?" + re.escape(end),
+                             re.DOTALL | re.MULTILINE)
+        found = pattern.search(text)
+        if not found:
             raise ValueError(f"--write: the page has no '{begin}' … '{end}' markers; "
                              "add them where the table goes")
-        replacement = f"{begin}\n{block}\n{end}"
-        text = pattern.sub(lambda _, new=replacement: new, text, count=1)
+        indent = found.group(1)
+        inner = "\n".join(indent + line if line else line for line in block.split("\n"))
+        # in a list item Markdown reads a table only after a blank line
+        gap = "\n\n" if indent else "\n"
+        replacement = f"{indent}{begin}{gap}{inner}{gap}{indent}{end}"
+        text = text[:found.start()] + replacement + text[found.end():]
     return text
+
+
+def rewrite_page(page, blocks: dict[str, str], tag: str) -> None:
+    """Put each block between its markers in the page file ``page`` (:func:`write_between_markers`).
+
+    Parameters
+    ----------
+    page : str or path-like
+        The Markdown file, rewritten in place.
+    blocks : dict of str to str
+        Block text by marker name.
+    tag : str
+        The markers' tag, the name of the script that writes them.
+    """
+    page = Path(page)
+    page.write_text(write_between_markers(page.read_text(encoding="utf-8"), blocks, tag),
+                    encoding="utf-8")
+    print(f"wrote {', '.join(blocks)} in {page}")
 
 
 def _ordered_groups(runs: pd.DataFrame):
@@ -288,3 +315,62 @@ def properties_spread_table(table: pd.DataFrame) -> str:
         cells.insert(2, f"{ordered}/{len(rows)}")
         lines.append(f"| {case} | " + " | ".join(cells) + " |")
     return "\n".join(lines)
+
+
+
+SUMMARY_GROUPS = (("1a / 1b / 2a / 2b", ("1a", "1b", "2a", "2b")), ("3a / 3b", ("3a", "3b")),
+                  ("4a / 4b", ("4a", "4b")),
+                  ("3a-hard / 3b-hard / 4a-hard / 4b-hard",
+                   ("3a-hard", "3b-hard", "4a-hard", "4b-hard")))
+"""The rows of the validation page's summary: a label and the cases it lists."""
+
+
+def validation_summary(summary: pd.DataFrame) -> str:
+    """The summary of ``docs/results/validation.md``: per group of cases, PAS's accuracy,
+    HF, stops and U95 coverage beside the paper preset's and AS's accuracy.
+
+    Parameters
+    ----------
+    summary : DataFrame
+        The ``summary.csv`` of ``validation_spread.py``: one row per case and
+        strategy with ``n`` (replications), ``absM2_median``, ``absM2_max``,
+        ``n_hf_median``, ``converged`` and ``covered`` (shares).
+
+    Returns
+    -------
+    str
+        Markdown, one value per case in each cell, then the U95 coverage of
+        all PAS runs.
+    """
+    by = summary.set_index(["case", "strategy"])
+
+    def cells(strategy, cases, show, unit=" %"):
+        values = [show(by.loc[(c, strategy)]) if (c, strategy) in by.index else "–"
+                  for c in cases]
+        return " / ".join(values) + ("" if all(v == "–" for v in values) else unit)
+
+    def counted(key, cases):
+        """``k / k / … of n``, or ``k/n / …`` where the replications differ."""
+        present = [c for c in cases if (c, "pas") in by.index]
+        ns = {int(by.loc[(c, "pas"), "n"]) for c in present}
+        shown = (lambda r: f"{round(r[key] * r['n']):.0f}") if len(ns) == 1 else (
+            lambda r: f"{round(r[key] * r['n']):.0f}/{r['n']:.0f}")
+        return cells("pas", cases, shown, f" of {ns.pop()}" if len(ns) == 1 else "")
+
+    def pct(key):
+        return lambda r: f"{100 * r[key]:.1f}"
+
+    lines = [("| cases | PAS median \\|M2\\| | PAS worst \\|M2\\| | PAS HF (median) | PAS converged | "
+              "PAS U95 holds the truth | paper preset median \\|M2\\| | AS median \\|M2\\| |"),
+             "|---" * 8 + "|"]
+    for label, cases in SUMMARY_GROUPS:
+        lines.append(f"| {label} | {cells('pas', cases, pct('absM2_median'))} | "
+                     f"{cells('pas', cases, pct('absM2_max'))} | "
+                     f"{cells('pas', cases, lambda r: f'{r.n_hf_median:g}', '')} | "
+                     f"{counted('converged', cases)} | {counted('covered', cases)} | "
+                     f"{cells('pas-paper', cases, pct('absM2_median'))} | "
+                     f"{cells('as', cases, pct('absM2_median'))} |")
+    pas = summary[summary["strategy"] == "pas"]
+    held, runs = float((pas["covered"] * pas["n"]).sum()), int(pas["n"].sum())
+    return ("\n".join(lines) + f"\n\nThe U95 of PAS holds the data set's truth in {held:.0f} of "
+            f"{runs} runs ({100 * held / max(runs, 1):.0f} %; nominal 95 %).")

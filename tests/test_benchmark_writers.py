@@ -1,0 +1,172 @@
+"""The ``--write`` paths of the scripts that write docs/results/precision.md and
+investigations.md, run in process on small fixtures against copies of the pages.
+
+Expected rows are worked out by hand from the fixtures; the precision page is
+checked against the recorded runs it was written from
+(``tests/data/precision_runs.csv``, the runs of 2026-12-02).
+"""
+
+import re
+import shutil
+from pathlib import Path
+from types import SimpleNamespace
+
+import pandas as pd
+import pytest
+from _snippets import load_script
+
+ROOT = Path(__file__).resolve().parents[1]
+INVESTIGATIONS = ROOT / "docs" / "results" / "investigations.md"
+PRECISION = ROOT / "docs" / "results" / "precision.md"
+
+
+def _outside(text: str, tag: str) -> str:
+    return re.sub(rf"<!-- BEGIN {tag} (\S+) -->\n.*?<!-- END {tag} \1 -->", "", text,
+                  flags=re.DOTALL)
+
+
+def _copy(page: Path, tmp_path) -> Path:
+    copy = tmp_path / page.name
+    shutil.copy(page, copy)
+    return copy
+
+
+def _written(tmp_path, page: Path, tag: str) -> str:
+    """The copy's text, checked to differ from the page only between ``tag``'s markers."""
+    new = (tmp_path / page.name).read_text(encoding="utf-8")
+    assert _outside(new, tag) == _outside(page.read_text(encoding="utf-8"), tag)
+    return new
+
+
+def test_precision_write_from_the_recorded_runs_gives_the_page_as_it_stands(tmp_path):
+    copy = _copy(PRECISION, tmp_path)
+    copy.write_text(copy.read_text(encoding="utf-8").replace("| core-gumbel-t0.6 |", "| x |"),
+                    encoding="utf-8")
+    load_script("benchmarks/studies/precision_stop.py").main(
+        ["--from-csv", str(ROOT / "tests" / "data" / "precision_runs.csv"),
+         "--write", str(copy)])
+    assert copy.read_text(encoding="utf-8") == PRECISION.read_text(encoding="utf-8")
+
+
+def test_precision_cost_table_rows():
+    script = load_script("benchmarks/studies/precision_stop.py")
+    cost = pd.DataFrame({"loop": ["eps1", "precision 0.5"], "cpu_s_per_hf": [0.2, 1.234],
+                         "model_bands": [0, 15], "ratio": [1.0, 6.17]})
+    assert script.cost_markdown(cost).split("\n")[2:] == ["| eps1 | 0.2 | 0 | 1 |",
+                                                          "| precision 0.5 | 1.23 | 15 | 6.17 |"]
+
+
+def _refits(rows):
+    return pd.DataFrame([dict(zip(("case", "mode", "setting", "seed", "error"), r))
+                         for r in rows])
+
+
+def test_final_sample_refits_write_fills_the_three_tables(tmp_path, capsys):
+    final = _refits([("3a", "final", "study", 0, 0.10), ("3a", "final", "study", 1, -0.50),
+                     ("3a", "final", "default", 0, 0.04), ("3a", "final", "default", 1, 0.06),
+                     ("4a", "final", "censor 0.2", 0, 0.123), ("4a", "final", "censor 0.2", 1, 0.2)])
+    every = _refits([("4a", "every", "default", 0, -0.3), ("4a", "every", "default", 1, -0.2)])
+    final.to_csv(tmp_path / "final.csv", index=False)
+    every.to_csv(tmp_path / "every.csv", index=False)
+    copy = _copy(INVESTIGATIONS, tmp_path)
+    load_script("benchmarks/investigations/final_sample_refits.py").main(
+        ["--write", str(copy), "--from-csv", f"{tmp_path / 'final.csv'},{tmp_path / 'every.csv'}"])
+    page = _written(tmp_path, INVESTIGATIONS, "final_sample_refits.py")
+    # censoring: 4a every-event default |0.3|, |0.2| -> 25.0 / 30.0; 4a final c 0.2 -> 16.2 / 20.0
+    assert "| 0 (default) | 25.0 / 30.0 % | – | – | – |" in page
+    assert "| 0.2 | – | – | 16.2 / 20.0 % | – |" in page
+    # settings: the studies |0.1|, |0.5| -> 30 / 50; the default refitted 0.04, 0.06 -> 5.0 / 6.0
+    assert "| PAS's studies themselves (not refitted) | 30 / 50 % | – |" in page
+    assert "| default, refitted | 5.0 / 6.0 % | – |" in page
+    assert "| Weibull (default), every event told | – | – | 25 / 30 % | – |" in page
+
+
+def test_final_sample_refits_write_needs_the_saved_runs(capsys):
+    with pytest.raises(SystemExit):
+        load_script("benchmarks/investigations/final_sample_refits.py").main(["--write"])
+    assert "--from-csv" in capsys.readouterr().err
+
+
+def test_stop_movement_write_fills_its_table(tmp_path):
+    row = dict(case="4a", k=104, eps1_rel=0.0131, pas_move20=0.099, pas_move20_min=0.054,
+               pas_move20_max=0.167, pas_stopped=0, pas_max_hf=160, law_move20=0.092,
+               law_within_eps1=0.0, law_draws=1000, law_error=0.172, lf_move20=0.057,
+               lf_within_eps1=0.684, lf_draws=250, lf_error=0.098)
+    pd.DataFrame([row, {**row, "case": "3b", "pas_stopped": 3}]).to_csv(tmp_path / "m.csv",
+                                                                       index=False)
+    copy = _copy(INVESTIGATIONS, tmp_path)
+    load_script("benchmarks/investigations/stop_movement.py").main(
+        ["--write", str(copy), "--from-csv", str(tmp_path / "m.csv")])
+    page = _written(tmp_path, INVESTIGATIONS, "stop_movement.py")
+    assert ("| 4a (k 104) | 1.3 % | 9.9 % [5.4, 16.7] at 160 HF | 9.2 % | 5.7 % | "
+            "0 % of 1000, 68 % of 250 | 17.2 / 9.8 % |") in page
+    assert "| 3b (k 104) | 1.3 % | 9.9 % [5.4, 16.7] at its stop or 160 HF |" in page
+
+
+def test_sampling_reference_write_fills_its_three_tables(tmp_path):
+    rows = [dict(case="3a", k=60, reference="pas", tau=0.57, median=0.093, worst=0.673),
+            dict(case="3a", k=50, reference="truth-estimator", tau=0.57, median=0.26, p90=0.94,
+                 p_all10=0.0),
+            dict(case="3a", k=60, reference="truth-estimator", tau=0.57, median=0.22, p90=0.64,
+                 p_all10=0.004),
+            dict(case="3a", k=50, reference="empirical", tau=0.57, median=0.26, p90=0.55),
+            dict(case="3a", k=60, reference="empirical", tau=0.57, median=0.23, p90=0.49),
+            dict(case="3a", k=107, reference="pas-random-events", tau=0.57, median=0.137,
+                 p90=0.341, p_all10=0.11)]
+    # the model references at k 50 (neither PAS's 60 nor the largest k) are left out
+    for k, m in ((50, 0.3), (60, 0.213)):
+        rows += [dict(case="3a", k=k, reference=ref, tau=0.57, median=m, p_targets=0.5)
+                 for ref in ("known law", "gaussian", "gumbel")]
+    pd.DataFrame(rows).to_csv(tmp_path / "s.csv", index=False)
+    copy = _copy(INVESTIGATIONS, tmp_path)
+    load_script("benchmarks/studies/sampling_reference.py").main(
+        ["--write", str(copy), "--from-csv", str(tmp_path / "s.csv")])
+    page = _written(tmp_path, INVESTIGATIONS, "sampling_reference.py")
+    assert ("| 3a | 50 / 60 | 26 / 22 % · 94 / 64 % | 0.00 / 0.00 | 26 / 23 % · 55 / 49 % | "
+            "9.3 / 67 % (60 pairs) |") in page
+    assert "| 3a | 13.7 / 34.1 % | 0.11 | 9.3 / 67 % |" in page
+    assert ("| 3a | 0.57 | 60 | 21.3 % · 0.50 | 21.3 % · 0.50 | 21.3 % · 0.50 | "
+            "9.3 / 67 % |") in page
+
+
+def test_records_case1_mpm_table():
+    script = load_script("benchmarks/investigations/records_case1.py")
+    analyses = [SimpleNamespace(mpm_pooled=8.641, mpm_seed_maxima=8.7, mpm_fit=8.616),
+                SimpleNamespace(mpm_pooled=10.6, mpm_seed_maxima=10.664, mpm_fit=10.53)]
+    table = script.mpm_table(analyses, (("Rayleigh", 8.68), ("Forristall", 10.371)))
+    assert table.split("\n")[2:] == ["| linear | 8.64 m | 8.70 m | 8.62 m | Rayleigh 8.68 m |",
+                                     ("| second order | 10.60 m | 10.66 m | 10.53 m | "
+                                      "Forristall 10.37 m |")]
+
+
+def test_validation_summary_from_the_spread_fixture():
+    """Worked by hand from tests/data/spread_runs.csv: 1a has two PAS runs (|M2| 0.004,
+    0.032: median 1.8 %, one covered), 1b and 2b one each, 2a none; 4a two (|M2| 0.128,
+    0.226); of the eight PAS runs six hold the truth."""
+    from pas.validation.result_tables import validation_summary
+
+    runs = pd.read_csv(ROOT / "tests" / "data" / "spread_runs.csv")
+    summary = load_script("benchmarks/studies/validation_spread.py").summarise(runs)
+    lines = validation_summary(summary).split("\n")
+    assert lines[2] == ("| 1a / 1b / 2a / 2b | 1.8 / 1.4 / – / 1.5 % | 3.2 / 1.4 / – / 1.5 % | "
+                        "22.5 / 28 / – / 31 | 2/2 / 1/1 / – / 0/1 | 1/2 / 1/1 / – / 1/1 | "
+                        "0.3 / – / – / – % | 0.4 / – / – / – % |")
+    assert lines[4] == ("| 4a / 4b | 17.7 / – % | 22.6 / – % | 160 / – | 0 / – of 2 | "
+                        "2 / – of 2 | – / – | – / – |")
+    assert lines[-1] == ("The U95 of PAS holds the data set's truth in 6 of 8 runs "
+                         "(75 %; nominal 95 %).")
+
+
+def test_a_write_leaves_the_tables_it_has_no_results_for(tmp_path, capsys):
+    """Results of one --every-event run fill the censoring and HF-marginal tables; the
+    estimator-settings table (final samples of 3a, 3b) keeps its rows."""
+    _refits([("4a", "every", "default", 0, -0.3)]).to_csv(tmp_path / "e.csv", index=False)
+    copy = _copy(INVESTIGATIONS, tmp_path)
+    load_script("benchmarks/investigations/final_sample_refits.py").main(
+        ["--write", str(copy), "--from-csv", str(tmp_path / "e.csv")])
+    tag = "final_sample_refits.py settings"
+    block = re.compile(rf"<!-- BEGIN {tag} -->.*?<!-- END {tag} -->", re.DOTALL)
+    assert (block.search(copy.read_text(encoding="utf-8")).group()
+            == block.search(INVESTIGATIONS.read_text(encoding="utf-8")).group())
+    assert "| 0 (default) | 30.0 / 30.0 % | – | – | – |" in copy.read_text(encoding="utf-8")
+    assert "left as they were" in capsys.readouterr().out
