@@ -17,6 +17,7 @@ from .loads import load_names, stored_loads
 from .schema import StoreError, with_legacy_settings
 from .state import EventState
 from .store import StudyStore
+from .store_views import Ask
 from .study import Study
 
 __all__ = ["refit", "refit_study"]
@@ -111,14 +112,14 @@ def _replay(study, store, results) -> int:
         missing += lacks
 
     for op in store.ops():
-        if op[0] == "ask":
-            positions = [study.lfset.position_of(i) for i in op[1]]
+        if isinstance(op, Ask):
+            positions = [study.lfset.position_of(i) for i in op.indices]
             if study._initial is None:
                 study._initial = positions
             for p in positions:
                 study.state[p] = EventState.PENDING
         else:
-            tell(op[1])
-    for idx, _hf, _err in store.unconsumed():
-        tell(int(idx))
+            tell(op.idx)
+    for waiting in store.unconsumed():
+        tell(int(waiting.idx))
     return missing
