@@ -18,8 +18,7 @@ from conftest import make_flat, run_flat
 import pas
 from pas.cli import main
 from pas.study import amend, open_study
-from pas.study.store import SCHEMA_VERSION, StoreError, StudyStore
-from pas.study.store_views import StoredResult
+from pas.study.store import SCHEMA_VERSION, StoredResult, StoreError, StudyStore
 
 N = 400
 LF = np.random.default_rng(0).rayleigh(1.0, N)

@@ -19,8 +19,7 @@ from conftest import make_flat, run_flat
 import pas
 from pas.cli import main
 from pas.study import open_study
-from pas.study.store import StoreError, StudyStore
-from pas.study.store_views import Tell
+from pas.study.store import StoreError, StudyStore, Tell
 
 N = 400
 LF = np.random.default_rng(0).rayleigh(1.0, N)

@@ -16,8 +16,7 @@ from .answers import check_target, screened_load
 from .loads import load_names, stored_loads
 from .schema import StoreError, with_legacy_settings
 from .state import EventState
-from .store import StudyStore
-from .store_views import Ask
+from .store import Ask, StudyStore
 from .study import Study
 
 __all__ = ["refit", "refit_study"]

@@ -28,8 +28,7 @@ import warnings
 
 from .loads import adopt_target
 from .schema import StoreError, dumps
-from .store import StudyStore
-from .store_views import Ask, Replace
+from .store import Ask, Replace, StudyStore
 
 __all__ = ["attach", "study_settings"]
 

@@ -41,9 +41,10 @@ from .stored_results import add_results_table
 from .schema import (RESUMABLE, with_legacy_settings, SCHEMA_VERSION, STATES, STORED, StoreConflict, StoreError,
                      _now, named_errors, _pool_hash, _pool_records, create_or_upgrade, dumps)
 from .state import EventState
-from .store_views import StoreViews
+from .store_views import Ask, LFInputs, Outstanding, Replace, StoredResult, StoreViews, Tell
 
-__all__ = ["StudyStore", "StoreError", "StoreConflict", "SCHEMA_VERSION", "read_settings", "STATES"]
+__all__ = ["StudyStore", "StoreError", "StoreConflict", "SCHEMA_VERSION", "read_settings", "STATES",
+           "LFInputs", "StoredResult", "Outstanding", "Ask", "Tell", "Replace"]
 
 
 class StudyStore(StoreViews):
