@@ -77,6 +77,7 @@ class StoreViews:
 
     @property
     def is_new(self) -> bool:
+        """True while the store holds no study (no settings written yet)."""
         with self._read() as c:
             return self._meta(c, "settings") is None
 
