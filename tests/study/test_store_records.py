@@ -13,6 +13,7 @@ import pytest
 
 import pas
 from pas.study import open_study
+from pas.study.refit import refit_study
 from pas.study.store import Ask, Outstanding, Replace, StoredResult, StoreError, StudyStore, Tell
 
 N = 300
@@ -115,3 +116,25 @@ def test_waiting_replacements_are_applied_in_order_without_new_ones(tmp_path):
         trail = store.replacements()
         assert [(r["new_hf"], r["source"]) for r in trail] == [(8.0, "basin"), (9.0, "basin")]
         assert all(r["consumed_seq"] for r in trail) and store.unconsumed() == []
+
+
+def test_refit_reads_replacements_in_the_log(tmp_path):
+    """Reproduction: refit of a store holding a replacement raised "already told"."""
+    db = tmp_path / "s.db"
+    study = pas.Study(pas.LFSet(LF, n_waves=N, p_exp=1e-2),
+                      pas.PAS(band=pas.ModelBand(n_bootstrap=0)), eps1=1e-3, seed=2,
+                      store=StudyStore(db), target="a")
+    first = study.ask()
+    for ev in first:
+        study.tell(ev, {"a": 2.0 * ev.lf, "b": 3.0 * ev.lf})
+    study.tell(first[0], 9.0, replace=True)            # applied: a Replace in the log
+    study.store.close()
+    with StudyStore(db, create=False) as store:
+        store.tell_by_key(first[1].id, 7.0, replace=True)   # waiting for the next driver
+    own, info = refit_study(db, "a")
+    reopened = open_study(db)
+    reopened.store.close()
+    assert [r["hf"] for r in own.rows] == [r["hf"] for r in reopened.rows]
+    assert [r["hf"] for r in own.rows][-2:] == [9.0, 7.0] and info["n_missing"] == 0
+    other, _ = refit_study(db, "b")  # the replacements corrected load "a" alone
+    assert [r["hf"] for r in other.rows] == pytest.approx([3.0 * ev.lf for ev in first], rel=1e-12)
