@@ -18,7 +18,7 @@ from conftest import make_flat, run_flat
 import pas
 from pas.cli import main
 from pas.study import amend, open_study
-from pas.study.store import SCHEMA_VERSION, StoreError, StudyStore
+from pas.study.store import SCHEMA_VERSION, StoredResult, StoreError, StudyStore
 
 N = 400
 LF = np.random.default_rng(0).rayleigh(1.0, N)
@@ -116,7 +116,8 @@ def test_a_value_after_an_error_and_a_replacement_waiting_for_the_driver(tmp_pat
     assert "--replace" in capsys.readouterr().err
     assert main(["study", "tell", db, str(first[0].id), "8.0", "--replace"]) == 0
     with StudyStore(db, create=False) as store:
-        assert store.unconsumed() == [(first[0].index, 8.0, None)]   # not applied yet
+        waiting = StoredResult(idx=first[0].index, hf=8.0, error=None)
+        assert store.unconsumed() == [waiting]   # not applied yet
     reopened = open_study(db)                    # the next driver applies it
     assert reopened.n_failed == 0 and reopened.rows[-1]["replaced_error"] is not None
     reopened.store.close()

@@ -19,7 +19,7 @@ from conftest import make_flat, run_flat
 import pas
 from pas.cli import main
 from pas.study import open_study
-from pas.study.store import StoreError, StudyStore
+from pas.study.store import StoreError, StudyStore, Tell
 
 N = 400
 LF = np.random.default_rng(0).rayleigh(1.0, N)
@@ -119,7 +119,7 @@ def test_a_result_told_for_a_dropped_pending_event_is_kept(tmp_path):
         assert store.tell_by_key(later[0].id, 7.5, source="basin")   # arrives after the retry
         kept = [d for d in store.dropped() if d["key"] == str(later[0].id)]
         assert kept[0]["hf"] == 7.5 and kept[0]["reusable"] == 1
-        assert store.ops()[-1][0] == "tell"          # the log ends before the retried failure
+        assert isinstance(store.ops()[-1], Tell)     # the log ends before the retried failure
 
 
 # -- the command line ------------------------------------------------------------------------

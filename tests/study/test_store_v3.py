@@ -89,6 +89,6 @@ def test_studies_in_one_file_do_not_see_each_other(tmp_path):
         with StudyStore(path, scope=k) as store:
             assert [r["event_index"] for r in store.history()] == told[k]
             assert store.settings()["n_waves"] == v.size
-            assert len(store.pool()[0]) == v.size
+            assert store.lf_inputs().lf_peaks.size == v.size
     with StudyStore(path) as root:  # the single-study scope is empty
         assert root.is_new and root.history() == []

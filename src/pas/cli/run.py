@@ -350,7 +350,7 @@ def _retried_line(report: dict) -> str:
 
 def _resuming_line(study, store) -> str:
     waiting = study.store.outstanding()
-    with_result = sum(r[3] for r in waiting)
+    with_result = sum(r.has_result for r in waiting)
     reused = study.n_told + with_result
     line = f"pas run: resuming {store}: {reused} results reused"
     parts = [f"{study.n_failed} failed"] if study.n_failed else []

@@ -185,7 +185,7 @@ def _ask(args) -> int:
         events = study.ask(args.n)
         if initial and len(events) < args.n:
             events += study.ask(args.n - len(events))
-        kept = {r[0] for r in store.outstanding() if r[3]}  # results a retry kept for them
+        kept = {r.idx for r in store.outstanding() if r.has_result}  # results a retry kept
         reused = [ev for ev in events if ev.index in kept]
         events = [ev for ev in events if ev.index not in kept]
         if events:

@@ -82,8 +82,8 @@ def _replayed(store, waiting, key) -> tuple[dict, int]:
     study.store = None
     used_converged = bool(study.converged)
     n_told = study.n_told
-    for idx, hf, err in waiting:
-        study.tell(int(idx), hf, error=err, replace=True)
+    for result in waiting:
+        study.tell(int(result.idx), result.hf, error=result.error, replace=True)
     res = study.result()
     shown = summary(study, res)
     if not waiting and shown["fitted"]:

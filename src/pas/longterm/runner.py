@@ -216,7 +216,7 @@ class _Run:
             if st is None:
                 continue
             rows = st.store.outstanding() if st.store is not None else []
-            events = [st.lfset.event(st.lfset.position_of(r[0])) for r in rows] or st.pending
+            events = [st.lfset.event(st.lfset.position_of(r.idx)) for r in rows] or st.pending
             if events:
                 asks.append((i, events))
         if asks:
@@ -260,7 +260,7 @@ class _Run:
         results, todo = {}, []
         for i, events in asks:
             st = self.studies[i]
-            stored = {r[0]: (r[1], r[2]) for r in st.store.outstanding() if r[3]} \
+            stored = {r.idx: (r.hf, r.error) for r in st.store.outstanding() if r.has_result} \
                 if st.store is not None else {}
             mine = [ev for ev in events if ev.index not in stored]
             results.update({(i, idx): v for idx, v in stored.items()})

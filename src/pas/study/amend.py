@@ -43,7 +43,7 @@ from .schema import STORED, StoreError, _now
 from .state import EventState
 
 __all__ = ["rewind_failed", "dropped_index", "reuse_dropped", "tell_dropped", "replace_result",
-           "apply_replacement", "REPLACED_AFTER_USE", "REPLACED_BEFORE_USE"]
+           "stage_replacement", "apply_replacement", "REPLACED_AFTER_USE", "REPLACED_BEFORE_USE"]
 
 _EVENT_COLUMNS = ("idx", "key", "state", "hf", "error", "batch", "batch_pos", "result_seq",
                   "tell_seq", "attempts", "asked_at", "submitted_at", "result_at", "source")
@@ -178,19 +178,31 @@ def replace_result(store, c, idx: int, value, error, source) -> bool:
     return True
 
 
-def apply_replacement(store, c, idx: int, value, error) -> None:
-    """Mark that the study applied the replacement of ``idx`` by ``(value, error)`` now.
+def _waiting_replacement(store, c, idx: int, value, error):
+    """The id of the oldest stored replacement of ``idx`` by ``(value, error)`` no study applied."""
+    row = c.execute("SELECT id FROM replacements WHERE study = ? AND idx = ? AND "
+                    "consumed_seq IS NULL AND new_hf IS ? AND new_error IS ? ORDER BY id LIMIT 1",
+                    (store.scope, idx, value, error)).fetchone()
+    return None if row is None else row[0]
 
-    Records the replacement first when no stored one waits (a Python ``tell``).
+
+def stage_replacement(store, c, idx: int, value, error, source) -> None:
+    """Store ``(value, error)`` as the replacement of ``idx``'s used result, unless it waits already.
+
+    A study applying a correction it was told in Python stores it here first
+    (:func:`replace_result`), the way ``pas study tell --replace`` does;
+    :func:`apply_replacement` then marks it applied.
     """
-    def waiting():
-        return c.execute("SELECT id FROM replacements WHERE study = ? AND idx = ? AND "
-                         "consumed_seq IS NULL AND new_hf IS ? AND new_error IS ? ORDER BY id "
-                         "LIMIT 1", (store.scope, idx, value, error)).fetchone()
+    if _waiting_replacement(store, c, idx, value, error) is None and \
+            not replace_result(store, c, idx, value, error, source):
+        raise StoreError(f"event index {idx} already holds this result in {store.path}")
 
-    row = waiting()
-    if row is None:
-        if not replace_result(store, c, idx, value, error, "python"):
-            raise StoreError(f"event index {idx} already holds this result in {store.path}")
-        row = waiting()
-    c.execute("UPDATE replacements SET consumed_seq = ? WHERE id = ?", (store._claim_op(c), row[0]))
+
+def apply_replacement(store, c, idx: int, value, error) -> None:
+    """Mark that the study applied the stored replacement of ``idx`` by ``(value, error)`` now."""
+    waiting = _waiting_replacement(store, c, idx, value, error)
+    if waiting is None:
+        raise StoreError(f"no replacement of event index {idx} by hf={value}, error={error!r} "
+                         f"waits in {store.path}; store it first (record_result with "
+                         "replace=True)")
+    c.execute("UPDATE replacements SET consumed_seq = ? WHERE id = ?", (store._claim_op(c), waiting))

@@ -69,7 +69,7 @@ class Corrections:
         self._iterate(row, replacing=True)
         row["threshold"] = self.l0
         if self.store is not None:
-            self.store.record_replacement(ev, row)
+            self.store.record_tell(ev, row, replace=True)
         return row
 
     def retry_failed(self, ids=None) -> dict:

@@ -187,20 +187,21 @@ class _Loop:
             return self.study.pending
         rows = self.store.outstanding()
         if pending == "wait":
-            rows = [r for r in rows if r[3]]
-        return [self.study.lfset.event(self.study.lfset.position_of(r[0])) for r in rows]
+            rows = [r for r in rows if r.has_result]
+        return [self.study.lfset.event(self.study.lfset.position_of(r.idx)) for r in rows]
 
     def _absorb(self):
         """Tell results and replacements other processes stored meanwhile (arrival order)."""
-        for idx, hf, err in self.store.unconsumed() if self.store is not None else ():
-            if (failure := self._tell(int(idx), hf, err, replace=True)) is not None:
+        for waiting in self.store.unconsumed() if self.store is not None else ():
+            if (failure := self._tell(int(waiting.idx), waiting.hf, waiting.error,
+                                      replace=True)) is not None:
                 raise failure
 
     def _run_batch(self, batch):
         store = self.store
         results = {}
         if store is not None:
-            results = {r[0]: (r[1], r[2]) for r in store.outstanding() if r[3]}
+            results = {r.idx: (r.hf, r.error) for r in store.outstanding() if r.has_result}
             results.update(answers_from_loads(
                 store, [ev.index for ev in batch if ev.index not in results], self.study.target))
         told, failure = 0, None

@@ -16,7 +16,7 @@ from .answers import check_target, screened_load
 from .loads import load_names, stored_loads
 from .schema import StoreError, with_legacy_settings
 from .state import EventState
-from .store import StudyStore
+from .store import Ask, Replace, StudyStore
 from .study import Study
 
 __all__ = ["refit", "refit_study"]
@@ -69,7 +69,7 @@ def refit_study(store, target: str):
         results = _results_of(own, target, chosen_for)
         lf_all, ids, meta = own.lf_inputs()
         study = Study.from_settings({**settings, "target": target}, lf_all, ids=ids, meta=meta)
-        n_missing = _replay(study, own, results)
+        n_missing = _replay(study, own, results, target == chosen_for)
     finally:
         if own is not store:
             own.close()
@@ -100,25 +100,34 @@ def _results_of(store, target, chosen_for) -> dict:
     return out
 
 
-def _replay(study, store, results) -> int:
-    """Replay the stored asks and tells on ``study`` with ``results``; the number missing."""
+def _replay(study, store, results, own_target: bool) -> int:
+    """Replay the stored asks and tells on ``study`` with ``results``; the number missing.
+
+    The study's ``own_target`` replays the log as the study ran: each tell
+    the value it used then, each replacement applied where it was.  Another
+    load is told once per event: a replacement corrected the screened load
+    alone, the other loads stay as the oracle gave them.
+    """
     missing = 0
 
-    def tell(idx):
+    def tell(idx, hf, error, replace):
         nonlocal missing
-        value, error, lacks = results[idx]
-        study.tell(idx, value, error=error)
-        missing += lacks
+        if own_target:
+            study.tell(idx, hf, error=error, replace=replace)
+        elif study.state.get(study.lfset.position_of(idx)) == EventState.PENDING:
+            value, error, lacks = results[idx]
+            study.tell(idx, value, error=error)
+            missing += lacks
 
     for op in store.ops():
-        if op[0] == "ask":
-            positions = [study.lfset.position_of(i) for i in op[1]]
+        if isinstance(op, Ask):
+            positions = [study.lfset.position_of(i) for i in op.indices]
             if study._initial is None:
                 study._initial = positions
             for p in positions:
                 study.state[p] = EventState.PENDING
         else:
-            tell(op[1])
-    for idx, _hf, _err in store.unconsumed():
-        tell(int(idx))
+            tell(op.idx, op.hf, op.error, isinstance(op, Replace))
+    for waiting in store.unconsumed():
+        tell(int(waiting.idx), waiting.hf, waiting.error, True)
     return missing

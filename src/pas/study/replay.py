@@ -28,7 +28,7 @@ import warnings
 
 from .loads import adopt_target
 from .schema import StoreError, dumps
-from .store import StudyStore
+from .store import Ask, Replace, StudyStore
 
 __all__ = ["attach", "study_settings"]
 
@@ -51,31 +51,27 @@ def attach(study, store) -> list[dict]:
     Raises :class:`StoreError` when the stored settings or LF pool differ from
     ``study``'s, or when the replay does not reproduce the stored asks.
     Returns the changes of resumable settings recorded now
-    (:meth:`StudyStore.check <pas.study.store.StudyStore.check>`).
+    (:meth:`StudyStore.bind <pas.study.store.StudyStore.bind>`).
     """
     if not isinstance(store, StudyStore):
         store = StudyStore(store)
     settings = study_settings(study)
-    changes = []
     with store.transaction():
-        if store.is_new:
-            store.initialize(settings, study.lfset)
-        else:
-            adopted = adopt_target(store, settings)
-            changes = store.check(settings, study.lfset) + ([adopted] if adopted else [])
+        adopted = None if store.is_new else adopt_target(store, settings)
+        changes = store.bind(settings, study.lfset) + ([adopted] if adopted else [])
     study._replaying = True
     # the model bands a precision study computed in its loop, reused rather than refitted
     study._stored_bands = {r["row"]: r for r in store.history() if r.get("model_low") is not None}
     try:
         for n, op in enumerate(store.ops()):
-            if op[0] == "ask":
-                got = [ev.index for ev in study.ask(len(op[1]))]
-                if got != op[1]:
+            if isinstance(op, Ask):
+                got = tuple(ev.index for ev in study.ask(len(op.indices)))
+                if got != op.indices:
                     raise StoreError(
                         f"study store {store.path} does not replay: ask #{n} gives events {got} "
-                        f"but the store holds {op[1]} (written by another pas version?)")
+                        f"but the store holds {op.indices} (written by another pas version?)")
             else:
-                study.tell(op[1], op[2], error=op[3], replace=op[0] == "replace")
+                study.tell(op.idx, op.hf, error=op.error, replace=isinstance(op, Replace))
     finally:
         study._replaying, study._stored_bands = False, {}
     stored = store.history()

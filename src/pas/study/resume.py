@@ -44,6 +44,6 @@ def open_study(store, *, consume: bool = True, changes: dict | None = None) -> S
     lf_all, all_ids, all_meta = store.lf_inputs()
     study = Study.from_settings(s, lf_all, ids=all_ids, meta=all_meta, store=store)
     if consume:
-        for i, hf, err in store.unconsumed():
-            study.tell(int(i), hf, error=err, replace=True)
+        for waiting in store.unconsumed():
+            study.tell(int(waiting.idx), waiting.hf, error=waiting.error, replace=True)
     return study

@@ -41,9 +41,10 @@ from .stored_results import add_results_table
 from .schema import (RESUMABLE, with_legacy_settings, SCHEMA_VERSION, STATES, STORED, StoreConflict, StoreError,
                      _now, named_errors, _pool_hash, _pool_records, create_or_upgrade, dumps)
 from .state import EventState
-from .store_views import StoreViews
+from .store_views import Ask, LFInputs, Outstanding, Replace, StoredResult, StoreViews, Tell
 
-__all__ = ["StudyStore", "StoreError", "StoreConflict", "SCHEMA_VERSION", "read_settings", "STATES"]
+__all__ = ["StudyStore", "StoreError", "StoreConflict", "SCHEMA_VERSION", "read_settings", "STATES",
+           "LFInputs", "StoredResult", "Outstanding", "Ask", "Tell", "Replace"]
 
 
 class StudyStore(StoreViews):
@@ -166,76 +167,64 @@ class StudyStore(StoreViews):
         self._op_seq = seq
         return seq
 
-    # -- creation and identity ---------------------------------------------
-    @property
-    def is_new(self) -> bool:
-        with self._read() as c:
-            return self._meta(c, "settings") is None
+    # -- creation and meta -------------------------------------------------
+    def bind(self, settings: dict, lfset) -> list[dict]:
+        """Write the settings and LF pool of a new study, or check them against the stored ones.
 
-    def settings(self) -> dict:
-        """The stored study settings (``{}`` for a new store)."""
-        with self._read() as c:
-            return self._meta(c, "settings", {})
-
-    def initialize(self, settings: dict, lfset) -> None:
-        """Write the settings and LF pool of a new study."""
-        records = _pool_records(lfset)
-        with self.transaction() as c:
-            if self._meta(c, "settings") is not None:
-                raise StoreError(f"study store {self.path} already holds a study")
-            c.executemany("INSERT INTO lf_peaks VALUES (?, ?, ?, ?, ?, ?, ?)",
-                          [(self.scope, *r) for r in records])
-            for k, v in (("settings", settings), ("lf_sha256", _pool_hash(records)),
-                         ("created_at", _now()), ("pas_version", __version__)):
-                self._set_meta(c, k, v)
-
-    def check(self, settings: dict, lfset) -> list[dict]:
-        """Raise :class:`StoreError` naming the first setting that differs from the store.
-
-        The stopping settings and budgets (:data:`~pas.study.schema.RESUMABLE`)
-        may change: the new values are stored and each change is appended to
-        ``meta.settings_changes``, which is returned (the changes made now).
+        On a store holding a study, raise :class:`StoreError` naming the first
+        setting that differs.  The stopping settings and budgets
+        (:data:`~pas.study.schema.RESUMABLE`) may change: the new values are
+        stored and each change is appended to ``meta.settings_changes``, which
+        is returned (the changes made now; ``[]`` for a new study).
         """
-        changes = []
         with self.transaction() as c:
-            stored = with_legacy_settings(self._meta(c, "settings"))
-            for key in sorted(set(stored) | set(settings)):
-                old, new = stored.get(key), settings.get(key)
-                if key == "strategy_settings":
-                    for k in sorted(set(old or {}) | set(new or {})):
-                        if (old or {}).get(k) != (new or {}).get(k):
-                            raise StoreError(self._differs(k, (old or {}).get(k), (new or {}).get(k)))
-                elif old != new and key not in RESUMABLE:
-                    raise StoreError(self._differs(key, old, new))
-                elif old != new:
-                    changes.append({"key": key, "old": old, "new": new})
-            if _pool_hash(_pool_records(lfset)) != self._meta(c, "lf_sha256"):
-                n = c.execute("SELECT COUNT(*) FROM lf_peaks WHERE study = ?",
-                              (self.scope,)).fetchone()[0]
-                raise StoreError(
-                    f"lf_peaks differ from those the study store {self.path} was created with "
-                    f"({n} peaks over threshold stored, {lfset.n} given; values, ids or meta "
-                    "changed)")
-            if stored != settings:
-                self._set_meta(c, "settings", settings)
-            if changes:
-                n_told = c.execute("SELECT COUNT(*) FROM events WHERE study = ? AND "
-                                   "tell_seq IS NOT NULL", (self.scope,)).fetchone()[0]
-                now = _now()
-                for ch in changes:
-                    ch.update(n_told=n_told, at=now)
-                self._set_meta(c, "settings_changes",
-                               self._meta(c, "settings_changes", []) + changes)
+            if self._meta(c, "settings") is None:
+                self._initialize(c, settings, lfset)
+                return []
+            return self._check(c, settings, lfset)
+
+    def _initialize(self, c, settings: dict, lfset) -> None:
+        records = _pool_records(lfset)
+        c.executemany("INSERT INTO lf_peaks VALUES (?, ?, ?, ?, ?, ?, ?)",
+                      [(self.scope, *r) for r in records])
+        for k, v in (("settings", settings), ("lf_sha256", _pool_hash(records)),
+                     ("created_at", _now()), ("pas_version", __version__)):
+            self._set_meta(c, k, v)
+
+    def _check(self, c, settings: dict, lfset) -> list[dict]:
+        changes = []
+        stored = with_legacy_settings(self._meta(c, "settings"))
+        for key in sorted(set(stored) | set(settings)):
+            old, new = stored.get(key), settings.get(key)
+            if key == "strategy_settings":
+                for k in sorted(set(old or {}) | set(new or {})):
+                    if (old or {}).get(k) != (new or {}).get(k):
+                        raise StoreError(self._differs(k, (old or {}).get(k), (new or {}).get(k)))
+            elif old != new and key not in RESUMABLE:
+                raise StoreError(self._differs(key, old, new))
+            elif old != new:
+                changes.append({"key": key, "old": old, "new": new})
+        if _pool_hash(_pool_records(lfset)) != self._meta(c, "lf_sha256"):
+            n = c.execute("SELECT COUNT(*) FROM lf_peaks WHERE study = ?",
+                          (self.scope,)).fetchone()[0]
+            raise StoreError(
+                f"lf_peaks differ from those the study store {self.path} was created with "
+                f"({n} peaks over threshold stored, {lfset.n} given; values, ids or meta "
+                "changed)")
+        if stored != settings:
+            self._set_meta(c, "settings", settings)
+        if changes:
+            n_told = c.execute("SELECT COUNT(*) FROM events WHERE study = ? AND "
+                               "tell_seq IS NOT NULL", (self.scope,)).fetchone()[0]
+            now = _now()
+            for ch in changes:
+                ch.update(n_told=n_told, at=now)
+            self._set_meta(c, "settings_changes", self._meta(c, "settings_changes", []) + changes)
         return changes
 
     def _differs(self, key, old, new) -> str:
         return (f"{key} differs from the study store {self.path}: it was created with "
                 f"{key}={old!r}, this call has {key}={new!r}")
-
-    def get(self, key, default=None):
-        """A JSON value from the ``meta`` table (e.g. ``"oracle"``, ``"batch_size"``)."""
-        with self._read() as c:
-            return self._meta(c, key, default)
 
     def put(self, key, value) -> None:
         """Store a JSON value in the ``meta`` table (not the reserved keys)."""
@@ -272,24 +261,34 @@ class StudyStore(StoreViews):
                           "WHERE study = ? AND idx = ?",
                           [(_now(), self.scope, ev.index) for ev in events])
 
-    def record_result(self, event, value, error=None, *, source=None, loads=None) -> None:
-        """Store the HF result (``value``) or failure (``error``) of a pending event, and ``loads``.
+    def record_result(self, event, value, error=None, *, source=None, loads=None,
+                      replace: bool = False) -> None:
+        """Store the HF result (``value``) or failure (``error``) of an asked event, and ``loads``.
 
-        Idempotent for an identical result; refuses to overwrite a different one.
+        The one place a result this process got is written (:meth:`record_tell`
+        then marks it used).  Idempotent for an identical result; refuses to
+        overwrite a different one.  With ``replace`` the event's result was
+        used already: the new one is stored as its replacement (audited,
+        :func:`pas.study.amend.stage_replacement`), unless that replacement
+        already waits.
         """
-        idx = event if isinstance(event, (int, np.integer)) else event.index
+        idx = int(event if isinstance(event, (int, np.integer)) else event.index)
+        value = _as_result(value, error)
         with self.transaction() as c:
-            self._put_result(c, int(idx), value, error, source)
-            put_loads(c, int(idx), loads, self.path, self.scope)
+            if replace:
+                _refuse_replaced_loads(f"event index {idx}", loads)
+                amend.stage_replacement(self, c, idx, value, error, source or "python")
+                return
+            self._put_result(c, idx, value, error, source)
+            put_loads(c, idx, loads, self.path, self.scope)
 
     def _put_result(self, c, idx, value, error, source):
         row = c.execute("SELECT key, state, hf, error, result_seq FROM events "
                         "WHERE study = ? AND idx = ?", (self.scope, idx)).fetchone()
         if row is None:
             raise StoreError(f"event index {idx} was never asked for in {self.path}")
-        key, state, hf, err, rseq = row
-        value = None if error is not None else float(value)
-        if rseq is not None:
+        key, state, hf, err, result_seq = row
+        if result_seq is not None:
             if (hf, err) == (value, error):
                 return
             raise StoreError(f"event {key} already has a result in {self.path} ({state}, "
@@ -299,14 +298,35 @@ class StudyStore(StoreViews):
                   "source = ? WHERE study = ? AND idx = ?",
                   (state, value, error, self._next_seq(c), _now(), source, self.scope, idx))
 
-    def record_tell(self, event, row: dict) -> None:
-        """Store that the study consumed ``event``'s result, with its history row."""
+    def record_tell(self, event, row: dict, *, replace: bool = False) -> None:
+        """Store that the study used ``event``'s stored result, with its history row.
+
+        With ``replace`` the row applies a stored replacement of a used result
+        (:meth:`record_result` with ``replace``).  Nothing of the result is
+        written here: it must be stored already and be the row's ``hf`` /
+        ``error``, else :class:`StoreError`.
+        """
+        value = _as_result(row.get("hf"), row.get("error"))
         with self.transaction() as c:
-            self._put_result(c, event.index, row.get("hf"), row.get("error"), None)
-            seq = self._claim_op(c)
-            c.execute("UPDATE events SET tell_seq = ? WHERE study = ? AND idx = ?",
-                      (seq, self.scope, event.index))
+            if replace:
+                amend.apply_replacement(self, c, event.index, value, row.get("error"))
+            else:
+                self._mark_told(c, event.index, value, row.get("error"))
             self._put_history(c, event, row)
+
+    def _mark_told(self, c, idx, value, error) -> None:
+        found = c.execute("SELECT key, hf, error, result_seq FROM events WHERE study = ? AND "
+                          "idx = ?", (self.scope, idx)).fetchone()
+        if found is None:
+            raise StoreError(f"event index {idx} was never asked for in {self.path}")
+        key, hf, err, result_seq = found
+        if result_seq is None or (hf, err) != (value, error):
+            held = "no result" if result_seq is None else f"hf={hf}, error={err!r}"
+            raise StoreError(f"event {key}: the study used hf={value}, error={error!r} but "
+                             f"{self.path} holds {held}; store the result first "
+                             "(record_result), a stored one is never overwritten")
+        c.execute("UPDATE events SET tell_seq = ? WHERE study = ? AND idx = ?",
+                  (self._claim_op(c), self.scope, idx))
 
     def tell_by_key(self, key, value=None, *, error=None, source=None, loads=None,
                     replace: bool = False) -> bool:
@@ -320,37 +340,29 @@ class StudyStore(StoreViews):
         (:mod:`pas.study.amend`).  A result for an event a retry took out of
         the log is kept there and used if the study asks for it again.
         """
+        key = str(key)
+        value = _as_result(value, error)
         with self.transaction() as c:
-            row = c.execute("SELECT idx, state, result_seq, hf, error FROM events "
-                            "WHERE study = ? AND key = ?", (self.scope, str(key))).fetchone()
-            value = None if error is not None else float(value)
-            if row is None:
-                if amend.tell_dropped(self, c, str(key), value, error, source):
-                    put_loads(c, amend.dropped_index(self, c, str(key)), loads, self.path,
-                              self.scope)
+            found = c.execute("SELECT idx, state, result_seq, hf, error FROM events "
+                              "WHERE study = ? AND key = ?", (self.scope, key)).fetchone()
+            if found is None:
+                if amend.tell_dropped(self, c, key, value, error, source):
+                    put_loads(c, amend.dropped_index(self, c, key), loads, self.path, self.scope)
                     return True
                 raise StoreError(f"event {key} was not asked for in {self.path}")
-            if row[2] is not None:
-                if (row[3], row[4]) == (value, error):
+            idx, state, result_seq, hf, err = found
+            if result_seq is not None:
+                if (hf, err) == (value, error):
                     return False
-                if replace and loads:
-                    raise StoreError(f"event {key}: --replace takes the screened load alone "
-                                     "(VALUE), not --load NAME=VALUE; named loads cannot be "
-                                     "corrected yet")
                 if replace:
-                    return amend.replace_result(self, c, row[0], value, error, source)
-                raise StoreError(f"event {key} is already told ({row[1]}, hf={row[3]}, "
-                                 f"error={row[4]!r}); to correct it, tell it again with "
+                    _refuse_replaced_loads(f"event {key}", loads)
+                    return amend.replace_result(self, c, idx, value, error, source)
+                raise StoreError(f"event {key} is already told ({state}, hf={hf}, "
+                                 f"error={err!r}); to correct it, tell it again with "
                                  "--replace (replace=True)")
-            self._put_result(c, row[0], value, error, source)
-            put_loads(c, row[0], loads, self.path, self.scope)
+            self._put_result(c, idx, value, error, source)
+            put_loads(c, idx, loads, self.path, self.scope)
             return True
-
-    def record_replacement(self, event, row: dict) -> None:
-        """Store that the study applied a replacement of ``event``'s result, with its history row."""
-        with self.transaction() as c:
-            amend.apply_replacement(self, c, event.index, row.get("hf"), row.get("error"))
-            self._put_history(c, event, row)
 
     def _put_history(self, c, event, row: dict) -> None:
         c.execute("INSERT INTO history VALUES (?, ?, ?, ?, ?)",
@@ -361,34 +373,17 @@ class StudyStore(StoreViews):
         with self.transaction() as c:
             return amend.rewind_failed(self, c, keys)
 
-    def ops(self) -> list[tuple]:
-        """The replay log in order: ``("ask", [idx, ...])``, ``("tell", idx, hf, error)``
-        and ``("replace", idx, hf, error)``.
 
-        A tell replays the value the study used then: the old value of the
-        first replacement it applied later, if any.  Also remembers the last
-        op so later writes can detect another driver.
-        """
-        with self._read() as c:
-            asks = c.execute("SELECT batch, idx FROM events WHERE study = ? "
-                             "ORDER BY batch, batch_pos", (self.scope,)).fetchall()
-            tells = c.execute("SELECT tell_seq, idx, hf, error FROM events "
-                              "WHERE study = ? AND tell_seq IS NOT NULL", (self.scope,)).fetchall()
-            replaced = c.execute("SELECT consumed_seq, idx, old_hf, old_error, new_hf, new_error "
-                                 "FROM replacements WHERE study = ? AND consumed_seq IS NOT 0 "
-                                 "ORDER BY id", (self.scope,)).fetchall()
-            self._op_seq = self._meta(c, "op_seq")
-        ops: dict[int, tuple] = {}
-        for batch, idx in asks:
-            ops.setdefault(batch, ("ask", []))[1].append(idx)
-        first_old = {}
-        for seq, idx, old_hf, old_err, new_hf, new_err in replaced:
-            first_old.setdefault(idx, (old_hf, old_err))
-            if seq is not None:
-                ops[seq] = ("replace", idx, new_hf, new_err)
-        for seq, idx, hf, err in tells:
-            ops[seq] = ("tell", idx, *first_old.get(idx, (hf, err)))
-        return [ops[k] for k in sorted(ops)]
+def _as_result(value, error):
+    """The stored form of a result: ``value`` as a float, None for a failure."""
+    return None if error is not None else float(value)
+
+
+def _refuse_replaced_loads(what: str, loads) -> None:
+    if loads:
+        raise StoreError(f"{what}: --replace takes the screened load alone (VALUE), not --load "
+                         "NAME=VALUE; named loads cannot be corrected yet")
+
 
 def read_settings(path) -> dict:
     """Stored settings of the study at ``path`` (``{}`` when there is no store yet)."""

@@ -268,13 +268,14 @@ class Study(Corrections):
             if lacks_target(loads, self.target):
                 raise ValueError(error)
         ev = self.lfset.event(pos)
-        if state != EventState.PENDING:
-            if loads:
-                raise ValueError(f"event {idx}: replace=True takes the screened load alone, not "
-                                 "named loads; named loads cannot be corrected yet")
+        replacing = state != EventState.PENDING
+        if replacing and loads:
+            raise ValueError(f"event {idx}: replace=True takes the screened load alone, not "
+                             "named loads; named loads cannot be corrected yet")
+        if self.store is not None:  # on disk before the fit; record_tell only marks it used
+            self.store.record_result(ev, value, error, loads=loads, replace=replacing)
+        if replacing:
             return self._replace(pos, ev, value, error)
-        if self.store is not None:
-            self.store.record_result(ev, value, error, loads=loads)
         row = self._row(pos, ev, value, error)
         state = self.state[pos]
         if state == EventState.TRUE_POSITIVE:
