@@ -26,7 +26,7 @@ SRC = str(Path(pas.__file__).resolve().parents[1])
 N_BEFORE, MAX_HF = 3, 8
 
 # logs each start; after N_BEFORE calls sleeps as long as sleep.txt (next to it) says;
-# writes its result atomically
+# logs each finish and writes its result atomically
 SLOW_CFD = f"""\
 import os, sys, time
 here = os.path.dirname(os.path.abspath(__file__))
@@ -35,10 +35,20 @@ with open(os.path.join(here, "calls.log"), "a") as f:
     f.write(event + "\\n")
 if len(open(os.path.join(here, "calls.log")).read().split()) > {N_BEFORE}:
     time.sleep(float(open(os.path.join(here, "sleep.txt")).read()))
+with open(os.path.join(here, "finished.log"), "a") as f:
+    f.write(event + "\\n")
 with open(out + ".tmp", "w") as f:
     f.write(repr(1.2 * lf ** 1.1))
 os.replace(out + ".tmp", out)
 """
+
+SLEEP = 20.0
+"""How long the interrupted event's program runs: a quick exit is one that comes before it ends."""
+
+
+def _finished(folder) -> int:
+    log = folder / "finished.log"
+    return len(log.read_text().split()) if log.exists() else 0
 
 
 def _folder(path, sleep):
@@ -63,7 +73,7 @@ def _pas_run(folder, **kw):
 
 @pytest.mark.slow
 def test_ctrl_c_exits_quickly_writes_the_partial_result_and_resume_loses_nothing(tmp_path):
-    folder = _folder(tmp_path / "interrupted", sleep=3.0)
+    folder = _folder(tmp_path / "interrupted", sleep=SLEEP)
     proc = _pas_run(folder)
     seen = 0
     for line in proc.stderr:  # one progress line per told result
@@ -77,8 +87,9 @@ def test_ctrl_c_exits_quickly_writes_the_partial_result_and_resume_loses_nothing
     proc.wait(timeout=60)
     took = time.monotonic() - sent
     assert proc.returncode == 130, err
-    # 0.5 s measured on a loaded 2-core machine; 2.1-2.7 s before (33 s with the bootstrap)
-    assert took < 2.0, f"Ctrl-C took {took:.2f} s to exit"
+    # a quick exit, without a timed assertion: pas ended while the interrupted event's
+    # program (SLEEP s) still ran (0.5 s measured here; 2.1-2.7 s before, 33 s with the bootstrap)
+    assert _finished(folder) == N_BEFORE, f"pas waited for the HF program ({took:.1f} s)"
     assert f"interrupted after {N_BEFORE} HF result(s); partial result written to out/" in err
     summary = json.loads((folder / "out" / "summary.json").read_text())
     assert summary["inputs"]["stopped_early"] is True
@@ -155,7 +166,7 @@ pas.run_pas(lf, oracle, n_waves=600, p_exp=1e-2, eps1=1e-4, seed=2, max_hf=8,
 def test_ctrl_c_in_a_python_campaign_exits_quickly_with_every_result_stored(tmp_path):
     from pas.study.store import StudyStore
 
-    folder = _folder(tmp_path / "py", sleep=3.0)
+    folder = _folder(tmp_path / "py", sleep=SLEEP)
     (folder / "campaign.py").write_text(PYTHON_CAMPAIGN)
     env = {**os.environ, "PYTHONPATH": SRC}
     proc = subprocess.Popen([sys.executable, "campaign.py"], cwd=folder, env=env, text=True,
@@ -172,7 +183,8 @@ def test_ctrl_c_in_a_python_campaign_exits_quickly_with_every_result_stored(tmp_
     proc.wait(timeout=60)
     took = time.monotonic() - sent
     assert "KeyboardInterrupt" in err
-    assert took < 2.0, f"Ctrl-C took {took:.2f} s to exit"  # 0.5 s here, 2.3 s before
+    # ended while the interrupted event's program still ran (0.5 s here, 2.3 s before)
+    assert _finished(folder) == N_BEFORE, f"the campaign waited for the HF program ({took:.1f} s)"
     with StudyStore(folder / "campaign.db", create=False) as store:
         events = store.events()
     assert (events["state"] == "done").sum() == N_BEFORE
