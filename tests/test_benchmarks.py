@@ -11,7 +11,6 @@ import re
 import runpy
 import shutil
 import sys
-import time
 from pathlib import Path
 
 import pandas as pd
@@ -75,12 +74,10 @@ def test_each_script_answers_help_in_process(name, monkeypatch, capsys):
     # a script without argparse would take --help for work and start it
     assert "argparse" in modules, f"{name} does not parse its arguments with argparse"
     monkeypatch.setattr(sys, "argv", [str(path), "--help"])
-    start = time.perf_counter()
     with pytest.raises(SystemExit) as stop:
         runpy.run_path(str(path), run_name="__main__")
     assert stop.value.code == 0
     assert "usage:" in capsys.readouterr().out
-    assert time.perf_counter() - start < 10
 
 
 def _copy_pages(tmp_path):
