@@ -22,7 +22,8 @@ from .study.flat import MOVED, SETTINGS_PAGE
 from .study.inputs import split_lf_table
 from .study.oracles import check_oracle
 from .study.result import ScreeningResult
-from .study.settings import UNSET, resolve
+from .study.settings import UNSET, given_names, keep_stored, resolve
+from .study.store import StudyStore, read_settings
 from .study.study import Study
 
 __all__ = ["run_pas", "run_as", "make_study"]
@@ -45,7 +46,9 @@ def make_study(strategy, lf_peaks, *, n_waves, p_exp, threshold=None, eps1=None,
         As for :func:`run_pas`.
     store : str, os.PathLike or StudyStore, optional
         Makes the study crash-safe and resumable (:mod:`pas.study.store`);
-        with ``seed=None`` an existing store's seed is used.
+        with ``seed=None`` an existing store's seed is used, and a stopping or
+        budget setting this call does not name keeps its stored value
+        (``pas study set`` changes them between runs).
     n_waves_convention : {"count", "spectral"}, default "count"
         How ``n_waves`` was obtained (:func:`pas.strategies.screening.check_n_waves`).
         ``"count"``: counted wave encounters; ``n_waves`` below the number of
@@ -74,14 +77,18 @@ def make_study(strategy, lf_peaks, *, n_waves, p_exp, threshold=None, eps1=None,
         strategy = PAS.paper()
     elif isinstance(strategy, Strategy):  # its own copy: one object may serve many studies
         strategy = copy.deepcopy(strategy)
+    given = given_names(stopping, budget, eps1=eps1, eps2=eps2, precision=precision,
+                        max_hf=max_hf)
     stopping, budget = resolve("make_study", strategy, stopping, budget, eps1=eps1, eps2=eps2,
                                precision=precision, max_hf=max_hf)
+    stored = ({} if store is None else
+              store.settings() if isinstance(store, StudyStore) else read_settings(store))
     others = {"target": target, "stop_on_convergence": stop_on_convergence,
               "adaptive_threshold": adaptive_threshold, "threshold_step": threshold_step,
               "fp_run": fp_run, "legacy_md": legacy_md}
     return Study.from_settings(
         {"strategy": strategy, "n_waves": n_waves, "p_exp": p_exp, "threshold": threshold,
-         "seed": seed, **stopping.flat(), **budget.flat(),
+         "seed": seed, **keep_stored({**stopping.flat(), **budget.flat()}, stored, given),
          **{k: v for k, v in others.items() if v is not None}},
         lf, ids=ids, meta=meta, store=store)
 
@@ -244,11 +251,11 @@ def _run(cls, given: dict) -> ScreeningResult:
     if given["retry_failed"] and given["study"] is None:
         raise ValueError("retry_failed=True needs study=... (the study store of the run whose "
                          "failed events should run again)")
-    stopping, budget = resolve(f"run_{cls.name}", strategy, given["stopping"], given["budget"],
-                               **{k: given[k] for k in ("eps1", "eps2", "precision", "max_hf")})
-    built = make_study(strategy, given["lf_peaks"], store=given["study"], stopping=stopping,
-                       budget=budget, **{k: given[k] for k in ("n_waves", "p_exp", "threshold",
-                                                               "seed")})
+    named = ("eps1", "eps2", "precision", "max_hf", "stopping", "budget")
+    resolve(f"run_{cls.name}", strategy, given["stopping"], given["budget"],
+            **{k: given[k] for k in named[:4]})  # its errors name run_pas, before any store
+    built = make_study(strategy, given["lf_peaks"], store=given["study"],
+                       **{k: given[k] for k in ("n_waves", "p_exp", "threshold", "seed", *named)})
     if given["retry_failed"]:
         built.retry_failed()
     executor = given["executor"]

@@ -162,3 +162,30 @@ def test_one_strategy_object_serves_two_studies_at_once():
     res_b = b.optimize(_oracle)
     res_a = a.optimize(_oracle)
     assert res_a.mpm == pytest.approx(res_b.mpm, rel=1e-12)
+
+
+def test_resumed_python_study_keeps_what_pas_study_set_changed(tmp_path):
+    """A default of run_pas never overwrites a stopping or budget value set on the store."""
+    import numpy as np
+
+    import pas
+    from pas.cli import main
+    from pas.study.store import StudyStore
+
+    db = str(tmp_path / "c.db")
+    lf = np.random.default_rng(1).rayleigh(1.0, 2000)
+
+    def run(**kw):
+        return pas.run_pas(lf, lambda e: 1.3 * e.lf ** 1.2, n_waves=2000, p_exp=1e-3,
+                           eps1=0.05, seed=1, study=db, **kw)
+
+    run(max_hf=12)
+    assert main(["study", "set", db, "--max-hf", "18", "--eps2", "0.2", "--k2", "7"]) == 0
+    result = run()
+    with StudyStore(db, create=False) as store:
+        kept = store.settings()
+    assert (kept["max_hf"], kept["eps2"], kept["k2"]) == (18, 0.2, 7)
+    assert result.n_hf <= 18
+    run(eps2=0.1)  # named in the call: the new value replaces the stored one
+    with StudyStore(db, create=False) as store:
+        assert store.settings()["eps2"] == 0.1 and store.settings()["max_hf"] == 18

@@ -113,6 +113,38 @@ class _Unset:
 UNSET = _Unset()
 
 
+def given_names(stopping, budget, *, eps1=None, eps2=None, precision=None,
+                max_hf=UNSET) -> set:
+    """The flat names of the stopping and budget settings a call to :func:`resolve` names."""
+    given = {STOPPING_NAMES[k] for k, v in (("eps1", eps1), ("eps2", eps2),
+                                            ("precision", precision)) if v is not None}
+    if max_hf is not UNSET:
+        given.add(BUDGET_NAMES["max_hf"])
+    if stopping is not None:
+        given.update(STOPPING_NAMES.values())
+    if budget is not None:
+        given.update(BUDGET_NAMES.values())
+    return given
+
+
+def keep_stored(flat: dict, stored: dict, given) -> dict:
+    """``flat`` with each :data:`RESUMABLE` setting not in ``given`` as ``stored`` has it.
+
+    A resumed study keeps the stopping rule and budget in its store (set by
+    ``pas study set``, or by the call that created it) unless the call names
+    them: a default never overwrites a stored value.
+    """
+    if not stored:
+        return flat
+    out = dict(flat)
+    for k in set(RESUMABLE) - set(given):
+        if k in stored:
+            out[k] = stored[k]
+        elif k == STOPPING_NAMES["precision"]:  # stored only when set
+            out.pop(k, None)
+    return out
+
+
 def resolve(where: str, strategy, stopping, budget, *, eps1=None, eps2=None, precision=None,
             max_hf=UNSET) -> tuple[Stopping, Budget]:
     """The :class:`Stopping` and :class:`Budget` of a call to :func:`pas.run_pas` (``where``).
