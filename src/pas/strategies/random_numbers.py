@@ -10,8 +10,9 @@ model (``docs/departures.md``, ``common_random_numbers``).
 
 from __future__ import annotations
 
+import copy
+
 import numpy as np
-from scipy import special
 
 from .steps import EPS
 
@@ -30,20 +31,21 @@ class PeakUniforms:
     def __init__(self, z: int, seed: int | None, common: bool = True):
         self.z, self.seed, self.common = int(z), 0 if seed is None else seed, bool(common)
         self._uniforms = None
-        self._scores = None
+        self._r_max = None
 
-    def scores(self, n0: int):
-        """``Φ⁻¹(r)`` of the common copula uniforms of :meth:`draw`, computed once per peak
-        (None when the uniforms are redrawn every call)."""
+    def replayable(self, n0: int, rng: np.random.Generator | None):
+        """``(r, q, r_max, again)``: the uniforms of :meth:`draw`, each peak's largest ``r``
+        over the ``z`` rows, and a function that gives the same ``(r, q)`` again.
+
+        Common uniforms are kept, so ``again`` reads them; otherwise it replays a copy
+        of ``rng`` as it was before this draw, and nothing of shape ``(z, n0)`` is kept.
+        """
         if not self.common:
-            return None
-        have = 0 if self._scores is None else self._scores.shape[1]
-        if have < n0:
-            r, _ = self.draw(n0, None)
-            new = special.ndtri(r[:, have:])
-            self._scores = new if self._scores is None else np.concatenate([self._scores, new],
-                                                                           axis=1)
-        return self._scores[:, :n0]
+            before = copy.deepcopy(rng)
+            r, q = self.draw(n0, rng)
+            return r, q, r.max(axis=0), lambda: self.draw(n0, copy.deepcopy(before))
+        r, q = self.draw(n0, None)
+        return r, q, self._r_max[:n0], lambda: self.draw(n0, None)
 
     def draw(self, n0: int, rng: np.random.Generator | None):
         if not self.common:
@@ -51,11 +53,16 @@ class PeakUniforms:
                     rng.uniform(size=(self.z, n0)))
         have = 0 if self._uniforms is None else self._uniforms.shape[2]
         if have < n0:
-            blocks = []
-            for k in range(have // CRN_BLOCK, -(-n0 // CRN_BLOCK)):
+            # filled in place, block by block: one array of the uniforms' size alive, not two
+            grown = np.empty((2, self.z, -(-n0 // CRN_BLOCK) * CRN_BLOCK))
+            if have:
+                grown[:, :, :have] = self._uniforms
+            self._uniforms = None
+            for k in range(have // CRN_BLOCK, grown.shape[2] // CRN_BLOCK):
                 crn = np.random.default_rng([self.seed, 0x43524E, k])
-                blocks.append(np.stack([crn.uniform(EPS, 1 - EPS, size=(self.z, CRN_BLOCK)),
-                                        crn.uniform(size=(self.z, CRN_BLOCK))]))
-            new = np.concatenate(blocks, axis=2)
-            self._uniforms = new if self._uniforms is None else np.concatenate([self._uniforms, new], axis=2)
+                block = grown[:, :, k * CRN_BLOCK:(k + 1) * CRN_BLOCK]
+                block[0] = crn.uniform(EPS, 1 - EPS, size=(self.z, CRN_BLOCK))
+                block[1] = crn.uniform(size=(self.z, CRN_BLOCK))
+            self._uniforms = grown
+            self._r_max = grown[0].max(axis=0)
         return self._uniforms[0, :, :n0], self._uniforms[1, :, :n0]
