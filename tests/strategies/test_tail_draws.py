@@ -225,3 +225,26 @@ def test_a_candidate_level_that_differs_between_peaks_within_the_margin_keeps_th
     top = tail_draws.top_draws(model, r, q, r_max, k)
     np.testing.assert_allclose(np.sort(top, axis=1)[:, ::-1], _full_top(model, r, q, k),
                                rtol=1e-12)
+
+
+def test_a_copy_of_the_common_uniforms_shares_them_read_only():
+    import copy
+
+    crn = PeakUniforms(3, seed=2)
+    r, _ = crn.draw(2000, None)
+    twin = copy.deepcopy(crn)
+    assert twin.draw(2000, None)[0] is not None and np.shares_memory(twin.draw(2000, None)[0], r)
+    assert not r.flags.writeable
+    grown = twin.draw(3000, None)[0]  # a copy grows on its own, the numbers stay the same
+    np.testing.assert_array_equal(grown[:, :2000], r)
+    assert crn._r.shape[1] == 2048
+
+
+def test_the_impact_uniforms_kept_only_once_asked_for_are_the_streams():
+    crn = PeakUniforms(3, seed=4)
+    r, q = crn.draw(2500, None, impacts=False)
+    assert q is None and crn._q is None
+    r2, q2 = crn.draw(2500, None)
+    np.testing.assert_array_equal(r2, r)
+    both = PeakUniforms(3, seed=4)  # r and q drawn together from the start
+    np.testing.assert_array_equal(both.draw(4000, None)[1][:, :2500], q2)

@@ -50,6 +50,7 @@ from .screening import LFSet
 from .selection import impact_probability, population_lf_ranks
 from .steps import (
     FittedModel,
+    SharedOnCopy,
     cold_turns,
     conditioning_set,
     draw_conditional_hf,
@@ -237,7 +238,7 @@ class PAS(Strategy):
                                 gpd_tail=getattr(self.estimator, "lf_tail", "ranks") == "gpd",
                                 tail_fits=self._lf_tail_fits)
         if fixed:
-            self._ranks = (lfset.lf, n0, u)
+            self._ranks = SharedOnCopy((lfset.lf, n0, u))
         return u
 
     def _random_numbers(self, n0: int, rng: np.random.Generator | None):

@@ -24,16 +24,25 @@ class PeakUniforms:
 
     ``common=True``: block ``k`` of :data:`CRN_BLOCK` peaks draws from its own
     stream ``(seed, k)``, so a growing conditioning set only appends blocks
-    and no peak's uniforms ever change.  ``common=False``: new uniforms from
-    the caller's ``rng`` on every call (the paper).
+    and no peak's uniforms ever change; the ``q`` of the stream (drawn after its
+    ``r``) are kept only once asked for (``impacts=True``), since only the impact
+    model reads them (120 MB at 1.5 M peaks and ``z = 10``).  ``common=False``:
+    new uniforms from the caller's ``rng`` on every call (the paper).
     """
 
     def __init__(self, z: int, seed: int | None, common: bool = True):
         self.z, self.seed, self.common = int(z), 0 if seed is None else seed, bool(common)
-        self._uniforms = None
-        self._r_max = None
+        self._r = self._q = self._r_max = None
 
-    def replayable(self, n0: int, rng: np.random.Generator | None):
+    def __deepcopy__(self, memo):
+        """A copy sharing the kept uniforms: they are read-only and a function of
+        ``(z, seed, common)`` and the peak, so every copy would hold the same numbers
+        (the study copies the strategy before each fit: 240 MB at 1.5 M peaks)."""
+        twin = PeakUniforms(self.z, self.seed, self.common)
+        twin._r, twin._q, twin._r_max = self._r, self._q, self._r_max
+        return twin
+
+    def replayable(self, n0: int, rng: np.random.Generator | None, impacts: bool = True):
         """``(r, q, r_max, again)``: the uniforms of :meth:`draw`, each peak's largest ``r``
         over the ``z`` rows, and a function that gives the same ``(r, q)`` again.
 
@@ -44,25 +53,33 @@ class PeakUniforms:
             before = copy.deepcopy(rng)
             r, q = self.draw(n0, rng)
             return r, q, r.max(axis=0), lambda: self.draw(n0, copy.deepcopy(before))
-        r, q = self.draw(n0, None)
-        return r, q, self._r_max[:n0], lambda: self.draw(n0, None)
+        r, q = self.draw(n0, None, impacts)
+        return r, q, self._r_max[:n0], lambda: self.draw(n0, None, impacts)
 
-    def draw(self, n0: int, rng: np.random.Generator | None):
+    def draw(self, n0: int, rng: np.random.Generator | None, impacts: bool = True):
+        """``(r, q)`` of the first ``n0`` peaks (``q`` None when common and not ``impacts``)."""
         if not self.common:
             return (rng.uniform(EPS, 1 - EPS, size=(self.z, n0)),
                     rng.uniform(size=(self.z, n0)))
-        have = 0 if self._uniforms is None else self._uniforms.shape[2]
-        if have < n0:
-            # filled in place, block by block: one array of the uniforms' size alive, not two
-            grown = np.empty((2, self.z, -(-n0 // CRN_BLOCK) * CRN_BLOCK))
-            if have:
-                grown[:, :, :have] = self._uniforms
-            self._uniforms = None
-            for k in range(have // CRN_BLOCK, grown.shape[2] // CRN_BLOCK):
-                crn = np.random.default_rng([self.seed, 0x43524E, k])
-                block = grown[:, :, k * CRN_BLOCK:(k + 1) * CRN_BLOCK]
-                block[0] = crn.uniform(EPS, 1 - EPS, size=(self.z, CRN_BLOCK))
-                block[1] = crn.uniform(size=(self.z, CRN_BLOCK))
-            self._uniforms = grown
-            self._r_max = grown[0].max(axis=0)
-        return self._uniforms[0, :, :n0], self._uniforms[1, :, :n0]
+        if self._r is None or self._r.shape[1] < n0:
+            self._r = self._grown(self._r, n0, 0)
+            self._r_max = self._r.max(axis=0)
+            self._r_max.flags.writeable = False  # shared by copies
+        if impacts and (self._q is None or self._q.shape[1] < n0):
+            self._q = self._grown(self._q, self._r.shape[1], 1)
+        return self._r[:, :n0], None if not impacts else self._q[:, :n0]
+
+    def _grown(self, kept, n0: int, which: int) -> np.ndarray:
+        """``kept`` (r: ``which`` 0, q: 1) grown to whole blocks covering ``n0`` peaks,
+        filled in place block by block: one array of the uniforms' size alive, not two."""
+        have = 0 if kept is None else kept.shape[1]
+        grown = np.empty((self.z, -(-n0 // CRN_BLOCK) * CRN_BLOCK))
+        if have:
+            grown[:, :have] = kept
+        for k in range(have // CRN_BLOCK, grown.shape[1] // CRN_BLOCK):
+            crn = np.random.default_rng([self.seed, 0x43524E, k])
+            r = crn.uniform(EPS, 1 - EPS, size=(self.z, CRN_BLOCK))
+            grown[:, k * CRN_BLOCK:(k + 1) * CRN_BLOCK] = (
+                r if which == 0 else crn.uniform(size=(self.z, CRN_BLOCK)))
+        grown.flags.writeable = False  # shared by copies
+        return grown

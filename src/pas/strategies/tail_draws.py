@@ -166,16 +166,21 @@ def _top_above(model, r, q, r_max, t_low, k: int, level: float):
 def full_distribution(model, r, q, n_waves: int):
     """:func:`~pas.strategies.steps.hf_distribution` of ``model.draws(r, q)``.
 
-    Above :data:`ROWWISE_ABOVE` draws one realisation at a time, twice (the
-    mean, then the spread about it), with the sums numpy's ``mean`` and
-    ``std(ddof=1)`` over the realisations take, in their order.
+    Above :data:`ROWWISE_ABOVE` draws one realisation at a time (in pieces of
+    ``ROWWISE_ABOVE / 8`` peaks), twice (the mean, then the spread about it),
+    with the sums numpy's ``mean`` and ``std(ddof=1)`` over the realisations
+    take, in their order.
     """
     if r.size <= ROWWISE_ABOVE:
         return hf_distribution(model.draws(r, q), n_waves)
     z, n0 = r.shape
 
     def sorted_row(j):
-        h = model.draws(r[j:j + 1], None if q is None else q[j:j + 1])[0]
+        h = np.empty(n0)
+        for start in range(0, n0, ROWWISE_ABOVE // 8):  # a few MB of temporaries at a time
+            cut = slice(start, start + ROWWISE_ABOVE // 8)
+            h[cut] = model.draws(r[j:j + 1, cut], None if q is None else q[j:j + 1, cut],
+                                 peaks=cut)[0]
         h.sort()
         return h[::-1]
 
@@ -185,10 +190,12 @@ def full_distribution(model, r, q, n_waves: int):
     mean /= z
     spread = np.zeros(n0)
     for j in range(z if z > 1 else 0):
-        dev = sorted_row(j) - mean
+        dev = sorted_row(j)
+        dev -= mean
         dev *= dev
         spread += dev
-    sd = np.sqrt(spread / (z - 1)) if z > 1 else spread
+    spread /= max(z - 1, 1)
+    sd = np.sqrt(spread, out=spread)
     return np.arange(1, n0 + 1) / n_waves, mean, *band95(mean, sd)
 
 
@@ -207,13 +214,12 @@ class TailPrediction(Prediction):
         self.mpm, self.mpm_band, self.record, self.columns = (read.mpm, read.mpm_band,
                                                               read.record, read.columns)
         self._top, self._whole, self._n0, self._n_waves = top, whole, int(n0), n_waves
-        self._d = self._full = None
+        self._full = None
 
     @property
     def d(self) -> np.ndarray:
-        if self._d is None:
-            self._d = np.arange(1, self._n0 + 1) / self._n_waves
-        return self._d
+        """``k / n_w`` of every order statistic, made when read (not kept: 12 MB at 1.5 M)."""
+        return np.arange(1, self._n0 + 1) / self._n_waves if self._full is None else self._full[0]
 
     def _distribution(self):
         if self._full is None:
@@ -243,7 +249,7 @@ def predict_from_top(model, uniforms, lfset, rng, record=None, columns=None) -> 
     """Steps 9–12 of one iteration for ``model`` with ``uniforms``
     (:class:`~pas.strategies.random_numbers.PeakUniforms`): the top that the MPM and
     the stopping range read, the rest when read (:class:`TailPrediction`)."""
-    r, q, r_max, again = uniforms.replayable(model.n0, rng)
+    r, q, r_max, again = uniforms.replayable(model.n0, rng, model.impact is not None)
     if not TOP_DRAWS:
         return Prediction.read_at(lfset.p_exp, *hf_distribution(model.draws(r, q), lfset.n_waves),
                                   record, columns)
@@ -258,7 +264,7 @@ def predict_from_top(model, uniforms, lfset, rng, record=None, columns=None) -> 
 
 def mpm_from_top(model, uniforms, lfset, rng) -> float:
     """The MPM of ``model`` (a band replicate's), from the top of each realisation."""
-    r, q, r_max, _ = uniforms.replayable(model.n0, rng)
+    r, q, r_max, _ = uniforms.replayable(model.n0, rng, model.impact is not None)
     k = order_statistics_read(lfset.p_exp, lfset.n_waves, model.n0)
     top = top_draws(model, r, q, r_max, k) if TOP_DRAWS else None
     return mpm_of_realisations(model.draws(r, q) if top is None else top, lfset.n_waves,
