@@ -33,19 +33,35 @@ def _model(family, rotation, params, n0, impact=None, seed=0):
                        fit_marginal(hf, upper_tail=True), None, u, impact, {}, 0)
 
 
+def _stream_q(z, seed, n0):
+    """The impact uniforms of the common streams in float64 (PeakUniforms keeps float32)."""
+    blocks = []
+    for k in range(-(-n0 // 1024)):
+        crn = np.random.default_rng([seed, 0x43524E, k])
+        crn.uniform(1e-6, 1 - 1e-6, size=(z, 1024))
+        blocks.append(crn.uniform(size=(z, 1024)))
+    return np.concatenate(blocks, axis=1)[:, :n0]
+
+
 def _full_top(model, r, q, k):
     return np.sort(model.draws(r, q), axis=1)[:, ::-1][:, :k]
+
+
+def _uniforms(seed, n0, z=10):
+    crn = PeakUniforms(z, seed=seed)
+    r, q, r_max, _ = crn.replayable(n0, None)
+    return crn, r, q, r_max, _stream_q(z, seed, n0)
 
 
 @pytest.mark.parametrize("family, rotation, params", FAMILIES)
 @pytest.mark.parametrize("n0", [3000, 60000])
 def test_top_draws_are_the_full_draws_top(family, rotation, params, n0):
     model = _model(family, rotation, params, n0)
-    r, q, r_max, _ = PeakUniforms(10, seed=3).replayable(n0, None)
+    crn, r, q, r_max, q64 = _uniforms(3, n0)
     k = 40 if n0 == 3000 else 500
-    top = tail_draws.top_draws(model, r, q, r_max, k)
+    top = tail_draws.top_draws(model, r, q, r_max, k, crn)
     assert top is not None and top.shape == (10, k)
-    np.testing.assert_allclose(np.sort(top, axis=1)[:, ::-1], _full_top(model, r, q, k),
+    np.testing.assert_allclose(np.sort(top, axis=1)[:, ::-1], _full_top(model, r, q64, k),
                                rtol=1e-12)
 
 
@@ -54,24 +70,36 @@ def test_top_draws_with_the_impact_model_zeroing_most_draws(family, rotation, pa
     n0 = 20000
     impact = np.linspace(0.6, 0.02, n0)  # impacts likely at the top, rare below
     model = _model(family, rotation, params, n0, impact=impact)
-    r, q, r_max, _ = PeakUniforms(10, seed=5).replayable(n0, None)
-    top = tail_draws.top_draws(model, r, q, r_max, 120)
-    np.testing.assert_allclose(np.sort(top, axis=1)[:, ::-1], _full_top(model, r, q, 120),
+    crn, r, q, r_max, q64 = _uniforms(5, n0)
+    top = tail_draws.top_draws(model, r, q, r_max, 120, crn)
+    np.testing.assert_allclose(np.sort(top, axis=1)[:, ::-1], _full_top(model, r, q64, 120),
                                rtol=1e-12)
+
+
+def test_impact_uniforms_kept_as_float32_decide_as_the_float64_stream_does():
+    # impact probabilities set right at some uniforms (within float32 rounding of them):
+    # the kept float32 values would decide those wrongly, q_for draws them again
+    crn, r, q, _, q64 = _uniforms(7, 3000, z=4)
+    assert q.dtype == np.float32
+    impact = q64[1].copy()
+    impact[::2] = np.nextafter(impact[::2], 2.0)  # just above: an impact
+    exact = crn.q_for(q, impact, np.arange(3000))
+    np.testing.assert_array_equal(exact < impact, q64 < impact)
+    assert np.any((q.astype(float) < impact) != (q64 < impact))  # float32 alone would not
 
 
 def test_too_few_impacts_to_fill_the_rows_draws_everything():
     n0 = 5000
     model = _model("gumbel", 0, [[2.0]], n0, impact=np.full(n0, 0.004))  # ~20 a row
-    r, q, r_max, _ = PeakUniforms(10, seed=5).replayable(n0, None)
-    assert tail_draws.top_draws(model, r, q, r_max, 100) is None
+    crn, r, q, r_max, _ = _uniforms(5, n0)
+    assert tail_draws.top_draws(model, r, q, r_max, 100, crn) is None
 
 
 def test_a_level_set_too_high_is_lowered_until_every_row_is_full(monkeypatch):
     # the subsample's level is an estimate: set far too high, the rows fall short and the
     # level comes down until every row's k-th largest is certain
     model = _model("gumbel", 0, [[3.0]], 30000)
-    r, q, r_max, _ = PeakUniforms(10, seed=2).replayable(30000, None)
+    crn, r, q, r_max, _ = _uniforms(2, 30000)
     tries = []
     original = tail_draws._top_above
 
@@ -82,7 +110,7 @@ def test_a_level_set_too_high_is_lowered_until_every_row_is_full(monkeypatch):
 
     monkeypatch.setattr(tail_draws, "_stratified_tail", lambda *a: 1e-5)
     monkeypatch.setattr(tail_draws, "_top_above", counted)
-    top = tail_draws.top_draws(model, r, q, r_max, 300)
+    top = tail_draws.top_draws(model, r, q, r_max, 300, crn)
     assert tries[0] is False and tries[-1] is True
     np.testing.assert_allclose(np.sort(top, axis=1)[:, ::-1], _full_top(model, r, q, 300),
                                rtol=1e-12)
@@ -106,16 +134,16 @@ def test_blocks_left_out_hold_no_uniform_above_their_conditional_cdf(family, rot
 
 def test_families_without_a_closed_form_inverse_draw_everything():
     model = _model("joe", 0, [[2.0]], 20000)
-    r, q, r_max, _ = PeakUniforms(10, seed=1).replayable(20000, None)
-    assert tail_draws.top_draws(model, r, q, r_max, 50) is None
+    crn, r, q, r_max, _ = _uniforms(1, 20000)
+    assert tail_draws.top_draws(model, r, q, r_max, 50, crn) is None
 
 
 def test_the_whole_distribution_drawn_row_by_row_is_the_full_draws(monkeypatch):
     model = _model("student", 0, [[0.6], [4.0]], 4000, impact=np.linspace(0.9, 0.3, 4000))
-    r, q, _, _ = PeakUniforms(10, seed=6).replayable(4000, None)
-    whole = hf_distribution(model.draws(r, q), 5000)
+    crn, r, q, _, q64 = _uniforms(6, 4000)
+    whole = hf_distribution(model.draws(r, q64), 5000)
     monkeypatch.setattr(tail_draws, "ROWWISE_ABOVE", 100)
-    for got, want in zip(tail_draws.full_distribution(model, r, q, 5000), whole):
+    for got, want in zip(tail_draws.full_distribution(model, r, q, 5000, crn), whole):
         np.testing.assert_allclose(got, want, rtol=1e-12, atol=1e-14)
 
 
@@ -189,9 +217,10 @@ def test_a_band_replicates_mpm_from_the_top_is_the_full_draws():
     strategy.reset(0)
     strategy.predict(pairs, lfset, np.random.default_rng(0))
     model = strategy.model_
-    r, q = strategy._random_numbers(model.n0, None)
+    r, _ = strategy._random_numbers(model.n0, None)
+    q64 = _stream_q(10, 0, model.n0)
     np.testing.assert_allclose(strategy._replicate_mpm(model, lfset, None),
-                               mpm_of_realisations(model.draws(r, q), lfset.n_waves,
+                               mpm_of_realisations(model.draws(r, q64), lfset.n_waves,
                                                    lfset.p_exp), rtol=1e-12)
 
 
@@ -202,7 +231,7 @@ def test_a_candidate_level_that_differs_between_peaks_within_the_margin_keeps_th
     # rows short above it, so the check on the k-th largest (not only the count) must
     # send the level down
     model = _model("gaussian", 0, [[0.7]], 20000)
-    r, q, r_max, _ = PeakUniforms(10, seed=8).replayable(20000, None)
+    crn, r, q, r_max, _ = _uniforms(8, 20000)
     k, margin = 200, 1.0
 
     def above(tail):
@@ -222,7 +251,7 @@ def test_a_candidate_level_that_differs_between_peaks_within_the_margin_keeps_th
     monkeypatch.setattr(tail_draws, "MARGIN", margin)
     monkeypatch.setattr(tail_draws, "_stratified_tail", lambda *a: hi)
     monkeypatch.setattr(tail_draws, "_cdf_where_reached", skewed)
-    top = tail_draws.top_draws(model, r, q, r_max, k)
+    top = tail_draws.top_draws(model, r, q, r_max, k, crn)
     np.testing.assert_allclose(np.sort(top, axis=1)[:, ::-1], _full_top(model, r, q, k),
                                rtol=1e-12)
 

@@ -82,12 +82,14 @@ def _stratified_tail(copula, u, impact, target: float) -> float | None:
     return None if enough.size == 0 else float(LEVELS[enough[0]])
 
 
-def top_draws(model, r, q, r_max, k: int) -> np.ndarray | None:
+def top_draws(model, r, q, r_max, k: int, uniforms) -> np.ndarray | None:
     """The ``k`` largest HF draws of every realisation, ``(z, k)``, each row unordered.
 
     The values :meth:`FittedModel.draws(r, q) <pas.strategies.steps.FittedModel.draws>`
     gives at those places, drawing only the uniforms that can reach them (module
-    docs); ``r_max`` is each peak's largest ``r``.  None where this saves nothing
+    docs); ``r_max`` is each peak's largest ``r``, ``uniforms`` the
+    :class:`~pas.strategies.random_numbers.PeakUniforms` that drew ``r`` and ``q``
+    (:meth:`~pas.strategies.random_numbers.PeakUniforms.q_for`).  None where this saves nothing
     (``k`` a large share of ``n0``, too few impacts to fill the rows) or the family
     has no closed-form inverse (not in :data:`~pas.models.conditional_cdf.CLOSED_FORMS`).
     """
@@ -99,7 +101,7 @@ def top_draws(model, r, q, r_max, k: int) -> np.ndarray | None:
     tail = _stratified_tail(model.copula, u, model.impact, target)
     while tail is not None and tail * (1 + MARGIN) < 1 - EPS:
         t_low = _cdf_where_reached(model.copula, 1.0 - tail * (1 + MARGIN), u, r_max)
-        top, fewest = _top_above(model, r, q, r_max, t_low, k, 1.0 - tail)
+        top, fewest = _top_above(model, r, q, r_max, t_low, k, 1.0 - tail, uniforms)
         if top is not None:
             return top
         tail *= max(2.0, 1.25 * target / max(fewest, 1))
@@ -138,7 +140,7 @@ def _cdf_where_reached(copula, v: float, u, r_max) -> np.ndarray:
     return t
 
 
-def _top_above(model, r, q, r_max, t_low, k: int, level: float):
+def _top_above(model, r, q, r_max, t_low, k: int, level: float, uniforms):
     """:func:`top_draws` for the uniforms above ``t_low``: ``(top, fewest candidates in a
     row)``, top None when a row has fewer than ``k`` or its ``k``-th largest lies below
     the HF value of ``level`` (a draw left out could be larger)."""
@@ -146,7 +148,7 @@ def _top_above(model, r, q, r_max, t_low, k: int, level: float):
     r_peaks = r[:, peaks]
     hit = r_peaks > t_low[peaks]
     if model.impact is not None:  # the others are zeroed: below every candidate
-        hit &= q[:, peaks] < model.impact[peaks]
+        hit &= uniforms.q_for(q[:, peaks], model.impact[peaks], peaks) < model.impact[peaks]
     rows, cols = np.nonzero(hit)  # row by row
     counts = np.bincount(rows, minlength=r.shape[0])
     if counts.min() < k:
@@ -163,7 +165,12 @@ def _top_above(model, r, q, r_max, t_low, k: int, level: float):
     return top, int(counts.min())
 
 
-def full_distribution(model, r, q, n_waves: int):
+def _q(model, q, uniforms, cols, rows=None):
+    """The impact uniforms ``model.draws`` reads (None without an impact model)."""
+    return None if model.impact is None else uniforms.q_for(q, model.impact[cols], cols, rows)
+
+
+def full_distribution(model, r, q, n_waves: int, uniforms):
     """:func:`~pas.strategies.steps.hf_distribution` of ``model.draws(r, q)``.
 
     Above :data:`ROWWISE_ABOVE` draws one realisation at a time (in pieces of
@@ -171,16 +178,17 @@ def full_distribution(model, r, q, n_waves: int):
     with the sums numpy's ``mean`` and ``std(ddof=1)`` over the realisations
     take, in their order.
     """
-    if r.size <= ROWWISE_ABOVE:
-        return hf_distribution(model.draws(r, q), n_waves)
     z, n0 = r.shape
+    if r.size <= ROWWISE_ABOVE:
+        return hf_distribution(model.draws(r, _q(model, q, uniforms, np.arange(n0))), n_waves)
 
     def sorted_row(j):
         h = np.empty(n0)
         for start in range(0, n0, ROWWISE_ABOVE // 8):  # a few MB of temporaries at a time
             cut = slice(start, start + ROWWISE_ABOVE // 8)
-            h[cut] = model.draws(r[j:j + 1, cut], None if q is None else q[j:j + 1, cut],
-                                 peaks=cut)[0]
+            peaks = np.arange(n0)[cut]
+            h[cut] = model.draws(r[j:j + 1, cut], _q(model, None if q is None else q[j:j + 1, cut],
+                                                     uniforms, peaks, [j]), peaks=cut)[0]
         h.sort()
         return h[::-1]
 
@@ -241,8 +249,8 @@ class TailPrediction(Prediction):
                 f"top={self._top[0].size})")
 
 
-def _whole(model, again, n_waves):
-    return full_distribution(model, *again(), n_waves)
+def _whole(model, again, n_waves, uniforms):
+    return full_distribution(model, *again(), n_waves, uniforms)
 
 
 def predict_from_top(model, uniforms, lfset, rng, record=None, columns=None) -> Prediction:
@@ -251,21 +259,24 @@ def predict_from_top(model, uniforms, lfset, rng, record=None, columns=None) -> 
     the stopping range read, the rest when read (:class:`TailPrediction`)."""
     r, q, r_max, again = uniforms.replayable(model.n0, rng, model.impact is not None)
     if not TOP_DRAWS:
-        return Prediction.read_at(lfset.p_exp, *hf_distribution(model.draws(r, q), lfset.n_waves),
-                                  record, columns)
+        draws = model.draws(r, _q(model, q, uniforms, np.arange(model.n0)))
+        return Prediction.read_at(lfset.p_exp, *hf_distribution(draws, lfset.n_waves), record,
+                                  columns)
     k = order_statistics_read(range_grid(lfset.p_exp)[-1], lfset.n_waves, model.n0)
-    top = top_draws(model, r, q, r_max, k)
+    top = top_draws(model, r, q, r_max, k, uniforms)
     if top is None:
-        return Prediction.read_at(lfset.p_exp, *full_distribution(model, r, q, lfset.n_waves),
-                                  record, columns)
+        return Prediction.read_at(lfset.p_exp, *full_distribution(model, r, q, lfset.n_waves,
+                                                                  uniforms), record, columns)
     return TailPrediction(lfset.p_exp, lfset.n_waves, model.n0, hf_distribution(top, lfset.n_waves),
-                          functools.partial(_whole, model, again, lfset.n_waves), record, columns)
+                          functools.partial(_whole, model, again, lfset.n_waves, uniforms), record,
+                          columns)
 
 
 def mpm_from_top(model, uniforms, lfset, rng) -> float:
     """The MPM of ``model`` (a band replicate's), from the top of each realisation."""
     r, q, r_max, _ = uniforms.replayable(model.n0, rng, model.impact is not None)
     k = order_statistics_read(lfset.p_exp, lfset.n_waves, model.n0)
-    top = top_draws(model, r, q, r_max, k) if TOP_DRAWS else None
-    return mpm_of_realisations(model.draws(r, q) if top is None else top, lfset.n_waves,
-                               lfset.p_exp)
+    top = top_draws(model, r, q, r_max, k, uniforms) if TOP_DRAWS else None
+    if top is None:
+        top = model.draws(r, _q(model, q, uniforms, np.arange(model.n0)))
+    return mpm_of_realisations(top, lfset.n_waves, lfset.p_exp)
