@@ -1,8 +1,8 @@
 """Long records: the top of each realisation drawn alone is the full draw's top (issue 27)."""
 
 import numpy as np
-import pyvinecopulib as pv
 import pytest
+import pyvinecopulib as pv
 
 from pas.models.conditional_cdf import conditional_cdf
 from pas.models.copulas import CopulaFit
@@ -79,7 +79,7 @@ def test_top_draws_with_the_impact_model_zeroing_most_draws(family, rotation, pa
 def test_impact_uniforms_kept_as_float32_decide_as_the_float64_stream_does():
     # impact probabilities set right at some uniforms (within float32 rounding of them):
     # the kept float32 values would decide those wrongly, q_for draws them again
-    crn, r, q, _, q64 = _uniforms(7, 3000, z=4)
+    crn, _, q, _, q64 = _uniforms(7, 3000, z=4)
     assert q.dtype == np.float32
     impact = q64[1].copy()
     impact[::2] = np.nextafter(impact[::2], 2.0)  # just above: an impact
