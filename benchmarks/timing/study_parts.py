@@ -17,9 +17,12 @@ time, the forked band workers' included; wall time on a shared machine):
   fits, every family refitted (``PRUNE_AIC=None``) against the families that
   can win each replicate, on 1 and 2 cores, how many replicate MPMs pruning
   changed, and how often a cold start beats the warm one;
-* ``long``: one iteration at n = 15 k / 150 k / 1.5 M with the LF ranks and
-  the normal scores of the common uniforms recomputed (old) or kept, and a
-  band replicate's full sort against the partial one.
+* ``long``: one iteration at n = 15 k / 150 k / 1.5 M (default families,
+  Gaussian, Student-t) drawing all ``z × n`` values and sorting them (old,
+  ``tail_draws.TOP_DRAWS = False``) against drawing only the uniforms that can
+  reach the top of a realisation (new), CPU ms, peak RSS of a fresh process
+  and the MPM change; one ``run_pas`` at 1.5 M to 8 HF, old and new, peak RSS;
+  a band replicate's full sort against the partial one.
 
 Run: python benchmarks/timing/study_parts.py [--parts fit,cold,band,long] [--max-hf 80] [--json out.json]
 """
@@ -30,7 +33,6 @@ import argparse
 import contextlib
 import json
 import time
-import tracemalloc
 
 import numpy as np
 
@@ -261,29 +263,9 @@ def part_band(max_hf):
     return out
 
 
-@contextlib.contextmanager
-def long_record_path(new):
-    """Old: the LF ranks and the normal scores of the common uniforms recomputed every
-    iteration; new: kept."""
-    from pas.strategies.pas import PAS
-    from pas.strategies.random_numbers import PeakUniforms
-
-    saved = PAS._population_ranks, PeakUniforms.scores
-    if not new:
-        def recomputed(self, lfset, n0, impact, rng):
-            self._ranks = None
-            return saved[0](self, lfset, n0, impact, rng)
-
-        PAS._population_ranks = recomputed
-        PeakUniforms.scores = lambda self, n0: None
-    try:
-        yield
-    finally:
-        PAS._population_ranks, PeakUniforms.scores = saved
-
-
 def long_iterations(n, families, repeats):
-    """``(median CPU ms, peak traced MB of one iteration, MPM)`` at ``n`` LF peaks, 80 pairs."""
+    """``(median CPU ms of an iteration at 80 pairs, MPM)`` at ``n`` LF peaks, after a first
+    iteration that draws the common uniforms."""
     from pas.strategies.band import ModelBand
     from pas.strategies.base import Pairs
     from pas.strategies.pas import PAS
@@ -293,37 +275,76 @@ def long_iterations(n, families, repeats):
     lfset = LFSet(lf, n_waves=int(round(n * N_W / N)), p_exp=P_EXP)
     pos = np.unique(np.round(np.geomspace(1, lfset.n, 80)).astype(int) - 1)
     pairs = Pairs(pos, lfset.lf[pos], hf[lfset.index[pos]], lfset.d[pos])
+    del lf, hf
     strat = PAS(families=families, band=ModelBand(n_bootstrap=0))
     strat.reset(0)
-    strat.predict(pairs, lfset, np.random.default_rng(0))  # the first: uniforms drawn
+    strat.predict(pairs, lfset, np.random.default_rng(0))
     times = []
     for k in range(repeats):
         t = time.process_time()
         pred = strat.predict(pairs, lfset, np.random.default_rng(k))
         times.append(time.process_time() - t)
-    tracemalloc.start()
-    strat.predict(pairs, lfset, np.random.default_rng(0))
-    peak = tracemalloc.get_traced_memory()[1] / 2**20
-    tracemalloc.stop()
-    return 1e3 * float(np.median(times)), peak, pred.mpm
+    return 1e3 * float(np.median(times)), pred.mpm
+
+
+def long_run(n, max_hf=8):
+    """``(wall s, MPM)`` of one ``run_pas`` at ``n`` LF peaks to ``max_hf`` HF, band off."""
+    lf, hf = scenario(n)
+    t = time.perf_counter()
+    res = pas.run_pas(lf, lambda e: float(hf[e.index]), n_waves=int(round(n * N_W / N)),
+                      p_exp=P_EXP, seed=0, eps1=1e-12, max_hf=max_hf,
+                      strategy=pas.PAS(band=pas.ModelBand(n_bootstrap=0)))
+    assert len(res.distribution) == n  # the whole distribution, drawn when read
+    return time.perf_counter() - t, float(res.mpm)
+
+
+def long_child(args):
+    """One measurement in a fresh process (peak RSS is a process's high-water mark):
+    prints ``[ms or s, MB peak RSS, MPM]`` as JSON."""
+    import resource
+
+    from pas.strategies import tail_draws
+
+    what, n, path = args[0], int(args[1]), args[2]
+    tail_draws.TOP_DRAWS = path == "new"
+    if what == "iteration":
+        value, mpm = long_iterations(n, tuple(args[3].split(",")), int(args[4]))
+    else:
+        value, mpm = long_run(n)
+    print(json.dumps([value, resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024, mpm]))
+
+
+def in_child(*args):
+    """:func:`long_child` of ``args`` in a fresh interpreter."""
+    import subprocess
+    import sys
+
+    out = subprocess.run([sys.executable, __file__, "--long-child", *map(str, args)],
+                         capture_output=True, text=True, check=True)
+    return json.loads(out.stdout.strip().splitlines()[-1])
 
 
 def part_long(max_hf):
-    """Per-iteration CPU time and peak memory at n = 15 k / 150 k / 1.5 M, old vs new."""
-    print("-- long records, one iteration at 80 pairs (old: LF ranks and normal scores "
-          "recomputed; new: kept); memory: peak traced during one iteration")
+    """Per-iteration CPU time, peak RSS and MPM at n = 15 k / 150 k / 1.5 M, and one
+    ``run_pas`` at 1.5 M: old = every draw and a full sort (``tail_draws.TOP_DRAWS`` False),
+    new = only the uniforms that can reach the top (:mod:`pas.strategies.tail_draws`)."""
+    print("-- long records, one iteration at 80 pairs: old = all z x n draws and a full sort, "
+          "new = only the draws that can reach the top; each in a fresh process (peak RSS)")
     out = {}
-    for n, repeats in ((15000, 7), (150000, 5), (1500000, 2)):
-        for label, families in (("default", pas.models.copulas.PAPER_FAMILIES),
-                                ("gaussian", ("gaussian",))):
-            row = {}
-            for path in ("old", "new"):
-                with long_record_path(path == "new"):
-                    row[path] = long_iterations(n, families, repeats)
+    for n, repeats in ((15000, 7), (150000, 5), (1500000, 3)):
+        for label, families in (("default", ",".join(pas.models.copulas.PAPER_FAMILIES)),
+                                ("gaussian", "gaussian"), ("student", "student")):
+            row = {path: in_child("iteration", n, path, families, repeats) for path in ("old", "new")}
             (t0, m0, v0), (t1, m1, v1) = row["old"], row["new"]
-            print(f"  n = {n:>9,}, {label:>8}: old {t0:7.1f} ms {m0:6.0f} MB, new {t1:7.1f} ms "
-                  f"{m1:6.0f} MB, ratio {t1 / t0:.2f}; MPM change {abs(v1 / v0 - 1):.1e}")
+            print(f"  n = {n:>9,}, {label:>8}: old {t0:7.1f} ms {m0:5.0f} MB, new {t1:7.1f} ms "
+                  f"{m1:5.0f} MB, time ratio {t1 / t0:.3f}; MPM change {abs(v1 / v0 - 1):.1e}")
             out[f"{n}_{label}"] = row
+    row = {path: in_child("run", 1500000, path) for path in ("old", "new")}
+    (t0, m0, v0), (t1, m1, v1) = row["old"], row["new"]
+    print(f"  run_pas at n = 1,500,000 to 8 HF, band off, whole distribution read: old "
+          f"{t0:5.1f} s {m0:5.0f} MB, new {t1:5.1f} s {m1:5.0f} MB peak RSS; MPM change "
+          f"{abs(v1 / v0 - 1):.1e}")
+    out["run_pas_1500000"] = row
     sort_n = 10 * 150000
     h = np.random.default_rng(0).weibull(1.5, (10, sort_n // 10))
     t = time.process_time()
@@ -342,7 +363,10 @@ def main():
     parser.add_argument("--max-hf", type=int, default=80)
     parser.add_argument("--parts", default="fit", help="comma-separated: fit, cold, band, long")
     parser.add_argument("--json", help="write the figures here")
+    parser.add_argument("--long-child", nargs="+", help=argparse.SUPPRESS)
     args = parser.parse_args()
+    if args.long_child:
+        return long_child(args.long_child)
     out = {}
     parts = {"fit": part_fit, "cold": part_cold, "band": part_band, "long": part_long}
     for part in args.parts.split(","):

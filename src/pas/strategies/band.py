@@ -68,7 +68,6 @@ import numpy as np
 
 from ..models.joint import HF_MARGINALS
 from ..models.joint_mixture import MIXTURE, pair_logliks
-from ..stats.exceedance import mpm_of_realisations
 from .._support.checks import check_int, check_option
 from .selection import impact_probability
 from .steps import conditioning_set
@@ -223,10 +222,9 @@ def _replicate_mpm(i: int) -> float | None:
             starts = replicate_starts(strategy, b, lfset, starts, marginal)
         model = strategy.fit(b, lfset, update=False, hf_marginal=marginal,
                              lf_ranks_rng=lf_rngs[i], starts=starts)
-        draws = strategy._draws(model, draw_rng)
+        return strategy._replicate_mpm(model, lfset, draw_rng)
     except (ValueError, np.linalg.LinAlgError):
         return None
-    return mpm_of_realisations(draws, lfset.n_waves, lfset.p_exp)
 
 
 def replicate_mpms(strategy, pairs, lfset, starts, plan, lf_rng=None,

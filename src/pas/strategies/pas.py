@@ -39,7 +39,7 @@ import numpy as np
 from .._support.checks import check_finite, check_int
 from ..models.copulas import PAPER_FAMILIES, _family_and_rotation, select_family
 from ..stats.dependence import empirical_tail_dependence, kendall_tau
-from . import band
+from . import band, tail_draws
 from .acquisition import md_select
 from .band import ModelBand
 from .base import Pairs, Prediction, Strategy
@@ -50,6 +50,7 @@ from .screening import LFSet
 from .selection import impact_probability, population_lf_ranks
 from .steps import (
     FittedModel,
+    SharedOnCopy,
     cold_turns,
     conditioning_set,
     draw_conditional_hf,
@@ -237,28 +238,21 @@ class PAS(Strategy):
                                 gpd_tail=getattr(self.estimator, "lf_tail", "ranks") == "gpd",
                                 tail_fits=self._lf_tail_fits)
         if fixed:
-            self._ranks = (lfset.lf, n0, u)
+            self._ranks = SharedOnCopy((lfset.lf, n0, u))
         return u
 
     def _random_numbers(self, n0: int, rng: np.random.Generator | None):
         """Step 9's uniforms ``r`` and ``q``, shape ``(z, n0)`` each (:class:`PeakUniforms`)."""
         return self._uniforms.draw(n0, rng)
 
-    def _draws(self, model: FittedModel, rng) -> np.ndarray:
-        """Step 9's HF draws, shape ``(z, n0)``; the Gaussian and Student-t draws read the
-        normal scores of the common uniforms, kept from the first time."""
-        r, q = self._random_numbers(model.n0, rng)
-        scores = (self._uniforms.scores(model.n0)
-                  if model.copula.name.partition("_")[0] in ("gaussian", "student") else None)
-        return model.draws(r, q, scores)
-
-    def _predict_model(self, model: FittedModel, lfset: LFSet, rng):
-        return hf_distribution(self._draws(model, rng), lfset.n_waves)
+    def _replicate_mpm(self, model: FittedModel, lfset: LFSet, rng) -> float:
+        """The MPM of a band replicate's ``model`` (Steps 9–12 with the study's uniforms),
+        from the top of each realisation (:mod:`pas.strategies.tail_draws`)."""
+        return tail_draws.mpm_from_top(model, self._uniforms, lfset, rng)
 
     def predict(self, pairs: Pairs, lfset: LFSet, rng: np.random.Generator) -> Prediction:
         model = self.fit(pairs, lfset)
         self.model_ = model
-        d, mean, low, high = self._predict_model(model, lfset, rng)
         lam_u, lam_l = empirical_tail_dependence(pairs.lf, pairs.hf)
         record = {
             "family": self.family_,
@@ -278,7 +272,8 @@ class PAS(Strategy):
         columns = {"lf": lfset.lf[:model.n0]}
         if model.impact is not None:
             columns["p_impact"] = model.impact
-        return Prediction.read_at(lfset.p_exp, d, mean, low, high, record, columns)
+        # Steps 9-12: only the top of each realisation is drawn now, the rest when read
+        return tail_draws.predict_from_top(model, self._uniforms, lfset, rng, record, columns)
 
     def model_band(self, pairs: Pairs, lfset: LFSet, rng: np.random.Generator, *,
                    n_jobs: int | None = None):
