@@ -99,19 +99,6 @@ def timed_joint_fits(seconds):
         pas.models.joint_mixture.fit_joint_all = original
 
 
-@contextlib.contextmanager
-def prune_aic(limit):
-    """The study's fits with ``estimators.PRUNE_AIC = limit`` (None: every family refitted)."""
-    from pas.strategies import estimators
-
-    saved = estimators.PRUNE_AIC
-    estimators.PRUNE_AIC = limit
-    try:
-        yield
-    finally:
-        estimators.PRUNE_AIC = saved
-
-
 def part_prune(max_hf):
     """Every family refitted in every iteration (old) against far-behind families left
     unrefitted (new), no band."""
@@ -121,11 +108,9 @@ def part_prune(max_hf):
           f"{estimators.PRUNE_AIC:g} AIC behind not refitted (new)")
     out, histories = {}, {}
     for label, limit in (("old", None), ("new", estimators.PRUNE_AIC)):
-        fits = []
-        with prune_aic(limit):
-            res, loop, _, _ = run(max_hf, fit_seconds=fits, n_bootstrap=0)
-        out[label] = summary(res)
-        histories[label] = res.history
+        with estimator_setting("PRUNE_AIC", limit):
+            res, loop, _, _ = run(max_hf, fit_seconds=(fits := []), n_bootstrap=0)
+        out[label], histories[label] = summary(res), res.history
         out[label]["times"] = [float(np.median(loop)), float(loop.max()), float(np.sum(fits))]
         print(f"  {label}: loop median {1e3 * np.median(loop):5.1f} ms, worst "
               f"{1e3 * loop.max():6.1f} ms; joint fits {1e3 * np.sum(fits):6.0f} ms CPU in all")
@@ -141,37 +126,25 @@ def part_prune(max_hf):
 
 
 @contextlib.contextmanager
-def cold_all_at_once():
-    """The old cold starts: every family's fit on every tenth fit of the study."""
+def estimator_setting(name, value):
+    """The study's fits with ``pas.strategies.estimators.<name> = value`` (``COLD_IN_TURN``:
+    the families' cold starts in turn, ``steps.cold_turns``; ``PRUNE_AIC``)."""
     from pas.strategies import estimators
 
-    saved = estimators.COLD_IN_TURN
-    estimators.COLD_IN_TURN = False
+    saved = getattr(estimators, name)
+    setattr(estimators, name, value)
     try:
         yield
     finally:
-        estimators.COLD_IN_TURN = saved
-
-
-@contextlib.contextmanager
-def cold_in_turn():
-    """The families' cold starts in turn (``steps.cold_turns``)."""
-    from pas.strategies import estimators
-
-    saved = estimators.COLD_IN_TURN
-    estimators.COLD_IN_TURN = True
-    try:
-        yield
-    finally:
-        estimators.COLD_IN_TURN = saved
+        setattr(estimators, name, saved)
 
 
 def part_cold(max_hf):
     """Cold starts all at once (old) against the families in turn (new), no band."""
     print("-- the study's cold starts: all families every tenth fit (old) vs in turn (new)")
     out = {}
-    for label, ctx in (("old", cold_all_at_once), ("new", cold_in_turn)):
-        with ctx():
+    for label, in_turn in (("old", False), ("new", True)):
+        with estimator_setting("COLD_IN_TURN", in_turn):
             res, loop, _, _ = run(max_hf, n_bootstrap=0)
         out[label] = summary(res)
         out[label]["times"] = [float(np.median(loop)), float(loop.max())]
