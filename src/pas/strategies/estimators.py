@@ -46,8 +46,9 @@ unrefitted.  None: every family is refitted in every fit."""
 
 COLD_IN_TURN = False
 """True: each family starts cold in its own iteration of every COLD_EVERY
-(:func:`~pas.strategies.steps.cold_turns`: the worst iteration 108 -> 88 ms), instead of
-all at once.  Off: it changes answers (3 of 17 analogue MPMs by up to 1.9e-6; a 13-pair
+(:func:`~pas.strategies.steps.cold_turns`: the worst iteration 108 -> 88 ms; after the
+shared scores and cold start of :mod:`pas.models.joint_starts`, worst x0.68-0.75 and median
+x0.97-1.14 in ``benchmarks/timing/study_parts.py --parts cold``), instead of all at once.  Off: it changes answers (3 of 17 analogue MPMs by up to 1.9e-6; a 13-pair
 study by 1 %, 30 % in between), and 0.2 keeps the results of 0.1."""
 
 
