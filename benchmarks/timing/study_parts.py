@@ -9,7 +9,12 @@ time, the forked band workers' included; wall time on a shared machine):
   fit by numerical differences (scipy's L-BFGS-B default, the old path)
   against its analytic gradient; the largest change of MPM and band ends
   and whether the family sequence is the same;
-* ``fit`` also: the study's periodic cold starts all at once every tenth fit
+* ``fit`` also: every family refitted in every iteration (``PRUNE_AIC=None``,
+  old) against a family more than 100 AIC behind left unrefitted
+  (``estimators.PRUNE_AIC``): loop median and worst, the fits' CPU, the
+  largest change of MPM and band ends, whether the family sequence is the
+  same and how far the unrefitted families' recorded AIC is above their refit;
+* ``cold``: the study's periodic cold starts all at once every tenth fit
   (old) against the families in turn (``steps.cold_turns``): loop median and
   worst, the largest change of MPM and band ends;
 * ``band``: the final model band of 80 and 160 pairs started from the
@@ -57,9 +62,13 @@ def numerical_student():
         pas.models.joint.GRADIENT_FAMILIES, pas.models.joint_mixture.GRADIENT_FAMILIES = saved
 
 
-def run(max_hf, n=N, n_waves=N_W, **settings):
+def run(max_hf, n=N, n_waves=N_W, fit_seconds=None, **settings):
     """One run with stopping off: ``(result, CPU s per loop iteration, CPU s of the final
-    band, wall s of the final band)``."""
+    band, wall s of the final band)``; ``fit_seconds``: a list the CPU s of each of the
+    study's joint fits (``fit_joint_all``) is appended to."""
+    if fit_seconds is not None:
+        with timed_joint_fits(fit_seconds):
+            return run(max_hf, n, n_waves, **settings)
     lf, hf = scenario(n)
     stamps = []
 
@@ -75,37 +84,69 @@ def run(max_hf, n=N, n_waves=N_W, **settings):
 
 
 @contextlib.contextmanager
-def cold_all_at_once():
-    """The old cold starts: every family's fit on every tenth fit of the study."""
-    import pas.strategies.estimators as estimators
+def timed_joint_fits(seconds):
+    """Append the CPU s of every ``fit_joint_all`` call to ``seconds``."""
+    original = pas.models.joint_mixture.fit_joint_all
 
-    saved = estimators.COLD_IN_TURN
-    estimators.COLD_IN_TURN = False
+    def timed(*args, **kwargs):
+        t = cpu_seconds()
+        out = original(*args, **kwargs)
+        seconds.append(cpu_seconds() - t)
+        return out
+
+    pas.models.joint_mixture.fit_joint_all = timed
     try:
         yield
     finally:
-        estimators.COLD_IN_TURN = saved
+        pas.models.joint_mixture.fit_joint_all = original
+
+
+def part_prune(max_hf):
+    """Every family refitted in every iteration (old) against far-behind families left
+    unrefitted (new), no band."""
+    from pas.strategies import estimators
+
+    print(f"-- the study's fits: every family refitted (old) vs a family more than "
+          f"{estimators.PRUNE_AIC:g} AIC behind not refitted (new)")
+    out, histories = {}, {}
+    for label, limit in (("old", None), ("new", estimators.PRUNE_AIC)):
+        with estimator_setting("PRUNE_AIC", limit):
+            res, loop, _, _ = run(max_hf, fit_seconds=(fits := []), n_bootstrap=0)
+        out[label], histories[label] = summary(res), res.history
+        out[label]["times"] = [float(np.median(loop)), float(loop.max()), float(np.sum(fits))]
+        print(f"  {label}: loop median {1e3 * np.median(loop):5.1f} ms, worst "
+              f"{1e3 * loop.max():6.1f} ms; joint fits {1e3 * np.sum(fits):6.0f} ms CPU in all")
+    rel, same = largest_change(out["old"], out["new"])
+    aic = [c for c in histories["old"].columns if c.startswith("aic_")]
+    above = float(np.nanmax((histories["new"][aic] - histories["old"][aic]).to_numpy(float)))
+    t_old, t_new = out["old"]["times"], out["new"]["times"]
+    print(f"  ratio new/old: loop median {t_new[0] / t_old[0]:.2f}, worst {t_new[1] / t_old[1]:.2f}, "
+          f"joint fits {t_new[2] / t_old[2]:.2f}; largest relative change of MPM and band ends "
+          f"{rel:.1e}; family sequence {'the same' if same else 'DIFFERENT'}; recorded AIC of "
+          f"an unrefitted family at most {above:.2g} above its refit")
+    return out
 
 
 @contextlib.contextmanager
-def cold_in_turn():
-    """The families' cold starts in turn (``steps.cold_turns``)."""
-    import pas.strategies.estimators as estimators
+def estimator_setting(name, value):
+    """The study's fits with ``pas.strategies.estimators.<name> = value`` (``COLD_IN_TURN``:
+    the families' cold starts in turn, ``steps.cold_turns``; ``PRUNE_AIC``)."""
+    from pas.strategies import estimators
 
-    saved = estimators.COLD_IN_TURN
-    estimators.COLD_IN_TURN = True
+    saved = getattr(estimators, name)
+    setattr(estimators, name, value)
     try:
         yield
     finally:
-        estimators.COLD_IN_TURN = saved
+        setattr(estimators, name, saved)
 
 
 def part_cold(max_hf):
     """Cold starts all at once (old) against the families in turn (new), no band."""
     print("-- the study's cold starts: all families every tenth fit (old) vs in turn (new)")
     out = {}
-    for label, ctx in (("old", cold_all_at_once), ("new", cold_in_turn)):
-        with ctx():
+    for label, in_turn in (("old", False), ("new", True)):
+        with estimator_setting("COLD_IN_TURN", in_turn):
             res, loop, _, _ = run(max_hf, n_bootstrap=0)
         out[label] = summary(res)
         out[label]["times"] = [float(np.median(loop)), float(loop.max())]
@@ -160,6 +201,7 @@ def part_fit(max_hf):
     print(f"  ratio new/old: run {t_new[0] / t_old[0]:.2f}, loop median {t_new[1] / t_old[1]:.2f}, "
           f"Student-t alone {t_new[4] / t_old[4]:.2f}; largest relative change of MPM and band "
           f"ends {rel:.1e}; family sequence {'the same' if same else 'DIFFERENT'}")
+    out["prune"] = part_prune(max_hf)
     return out
 
 

@@ -44,19 +44,20 @@ from scipy import optimize, special
 
 from .._support.threads import one_blas_thread
 from ..stats.lognormal import LogNormal3
-from ..stats.weibull import Weibull3, fit_weibull3_ls
+from ..stats.weibull import Weibull3
 from ..stats.weibull_mixture import WeibullMixture
-from .copula_densities import GRADIENT_FAMILIES
-from .copulas import CopulaFit, _at_bound, _family_and_rotation, kendall_tau
+from .copula_densities import GRADIENT_FAMILIES, scores
+from .copulas import CopulaFit, _at_bound, _family_and_rotation
 from .joint_likelihood import (
     copula_parameters,
     loglik_and_copula_gradient,
     negloglik_closure,
 )
+from .joint_starts import DataStarts, copula_start
 
 __all__ = ["JOINT_FAMILIES", "HF_MARGINALS", "JointFit", "censoring_level", "fit_joint",
            "fit_joint_all", "best_per_family", "starts_cold", "location_bounds", "minimise_bounded",
-           "joint_fit_result"]
+           "joint_fit_result", "unrefitted"]
 
 HF_MARGINALS = ("weibull", "lognormal")
 """HF marginals the joint fit knows (module docs)."""
@@ -75,42 +76,6 @@ class JointFit:
     hf_marginal: Weibull3 | LogNormal3 | WeibullMixture
     x: np.ndarray  # the optimiser's unconstrained parameters, for warm starts
     marginal: str = "weibull"
-
-
-def _copula_start(base: str, tau: float):
-    tau = float(np.clip(tau, 0.05, 0.85))
-    if base in ("gaussian", "student"):
-        rho = np.sin(np.pi * tau / 2.0)
-        return [np.arctanh(rho / 0.999)] + ([0.0] if base == "student" else [])
-    if base == "clayton":
-        return [np.log(2 * tau / (1 - tau))]
-    if base == "gumbel":
-        return [np.log(tau / (1 - tau))]  # θ − 1 = τ/(1−τ)
-    p = pv.Bicop(family=pv.BicopFamily.frank).tau_to_parameters(tau).ravel()[0]
-    return [35.0 * np.arctanh(min(p, 34.9) / 35.0)]
-
-
-def _weibull_start(h, location: bool):
-    """Least-squares Weibull on Weibull paper (ranks i/(n+1)) as optimiser values."""
-    if location and h.size >= 3 and np.ptp(h) > 0:
-        w = fit_weibull3_ls(h)
-        h_min, span = h.min(), np.ptp(h)
-        gap = max(h_min - w.theta, 1e-3 * span)
-        return [np.log(gap / span), np.log(w.alpha), np.log(max(w.beta, 0.2))]
-    x = np.log(np.sort(h))
-    y = np.log(-np.log1p(-np.arange(1, h.size + 1) / (h.size + 1.0)))
-    beta, c = np.polyfit(x, y, 1)
-    beta = max(beta, 0.2)
-    return [np.log(np.exp(-c / beta)), np.log(beta)]
-
-
-def _lognormal_start(h, location: bool):
-    """Log-normal optimiser values: the least-squares Weibull's location, moments of ln(h − θ)."""
-    gap_x = _weibull_start(h, location)[0] if location else None
-    span = float(np.ptp(h)) or float(h.min())
-    theta = h.min() - np.exp(gap_x) * span if location else 0.0
-    lw = np.log(np.maximum(h - theta, 1e-300))
-    return ([gap_x] if location else []) + [float(lw.mean()), np.log(max(lw.std(), 0.05))]
 
 
 def censoring_level(h, censor: float, location: bool) -> float:
@@ -164,9 +129,9 @@ def joint_objective(name: str, u, h, *, location: bool = True, censor: float = 0
         first = x[n_marg - 2] if lognormal else np.exp(x[n_marg - 2])
         return theta, first, np.exp(x[n_marg - 1]), x[n_marg:]
 
-    def marginal_terms(x):
-        """``(log f_H(h), F_H(h), pieces the gradient needs)``."""
-        theta, a, b, _ = unpack(x)
+    def marginal_terms(x, unpacked=None):
+        """``(log f_H(h), F_H(h), pieces the gradient needs)``; ``unpacked``: ``unpack(x)``."""
+        theta, a, b, _ = unpack(x) if unpacked is None else unpacked
         w = h - theta
         if lognormal:
             z = (np.log(w) - a) / b
@@ -179,39 +144,46 @@ def joint_objective(name: str, u, h, *, location: bool = True, censor: float = 0
 
     negloglik = negloglik_closure(base, rotation, u, density, marginal_terms, unpack, per_pair)
 
+    # what every evaluation of the gradient reads of the fixed pairs
+    censored = np.flatnonzero(~density)
+    dens = density.astype(float)
+    u_scores = None if base == "student" else scores(base, None, u)
+
     @np.errstate(all="ignore")
     def negloglik_grad(x):
         """The same with its gradient (exact but in Student-t's ν; no rotation)."""
-        _, _, b, c = unpack(x)
-        log_f, v, parts = marginal_terms(x)
-        val, d_v, g_c = loglik_and_copula_gradient(base, c, u, v, log_f, density)
+        unpacked = unpack(x)
+        b, c = unpacked[2], unpacked[3]
+        log_f, v, parts = marginal_terms(x, unpacked)
+        val, d_v, g_c = loglik_and_copula_gradient(base, c, u, v, log_f, density,
+                                                   censored=censored, u_scores=u_scores)
         if not np.isfinite(val):
             return 1e300, np.zeros_like(x)
-        dens = density.astype(float)
         if lognormal:  # a = μ, b = σ; x holds μ and ln σ
             w, z = parts
             phi = np.exp(-0.5 * z * z) / np.sqrt(2.0 * np.pi)  # dv/dz
-            g_a = np.sum(dens * z / b - d_v * phi / b)
-            g_b = np.sum(dens * (z * z - 1.0) - d_v * phi * z)
-            g_t = np.sum(dens * (1.0 + z / b) / w - d_v * phi / (b * w))
+            g_a = (dens * z / b - d_v * phi / b).sum()
+            g_b = (dens * (z * z - 1.0) - d_v * phi * z).sum()
+            g_t = (dens * (1.0 + z / b) / w - d_v * phi / (b * w)).sum()
         else:  # a = α, b = β; x holds ln α and ln β
             w, ln_z, zb = parts
             one_v = 1.0 - v  # dv/dzb
-            g_a = np.sum(dens * b * (zb - 1.0) + d_v * one_v * (-b * zb))
-            g_b = np.sum(dens * (1.0 + b * ln_z * (1.0 - zb)) + d_v * one_v * b * zb * ln_z)
-            g_t = np.sum(dens * (b * zb - b + 1.0) / w + d_v * one_v * (-b * zb / w))
+            g_a = (dens * b * (zb - 1.0) + d_v * one_v * (-b * zb)).sum()
+            g_b = (dens * (1.0 + b * ln_z * (1.0 - zb)) + d_v * one_v * b * zb * ln_z).sum()
+            g_t = (dens * (b * zb - b + 1.0) / w + d_v * one_v * (-b * zb / w)).sum()
         grad = [g_a, g_b, *g_c]
         if location:
             grad.insert(0, g_t * (-np.exp(x[0]) * span))
         g = -np.asarray(grad, float)
-        return (-val, g) if np.all(np.isfinite(g)) else (1e300, np.zeros_like(x))
+        return (-val, g) if np.isfinite(g).all() else (1e300, np.zeros_like(x))
 
     grad = negloglik_grad if base in GRADIENT_FAMILIES and rotation == 0 else None
     return negloglik, grad, unpack
 
 
 def fit_joint(name: str, u, h, *, start=None, location: bool = True, censor: float = 0.0,
-              cold: bool = True, marginal: str = "weibull") -> JointFit:
+              cold: bool = True, marginal: str = "weibull",
+              data_starts: DataStarts | None = None) -> JointFit:
     """Fit one copula family and the HF marginal by conditional likelihood.
 
     Parameters
@@ -246,6 +218,9 @@ def fit_joint(name: str, u, h, *, start=None, location: bool = True, censor: flo
     marginal : {"weibull", "lognormal"}, default "weibull"
         The HF marginal's family (module docs); the location rules are the
         same for both.
+    data_starts : DataStarts, optional
+        The cold start of these pairs, shared with the other families'
+        fits (:func:`fit_joint_all`); None: computed here.
     """
     base = name.partition("_")[0]
     u = np.clip(np.asarray(u, float), _TINY, 1 - _TINY)
@@ -269,13 +244,41 @@ def fit_joint(name: str, u, h, *, start=None, location: bool = True, censor: flo
     if start is not None and len(start) == n_par:
         res = minimise(np.asarray(start, float))  # an earlier fit
     if cold or res is None or res.fun >= 1e299:
-        tau = kendall_tau(u, h) if u.size > 2 else 0.3
-        start_marginal = _lognormal_start if lognormal else _weibull_start
-        fresh = minimise(np.r_[start_marginal(h, location), _copula_start(base, tau)])
+        data = DataStarts(u, h, location) if data_starts is None else data_starts
+        fresh = minimise(np.r_[data.marginal(marginal), copula_start(base, data.tau())])
         res = fresh if res is None or fresh.fun < res.fun else res
+    return _result(name, res, unpack, n_marg, marginal)
+
+
+def _result(name: str, res, unpack, n_marg: int, marginal: str) -> JointFit:
+    """The :class:`JointFit` of optimiser values ``res.x`` with value ``res.fun``."""
     theta, a, b, c = unpack(res.x)
-    hf = (LogNormal3 if lognormal else Weibull3)(float(theta), float(a), float(b))
+    hf = (LogNormal3 if marginal == "lognormal" else Weibull3)(float(theta), float(a), float(b))
     return joint_fit_result(name, res, c, n_marg, hf, marginal)
+
+
+def unrefitted(fit: JointFit, u, h, *, location: bool = True,
+               censor: float = 0.0) -> JointFit | None:
+    """``fit``'s optimiser values on the pairs ``u``, ``h``, not optimised again.
+
+    Its likelihood and AIC are those of these pairs at the old values, so the
+    AIC is at least the refitted one's.  None when the values are outside
+    these pairs' location bound or give no finite likelihood.
+    """
+    if fit.marginal not in HF_MARGINALS:
+        return None
+    u = np.clip(np.asarray(u, float), _TINY, 1 - _TINY)
+    h = np.asarray(h, float)
+    bound = location_bounds(h, censor, location)
+    if bound and not bound[0][0] <= fit.x[0] <= bound[0][1]:
+        return None
+    negloglik, _, unpack = joint_objective(fit.copula.name, u, h, location=location,
+                                           censor=censor, marginal=fit.marginal)
+    value = negloglik(fit.x)
+    if value >= 1e299:
+        return None
+    res = optimize.OptimizeResult(x=fit.x, fun=value, message="not refitted")
+    return _result(fit.copula.name, res, unpack, 3 if location else 2, fit.marginal)
 
 
 def location_bounds(h, censor: float, location: bool) -> list:
@@ -332,6 +335,7 @@ def fit_joint_all(u, h, families, *, marginals=("weibull",), starts=None,
     """
     starts = starts or {}
     out = {}
+    data = DataStarts(u, h, location)
     with one_blas_thread():
         for name in families:
             for marginal in marginals:
@@ -340,7 +344,8 @@ def fit_joint_all(u, h, families, *, marginals=("weibull",), starts=None,
                 prev = starts.get((name, marginal))
                 out[name, marginal] = fit_joint(name, u, h, location=location, censor=censor,
                                                 start=None if prev is None else prev.x,
-                                                cold=starts_cold(cold, name), marginal=marginal)
+                                                cold=starts_cold(cold, name), marginal=marginal,
+                                                data_starts=data)
     return out
 
 

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .copula_densities import copula_loghfunc, copula_logpdf, logc_grad, logh_grad
+from .copula_densities import censored_terms, copula_loghfunc, copula_logpdf
 
 __all__ = ["copula_parameters", "parameter_slope", "loglik_and_copula_gradient",
            "negloglik_closure", "NU_STEP"]
@@ -64,47 +64,36 @@ def _pair_terms(base, rotation, p, u, v, log_f, density) -> np.ndarray:
     return out
 
 
-def _gradient_terms(base, p, u, v, density):
-    """``(log c or log h, ∂/∂v, ∂/∂parameter)`` per pair (densities and censored loads)."""
-    lc, dc_dv, dc_dp = logc_grad(base, p, u, v)
-    d_v = np.where(density, dc_dv, 0.0)
-    d_p = np.where(density, dc_dp, 0.0)
-    total = np.where(density, lc, 0.0)
-    if not density.all():
-        lh, dh_dv, dh_dp = logh_grad(base, p, u[~density], v[~density])
-        total[~density], d_v[~density], d_p[~density] = lh, dh_dv, dh_dp
-    return total, d_v, d_p
-
-
-def _copula_sum(base, p, u, v, density) -> float:
-    """``Σ log c`` over the loads with a density and ``Σ log h`` over the censored (no rotation)."""
-    val = np.sum(copula_logpdf(base, p, u[density], v[density]))
-    if not density.all():
-        val += np.sum(copula_loghfunc(base, p, u[~density], v[~density]))
-    return float(val)
-
-
 NU_STEP = 1e-6
 """Step in Student-t's optimiser value of ν for its one forward difference."""
 
 
-def loglik_and_copula_gradient(base, c, u, v, log_f, density):
+def loglik_and_copula_gradient(base, c, u, v, log_f, density, *, censored=None, u_scores=None):
     """The log-likelihood and the copula part of its gradient: ``(value, ∂/∂v per pair,
     gradient in the copula's optimiser values c)`` (no rotation; the marginal's chain
     rule is the caller's).
 
-    Student-t's ν enters through the t quantiles of ``u`` and ``v``, whose
-    derivative in ν has no closed form: its component is a forward difference
+    ``censored``: the indices of the pairs not in ``density`` and ``u_scores`` the
+    scores of ``u`` (:func:`~pas.models.copula_densities.censored_terms`), when the
+    caller keeps them.  Student-t's ν enters through the t quantiles of ``u`` and ``v``,
+    whose derivative in ν has no closed form: its component is a forward difference
     of the copula terms in ``c[1]`` (the marginal terms do not depend on it).
     """
+    if censored is None:
+        censored = np.flatnonzero(~density)
     p = copula_parameters(base, c).ravel()
-    total, d_v, d_p = _gradient_terms(base, p, u, v, density)
-    g_c = [np.sum(d_p) * parameter_slope(base, c)]
+    total, d_v, d_p = censored_terms(base, p, u, v, censored, u_scores=u_scores)
+    g_c = [d_p.sum() * parameter_slope(base, c)]
     if base == "student":
         step = np.array([0.0, NU_STEP])
-        moved = _copula_sum(base, copula_parameters(base, c + step).ravel(), u, v, density)
-        g_c.append((moved - float(np.sum(total))) / NU_STEP)
-    return float(np.sum(np.where(density, log_f + total, total))), d_v, g_c
+        moved = censored_terms(base, copula_parameters(base, c + step).ravel(), u, v, censored,
+                               grad=False)[0]
+        # the same sums as Σ log c over the densities and Σ log h over the censored
+        moved_sum = moved[density].sum()
+        if censored.size:
+            moved_sum += moved[censored].sum()
+        g_c.append((float(moved_sum) - float(total.sum())) / NU_STEP)
+    return float(np.where(density, log_f + total, total).sum()), d_v, g_c
 
 
 def negloglik_closure(base, rotation, u, density, marginal_terms, unpack, per_pair=False):

@@ -24,7 +24,7 @@ from ..stats.weibull_mixture import (
     WeibullMixture,
     split_start,
 )
-from .copula_densities import GRADIENT_FAMILIES
+from .copula_densities import GRADIENT_FAMILIES, scores
 from .joint import (
     HF_MARGINALS,
     JointFit,
@@ -88,15 +88,19 @@ def mixture_objective(name: str, u, h, *, location: bool = True, censor: float =
 
     negloglik = negloglik_closure(base, rotation, u, density, marginal_terms, unpack, per_pair)
 
+    censored = np.flatnonzero(~density)
+    dens = density.astype(float)
+    u_scores = None if base == "student" else scores(base, None, u)
+
     @np.errstate(all="ignore")
     def negloglik_grad(x):
         """The same with its gradient (exact but in Student-t's ν; no rotation)."""
         c = unpack(x)[6]
         log_f, v, (w, p, parts, ln_r1, ln_r2) = marginal_terms(x)
-        val, d_v, g_c = loglik_and_copula_gradient(base, c, u, v, log_f, density)
+        val, d_v, g_c = loglik_and_copula_gradient(base, c, u, v, log_f, density,
+                                                   censored=censored, u_scores=u_scores)
         if not np.isfinite(val):
             return 1e300, np.zeros_like(x)
-        dens = density.astype(float)
         weights = (p, 1.0 - p)
         resp = (np.exp(ln_r1), np.exp(ln_r2))  # each component's share of the density
         g_t = 0.0

@@ -24,8 +24,8 @@ import numpy as np
 
 from .._support.checks import check_option
 from ..models.copulas import fit_candidates
-from ..models.joint import JOINT_FAMILIES
-from ..models.joint_mixture import HF_CHOICES, fit_hf_candidates
+from ..models.joint import JOINT_FAMILIES, best_per_family, unrefitted
+from ..models.joint_mixture import HF_CHOICES, MIXTURE, fit_hf_candidates
 from ..stats.dependence import pseudo_observations
 from . import band
 from .steps import cold_turns, conditioning_set, fit_marginals, remove_outliers
@@ -35,10 +35,20 @@ __all__ = ["ConditionalLikelihood", "SelectedSample", "ESTIMATORS", "CandidateFi
 COLD_EVERY = 10
 """Every this many study fits, the conditional estimator also starts from the data."""
 
+PRUNE_AIC = 100.0
+"""In the study's own fits, a family whose last AIC was more than this behind the best
+eligible one's (and not the current family) is not refitted: its AIC is that of its last
+fit's parameters on the new pairs (:func:`pas.models.joint.unrefitted`; at least its
+optimum's), and every COLD_EVERY fits, halfway between the other families' cold starts,
+it is refitted from its last fit and from the data.  Should such a family come within
+PRUNE_AIC / 2 of the best refitted one, it is refitted at once, so it is never selected
+unrefitted.  None: every family is refitted in every fit."""
+
 COLD_IN_TURN = False
 """True: each family starts cold in its own iteration of every COLD_EVERY
-(:func:`~pas.strategies.steps.cold_turns`: the worst iteration 108 -> 88 ms), instead of
-all at once.  Off: it changes answers (3 of 17 analogue MPMs by up to 1.9e-6; a 13-pair
+(:func:`~pas.strategies.steps.cold_turns`: the worst iteration 108 -> 88 ms; after the
+shared scores and cold start of :mod:`pas.models.joint_starts`, worst x0.68-0.75 and median
+x0.97-1.14 in ``benchmarks/timing/study_parts.py --parts cold``), instead of all at once.  Off: it changes answers (3 of 17 analogue MPMs by up to 1.9e-6; a 13-pair
 study by 1 %, 30 % in between), and 0.2 keeps the results of 0.1."""
 
 
@@ -138,10 +148,18 @@ class ConditionalLikelihood:
             cold = not update or (family is None and (
                 cold_turns(request.families, pas._n_fits, COLD_EVERY) if COLD_IN_TURN
                 else pas._n_fits % COLD_EVERY == 0))
-        every, joint = fit_hf_candidates(u_cond[pairs.position], pairs.hf, request.families,
-                                         request.hf_marginal or self.hf_marginal, starts=starts,
-                                         location=self.hf_location, cold=cold or not starts,
-                                         only=only)
+        choice = request.hf_marginal or self.hf_marginal
+        far = _far_behind(pas, request, choice) if request.starts is None else set()
+        if far and pas._n_fits % COLD_EVERY == COLD_EVERY // 2:  # their turn, from the data too
+            cold, far = (cold if cold is True else far | set(cold or ())), set()
+        if far:
+            only = {k for k in starts if k[0] not in far}
+        u_pairs = u_cond[pairs.position]
+        every, joint = fit_hf_candidates(u_pairs, pairs.hf, request.families, choice,
+                                         starts=starts, location=self.hf_location,
+                                         cold=cold or not starts, only=only)
+        if far:
+            every, joint = self._add_unrefitted(pas, every, joint, far, u_pairs, pairs.hf, choice)
         pas._last_joint = every
         if update and not request.one_family:
             pas._joint = every
@@ -150,6 +168,20 @@ class ConditionalLikelihood:
         return CandidateFits({k: j.copula for k, j in joint.items()},
                              {k: j.hf_marginal for k, j in joint.items()},
                              lambda x: np.interp(x, *ascending), n0, keep)
+
+    def _add_unrefitted(self, pas, every, joint, far, u, h, choice):
+        """``(every, joint)`` of :meth:`fit` with the families ``far`` behind added not
+        refitted, or refitted where that cannot be (:data:`PRUNE_AIC`)."""
+        old = {k: f for k, f in pas._joint.items() if k[0] in far}
+        stale = {k: unrefitted(f, u, h, location=self.hf_location) for k, f in old.items()}
+        eligible = [f.copula.aic for f in joint.values()
+                    if not (pas.exclude_at_bound and f.copula.at_bound)]
+        if (any(f is None for f in stale.values()) or not eligible
+                or min(f.copula.aic for f in stale.values()) <= min(eligible) + PRUNE_AIC / 2):
+            stale, _ = fit_hf_candidates(u, h, sorted(far), choice, starts=old,
+                                         location=self.hf_location, cold=False, only=set(old))
+        every = every | stale
+        return every, best_per_family(every)
 
 
 @dataclass(frozen=True)
@@ -202,6 +234,20 @@ class SelectedSample:
                                             marginals_from=self.marginals_from)
         n0 = conditioning_set(lfset.lf, lf_sample.min()).size
         return CandidateFits(fits, dict.fromkeys(fits, f_h), f_l.cdf, n0, keep)
+
+
+def _far_behind(pas, request: FitRequest, choice: str) -> set:
+    """The families the study's fit (not a band's) leaves unrefitted (:data:`PRUNE_AIC`)."""
+    if (PRUNE_AIC is None or not request.update or request.one_family or not pas._joint
+            or choice in (MIXTURE, "all")):
+        return set()
+    eligible = [f.copula.aic for f in pas._joint.values()
+                if not (pas.exclude_at_bound and f.copula.at_bound)]
+    if not eligible:
+        return set()
+    limit = min(eligible) + PRUNE_AIC
+    near = {name for (name, _), f in pas._joint.items() if f.copula.aic <= limit}
+    return ({name for name, _ in pas._joint} - near - {pas.family_}) & set(request.families)
 
 
 ESTIMATORS = {e.name: e for e in (ConditionalLikelihood, SelectedSample)}
