@@ -102,18 +102,24 @@ def test_pruned_replicates_fit_fewer_candidates_and_give_the_same_band(monkeypat
     # a Gumbel problem with strong dependence: Clayton and Frank are far behind on every
     # resample, so their replicate fits are dropped, and the replicates' MPMs do not move
     import pas.models.joint as joint
+    import pas.strategies.band_batch as band_batch
 
     s, pairs, _ = _problem(3, tau=0.7, gumbel=True, m=60)
     strategy = PAS(band=ModelBand(n_bootstrap=12))
     strategy.reset(0)
     strategy.predict(pairs, s, np.random.default_rng(0))
-    original, fitted = joint.fit_joint, []
+    original, batched, fitted = joint.fit_joint, band_batch.fit_joint_batch, []
 
     def counted(name, *args, **kwargs):
         fitted.append((name, kwargs.get("marginal", "weibull")))
         return original(name, *args, **kwargs)
 
+    def counted_batch(name, samples, *args, **kwargs):  # a fit per replicate
+        fitted.extend([(name, kwargs.get("marginal", "weibull"))] * len(samples))
+        return batched(name, samples, *args, **kwargs)
+
     monkeypatch.setattr(joint, "fit_joint", counted)
+    monkeypatch.setattr(band_batch, "fit_joint_batch", counted_batch)
     pruned = _band(strategy, pairs, s, 1)
     n_pruned, fitted[:] = len(fitted), []
     monkeypatch.setattr(band, "PRUNE_AIC", None)

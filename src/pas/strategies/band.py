@@ -67,13 +67,15 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..models.joint import HF_MARGINALS
+from ..models.joint_batch import batchable
 from ..models.joint_mixture import MIXTURE, pair_logliks
 from ..stats.exceedance import mpm_of_realisations
 from .._support.checks import check_int, check_option
+from .band_batch import Replicate, batch_fits, replicate_model
 from .selection import impact_probability
 from .steps import conditioning_set
 
-__all__ = ["ModelBand", "WARM_BAND", "COLD_FAMILIES", "PRUNE_AIC", "ReplicateStarts",
+__all__ = ["ModelBand", "WARM_BAND", "COLD_FAMILIES", "PRUNE_AIC", "BATCHED", "ReplicateStarts",
            "bootstrap_band", "default_jobs", "replicate_plan", "replicate_mpms", "replicate_starts"]
 
 WARM_BAND = True
@@ -82,6 +84,10 @@ study's last fits and from the data (a cold start), as before (``benchmarks/timi
 
 COLD_FAMILIES = ("student",)
 """Families whose replicate fits also start from the data in a warm band (module docs)."""
+
+BATCHED = True
+"""A warm band's replicates are fitted together, each candidate to all of them at once
+(:mod:`pas.strategies.band_batch`); False: one replicate after another (module docs)."""
 
 
 @dataclass(frozen=True)
@@ -123,7 +129,8 @@ PRUNE_AIC = 100.0
 one, judged at the final fits' parameters on its resampled pairs (module docs); None:
 every family."""
 
-_JOB = None  # (strategy, pairs, lfset, starts, plan, lf_rngs) while replicate_mpms runs
+_JOB = None  # (strategy, pairs, lfset, starts, plan, lf_rngs) while replicate_mpms runs;
+# batched: (strategy, lfset, plan, replicates, width)
 
 
 class ReplicateStarts(dict):
@@ -246,8 +253,12 @@ def replicate_mpms(strategy, pairs, lfset, starts, plan, lf_rng=None,
         n_jobs = -1 if threading.active_count() == 1 and sys.platform.startswith("linux") else 1
     n_jobs = int(n_jobs)
     n_jobs = min(default_jobs() if n_jobs == -1 else n_jobs, max(len(plan), 1))
-    if n_jobs == 1 or "fork" not in multiprocessing.get_all_start_methods():
-        n_jobs, lf_rngs = 1, [lf_rng] * len(plan)
+    if "fork" not in multiprocessing.get_all_start_methods():
+        n_jobs = 1
+    if BATCHED and _can_batch(strategy, starts, plan):
+        return _batched_mpms(strategy, pairs, lfset, starts, plan, lf_rng, n_jobs)
+    if n_jobs == 1:
+        lf_rngs = [lf_rng] * len(plan)
     elif lf_rng is None:
         lf_rngs = [None] * len(plan)
     else:
@@ -258,6 +269,67 @@ def replicate_mpms(strategy, pairs, lfset, starts, plan, lf_rng=None,
             return [_replicate_mpm(i) for i in range(len(plan))]
         with multiprocessing.get_context("fork").Pool(n_jobs) as pool:
             return pool.map(_replicate_mpm, range(len(plan)), chunksize=1)
+    finally:
+        _JOB = None
+
+
+def _can_batch(strategy, starts, plan) -> bool:
+    """Whether every joint fit of the replicates has a batched form (:func:`batchable`)."""
+    return (strategy.estimator.name == "conditional" and starts is not None
+            and all(batchable(f, m) for f, m in starts)
+            and all(_choice_marginals(strategy, p[2]) <= set(HF_MARGINALS) for p in plan))
+
+
+def _prepared(strategy, pairs, lfset, starts, plan, lf_rng) -> list:
+    """Per replicate its :class:`Replicate` (None when it cannot be fitted), made in plan
+    order, so the LF-rank draws read ``lf_rng`` as one replicate after another would."""
+    out = []
+    for tp, fp, choice, _ in plan:
+        b = _resampled(pairs, tp, fp)
+        try:
+            if b is None:
+                raise ValueError("too few or all alike")
+            kept = replicate_starts(strategy, b, lfset, starts, choice)
+            impact = impact_probability(b.lf, b.fp_lf) if strategy.impact_model else None
+            n0 = conditioning_set(lfset.lf, b.lf.min()).size
+            out.append(Replicate(b, impact, n0,
+                                 strategy._population_ranks(lfset, n0, impact, lf_rng), kept))
+        except (ValueError, np.linalg.LinAlgError):
+            out.append(None)
+    return out
+
+
+def _chunk_mpms(indices) -> list:
+    """The MPMs of the replicates ``indices`` of the running batched job, fitted together."""
+    strategy, lfset, plan, replicates, width = _JOB
+    chunk = {i: replicates[i] for i in indices if replicates[i] is not None}
+    fits = batch_fits(strategy, chunk, COLD_FAMILIES, width)
+    out = []
+    for i in indices:
+        try:
+            if fits.get(i) is None:
+                raise ValueError("no fit")
+            draws = strategy._draws(replicate_model(strategy, lfset, chunk[i], fits[i]),
+                                    plan[i][3])
+        except (ValueError, np.linalg.LinAlgError):
+            out.append(None)
+            continue
+        out.append(mpm_of_realisations(draws, lfset.n_waves, lfset.p_exp))
+    return out
+
+
+def _batched_mpms(strategy, pairs, lfset, starts, plan, lf_rng, n_jobs) -> list:
+    """:func:`replicate_mpms` with the replicates fitted together, in ``n_jobs`` chunks."""
+    global _JOB
+    replicates = _prepared(strategy, pairs, lfset, starts, plan, lf_rng)
+    width = max([np.unique(r[0].position).size for r in replicates if r is not None] or [1])
+    _JOB = (strategy, lfset, plan, replicates, width)
+    chunks = [list(c) for c in np.array_split(np.arange(len(plan)), n_jobs) if c.size]
+    try:
+        if len(chunks) == 1:
+            return _chunk_mpms(chunks[0])
+        with multiprocessing.get_context("fork").Pool(len(chunks)) as pool:
+            return [x for part in pool.map(_chunk_mpms, chunks, chunksize=1) for x in part]
     finally:
         _JOB = None
 
