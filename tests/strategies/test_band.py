@@ -171,3 +171,32 @@ def test_the_default_forks_only_a_process_without_other_threads(monkeypatch):
     if threading.active_count() == 1:
         assert band.replicate_mpms(None, None, None, None, plan) == [0.0, 1.0, 2.0, 3.0]
         assert forked == ["fork"]
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("marginals", ["reselected", "alternate"])
+def test_replicates_fitted_together_give_the_band_of_one_after_another(monkeypatch, marginals):
+    # false positives and redrawn LF ranks: each replicate's draw must read the stream where
+    # it would one after another; every replicate's fits are the ones it reaches alone
+    s, pairs, _ = _problem(2, tau=0.6, p_impact=0.7, m=24)
+    strategy = PAS(band=ModelBand(n_bootstrap=12, marginals=marginals))
+    strategy.reset(0)
+    strategy.predict(pairs, s, np.random.default_rng(0))
+    assert band._can_batch(strategy, strategy.final_joint_fits(pairs, s, "both"),
+                           [(None, None, "both", None)])
+    together = _band(strategy, pairs, s, 1)
+    monkeypatch.setattr(band, "BATCHED", False)
+    alone = _band(strategy, pairs, s, 1)
+    assert together[2].size == alone[2].size >= 10
+    np.testing.assert_allclose(together[2], alone[2], rtol=1e-6)
+
+
+def test_a_mixture_band_is_fitted_one_replicate_after_another():
+    s, pairs, _ = _problem(1, tau=0.6, m=30)
+    strategy = PAS(band=ModelBand(n_bootstrap=3),
+                   estimator=ConditionalLikelihood(hf_marginal="weibull_mixture"))
+    strategy.reset(0)
+    strategy.predict(pairs, s, np.random.default_rng(0))
+    starts = strategy.final_joint_fits(pairs, s, "all")
+    plan = band.replicate_plan(pairs, np.random.default_rng(0), 3, ("all",))
+    assert not band._can_batch(strategy, starts, plan)

@@ -326,8 +326,8 @@ def _batched_mpms(strategy, pairs, lfset, starts, plan, lf_rng, n_jobs) -> list:
     _JOB = (strategy, lfset, plan, replicates, width)
     chunks = [list(c) for c in np.array_split(np.arange(len(plan)), n_jobs) if c.size]
     try:
-        if len(chunks) == 1:
-            return _chunk_mpms(chunks[0])
+        if len(chunks) <= 1:
+            return _chunk_mpms(chunks[0]) if chunks else []
         with multiprocessing.get_context("fork").Pool(len(chunks)) as pool:
             return [x for part in pool.map(_chunk_mpms, chunks, chunksize=1) for x in part]
     finally:
