@@ -61,9 +61,11 @@ def weighted_pairs(name, samples, *, location=True, censor=0.0, width=None):
     rows = []
     for u, h in samples:
         _, _, u, hc, h_c, span, density = _prepare(name, u, h, location, censor)
-        keys, first, count = np.unique(np.c_[u, hc], axis=0, return_index=True,
-                                       return_counts=True)
-        rows.append((keys[:, 0], keys[:, 1], count, density[first], h_c, span))
+        order = np.lexsort((hc, u))  # sorted by u, then load: the distinct pairs in turn
+        u, hc, density = u[order], hc[order], density[order]
+        first = np.r_[True, (u[1:] != u[:-1]) | (hc[1:] != hc[:-1])]
+        count = np.diff(np.r_[np.flatnonzero(first), u.size])
+        rows.append((u[first], hc[first], count, density[first], h_c, span))
     width = max(r[0].size for r in rows) if width is None else width
     out = {k: np.empty((len(rows), width)) for k in ("u", "h", "w")}
     out["density"] = np.zeros((len(rows), width), dtype=bool)
@@ -173,39 +175,38 @@ def minimise_together(objective, starts, bounds, rows):
     n = len(starts[0])
     m = _MAXCOR
     factr = _FTOL / np.finfo(float).eps
-    state = []
+    args = []  # per problem setulb's arguments: x at 1, f at 5, g at 6, task at 11
     for x0, bnd in zip(starts, bounds):
         low, up, nbd, lo, hi = _bound_arrays(bnd)
-        state.append({"x": np.clip(np.asarray(x0, float), lo, hi), "f": 0.0, "g": np.zeros(n),
-                      "low": low, "up": up, "nbd": nbd, "nfev": 0, "nit": 0,
-                      "wa": np.zeros(2 * m * n + 5 * n + 11 * m * m + 8 * m),
-                      "iwa": np.zeros(3 * n, np.int32), "task": np.zeros(2, np.int32),
-                      "ln_task": np.zeros(2, np.int32), "lsave": np.zeros(4, np.int32),
-                      "isave": np.zeros(44, np.int32), "dsave": np.zeros(29)})
-    active = list(range(len(state)))
+        args.append([m, np.clip(np.asarray(x0, float), lo, hi), low, up, nbd, 0.0, np.zeros(n),
+                     factr, _GTOL, np.zeros(2 * m * n + 5 * n + 11 * m * m + 8 * m),
+                     np.zeros(3 * n, np.int32), np.zeros(2, np.int32), np.zeros(4, np.int32),
+                     np.zeros(44, np.int32), np.zeros(29), _MAXLS, np.zeros(2, np.int32)])
+    nfev, nit = np.zeros(len(args), int), np.zeros(len(args), int)
+    setulb = _lbfgsb.setulb
+    active = list(range(len(args)))
     while active:
         asking = []
         for j in active:
-            s = state[j]
-            while True:
-                _lbfgsb.setulb(m, s["x"], s["low"], s["up"], s["nbd"], s["f"], s["g"], factr,
-                               _GTOL, s["wa"], s["iwa"], s["task"], s["lsave"], s["isave"],
-                               s["dsave"], _MAXLS, s["ln_task"])
-                if s["task"][0] != 1:  # 3: wants f and g; anything else: stopped
-                    break
-                s["nit"] += 1
-                if s["nfev"] > _MAXFUN:
-                    s["task"][:] = 5, 502
-            if s["task"][0] == 3:
+            a = args[j]
+            task = a[11]
+            setulb(*a)
+            while task[0] == 1:  # a new iterate; 3: wants f and g; anything else: stopped
+                nit[j] += 1
+                if nfev[j] > _MAXFUN:
+                    task[:] = 5, 502
+                setulb(*a)
+            if task[0] == 3:
                 asking.append(j)
         if asking:
-            f, g = objective(np.array([state[j]["x"] for j in asking]), rows[asking])
-            for j, fj, gj in zip(asking, f, g):
-                state[j]["f"], state[j]["g"] = float(fj), np.array(gj, float)
-                state[j]["nfev"] += 1
+            f, g = objective(np.array([args[j][1] for j in asking]), rows[asking])
+            for k, j in enumerate(asking):
+                args[j][5] = float(f[k])
+                args[j][6][:] = g[k]
+            nfev[asking] += 1
         active = asking
-    return [OptimizeResult(x=s["x"], fun=s["f"], nfev=s["nfev"], nit=s["nit"],
-                           message=f"L-BFGS-B task {tuple(s['task'])}") for s in state]
+    return [OptimizeResult(x=a[1], fun=a[5], nfev=int(nfev[j]), nit=int(nit[j]),
+                           message=f"L-BFGS-B task {tuple(a[11])}") for j, a in enumerate(args)]
 
 
 def fit_joint_batch(name: str, samples, starts, *, location: bool = True, censor: float = 0.0,
