@@ -40,15 +40,35 @@ sample's per-pair terms, without the replicate's own conditioning set, had
 put it 65 behind); 100 is over twice the largest gain seen.  Families
 further behind than that (Clayton and Frank on a Gumbel problem of
 ``benchmarks/timing/study_parts.py``: 130–190 on the full sample) are the saving.
-``benchmarks/timing/study_parts.py`` counts the replicates whose MPM pruning changed:
+Counted by ``benchmarks/timing/study_parts.py`` (before the replicates were
+fitted together), the replicates whose MPM pruning changed:
 none of 50 at 80 and at 160 pairs, for 0.80 and 0.85 of the CPU time of
 refitting every family (Student-t, Gaussian and Gumbel kept; Student-t's
 cold start is most of what remains); on 10 known-truth problems (one data
 set each, 27–160 pairs) none of 500, the same 8 of 10 bands covering.
 
+The replicates are fitted together (:data:`BATCHED`): each is prepared here
+in plan order — its pairs, conditioning set, LF-rank draw and the fits that
+can win it — and then each candidate family and marginal is fitted to all
+of them at once (:mod:`pas.strategies.band_batch`): every replicate keeps
+its own L-BFGS-B with scipy's tolerances, and the objectives of all
+replicates are evaluated in one vectorised call on their distinct pairs
+weighted by their counts (:mod:`pas.models.joint_batch`).  The replicate
+MPMs are those of one replicate after another but for the order of
+summation.  ``benchmarks/timing/study_parts.py --parts band`` (one run on a
+loaded 2-core machine, CPU time): 0.40 (80 pairs) and 0.53 (160) of the CPU
+time of one replicate after another on one core, the largest change of a
+replicate MPM 4.7e-10 and 7.0e-9, the same band on 1 and 2 processes; of
+what remains Student-t's t quantiles (``special.stdtrit``) are about 60 %
+and the draws about 30 %.  KNOWN_TRUTH
+A mixture marginal or a rotated family (no batched objective) and a band
+not started from the final fits keep one replicate after another.
+
 Worker processes (``n_jobs`` > 1, or -1 for every core) are forked (POSIX),
-so they inherit the study's state instead of receiving it pickled; where fork
-is not available the replicates run in this process.  The default (None)
+so they inherit the study's state instead of receiving it pickled (fitted
+together: a contiguous chunk of the replicates each, padded to the same
+number of distinct pairs, so that a replicate's fit does not depend on its
+chunk); where fork is not available the replicates run in this process.  The default (None)
 is every core the process may use on Linux, but one process when this
 process runs other threads (an oracle's, a Dask client's): forking a
 threaded process can copy a lock that one of them holds; and one process
@@ -275,7 +295,7 @@ def replicate_mpms(strategy, pairs, lfset, starts, plan, lf_rng=None,
 
 def _can_batch(strategy, starts, plan) -> bool:
     """Whether every joint fit of the replicates has a batched form (:func:`batchable`)."""
-    return (strategy.estimator.name == "conditional" and starts is not None
+    return (starts is not None and strategy.estimator.name == "conditional"
             and all(batchable(f, m) for f, m in starts)
             and all(_choice_marginals(strategy, p[2]) <= set(HF_MARGINALS) for p in plan))
 
