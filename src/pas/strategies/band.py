@@ -55,10 +55,12 @@ its own L-BFGS-B with scipy's tolerances, and the objectives of all
 replicates are evaluated in one vectorised call on their distinct pairs
 weighted by their counts (:mod:`pas.models.joint_batch`).  The replicate
 MPMs are those of one replicate after another but for the order of
-summation.  ``benchmarks/timing/study_parts.py --parts band`` (one run on a
-loaded 2-core machine, CPU time): 0.40 (80 pairs) and 0.53 (160) of the CPU
-time of one replicate after another on one core, the largest change of a
-replicate MPM 4.7e-10 and 7.0e-9, the same band on 1 and 2 processes; of
+summation.  ``benchmarks/timing/study_parts.py --parts band`` (one run, the
+2-core machine at a load of about 1.5, CPU time on one core): 2.56 s against
+4.99 s at 80 pairs (0.51) and 2.78 s against 5.71 s at 160 (0.49); a loaded
+run gave 0.40 and 0.53.  The largest change of a replicate MPM 4.7e-10 and
+7.0e-9, the same band on 1 and 2 processes (two gained no wall time in
+those runs: the second core was busy); of
 what remains Student-t's t quantiles (``special.stdtrit``) are about 60 %
 and the draws about 30 %.  On 20 known-truth problems (one data set each,
 27–160 pairs; the final band of the same study both ways): 0.28–0.62 of the
