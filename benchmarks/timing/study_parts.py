@@ -17,11 +17,11 @@ time, the forked band workers' included; wall time on a shared machine):
 * ``cold``: the study's periodic cold starts all at once every tenth fit
   (old) against the families in turn (``steps.cold_turns``): loop median and
   worst, the largest change of MPM and band ends;
-* ``band``: the final model band of 80 and 160 pairs started from the
-  study's fits and cold in every replicate (old) against warm from the final
-  fits, every family refitted (``PRUNE_AIC=None``) against the families that
-  can win each replicate, on 1 and 2 cores, how many replicate MPMs pruning
-  changed, and how often a cold start beats the warm one;
+* ``band``: the final model band of 80 and 160 pairs with its replicates
+  fitted one after another (old: warm from the final fits, Student-t also
+  cold, the families that can win each replicate) against each candidate
+  fitted to all replicates at once (``band.BATCHED``), on 1 and 2 cores, the
+  band ends and the largest change of a replicate MPM;
 * ``long``: one iteration at n = 15 k / 150 k / 1.5 M (default families,
   Gaussian, Student-t) drawing all ``z × n`` values and sorting them (old,
   ``tail_draws.TOP_DRAWS = False``) against drawing only the uniforms that can
@@ -218,42 +218,16 @@ def final_study(max_hf):
 
 
 @contextlib.contextmanager
-def band_path(warm=True, cold_families=None, prune=True):
-    """The band's starts: warm from the final fits (new) or the study's fits and cold (old);
-    ``cold_families`` overrides which families also start cold in a warm band; ``prune``
-    False refits every family in every replicate."""
+def band_path(batched):
+    """The band's replicates fitted together (new, ``band.BATCHED``) or one after another (old)."""
     from pas.strategies import band
 
-    saved = band.WARM_BAND, band.COLD_FAMILIES, band.PRUNE_AIC
-    band.WARM_BAND = warm
-    if cold_families is not None:
-        band.COLD_FAMILIES = cold_families
-    if not prune:
-        band.PRUNE_AIC = None
+    saved = band.BATCHED
+    band.BATCHED = batched
     try:
         yield
     finally:
-        band.WARM_BAND, band.COLD_FAMILIES, band.PRUNE_AIC = saved
-
-
-@contextlib.contextmanager
-def cold_against_warm(record):
-    """Every warm-only joint fit also fitted warm and cold: ``(family, marginal, Δ loglik)``."""
-    original = pas.models.joint.fit_joint
-
-    def both(name, u, h, *, start=None, cold=True, **kwargs):
-        fit = original(name, u, h, start=start, cold=cold, **kwargs)
-        if start is not None and not cold:
-            best = original(name, u, h, start=start, cold=True, **kwargs)
-            record.append((name, kwargs.get("marginal", "weibull"),
-                           best.copula.loglik - fit.copula.loglik))
-        return fit
-
-    pas.models.joint.fit_joint = both
-    try:
-        yield
-    finally:
-        pas.models.joint.fit_joint = original
+        band.BATCHED = saved
 
 
 def band_seconds(study, rng, n_jobs):
@@ -264,44 +238,30 @@ def band_seconds(study, rng, n_jobs):
 
 
 def part_band(max_hf):
-    """Band replicates: old starts (study's fits + cold) vs warm from the final fits; cores."""
-    print("-- final model band (50 replicates): old = study's fits + cold start in every "
-          "replicate, new = warm from the final fits")
+    """Band replicates one after another (old) vs fitted together (new), on 1 and 2 cores."""
+    print("-- final model band (50 replicates): old = one replicate after another, new = each "
+          "candidate fitted to all replicates at once (pas.models.joint_batch)")
     out = {}
     for m in (max_hf, 2 * max_hf):
         study, rng = final_study(m)
         rows = {}
-        for label, ctx, jobs in (("old 1 core", band_path(False, prune=False), 1),
-                                 ("every family", band_path(True, prune=False), 1),
-                                 ("new 1 core", band_path(True), 1),
-                                 ("new 2 cores", band_path(True), 2),
-                                 ("all warm, 1 core", band_path(True, ()), 1)):
-            with ctx:
+        for label, batched, jobs in (("old 1 core", False, 1), ("old 2 cores", False, 2),
+                                     ("new 1 core", True, 1), ("new 2 cores", True, 2)):
+            with band_path(batched):
                 rows[label] = band_seconds(study, rng, jobs)
             wall, cpu, (low, high), _ = rows[label]
-            print(f"  {m:3d} pairs, {label:>16}: {wall:5.2f} s wall, {cpu:5.2f} s CPU; "
-                  f"band [{low:.6g}, {high:.6g}]")
-        old, new = rows["old 1 core"], rows["new 1 core"]
-        print(f"  {m:3d} pairs: new/old CPU {new[1] / old[1]:.2f} (wall {new[0] / old[0]:.2f}) on "
-              f"one core; wall 2 cores / 1 core {rows['new 2 cores'][0] / new[0]:.2f}; band "
-              f"identical on 1 and 2 cores: "
-              f"{rows['new 2 cores'][2] == new[2]}; band ends new/old "
-              f"{new[2][0] / old[2][0] - 1:+.2%}, {new[2][1] / old[2][1] - 1:+.2%}")
-        every = rows["every family"]
-        changed = int(np.sum(np.abs(new[3] / every[3] - 1) > 1e-9))
-        print(f"  {m:3d} pairs: pruned/every family CPU {new[1] / every[1]:.2f} on one core; "
-              f"replicate MPMs pruning changed: {changed} of {every[3].size}")
-        record = []
-        with band_path(True, (), prune=False), cold_against_warm(record):
-            band_seconds(study, rng, 1)
-        keys = sorted({r[:2] for r in record})
-        worse = ", ".join(
-            f"{f}/{mg} {sum(d > 1e-6 for k, j, d in record if (k, j) == (f, mg))}"
-            f"/{sum((k, j) == (f, mg) for k, j, _ in record)}" for f, mg in keys)
-        print(f"  {m:3d} pairs: fits where a cold start beats warm by > 1e-6 in loglik: {worse}")
+            print(f"  {m:3d} pairs, {label:>11}: {wall:5.2f} s wall, {cpu:5.2f} s CPU; "
+                  f"band [{low:.8g}, {high:.8g}]")
+        old, new, new2 = rows["old 1 core"], rows["new 1 core"], rows["new 2 cores"]
+        change = np.abs(new[3] / old[3] - 1)
+        print(f"  {m:3d} pairs: new/old CPU {new[1] / old[1]:.2f} on one core, wall on two "
+              f"{new2[0] / rows['old 2 cores'][0]:.2f}; new on 2 cores / 1 core wall "
+              f"{new2[0] / new[0]:.2f}; band identical on 1 and 2 cores: "
+              f"{bool(np.array_equal(new2[3], new[3]))}; band ends new/old "
+              f"{new[2][0] / old[2][0] - 1:+.1e}, {new[2][1] / old[2][1] - 1:+.1e}; replicate "
+              f"MPMs: largest relative change {change.max():.1e}, {int(np.sum(change > 1e-6))} "
+              f"of {change.size} by more than 1e-6")
         out[m] = {k: [v[0], v[1], list(v[2])] for k, v in rows.items()}
-        out[m]["pruning_changed"] = changed
-        out[m]["cold_beats_warm"] = record
     return out
 
 

@@ -88,18 +88,24 @@ def test_pruned_replicates_fit_fewer_candidates_and_give_the_same_band(monkeypat
     # a Gumbel problem with strong dependence: Clayton and Frank are far behind on every
     # resample, so their replicate fits are dropped, and the replicates' MPMs do not move
     import pas.models.joint as joint
+    import pas.strategies.band_batch as band_batch
 
     s, pairs, _ = _problem(3, tau=0.7, gumbel=True, m=60)
     strategy = PAS(band=ModelBand(n_bootstrap=12))
     strategy.reset(0)
     strategy.predict(pairs, s, np.random.default_rng(0))
-    original, fitted = joint.fit_joint, []
+    original, batched, fitted = joint.fit_joint, band_batch.fit_joint_batch, []
 
     def counted(name, *args, **kwargs):
         fitted.append((name, kwargs.get("marginal", "weibull")))
         return original(name, *args, **kwargs)
 
+    def counted_batch(name, samples, *args, **kwargs):  # a fit per replicate
+        fitted.extend([(name, kwargs.get("marginal", "weibull"))] * len(samples))
+        return batched(name, samples, *args, **kwargs)
+
     monkeypatch.setattr(joint, "fit_joint", counted)
+    monkeypatch.setattr(band_batch, "fit_joint_batch", counted_batch)
     pruned = _band(strategy, pairs, s, 1)
     n_pruned, fitted[:] = len(fitted), []
     monkeypatch.setattr(band, "PRUNE_AIC", None)
@@ -151,3 +157,32 @@ def test_the_default_forks_only_a_process_without_other_threads(monkeypatch):
     if threading.active_count() == 1:
         assert band.replicate_mpms(None, None, None, None, plan) == [0.0, 1.0, 2.0, 3.0]
         assert forked == ["fork"]
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("marginals", ["reselected", "alternate"])
+def test_replicates_fitted_together_give_the_band_of_one_after_another(monkeypatch, marginals):
+    # false positives and redrawn LF ranks: each replicate's draw must read the stream where
+    # it would one after another; every replicate's fits are the ones it reaches alone
+    s, pairs, _ = _problem(2, tau=0.6, p_impact=0.7, m=24)
+    strategy = PAS(band=ModelBand(n_bootstrap=12, marginals=marginals))
+    strategy.reset(0)
+    strategy.predict(pairs, s, np.random.default_rng(0))
+    assert band._can_batch(strategy, strategy.final_joint_fits(pairs, s, "both"),
+                           [(None, None, "both", None)])
+    together = _band(strategy, pairs, s, 1)
+    monkeypatch.setattr(band, "BATCHED", False)
+    alone = _band(strategy, pairs, s, 1)
+    assert together[2].size == alone[2].size >= 10
+    np.testing.assert_allclose(together[2], alone[2], rtol=1e-6)
+
+
+def test_a_mixture_band_is_fitted_one_replicate_after_another():
+    s, pairs, _ = _problem(1, tau=0.6, m=30)
+    strategy = PAS(band=ModelBand(n_bootstrap=3),
+                   estimator=ConditionalLikelihood(hf_marginal="weibull_mixture"))
+    strategy.reset(0)
+    strategy.predict(pairs, s, np.random.default_rng(0))
+    starts = strategy.final_joint_fits(pairs, s, "all")
+    plan = band.replicate_plan(pairs, np.random.default_rng(0), 3, ("all",))
+    assert not band._can_batch(strategy, starts, plan)

@@ -176,12 +176,14 @@ def test_weibull_mixture_in_the_band_and_a_failed_mixture_fit_keeps_the_weibull(
 
 
 @pytest.mark.slow
-def test_band_marginals_let_the_bootstrap_choose_or_alternate_the_hf_marginal():
+def test_band_marginals_let_the_bootstrap_choose_or_alternate_the_hf_marginal(monkeypatch):
     # the replicates of the model band fit the study's Weibull ("fitted"), the Weibull and
     # the log-normal alternately ("alternate"), or the better of the two by likelihood
     # ("reselected": on log-normal HF mostly the log-normal); the point estimate is the same
+    import pas.strategies.band as band
+
     s, pairs, truth = _problem(0, tau=0.6, hf_law=stats.lognorm(1.0, scale=1000.0))
-    seen, mpms = {}, {}
+    seen, mpms, assemble = {}, {}, band.replicate_model
     for choice in ("fitted", "alternate", "reselected"):
         strategy = PAS(band=ModelBand(n_bootstrap=12, marginals=choice))
         strategy.reset(0)
@@ -193,7 +195,13 @@ def test_band_marginals_let_the_bootstrap_choose_or_alternate_the_hf_marginal():
             kinds.append(type(model.hf_marginal).__name__)
             return model
 
+        def spy_together(*args, **kwargs):  # the replicates fitted together (band.BATCHED)
+            model = assemble(*args, **kwargs)
+            kinds.append(type(model.hf_marginal).__name__)
+            return model
+
         strategy.fit = spy  # seen in this process only: n_jobs=1
+        monkeypatch.setattr(band, "replicate_model", spy_together)
         low, high, replicates = strategy.model_band(pairs, s, np.random.default_rng(1), n_jobs=1)
         seen[choice] = kinds
         assert low <= np.median(replicates) <= high

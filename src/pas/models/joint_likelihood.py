@@ -17,7 +17,8 @@ __all__ = ["copula_parameters", "parameter_slope", "loglik_and_copula_gradient",
 
 
 def copula_parameters(base: str, c):
-    """Unconstrained optimiser values → the family's parameter matrix (inside its bounds)."""
+    """Unconstrained optimiser values → the family's parameter matrix (inside its bounds);
+    with an array of values per parameter, shape ``(npar, 1, *values.shape)``."""
     if base == "gaussian":
         return np.array([[0.999 * np.tanh(c[0])]])
     if base == "student":
@@ -27,20 +28,22 @@ def copula_parameters(base: str, c):
     if base == "clayton":
         return np.array([[np.clip(np.exp(c[0]), 1e-6, 28.0)]])
     if base == "gumbel":
-        return np.array([[min(1.0 + np.exp(c[0]), 50.0)]])
+        return np.array([[np.minimum(1.0 + np.exp(c[0]), 50.0)]])
     if base == "frank":
         return np.array([[35.0 * np.tanh(c[0] / 35.0)]])
     raise ValueError(f"no joint fit for the copula family {base!r}")
 
 
 def parameter_slope(base: str, c) -> float:
-    """``dθ/dc`` of :func:`copula_parameters` for the first parameter (Student-t: ρ)."""
+    """``dθ/dc`` of :func:`copula_parameters` for the first parameter (Student-t: ρ);
+    elementwise for an array of optimiser values per parameter."""
     if base in ("gaussian", "student"):
         return 0.999 * (1.0 - np.tanh(c[0]) ** 2)
+    e = np.exp(c[0])
     if base == "clayton":
-        return float(np.exp(c[0])) if 1e-6 < np.exp(c[0]) < 28.0 else 0.0
+        return np.where((1e-6 < e) & (e < 28.0), e, 0.0)
     if base == "gumbel":
-        return float(np.exp(c[0])) if 1.0 + np.exp(c[0]) < 50.0 else 0.0
+        return np.where(1.0 + e < 50.0, e, 0.0)
     return 1.0 - np.tanh(c[0] / 35.0) ** 2  # frank
 
 

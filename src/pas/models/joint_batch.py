@@ -1,0 +1,275 @@
+"""Many joint fits of one copula family and HF marginal at once: the model band's replicates.
+
+The band (:mod:`pas.strategies.band`) fits each family and marginal to 50
+bootstrap resamples of the same pairs: 50 problems of
+:func:`pas.models.joint.fit_joint` that differ in their data only.  Here
+each problem keeps its own L-BFGS-B — scipy's, stepped through its
+reverse-communication routine with the tolerances of
+:func:`scipy.optimize.minimize`, so every problem stops where it would on
+its own — and the objectives all problems ask for at a step are evaluated
+in one vectorised call (:func:`minimise_together`).  A resample's
+likelihood is written as its distinct pairs weighted by how often they
+were drawn (:func:`weighted_pairs`): fewer t quantiles for Student-t, whose
+``special.stdtrit`` is most of a band's time.  The value and gradient are
+those of :func:`pas.models.joint.joint_objective` (Weibull and log-normal
+marginal, unrotated families with a gradient), summed in another order.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from scipy import special
+from scipy.optimize import OptimizeResult, _lbfgsb
+
+from .._support.threads import one_blas_thread
+from .copula_densities import GRADIENT_FAMILIES, copula_logpdf, copula_loghfunc, logc_grad, logh_grad
+from .copulas import kendall_tau
+from .joint import (
+    _TINY,
+    _copula_start,
+    _lognormal_start,
+    _prepare,
+    _weibull_start,
+    joint_fit_result,
+    location_bounds,
+)
+from .joint_likelihood import NU_STEP, copula_parameters, parameter_slope
+from ..stats.lognormal import LogNormal3
+from ..stats.weibull import Weibull3
+
+__all__ = ["batchable", "weighted_pairs", "minimise_together", "fit_joint_batch"]
+
+_MAXCOR, _FTOL, _GTOL, _MAXLS, _MAXFUN = 10, 2.2204460492503131e-09, 1e-5, 20, 15000
+"""scipy.optimize.minimize's L-BFGS-B defaults, as :func:`pas.models.joint.minimise_bounded` uses."""
+
+
+def batchable(name: str, marginal: str) -> bool:
+    """Whether :func:`fit_joint_batch` fits this family and marginal (else :func:`fit_joint`)."""
+    return name in GRADIENT_FAMILIES and marginal in ("weibull", "lognormal")
+
+
+def weighted_pairs(name, samples, *, location=True, censor=0.0, width=None):
+    """The problems' data as padded ``(R, width)`` arrays of distinct pairs and their counts.
+
+    ``samples``: per problem ``(u, h)`` as :func:`pas.models.joint.fit_joint` takes
+    them.  Returns a dict of ``u``, ``h`` (censored loads at their level), ``w``
+    (counts; 0 in the padding), ``density`` and per problem ``h_c``, ``span``;
+    ``width``: the padded width (None: the most distinct pairs of a problem).
+    The checks and censoring are :func:`pas.models.joint._prepare`'s, on the
+    resample with its repeats.
+    """
+    rows = []
+    for u, h in samples:
+        _, _, u, hc, h_c, span, density = _prepare(name, u, h, location, censor)
+        order = np.lexsort((hc, u))  # sorted by u, then load: the distinct pairs in turn
+        u, hc, density = u[order], hc[order], density[order]
+        first = np.r_[True, (u[1:] != u[:-1]) | (hc[1:] != hc[:-1])]
+        count = np.diff(np.r_[np.flatnonzero(first), u.size])
+        rows.append((u[first], hc[first], count, density[first], h_c, span))
+    width = max(r[0].size for r in rows) if width is None else width
+    out = {k: np.empty((len(rows), width)) for k in ("u", "h", "w")}
+    out["density"] = np.zeros((len(rows), width), dtype=bool)
+    for j, (u, h, w, d, _, _) in enumerate(rows):
+        pad = width - u.size  # a copy of the first pair, weighted 0
+        out["u"][j], out["h"][j] = np.r_[u, [u[0]] * pad], np.r_[h, [h[0]] * pad]
+        out["w"][j], out["density"][j] = np.r_[w, np.zeros(pad)], np.r_[d, [d[0]] * pad]
+    out["h_c"] = np.array([r[4] for r in rows])
+    out["span"] = np.array([r[5] for r in rows])
+    return out
+
+
+def _copula_parts(base, c, u, v, density):
+    """Per pair ``(log c or log h, ∂/∂v, ∂/∂ first parameter)`` for rows of copula values ``c``."""
+    p = [q[0] for q in copula_parameters(base, [ci[:, None] for ci in c])]
+    total, d_v, d_p = logc_grad(base, p, u, v)
+    censored = ~density
+    if censored.any():
+        pc = [np.broadcast_to(q, u.shape)[censored] for q in p]
+        lh, dh_v, dh_p = logh_grad(base, pc, u[censored], v[censored])
+        total, d_v, d_p = (np.where(density, a, 0.0) for a in (total, d_v, d_p))
+        total[censored], d_v[censored], d_p[censored] = lh, dh_v, dh_p
+    return total, d_v, d_p
+
+
+def _copula_values(base, c, u, v, density):
+    """Per pair ``log c`` or, censored, ``log h`` (no derivatives)."""
+    p = [q[0] for q in copula_parameters(base, [ci[:, None] for ci in c])]
+    total = copula_logpdf(base, p, u, v)
+    censored = ~density
+    if censored.any():
+        pc = [np.broadcast_to(q, u.shape)[censored] for q in p]
+        total = np.where(density, total, 0.0)
+        total[censored] = copula_loghfunc(base, pc, u[censored], v[censored])
+    return total
+
+
+def batch_objective(name: str, data: dict, *, location: bool = True, marginal: str = "weibull"):
+    """``objective(X, rows) -> (negloglik (k,), gradient (k, p))`` of the problems ``rows``
+    of ``data`` (:func:`weighted_pairs`) at optimiser values ``X`` (k, p), as
+    :func:`pas.models.joint.joint_objective`'s ``negloglik_grad``."""
+    base = name.partition("_")[0]
+    n_marg = 3 if location else 2
+    lognormal = marginal == "lognormal"
+
+    @np.errstate(all="ignore")
+    def objective(X, rows):
+        u, h, wt, dens = (data[k][rows] for k in ("u", "h", "w", "density"))
+        gap = np.exp(X[:, :1]) * data["span"][rows, None] if location else 0.0
+        theta = data["h_c"][rows, None] - gap if location else 0.0
+        b = np.exp(X[:, n_marg - 1:n_marg])
+        a = X[:, n_marg - 2:n_marg - 1] if lognormal else np.exp(X[:, n_marg - 2:n_marg - 1])
+        c = [X[:, j] for j in range(n_marg, X.shape[1])]
+        w = h - theta
+        if lognormal:
+            z = (np.log(w) - a) / b
+            log_f = -np.log(w) - np.log(b) - 0.5 * np.log(2.0 * np.pi) - 0.5 * z * z
+            v = np.clip(special.ndtr(z), _TINY, 1 - _TINY)
+        else:
+            ln_z = np.log(w) - np.log(a)
+            zb = np.exp(b * ln_z)
+            log_f = np.log(b / a) + (b - 1.0) * ln_z - zb
+            v = np.clip(-np.expm1(-zb), _TINY, 1 - _TINY)
+        total, d_v, d_p = _copula_parts(base, c, u, v, dens)
+        val = np.sum(wt * np.where(dens, log_f + total, total), axis=1)
+        dens_w, d_v = wt * dens, wt * d_v
+        if lognormal:  # a = μ, b = σ; X holds μ and ln σ
+            phi = np.exp(-0.5 * z * z) / np.sqrt(2.0 * np.pi)
+            grads = [np.sum(dens_w * (1.0 + z / b) / w - d_v * phi / (b * w), axis=1),
+                     np.sum(dens_w * z / b - d_v * phi / b, axis=1),
+                     np.sum(dens_w * (z * z - 1.0) - d_v * phi * z, axis=1)]
+        else:  # a = α, b = β; X holds ln α and ln β
+            one_v = 1.0 - v
+            grads = [np.sum(dens_w * (b * zb - b + 1.0) / w + d_v * one_v * (-b * zb / w), axis=1),
+                     np.sum(dens_w * b * (zb - 1.0) + d_v * one_v * (-b * zb), axis=1),
+                     np.sum(dens_w * (1.0 + b * ln_z * (1.0 - zb)) + d_v * one_v * b * zb * ln_z,
+                            axis=1)]
+        grads[0] = grads[0] * -gap[:, 0] if location else None
+        grads.append(np.sum(wt * d_p, axis=1) * parameter_slope(base, c))
+        if base == "student":  # ν: a forward difference of the copula terms, as joint_likelihood
+            moved = _copula_values(base, [c[0], c[1] + NU_STEP], u, v, dens)
+            grads.append((np.sum(wt * moved, axis=1) - np.sum(wt * total, axis=1)) / NU_STEP)
+        g = -np.column_stack([x for x in grads if x is not None])
+        bad = ~np.isfinite(val) | ~np.all(np.isfinite(g), axis=1)
+        return np.where(bad, 1e300, -val), np.where(bad[:, None], 0.0, g)
+
+    return objective
+
+
+def _bound_arrays(bounds):
+    """scipy's ``(lower, upper, nbd)`` of L-BFGS-B bounds given as ``(lo or None, hi or None)``."""
+    lo = np.array([-np.inf if b[0] is None else b[0] for b in bounds], float)
+    hi = np.array([np.inf if b[1] is None else b[1] for b in bounds], float)
+    nbd = np.where(np.isfinite(lo), 1, 0) + np.where(np.isfinite(hi), 2, 0)
+    nbd = np.array([0, 1, 3, 2])[nbd].astype(np.int32)  # none, lower, upper, both
+    return np.where(np.isfinite(lo), lo, 0.0), np.where(np.isfinite(hi), hi, 0.0), nbd, lo, hi
+
+
+def minimise_together(objective, starts, bounds, rows):
+    """Each problem's L-BFGS-B from ``starts[j]`` within ``bounds[j]``, the objectives
+    evaluated together: ``objective(X, rows)`` for the problems that ask at a step.
+
+    The iterates are those of ``scipy.optimize.minimize(method="L-BFGS-B",
+    jac=True)`` on each problem alone (its defaults; module docs).  Returns one
+    ``OptimizeResult`` (``x``, ``fun``, ``nfev``, ``message``) per problem.
+    """
+    n = len(starts[0])
+    m = _MAXCOR
+    factr = _FTOL / np.finfo(float).eps
+    args = []  # per problem setulb's arguments: x at 1, f at 5, g at 6, task at 11
+    for x0, bnd in zip(starts, bounds):
+        low, up, nbd, lo, hi = _bound_arrays(bnd)
+        args.append([m, np.clip(np.asarray(x0, float), lo, hi), low, up, nbd, 0.0, np.zeros(n),
+                     factr, _GTOL, np.zeros(2 * m * n + 5 * n + 11 * m * m + 8 * m),
+                     np.zeros(3 * n, np.int32), np.zeros(2, np.int32), np.zeros(4, np.int32),
+                     np.zeros(44, np.int32), np.zeros(29), _MAXLS, np.zeros(2, np.int32)])
+    nfev, nit = np.zeros(len(args), int), np.zeros(len(args), int)
+    setulb = _lbfgsb.setulb
+    active = list(range(len(args)))
+    while active:
+        asking = []
+        for j in active:
+            a = args[j]
+            task = a[11]
+            setulb(*a)
+            while task[0] == 1:  # a new iterate; 3: wants f and g; anything else: stopped
+                nit[j] += 1
+                if nfev[j] > _MAXFUN:
+                    task[:] = 5, 502
+                setulb(*a)
+            if task[0] == 3:
+                asking.append(j)
+        if asking:
+            f, g = objective(np.array([args[j][1] for j in asking]), rows[asking])
+            for k, j in enumerate(asking):
+                args[j][5] = float(f[k])
+                args[j][6][:] = g[k]
+            nfev[asking] += 1
+        active = asking
+    return [OptimizeResult(x=a[1], fun=a[5], nfev=int(nfev[j]), nit=int(nit[j]),
+                           message=f"L-BFGS-B task {tuple(a[11])}") for j, a in enumerate(args)]
+
+
+def fit_joint_batch(name: str, samples, starts, *, location: bool = True, censor: float = 0.0,
+                    cold: bool = True, marginal: str = "weibull", width=None) -> list:
+    """:func:`pas.models.joint.fit_joint` of one family and marginal on every sample at once.
+
+    ``samples``: per problem ``(u, h)``; ``starts``: per problem the optimiser
+    values of an earlier fit or None; ``cold``: also start from the data, the
+    better optimum kept (as there; a problem without a start, or whose start
+    fails, starts from the data anyway); ``width``: :func:`weighted_pairs`.
+    Returns per problem the :class:`~pas.models.joint.JointFit` or the
+    ValueError its fit raised.
+    """
+    base = name.partition("_")[0]
+    lognormal = marginal == "lognormal"
+    n_marg = 3 if location else 2
+    n_par = n_marg + (2 if base == "student" else 1)
+    out = [None] * len(samples)
+    for j, (u, h) in enumerate(samples):
+        try:
+            _prepare(name, u, h, location, censor)
+        except ValueError as err:
+            out[j] = err
+    valid = [j for j in range(len(samples)) if out[j] is None]
+    if not valid:
+        return out
+    samples, starts = [samples[j] for j in valid], [starts[j] for j in valid]
+    data = weighted_pairs(name, samples, location=location, censor=censor, width=width)
+    shape = (np.log(0.02), np.log(10.0)) if lognormal else (np.log(0.05), np.log(50.0))
+    bounds = [location_bounds(h, censor, location) + [(None, None), shape]
+              + [(None, None)] * (n_par - n_marg) for _, h in samples]
+    objective = batch_objective(name, data, location=location, marginal=marginal)
+
+    def run(problems, x0s):
+        with one_blas_thread():  # an L-BFGS-B step in five parameters (pas._support.threads)
+            return dict(zip(problems, minimise_together(
+                objective, x0s, [bounds[j] for j in problems], np.array(problems, int))))
+
+    warm = [j for j, s in enumerate(starts) if s is not None and len(s) == n_par]
+    best = run(warm, [np.asarray(starts[j], float) for j in warm]) if warm else {}
+    fresh = [j for j in range(len(samples))
+             if cold or j not in best or best[j].fun >= 1e299]
+    if fresh:
+        x0s = []
+        for j in fresh:
+            u, h = samples[j]
+            u = np.clip(np.asarray(u, float), _TINY, 1 - _TINY)
+            h = np.asarray(h, float)
+            tau = kendall_tau(u, h) if u.size > 2 else 0.3
+            start_marginal = _lognormal_start if lognormal else _weibull_start
+            x0s.append(np.r_[start_marginal(h, location), _copula_start(base, tau)])
+        for j, res in run(fresh, x0s).items():
+            if j not in best or res.fun < best[j].fun:
+                best[j] = res
+    for j, i in enumerate(valid):
+        res = best[j]
+        x = res.x
+        theta = data["h_c"][j] - np.exp(x[0]) * data["span"][j] if location else 0.0
+        first = x[n_marg - 2] if lognormal else np.exp(x[n_marg - 2])
+        hf = (LogNormal3 if lognormal else Weibull3)(float(theta), float(first),
+                                                      float(np.exp(x[n_marg - 1])))
+        try:
+            out[i] = joint_fit_result(name, res, x[n_marg:], n_marg, hf, marginal)
+        except ValueError as err:
+            out[i] = err
+    return out

@@ -1,0 +1,103 @@
+"""Joint fits of many resamples at once against pas.models.joint's one at a time."""
+
+import numpy as np
+import pytest
+from scipy import optimize
+
+from pas.models.joint import fit_joint, joint_objective
+from pas.models.joint_batch import (
+    batch_objective,
+    fit_joint_batch,
+    minimise_together,
+    weighted_pairs,
+)
+
+
+def _pairs(seed, n=40):
+    rng = np.random.default_rng(seed)
+    u = rng.uniform(0.02, 0.98, n)
+    h = 2.0 + rng.weibull(1.6, n) * (1.0 + 2.5 * u)
+    return u, h
+
+
+def _resamples(u, h, k, seed):
+    rng = np.random.default_rng(seed)
+    return [(u[i], h[i]) for i in (rng.integers(0, u.size, u.size) for _ in range(k))]
+
+
+@pytest.mark.parametrize("name", ["gaussian", "student", "clayton", "gumbel", "frank"])
+@pytest.mark.parametrize("marginal, location, censor",
+                         [("weibull", True, 0.0), ("lognormal", True, 0.2), ("weibull", False, 0.0)])
+def test_the_weighted_objective_is_the_resamples_own(name, marginal, location, censor):
+    # a resample with repeats against its distinct pairs weighted by their counts, at points
+    # away from the optimum, value and gradient (Student-t's ν by the same difference)
+    u, h = _pairs(0)
+    samples = _resamples(u, h, 3, 1)
+    data = weighted_pairs(name, samples, location=location, censor=censor, width=u.size)
+    assert np.all(data["w"].sum(axis=1) == u.size)
+    objective = batch_objective(name, data, location=location, marginal=marginal)
+    rng = np.random.default_rng(2)
+    n_par = (3 if location else 2) + (2 if name == "student" else 1)
+    x = rng.normal(0.0, 0.3, (3, n_par)) + np.r_[[-1.0] if location else [], 0.5, 0.3,
+                                                  [0.6] * (n_par - (3 if location else 2))]
+    f, g = objective(x, np.arange(3))
+    for j, (uj, hj) in enumerate(samples):
+        _, grad, _ = joint_objective(name, uj, hj, location=location, censor=censor,
+                                     marginal=marginal)
+        f_one, g_one = grad(x[j])
+        assert f[j] == pytest.approx(f_one, rel=1e-10)
+        np.testing.assert_allclose(g[j], g_one, rtol=1e-6, atol=1e-6 * np.abs(g_one).max())
+
+
+def test_lockstep_iterates_are_those_of_scipy_minimize():
+    # each problem's L-BFGS-B stops where scipy's own would: same evaluations, same point
+    centres = np.array([[1.0, -2.0, 0.5], [3.0, 0.2, -1.0], [0.1, 0.1, 0.1]])
+
+    def rosen_like(x, c):
+        d = x - c
+        return float(np.sum(d ** 2) + 0.5 * (d[0] * d[1]) ** 2 + np.exp(d[2]) - d[2]), \
+            np.array([2 * d[0] + d[0] * d[1] ** 2, 2 * d[1] + d[1] * d[0] ** 2,
+                      2 * d[2] + np.exp(d[2]) - 1.0])
+
+    def together(X, rows):
+        out = [rosen_like(x, centres[r]) for x, r in zip(X, rows)]
+        return np.array([o[0] for o in out]), np.array([o[1] for o in out])
+
+    bounds = [[(None, None), (-1.5, None), (None, 2.0)]] * 3
+    starts = [np.zeros(3), np.ones(3), np.full(3, -2.0)]
+    res = minimise_together(together, starts, bounds, np.arange(3))
+    for j in range(3):
+        alone = optimize.minimize(rosen_like, starts[j], args=(centres[j],), jac=True,
+                                  method="L-BFGS-B", bounds=bounds[j])
+        assert res[j].nfev == alone.nfev
+        np.testing.assert_allclose(res[j].x, alone.x, rtol=1e-12, atol=1e-12)
+
+
+@pytest.mark.parametrize("name, cold", [("gaussian", False), ("gumbel", False), ("student", True)])
+@pytest.mark.parametrize("marginal", ["weibull", "lognormal"])
+def test_batched_fits_reach_the_one_at_a_time_optima(name, cold, marginal):
+    u, h = _pairs(3, n=50)
+    final = fit_joint(name, u, h, marginal=marginal)
+    samples = _resamples(u, h, 6, 4)
+    batch = fit_joint_batch(name, samples, [final.x] * 6, cold=cold, marginal=marginal)
+    for (uj, hj), fit in zip(samples, batch):
+        alone = fit_joint(name, uj, hj, start=final.x, cold=cold, marginal=marginal)
+        # Student-t's ν is flat near its optimum: the likelihood, not the parameters, agrees
+        assert fit.copula.loglik == pytest.approx(alone.copula.loglik, abs=1e-5)
+        assert fit.copula.name == name and fit.marginal == marginal
+        if name != "student":
+            np.testing.assert_allclose(fit.x, alone.x, rtol=1e-6, atol=1e-6)
+
+
+def test_a_resample_that_cannot_be_fitted_gives_its_error_and_leaves_the_others():
+    u, h = _pairs(5)
+    final = fit_joint("gumbel", u, h)
+    good = _resamples(u, h, 2, 6)
+    alike = (u[:5], np.r_[h[:3], h[:2]])  # three different loads: fitted; two: not
+    two = (u[:5], np.r_[h[:2], h[:2], h[:1]])
+    out = fit_joint_batch("gumbel", [good[0], two, alike, good[1]], [final.x] * 4)
+    assert isinstance(out[1], ValueError) and "at least 3 different HF loads" in str(out[1])
+    assert not isinstance(out[2], Exception)
+    for j, (uj, hj) in ((0, good[0]), (3, good[1])):
+        alone = fit_joint("gumbel", uj, hj, start=final.x, cold=False)
+        assert out[j].copula.loglik == pytest.approx(alone.copula.loglik, rel=1e-9)
