@@ -22,20 +22,19 @@ from scipy import special
 from scipy.optimize import OptimizeResult, _lbfgsb
 
 from .._support.threads import one_blas_thread
-from .copula_densities import GRADIENT_FAMILIES, copula_logpdf, copula_loghfunc, logc_grad, logh_grad
-from .copulas import kendall_tau
-from .joint import (
-    _TINY,
-    _copula_start,
-    _lognormal_start,
-    _prepare,
-    _weibull_start,
-    joint_fit_result,
-    location_bounds,
-)
-from .joint_likelihood import NU_STEP, copula_parameters, parameter_slope
 from ..stats.lognormal import LogNormal3
 from ..stats.weibull import Weibull3
+from .copula_densities import (
+    GRADIENT_FAMILIES,
+    copula_loghfunc,
+    copula_logpdf,
+    logc_grad,
+    logh_grad,
+)
+from .copulas import kendall_tau
+from .joint import _TINY, _prepare, joint_fit_result, location_bounds
+from .joint_likelihood import NU_STEP, copula_parameters, parameter_slope
+from .joint_starts import _lognormal_start, _weibull_start, copula_start
 
 __all__ = ["batchable", "weighted_pairs", "minimise_together", "fit_joint_batch"]
 
@@ -257,7 +256,7 @@ def fit_joint_batch(name: str, samples, starts, *, location: bool = True, censor
             h = np.asarray(h, float)
             tau = kendall_tau(u, h) if u.size > 2 else 0.3
             start_marginal = _lognormal_start if lognormal else _weibull_start
-            x0s.append(np.r_[start_marginal(h, location), _copula_start(base, tau)])
+            x0s.append(np.r_[start_marginal(h, location), copula_start(base, tau)])
         for j, res in run(fresh, x0s).items():
             if j not in best or res.fun < best[j].fun:
                 best[j] = res

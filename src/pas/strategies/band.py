@@ -94,10 +94,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .._support.checks import check_int, check_option
 from ..models.joint import HF_MARGINALS
 from ..models.joint_batch import batchable
 from ..models.joint_mixture import MIXTURE, pair_logliks
-from .._support.checks import check_int, check_option
 from .band_batch import Replicate, batch_fits, replicate_model
 from .selection import impact_probability
 from .steps import conditioning_set
@@ -335,12 +335,10 @@ def _chunk_mpms(indices) -> list:
         try:
             if fits.get(i) is None:
                 raise ValueError("no fit")
-            draws = strategy._draws(replicate_model(strategy, lfset, chunk[i], fits[i]),
-                                    plan[i][3])
+            out.append(strategy._replicate_mpm(
+                replicate_model(strategy, lfset, chunk[i], fits[i]), lfset, plan[i][3]))
         except (ValueError, np.linalg.LinAlgError):
             out.append(None)
-            continue
-        out.append(mpm_of_realisations(draws, lfset.n_waves, lfset.p_exp))
     return out
 
 
