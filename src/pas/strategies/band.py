@@ -68,8 +68,8 @@ import numpy as np
 
 from ..models.joint import HF_MARGINALS
 from ..models.joint_mixture import MIXTURE, pair_logliks
-from ..stats.exceedance import mpm_of_realisations
 from .._support.checks import check_int, check_option
+from . import model_form as model_forms
 from .selection import impact_probability
 from .steps import conditioning_set
 
@@ -105,17 +105,25 @@ class ModelBand:
         :func:`pas.stats.dependence.weighted_ranks`) instead of keeping their
         mid-ranks ("fixed"), so the band holds what the empirical LF ranks
         cannot tell about the LF tail (``docs/departures.md``).
+    model_form : {"none", "semi-empirical"}, default "none"
+        With "semi-empirical" every replicate also reads the MPM of its
+        model's semi-empirical distribution — the evaluated events at their
+        observed HF values, the model drawing the rest — and the band spans
+        both sets of replicate MPMs (:mod:`pas.strategies.model_form`); the
+        MPM itself is unchanged.
     """
 
     n_bootstrap: int = 50
     marginals: str = "reselected"
     lf_ranks: str = "redrawn"
+    model_form: str = "none"
 
     def __post_init__(self):
         object.__setattr__(self, "n_bootstrap", check_int(self.n_bootstrap, "n_bootstrap",
                                                           minimum=0))
         check_option(self.marginals, "marginals", {"fitted", "reselected", "alternate"})
         check_option(self.lf_ranks, "lf_ranks", {"fixed", "redrawn"})
+        check_option(self.model_form, "model_form", set(model_forms.MODEL_FORMS))
 
 
 PRUNE_AIC = 100.0
@@ -211,8 +219,9 @@ def replicate_starts(strategy, b, lfset, starts: dict, choice) -> ReplicateStart
     return ReplicateStarts((k, starts[k]) for k in keys if k[0] in kept)
 
 
-def _replicate_mpm(i: int) -> float | None:
-    """The MPM of replicate ``i`` of the running job, None when it cannot be fitted."""
+def _replicate_mpm(i: int) -> tuple | None:
+    """The MPMs of replicate ``i`` of the running job (:func:`model_form.replicate_values
+    <pas.strategies.model_form.replicate_values>`), None when it cannot be fitted."""
     strategy, pairs, lfset, starts, plan, lf_rngs = _JOB
     tp, fp, marginal, draw_rng = plan[i]
     b = _resampled(pairs, tp, fp)
@@ -226,12 +235,12 @@ def _replicate_mpm(i: int) -> float | None:
         draws = strategy._draws(model, draw_rng)
     except (ValueError, np.linalg.LinAlgError):
         return None
-    return mpm_of_realisations(draws, lfset.n_waves, lfset.p_exp)
+    return model_forms.replicate_values(draws, pairs, lfset, strategy.band.model_form)
 
 
 def replicate_mpms(strategy, pairs, lfset, starts, plan, lf_rng=None,
                    n_jobs: int | None = None) -> list:
-    """The MPM of every replicate of ``plan`` (None where it failed), in plan order.
+    """The MPMs of every replicate of ``plan`` (None where it failed), in plan order.
 
     ``starts``: the final joint fits, those that can win a replicate its
     starts (:func:`replicate_starts`; None: the strategy's own rule); ``lf_rng``: the stream of
@@ -276,9 +285,5 @@ def bootstrap_band(strategy, band: ModelBand, pairs, lfset, rng: np.random.Gener
     # a stream of its own, so the resampled pairs are those of "fixed"
     lf_rng = rng.spawn(1)[0] if band.lf_ranks == "redrawn" else None
     plan = replicate_plan(pairs, rng, band.n_bootstrap, marginals)
-    mpms = [x for x in replicate_mpms(strategy, pairs, lfset, starts, plan, lf_rng, n_jobs)
-            if x is not None]
-    if len(mpms) < 10:
-        return None
-    mpms = np.asarray(mpms)
-    return float(np.percentile(mpms, 2.5)), float(np.percentile(mpms, 97.5)), mpms
+    return model_forms.band_ends(replicate_mpms(strategy, pairs, lfset, starts, plan, lf_rng,
+                                                n_jobs))
