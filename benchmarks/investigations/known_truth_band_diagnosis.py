@@ -97,7 +97,7 @@ def main(argv=None):
         ap.error(f"type {args.type!r} is not a known-truth type; see known_truth.py --types")
     parts = args.only.split(",")
     ptype = TYPES[args.type]
-    without = dataclasses.replace(ptype, **{args.remove: "none"})
+    without = dataclasses.replace(ptype, **{args.remove: "none"}) if "without" in parts else None
     for r in range(args.first, args.first + args.n):
         problem = make_problem(ptype, r)
         print(f"{args.type} data set {r} (truth {problem.truth_mpm:.1f})", flush=True)
