@@ -117,8 +117,9 @@ def test_one_source_of_names():
     pas_fields = {f.name for cls in (pas.ConditionalLikelihood, pas.SelectedSample,
                                      pas.ModelBand) for f in dataclasses.fields(cls)}
     own = set(inspect.signature(pas.PAS).parameters) - {"estimator", "band", "moved"}
-    assert set(FLAT_NAMES) == own | {"estimator"} | (pas_fields - {"marginals", "lf_ranks"}) \
-        | {"band_marginals", "band_lf_ranks"}
+    band = {"marginals", "lf_ranks", "model_form"}
+    assert set(FLAT_NAMES) == own | {"estimator"} | (pas_fields - band) \
+        | {f"band_{name}" for name in band}
     stop_fields = {f.name for f in dataclasses.fields(pas.Stopping)}
     assert set(RESUMABLE) == (stop_fields - {"measure"}) | {"stop_measure", "max_hf",
                                                              "max_failures"}

@@ -98,6 +98,7 @@ from .._support.checks import check_int, check_option
 from ..models.joint import HF_MARGINALS
 from ..models.joint_batch import batchable
 from ..models.joint_mixture import MIXTURE, pair_logliks
+from . import model_form as model_forms
 from .band_batch import Replicate, batch_fits, replicate_model
 from .selection import impact_probability
 from .steps import conditioning_set
@@ -138,17 +139,25 @@ class ModelBand:
         :func:`pas.stats.dependence.weighted_ranks`) instead of keeping their
         mid-ranks ("fixed"), so the band holds what the empirical LF ranks
         cannot tell about the LF tail (``docs/departures.md``).
+    model_form : {"none", "semi-empirical"}, default "none"
+        With "semi-empirical" every replicate also reads the MPM of its
+        model's semi-empirical distribution — the evaluated events at their
+        observed HF values, the model drawing the rest — and the band spans
+        both sets of replicate MPMs (:mod:`pas.strategies.model_form`); the
+        MPM itself is unchanged.
     """
 
     n_bootstrap: int = 50
     marginals: str = "reselected"
     lf_ranks: str = "redrawn"
+    model_form: str = "none"
 
     def __post_init__(self):
         object.__setattr__(self, "n_bootstrap", check_int(self.n_bootstrap, "n_bootstrap",
                                                           minimum=0))
         check_option(self.marginals, "marginals", {"fitted", "reselected", "alternate"})
         check_option(self.lf_ranks, "lf_ranks", {"fixed", "redrawn"})
+        check_option(self.model_form, "model_form", set(model_forms.MODEL_FORMS))
 
 
 PRUNE_AIC = 100.0
@@ -245,8 +254,9 @@ def replicate_starts(strategy, b, lfset, starts: dict, choice) -> ReplicateStart
     return ReplicateStarts((k, starts[k]) for k in keys if k[0] in kept)
 
 
-def _replicate_mpm(i: int) -> float | None:
-    """The MPM of replicate ``i`` of the running job, None when it cannot be fitted."""
+def _replicate_mpm(i: int) -> tuple | None:
+    """The MPMs of replicate ``i`` of the running job (:func:`model_form.replicate_values
+    <pas.strategies.model_form.replicate_values>`), None when it cannot be fitted."""
     strategy, pairs, lfset, starts, plan, lf_rngs = _JOB
     tp, fp, marginal, draw_rng = plan[i]
     b = _resampled(pairs, tp, fp)
@@ -257,14 +267,19 @@ def _replicate_mpm(i: int) -> float | None:
             starts = replicate_starts(strategy, b, lfset, starts, marginal)
         model = strategy.fit(b, lfset, update=False, hf_marginal=marginal,
                              lf_ranks_rng=lf_rngs[i], starts=starts)
-        return strategy._replicate_mpm(model, lfset, draw_rng)
+        return strategy._replicate_mpm(model, lfset, draw_rng, _observed(strategy, pairs))
     except (ValueError, np.linalg.LinAlgError):
         return None
 
 
+def _observed(strategy, pairs):
+    """The study's pairs when the band also reads the semi-empirical MPM, else None."""
+    return pairs if strategy.band.model_form == "semi-empirical" else None
+
+
 def replicate_mpms(strategy, pairs, lfset, starts, plan, lf_rng=None,
                    n_jobs: int | None = None) -> list:
-    """The MPM of every replicate of ``plan`` (None where it failed), in plan order.
+    """The MPMs of every replicate of ``plan`` (None where it failed), in plan order.
 
     ``starts``: the final joint fits, those that can win a replicate its
     starts (:func:`replicate_starts`; None: the strategy's own rule); ``lf_rng``: the stream of
@@ -327,7 +342,7 @@ def _prepared(strategy, pairs, lfset, starts, plan, lf_rng) -> list:
 
 def _chunk_mpms(indices) -> list:
     """The MPMs of the replicates ``indices`` of the running batched job, fitted together."""
-    strategy, lfset, plan, replicates, width = _JOB
+    strategy, pairs, lfset, plan, replicates, width = _JOB
     chunk = {i: replicates[i] for i in indices if replicates[i] is not None}
     fits = batch_fits(strategy, chunk, COLD_FAMILIES, width)
     out = []
@@ -336,7 +351,8 @@ def _chunk_mpms(indices) -> list:
             if fits.get(i) is None:
                 raise ValueError("no fit")
             out.append(strategy._replicate_mpm(
-                replicate_model(strategy, lfset, chunk[i], fits[i]), lfset, plan[i][3]))
+                replicate_model(strategy, lfset, chunk[i], fits[i]), lfset, plan[i][3],
+                _observed(strategy, pairs)))
         except (ValueError, np.linalg.LinAlgError):
             out.append(None)
     return out
@@ -347,7 +363,7 @@ def _batched_mpms(strategy, pairs, lfset, starts, plan, lf_rng, n_jobs) -> list:
     global _JOB
     replicates = _prepared(strategy, pairs, lfset, starts, plan, lf_rng)
     width = max([np.unique(r[0].position).size for r in replicates if r is not None] or [1])
-    _JOB = (strategy, lfset, plan, replicates, width)
+    _JOB = (strategy, pairs, lfset, plan, replicates, width)
     chunks = [list(c) for c in np.array_split(np.arange(len(plan)), n_jobs) if c.size]
     try:
         if len(chunks) <= 1:
@@ -372,9 +388,5 @@ def bootstrap_band(strategy, band: ModelBand, pairs, lfset, rng: np.random.Gener
     # a stream of its own, so the resampled pairs are those of "fixed"
     lf_rng = rng.spawn(1)[0] if band.lf_ranks == "redrawn" else None
     plan = replicate_plan(pairs, rng, band.n_bootstrap, marginals)
-    mpms = [x for x in replicate_mpms(strategy, pairs, lfset, starts, plan, lf_rng, n_jobs)
-            if x is not None]
-    if len(mpms) < 10:
-        return None
-    mpms = np.asarray(mpms)
-    return float(np.percentile(mpms, 2.5)), float(np.percentile(mpms, 97.5)), mpms
+    return model_forms.band_ends(replicate_mpms(strategy, pairs, lfset, starts, plan, lf_rng,
+                                                n_jobs))

@@ -15,7 +15,7 @@ import numpy as np
 
 from ..models.copulas import select_family
 from ..models.joint import HF_MARGINALS, best_per_family, starts_cold
-from ..models.joint_batch import batchable, fit_joint_batch
+from ..models.joint_batch import fit_joint_batch
 from .steps import FittedModel
 
 __all__ = ["Replicate", "batch_fits", "fits_in_order", "replicate_model"]

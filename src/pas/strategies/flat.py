@@ -25,7 +25,7 @@ OWN_NAMES = ("families", "z", "delta_aic", "exclude_at_bound", "skip_unsplittabl
 """Settings that are :class:`~pas.strategies.pas.PAS` arguments themselves."""
 
 BAND_NAMES = {"n_bootstrap": "n_bootstrap", "marginals": "band_marginals",
-              "lf_ranks": "band_lf_ranks"}
+              "lf_ranks": "band_lf_ranks", "model_form": "band_model_form"}
 """Flat name of each :class:`~pas.strategies.band.ModelBand` field."""
 
 _ESTIMATOR_FIELDS = {name: tuple(f.name for f in fields(cls)) for name, cls in ESTIMATORS.items()}

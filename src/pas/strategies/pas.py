@@ -39,7 +39,7 @@ import numpy as np
 from .._support.checks import check_finite, check_int
 from ..models.copulas import PAPER_FAMILIES, _family_and_rotation, select_family
 from ..stats.dependence import empirical_tail_dependence, kendall_tau
-from . import band, tail_draws
+from . import band, model_form, tail_draws
 from .acquisition import md_select
 from .band import ModelBand
 from .base import Pairs, Prediction, Strategy
@@ -51,7 +51,6 @@ from .selection import impact_probability, population_lf_ranks
 from .steps import (
     FittedModel,
     SharedOnCopy,
-    cold_turns,
     conditioning_set,
     draw_conditional_hf,
     fit_marginals,
@@ -245,10 +244,15 @@ class PAS(Strategy):
         """Step 9's uniforms ``r`` and ``q``, shape ``(z, n0)`` each (:class:`PeakUniforms`)."""
         return self._uniforms.draw(n0, rng)
 
-    def _replicate_mpm(self, model: FittedModel, lfset: LFSet, rng) -> float:
-        """The MPM of a band replicate's ``model`` (Steps 9–12 with the study's uniforms),
-        from the top of each realisation (:mod:`pas.strategies.tail_draws`)."""
-        return tail_draws.mpm_from_top(model, self._uniforms, lfset, rng)
+    def _replicate_mpm(self, model: FittedModel, lfset: LFSet, rng, observed=None) -> tuple:
+        """A band replicate's MPMs: ``(model,)`` from the top of each realisation
+        (:mod:`pas.strategies.tail_draws`); with the study's pairs ``observed``
+        (``ModelBand(model_form="semi-empirical")``) ``(model, semi-empirical)`` from
+        the whole draws (:func:`pas.strategies.model_form.replicate_values`)."""
+        if observed is None:
+            return (tail_draws.mpm_from_top(model, self._uniforms, lfset, rng),)
+        return model_form.replicate_values(tail_draws.whole_draws(model, self._uniforms, rng),
+                                           observed, lfset, "semi-empirical")
 
     def predict(self, pairs: Pairs, lfset: LFSet, rng: np.random.Generator) -> Prediction:
         model = self.fit(pairs, lfset)

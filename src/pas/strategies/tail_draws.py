@@ -46,7 +46,7 @@ from .steps import EPS, draw_conditional_hf, hf_distribution
 from .stopping import range_grid
 
 __all__ = ["TOP_DRAWS", "top_draws", "full_distribution", "TailPrediction", "predict_from_top",
-           "mpm_from_top"]
+           "mpm_from_top", "whole_draws"]
 
 TOP_DRAWS = True
 """False: every iteration draws all ``z × n0`` values (the path before issue 27)."""
@@ -280,3 +280,9 @@ def mpm_from_top(model, uniforms, lfset, rng) -> float:
     if top is None:
         top = model.draws(r, _q(model, q, uniforms, np.arange(model.n0)))
     return mpm_of_realisations(top, lfset.n_waves, lfset.p_exp)
+
+
+def whole_draws(model, uniforms, rng) -> np.ndarray:
+    """Every draw of ``model`` (shape ``(z, n0)``), from the uniforms :func:`mpm_from_top` reads."""
+    r, q, _, _ = uniforms.replayable(model.n0, rng, model.impact is not None)
+    return model.draws(r, _q(model, q, uniforms, np.arange(model.n0)))

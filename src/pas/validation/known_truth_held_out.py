@@ -27,6 +27,13 @@ generalises, with (:data:`HELD_OUT_TYPES`)
   past ``l = 3.2`` (non-monotone), and ``"hetero"``, a power law whose
   scatter grows with the LF.
 
+A second round (:data:`FRESH_TYPES`, ``ho2-…``; laws in
+:mod:`pas.validation.known_truth_fresh`) was written after the first round had
+informed the diagnosis of the band, and is never used for any choice: Student-t
+noise on a power law, a threshold on a hidden variable, a saturating load,
+outliers only above the LF's 95 % level (``"gated"``), and a copula mixture
+with a negatively dependent half.
+
 Truth, exact given the LF peaks: as for the tuning types, the ``h`` with
 ``Σ_j P(H_j > h | l_j) = P_exp · n_w``, where
 
@@ -50,6 +57,14 @@ import pyvinecopulib as pv
 from scipy import stats
 
 from .known_truth import HF_SCALE, copula
+from .known_truth_fresh import (
+    GATED_P,
+    GATED_U,
+    HiddenExcessLaw,
+    SaturatingLaw,
+    ScaledLaw,
+    StudentRegressionLaw,
+)
 
 RANK_MISS_FLOOR, RANK_MISS_POWER = 0.2, 1.5  # q(t) = 0.2 + 0.8 t^1.5
 HIGH_MISS_U, HIGH_MISS_P = 0.75, 0.6
@@ -135,8 +150,10 @@ def outlier_share(u, outliers: str):
         return np.full_like(u, CONTAMINATION_P)
     if outliers == "second":
         return 0.05 + 0.25 * u**6
+    if outliers == "gated":
+        return np.where(u > GATED_U, GATED_P, 0.0)
     raise ValueError(f"unknown outlier mechanism {outliers!r}; use 'none', 'contaminate', "
-                     "'second'")
+                     "'second', 'gated'")
 
 
 class SplicedWeibullGPD:
@@ -165,12 +182,13 @@ HF_LAWS = {
     "gamma0.7": lambda: stats.gamma(0.7, scale=HF_SCALE / 0.7),
     "loglogistic3.5": lambda: stats.fisk(3.5, scale=HF_SCALE),
     "weibull-gpd": SplicedWeibullGPD,
+    "saturating1.2": SaturatingLaw,
 }
 """HF marginals by key: each a ``cdf``/``ppf`` pair."""
 
 
-def _bicop(family, *parameters):
-    return pv.Bicop(family=getattr(pv.BicopFamily, family),
+def _bicop(family, *parameters, rotation=0):
+    return pv.Bicop(family=getattr(pv.BicopFamily, family), rotation=rotation,
                     parameters=np.array(parameters, float).reshape(-1, 1))
 
 
@@ -250,6 +268,12 @@ DEPENDENCE = {
     "varying-gaussian": VaryingGaussianLaw,
     "hump": lambda m: LogNormalRegressionLaw(_hump, lambda lf: np.full(lf.shape, 0.25)),
     "hetero": lambda m: LogNormalRegressionLaw(lambda lf: lf**1.2, lambda lf: 0.12 * lf),
+    "gumbel0.6": lambda m: CopulaMixtureLaw(((1.0, copula("gumbel", 0.6)),), m),
+    "gaussian0.6": lambda m: CopulaMixtureLaw(((1.0, copula("gaussian", 0.6)),), m),
+    "student-power": lambda m: StudentRegressionLaw(),
+    "hidden-excess": lambda m: HiddenExcessLaw(),
+    "clayton90+gumbel": lambda m: CopulaMixtureLaw(
+        ((0.5, _bicop("clayton", 4.0 / 3.0, rotation=90)), (0.5, copula("gumbel", 0.75))), m),
 }
 """Conditional laws of the HF given the LF, by key, built on an HF marginal
 (the regressions ignore it)."""
@@ -266,6 +290,8 @@ def outlier_law(ptype: HeldOutType):
     """The law of a type's outlier loads (module docs)."""
     if ptype.outliers == "contaminate":
         return _Independent(CONTAMINATION)
+    if ptype.outliers == "gated":
+        return ScaledLaw(main_law(ptype))
     return CopulaMixtureLaw(((1.0, copula("clayton", 0.3)),),
                             stats.weibull_min(1.1, scale=3.0 * HF_SCALE))
 
@@ -309,7 +335,22 @@ def _held_out_types():
     return {x.name: x for x in out}
 
 
+def _fresh_types():
+    t = HeldOutType
+    out = [
+        t("ho2-reg-power-student", "student-power"),
+        t("ho2-miss-hidden-excess", "hidden-excess", threshold=True),
+        t("ho2-reg-saturating-gumbel", "gumbel0.6", "saturating1.2"),
+        t("ho2-outlier-gated-gaussian", "gaussian0.6", outliers="gated"),
+        t("ho2-mix-negative-body", "clayton90+gumbel"),
+    ]
+    return {x.name: x for x in out}
+
+
 HELD_OUT_TYPES = _held_out_types()
 """The held-out types by name (``ho-GROUP-…``); never used to choose settings."""
 HELD_OUT_GROUPS = ("miss", "outlier", "mix", "reg")
+FRESH_TYPES = _fresh_types()
+"""The second round of held-out types by name (``ho2-GROUP-…``, module docs): written
+after the first had informed the band's diagnosis, never used for any choice."""
 """Their groups: threshold + misses, outliers, mixtures, regressions."""

@@ -19,10 +19,10 @@ import pandas as pd
 from ..api import make_study
 from ..study.flat import from_flat
 from .known_truth import TUNING_TYPES, Problem
-from .known_truth_held_out import HELD_OUT_TYPES
+from .known_truth_held_out import FRESH_TYPES, HELD_OUT_TYPES
 
-TYPES = {**TUNING_TYPES, **HELD_OUT_TYPES}
-"""Every known-truth type by name: the tuning types, then the held-out ones."""
+TYPES = {**TUNING_TYPES, **HELD_OUT_TYPES, **FRESH_TYPES}
+"""Every known-truth type by name: the tuning types, then the held-out ones (both rounds)."""
 
 CHECKPOINTS = (20, 40, 80, 160)
 """HF counts at which :func:`run_one` scores the MPM predicted then (``err@k``)."""
@@ -32,11 +32,11 @@ def select_types(spec: str = "all", *, held_out: bool = False) -> list[str]:
     """The type names a comma-separated ``spec`` of names or groups picks.
 
     ``"all"`` is every tuning type, or with ``held_out=True`` every held-out
-    type; a group (``core``, ``miss``, …) is the types whose name starts
+    type of the first round (the second: ``"ho2"``); a group (``core``, ``miss``, …) is the types whose name starts
     with it and a dash.  A name that picks nothing is a ValueError.
     """
     if spec == "all":
-        return [n for n, t in TYPES.items() if t.held_out == held_out]
+        return [n for n, t in TYPES.items() if t.held_out == held_out and n not in FRESH_TYPES]
     names = []
     for item in spec.split(","):
         picked = [n for n in TYPES if n == item or n.startswith(item + "-")]
