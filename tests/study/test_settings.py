@@ -178,7 +178,8 @@ def test_resumed_python_study_keeps_what_pas_study_set_changed(tmp_path):
 
     def run(**kw):
         return pas.run_pas(lf, lambda e: 1.3 * e.lf ** 1.2, n_waves=2000, p_exp=1e-3,
-                           eps1=0.05, seed=1, study=db, **kw)
+                           eps1=0.05, seed=1, study=db,
+                           strategy=pas.PAS(band=pas.ModelBand(n_bootstrap=0)), **kw)
 
     run(max_hf=12)
     assert main(["study", "set", db, "--max-hf", "18", "--eps2", "0.2", "--k2", "7"]) == 0
