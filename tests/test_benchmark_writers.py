@@ -31,6 +31,13 @@ def _copy(page: Path, tmp_path) -> Path:
     return copy
 
 
+def _write_investigations(tmp_path, script: str, csv: str) -> Path:
+    """Run ``script --write`` on a copy of the investigations page with the results ``csv``."""
+    copy = _copy(INVESTIGATIONS, tmp_path)
+    load_script(script).main(["--write", str(copy), "--from-csv", csv])
+    return copy
+
+
 def _written(tmp_path, page: Path, tag: str) -> str:
     """The copy's text, checked to differ from the page only between ``tag``'s markers."""
     new = (tmp_path / page.name).read_text(encoding="utf-8")
@@ -68,9 +75,8 @@ def test_final_sample_refits_write_fills_the_three_tables(tmp_path, capsys):
     every = _refits([("4a", "every", "default", 0, -0.3), ("4a", "every", "default", 1, -0.2)])
     final.to_csv(tmp_path / "final.csv", index=False)
     every.to_csv(tmp_path / "every.csv", index=False)
-    copy = _copy(INVESTIGATIONS, tmp_path)
-    load_script("benchmarks/investigations/final_sample_refits.py").main(
-        ["--write", str(copy), "--from-csv", f"{tmp_path / 'final.csv'},{tmp_path / 'every.csv'}"])
+    _write_investigations(tmp_path, "benchmarks/investigations/final_sample_refits.py",
+                          f"{tmp_path / 'final.csv'},{tmp_path / 'every.csv'}")
     page = _written(tmp_path, INVESTIGATIONS, "final_sample_refits.py")
     # censoring: 4a every-event default |0.3|, |0.2| -> 25.0 / 30.0; 4a final c 0.2 -> 16.2 / 20.0
     assert "| 0 (default) | 25.0 / 30.0 % | – | – | – |" in page
@@ -94,9 +100,8 @@ def test_stop_movement_write_fills_its_table(tmp_path):
                lf_within_eps1=0.684, lf_draws=250, lf_error=0.098)
     pd.DataFrame([row, {**row, "case": "3b", "pas_stopped": 3}]).to_csv(tmp_path / "m.csv",
                                                                        index=False)
-    copy = _copy(INVESTIGATIONS, tmp_path)
-    load_script("benchmarks/investigations/stop_movement.py").main(
-        ["--write", str(copy), "--from-csv", str(tmp_path / "m.csv")])
+    _write_investigations(tmp_path, "benchmarks/investigations/stop_movement.py",
+                          str(tmp_path / "m.csv"))
     page = _written(tmp_path, INVESTIGATIONS, "stop_movement.py")
     assert ("| 4a (k 104) | 1.3 % | 9.9 % [5.4, 16.7] at 160 HF | 9.2 % | 5.7 % | "
             "0 % of 1000, 68 % of 250 | 17.2 / 9.8 % |") in page
@@ -118,9 +123,8 @@ def test_sampling_reference_write_fills_its_three_tables(tmp_path):
         rows += [dict(case="3a", k=k, reference=ref, tau=0.57, median=m, p_targets=0.5)
                  for ref in ("known law", "gaussian", "gumbel")]
     pd.DataFrame(rows).to_csv(tmp_path / "s.csv", index=False)
-    copy = _copy(INVESTIGATIONS, tmp_path)
-    load_script("benchmarks/studies/sampling_reference.py").main(
-        ["--write", str(copy), "--from-csv", str(tmp_path / "s.csv")])
+    _write_investigations(tmp_path, "benchmarks/studies/sampling_reference.py",
+                          str(tmp_path / "s.csv"))
     page = _written(tmp_path, INVESTIGATIONS, "sampling_reference.py")
     assert ("| 3a | 50 / 60 | 26 / 22 % · 94 / 64 % | 0.00 / 0.00 | 26 / 23 % · 55 / 49 % | "
             "9.3 / 67 % (60 pairs) |") in page
@@ -161,9 +165,8 @@ def test_a_write_leaves_the_tables_it_has_no_results_for(tmp_path, capsys):
     """Results of one --every-event run fill the censoring and HF-marginal tables; the
     estimator-settings table (final samples of 3a, 3b) keeps its rows."""
     _refits([("4a", "every", "default", 0, -0.3)]).to_csv(tmp_path / "e.csv", index=False)
-    copy = _copy(INVESTIGATIONS, tmp_path)
-    load_script("benchmarks/investigations/final_sample_refits.py").main(
-        ["--write", str(copy), "--from-csv", str(tmp_path / "e.csv")])
+    copy = _write_investigations(tmp_path, "benchmarks/investigations/final_sample_refits.py",
+                                 str(tmp_path / "e.csv"))
     tag = "final_sample_refits.py settings"
     block = re.compile(rf"<!-- BEGIN {tag} -->.*?<!-- END {tag} -->", re.DOTALL)
     assert (block.search(copy.read_text(encoding="utf-8")).group()
