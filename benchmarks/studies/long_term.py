@@ -30,6 +30,8 @@ import pandas as pd
 from pas.validation.result_tables import write_between_markers
 
 LEVELS = (5e-6, 2e-6, 1e-6)
+KEPT_HOURS = 100      # one-hour realisations per kept cell (long_term_compare.KEPT_HOURS)
+TARGET_CV = 0.02      # the truth's spread the green-water goal needs
 
 
 def _truth_row(data, seconds, plan):
@@ -101,6 +103,35 @@ def _pct(v):
     return "n/a" if not np.isfinite(v) else f"{100 * v:+.1f} %"
 
 
+def _truth_cv(g, p):
+    """CV of the truth over data sets at level ``p``: of the halves (every half its own value)
+    and of the full sets."""
+    full = g[f"truth_{p:g}"].to_numpy(float)
+    halves = np.concatenate([g[f"half0_{p:g}"], g[f"half1_{p:g}"]]).astype(float)
+    return (float(np.std(halves, ddof=1) / np.mean(halves)),
+            float(np.std(full, ddof=1) / np.mean(full)))
+
+
+def _hours_for(cv, hours, target=TARGET_CV):
+    """The record length (hours per kept cell) at which ``cv`` measured at ``hours`` falls to
+    ``target``, extrapolated as 1/√length."""
+    return hours * (cv / target) ** 2
+
+
+def _summary_row(analogue, method, g):
+    """One method's line of a comparison table over the runs ``g``."""
+    if g["value"].isna().all():
+        return f"| {analogue} | {method} | {len(g)} | not run: {g['note'].iloc[0]} | | | | | | |"
+    err = g["error"].abs()
+    cov = g["covered"].dropna()
+    width = ((g["band_high"] - g["band_low"]) / g["truth"]).median()
+    return (f"| {analogue} | {method} | {len(g)} | {100 * err.median():.1f} % | "
+            f"{100 * err.max():.1f} % | {_pct(g['error'].median())} | "
+            + (f"{int(cov.astype(bool).sum())}/{len(cov)}" if len(cov) else "–")
+            + f" | {f'{100 * width:.1f} %' if np.isfinite(width) else '–'} | "
+            f"{g['n_hf'].median():g} | {g['seconds'].median():.0f} s |")
+
+
 def tables(dirs):
     runs = pd.concat([pd.read_csv(f) for d in dirs for f in sorted(Path(d).glob("runs_*.csv"))])
     truth = pd.concat([pd.read_csv(f) for d in dirs
@@ -139,19 +170,10 @@ def tables(dirs):
                        f"{_fmt(r['truth'])} | {_fmt(r['value'])} | {_pct(r['error'])} | "
                        f"{_fmt(r['band_low'])} … {_fmt(r['band_high'])} | {int(r['n_hf'])} | "
                        f"{r['seconds']:.0f} s |")
-    for (a, m), g in same.groupby(["analogue", "method"], sort=False):
-        if g["value"].isna().all():
-            comp.append(f"| {name(a)} | {m} | {len(g)} | not run: {g['note'].iloc[0]} "
-                        "| | | | | | |")
-            continue
-        err = g["error"].abs()
-        cov = g["covered"].dropna()
-        width = ((g["band_high"] - g["band_low"]) / g["truth"]).median()
-        comp.append(f"| {name(a)} | {m} | {len(g)} | {100 * err.median():.1f} % | "
-                    f"{100 * err.max():.1f} % | {_pct(g['error'].median())} | "
-                    + (f"{int(cov.astype(bool).sum())}/{len(cov)}" if len(cov) else "–")
-                    + f" | {f'{100 * width:.1f} %' if np.isfinite(width) else '–'} | "
-                    f"{g['n_hf'].median():g} | {g['seconds'].median():.0f} s |")
+    every = [comp[0].replace("U95 coverage", "U95 coverage (≥ 10 runs to claim it)"), comp[1]]
+    for rows, frame in ((comp, same), (every, runs)):
+        for (a, m), g in frame.groupby(["analogue", "method"], sort=False):
+            rows.append(_summary_row(name(a), m, g))
     conv = ["| analogue | data set | HF events | truth 5e-6 | halves | truth 2e-6 | halves | "
             "truth 1e-6 | halves | 20-year level | brute force | LF-only | build (cache) |",
             "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
@@ -172,6 +194,16 @@ def tables(dirs):
             half = (g[f"half0_{p:g}"] - g[f"half1_{p:g}"]).abs() / t
             spread.append(f"| {name(a)} | {p:g} | {100 * t.std() / t.mean():.1f} % | "
                           f"{100 * half.median():.1f} % |")
+    hours = ["| analogue | level | data sets | CV at 50 h per kept cell (halves) | CV at 100 h "
+             "(full sets) | full/half | hours per kept cell for a 2 % CV, from 50 h | "
+             "from 100 h |", "|---|---|---|---|---|---|---|---|"]
+    for a, g in truth.groupby("analogue", sort=False):
+        for p in LEVELS:
+            cv_half, cv_full = _truth_cv(g, p)
+            hours.append(f"| {name(a)} | {p:g} | {len(g)} | {100 * cv_half:.1f} % | "
+                         f"{100 * cv_full:.1f} % | {cv_half / cv_full:.2f} (√2 = 1.41) | "
+                         f"{_hours_for(cv_half, KEPT_HOURS / 2):.0f} h | "
+                         f"{_hours_for(cv_full, KEPT_HOURS):.0f} h |")
     plan = ["| analogue | cells | kept | dropped: estimated share of Q | largest dropped | "
             "dropped: measured share (data sets, median) | its 95 % upper bound | l_min (LF) |",
             "|---|---|---|---|---|---|---|---|"]
@@ -185,9 +217,11 @@ def tables(dirs):
                     f"{100 * dropped['share_rayleigh'].sum():.2f} % | "
                     f"{100 * dropped['share_rayleigh'].max():.2f} % | {measured} | "
                     f"{_fmt(c['l_min'].iloc[0])} |")
-    return {"comparison": "\n".join(comp), "runs": "\n".join(per_run),
+    return {"comparison": "\n".join(comp), "every_run": "\n".join(every),
+            "runs": "\n".join(per_run),
             "convergence": "\n".join(conv),
-            "spread": "\n".join(spread), "cells": "\n".join(plan)}
+            "spread": "\n".join(spread), "truth_hours": "\n".join(hours),
+            "cells": "\n".join(plan)}
 
 
 def main(argv=None):

@@ -103,3 +103,13 @@ def test_the_gain_is_share_times_width_times_the_narrowing_of_one_more_event():
     expected = share * width * (1 - np.sqrt(np.array(n_hf) / (np.array(n_hf) + 1)))
     got = gains(triples, W, x, n_hf, fitted=[False, True, True])
     assert got == pytest.approx(expected, rel=1e-4)
+
+
+def test_the_level_is_the_root_of_the_curves_own_sum_to_1e_10():
+    # the curves' own sum, solved by scipy's brentq: level_at's narrowing must find its root
+    curves = [proxy_curve(_state(s, seed=i), 1.0) for i, s in enumerate(SIGMA)]
+    for p in (3e-2, 2e-3, 4e-4):
+        root = brentq(lambda x, p=p: long_term_exceedance(curves, W, x)[0] - p, 0.1, 20.0,
+                      xtol=1e-14, rtol=1e-14)
+        assert level_at(curves, W, p, start=2.0) == pytest.approx(root, rel=1e-10)
+

@@ -1,6 +1,7 @@
 """pas.run_long_term on a user-supplied problem whose long-term truth is known in closed form."""
 
 from concurrent.futures import ThreadPoolExecutor
+from types import SimpleNamespace
 
 import _longterm_problem as problem
 import numpy as np
@@ -9,10 +10,13 @@ import pytest
 
 import pas
 from pas.longterm.allocation import REACH_SHARE
+from pas.longterm.inputs import SeaState
+from pas.longterm.runner import _Run
 from pas.study import open_study
 from pas.study.store import StoreError
 
 P = 1e-3
+N_CACHE = 2000
 FAST = dict(p_exceed=P, seed=4, strategy=pas.PAS(band=pas.ModelBand(n_bootstrap=0)), model_band=False)
 
 
@@ -201,3 +205,25 @@ def test_a_failure_limit_names_the_sea_state_and_a_retry_runs_the_failed_event(t
     assert len(oracle.calls) == len(set(oracle.calls))
     with pytest.raises(ValueError, match="retry_failed=True needs study"):
         pas.run_long_term(table, lf, oracle, max_hf=8, retry_failed=True, **FAST)
+
+
+def test_a_sea_states_curves_are_rebuilt_only_when_its_fit_or_the_proxy_ratios_change():
+    d = np.arange(1, 51) / N_CACHE
+    h = 1.5 * np.sqrt(-2 * np.log(d))
+
+    def fit():
+        return SimpleNamespace(d=d, h_mean=h, h_low=0.9 * h, h_high=1.1 * h, mpm=h[5],
+                               columns={"lf": h})
+
+    states = [SeaState(name, 0.5, N_CACHE, 8.0 * N_CACHE,
+                       np.random.default_rng(i).rayleigh(sigma, N_CACHE))
+              for i, (name, sigma) in enumerate((("a", 1.0), ("b", 1.5)))]
+    fitted, unfitted = SimpleNamespace(last=fit()), SimpleNamespace(last=None)
+    run = _Run(states, [0.5, 0.5], [fitted, unfitted], None, None, None, 10)
+    first = [run.curves(i, (1.0, 1.0, 1.0)) for i in (0, 1)]
+    assert all(run.curves(i, (1.0, 1.0, 1.0)) is first[i] for i in (0, 1))
+    assert run.curves(0, (0.5, 2.0, 3.0)) is first[0]        # a fit does not read the ratios
+    again = run.curves(1, (0.5, 2.0, 3.0))                  # the proxy does
+    assert again is not first[1] and again[1].h[0] == pytest.approx(2.0 * states[1].lf.max())
+    fitted.last = fit()                                       # a new fit: new curves
+    assert run.curves(0, (0.5, 2.0, 3.0)) is not first[0]

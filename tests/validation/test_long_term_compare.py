@@ -5,7 +5,8 @@ import pandas as pd
 import pytest
 
 from pas.validation.long_term import tz_over_tp
-from pas.validation.long_term_compare import _lf_load, reproduce_long_term, run_method
+from pas.validation.long_term_compare import (_lf_load, _with_thresholds, reproduce_long_term,
+                                             run_method)
 from pas.validation.long_term_data import LongTermData, generate_long_term
 
 
@@ -48,3 +49,16 @@ def test_uniform_allocation_on_two_cells(tmp_path):
     # VBM: HF close to LF; the combined PAS value lies within 10 % of the brute force
     assert abs(row["error"]) < 0.1
     assert row["band_low"] <= row["value"] <= row["band_high"]
+
+
+def test_pas_long_term_takes_the_case_threshold_where_enough_peaks_exceed_it():
+    table = pd.DataFrame({"name": ["calm", "rough"], "probability": [0.5, 0.5],
+                          "n_waves": [10, 10], "duration": [100.0, 100.0]})
+    lf = {"calm": np.array([13.0, 12.5, 11.0, 3.0]),          # 2 peaks over case 3's 12 m
+          "rough": np.array([20.0, 18.0, 15.0, 12.1, 6.0])}  # 4 over it
+    data = LongTermData("3", table, lf, lf, {k: np.arange(v.size) for k, v in lf.items()},
+                        {}, 0, "kN")
+    out = _with_thresholds(data)
+    assert np.isnan(out["threshold"].iloc[0]) and out["threshold"].iloc[1] == 12.0
+    assert "threshold" not in data.sea_states.columns        # the data set's table unchanged
+    assert "threshold" not in _with_thresholds(_two_states()).columns   # case 2: none

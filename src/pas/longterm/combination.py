@@ -43,7 +43,7 @@ from ..strategies.base import Z95
 
 __all__ = ["PASCurve", "proxy_curve", "long_term_exceedance", "level_at", "extension_bounds",
            "RecordBand",
-           "TAIL_RANKS"]
+           "TAIL_RANKS", "GRID_POINTS"]
 
 TAIL_RANKS = 20
 """The top ranks of a distribution whose Weibull-plot line gives the tail above the record."""
@@ -73,6 +73,9 @@ class PASCurve:
         self.h = np.minimum.accumulate(np.asarray(h, dtype=float))
         self.state, self.lf_end, self.below = state, float(lf_end), below
         self.tail = _weibull_tail(self.d, self.h)
+        # np.interp wants ascending abscissae; kept, not rebuilt in every call of exceedance
+        self._h_ascending = np.ascontiguousarray(self.h[::-1])
+        self._log_d = np.ascontiguousarray(np.log(self.d[::-1]))
 
     @property
     def h_end(self) -> float:
@@ -88,7 +91,7 @@ class PASCurve:
     def exceedance(self, x) -> np.ndarray:
         """``Q_s(x)``, the exceedance probability per wave encounter at levels ``x``."""
         x = np.atleast_1d(np.asarray(x, dtype=float))
-        inside = np.exp(np.interp(x, self.h[::-1], np.log(self.d[::-1])))
+        inside = np.exp(np.interp(x, self._h_ascending, self._log_d))
         q = np.where(x > self.h[0], self._above(x), inside)
         under = x < self.h[-1]
         if under.any():
@@ -131,7 +134,7 @@ def proxy_curve(state, ratio: float, n_points: int = 400) -> PASCurve:
     on ``ln d``, as a PAS distribution is), with the same Weibull tail above
     the record.
     """
-    lf = np.sort(state.lf)[::-1]
+    lf = state.sorted_lf[::-1]
     k = np.unique(np.concatenate([np.arange(1, min(TAIL_RANKS, lf.size) + 1),
                                   np.round(np.geomspace(1, lf.size, n_points)).astype(int)]))
     curve = PASCurve(k / state.n_waves, ratio * lf[k - 1], state, lf[-1])
@@ -171,34 +174,41 @@ def long_term_exceedance(curves, weights, x) -> np.ndarray:
     return sum(w * c.exceedance(x) for c, w in zip(curves, weights) if w > 0)
 
 
+GRID_POINTS = 33
+"""Levels per narrowing step of :func:`level_at`: each step shrinks the bracket 32-fold."""
+
+
 def level_at(curves, weights, p: float, start: float) -> float:
-    """The level ``x`` where the long-term exceedance falls to ``p`` (bisection).
+    """The level ``x`` where the long-term exceedance falls to ``p``.
 
     ``start`` is a level of the right order (e.g. the largest LF peak); the
-    bracket is widened from it until it holds the level.  ``nan`` when no
-    level reaches ``p`` (every sea state's exceedance stays below it).
+    bracket is widened from it until it holds the level, then narrowed to a
+    relative width of 1e-12 by evaluating :data:`GRID_POINTS` levels across
+    it at once (every curve reads a vector of levels in one call: 8 calls
+    where bisection needs 40).  ``nan`` when no level reaches ``p`` (every
+    sea state's exceedance stays below it).
     """
     def q(v):
-        return float(long_term_exceedance(curves, weights, v)[0])
+        return long_term_exceedance(curves, weights, v)
 
     lo = hi = max(abs(float(start)), 1e-12)
     for _ in range(200):
-        if q(lo) >= p:
+        if q(lo)[0] >= p:
             break
         lo /= 2
     else:
         return float("nan")
     for _ in range(200):
-        if q(hi) < p:
+        if q(hi)[0] < p:
             break
         hi *= 2
     else:
         return float("inf")
-    for _ in range(100):
-        mid = 0.5 * (lo + hi)
-        lo, hi = (mid, hi) if q(mid) >= p else (lo, mid)
-        if hi - lo <= 1e-12 * hi:
-            break
+    while hi - lo > 1e-12 * hi:
+        grid = np.linspace(lo, hi, GRID_POINTS)
+        below = np.flatnonzero(q(grid[1:-1]) < p)
+        j = below[0] + 1 if below.size else GRID_POINTS - 1
+        lo, hi = grid[j - 1], grid[j]
     return 0.5 * (lo + hi)
 
 

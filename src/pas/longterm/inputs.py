@@ -6,6 +6,7 @@ Every check raises a one-line ``ValueError`` naming the argument and the fix.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 import pandas as pd
@@ -38,9 +39,14 @@ class SeaState:
         """Wave encounters per second, ``ν_s = n_waves / duration``."""
         return self.n_waves / self.duration
 
+    @cached_property
+    def sorted_lf(self) -> np.ndarray:
+        """The LF peaks in ascending order (sorted once: every exceedance reads them)."""
+        return np.sort(self.lf)
+
     def lf_exceedance(self, x) -> np.ndarray:
         """Empirical LF exceedance per encounter, ``#(lf > x) / n_waves``, at levels ``x``."""
-        lf = np.sort(self.lf)
+        lf = self.sorted_lf
         return (lf.size - np.searchsorted(lf, np.atleast_1d(np.asarray(x, dtype=float)),
                                           side="right")) \
             / self.n_waves

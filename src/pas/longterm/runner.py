@@ -205,6 +205,7 @@ class _Run:
         self.states, self.weights, self.studies = states, weights, studies
         self.oracle, self.executor, self.callback, self.max_hf = oracle, executor, callback, max_hf
         self.closed: set[int] = set()
+        self._curves: dict[int, tuple] = {}
 
     def spent(self) -> int:
         return sum(s.n_hf + s._n_pending for s in self.studies if s is not None)
@@ -222,10 +223,20 @@ class _Run:
         if asks:
             self.round(asks)
 
+    def curves(self, i, ratios) -> tuple:
+        """Sea state ``i``'s curves for the gains, rebuilt only when its fit (or, for the
+        LF-only proxy of an unfitted one, the HF/LF ratios) changed."""
+        st = self.studies[i]
+        pred = None if st is None else st.last
+        cached = self._curves.get(i)
+        if cached is None or cached[0] is not pred or (pred is None and cached[1] != ratios):
+            cached = self._curves[i] = (pred, ratios,
+                                        curves_of(self.states[i], st, ratios, record=False))
+        return cached[2]
+
     def value_now(self, p, top):
         ratios = proxy_ratios(self.studies)
-        triples = [curves_of(s, st, ratios, record=False)
-                   for s, st in zip(self.states, self.studies)]
+        triples = [self.curves(i, ratios) for i in range(len(self.states))]
         x = level_at([t[1] for t in triples], self.weights, p, top * ratios[1])
         return triples, x
 

@@ -1,7 +1,8 @@
 """The four long-term methods side by side on one :class:`~.long_term_data.LongTermData`.
 
 * ``"pas-long-term"`` — :func:`pas.run_long_term`, one HF budget shared by all
-  sea states.
+  sea states, with the case's LF threshold in every sea state that has enough
+  peaks over it (as the uniform allocation: like for like).
 * ``"uniform"`` — every kept (contributing) sea state its own
   :func:`pas.run_pas` study with the default budget of 160, at the sea
   state's own target ``p_s = p_exceed Σw / w_s`` (the level where it alone
@@ -43,6 +44,8 @@ __all__ = ["METHODS", "combine_curves", "compare", "iform_contour", "run_method"
 
 METHODS = ("pas-long-term", "uniform", "contour", "lf-only")
 FRACTILE = 0.9
+MIN_PEAKS_OVER = 4
+"""Fewest LF peaks over the case's threshold for a sea state to use it (``run_pas``'s minimum)."""
 SEA_STATE_HOURS = 3.0
 
 
@@ -198,12 +201,24 @@ def _lf_only(data, p_exceed):
     return value_at_exceedance_long_term(p_exceed, data.weights, lf), (np.nan, np.nan), 0, {}
 
 
+def _with_thresholds(data):
+    """The sea-state table with the case's LF threshold in every sea state where at least
+    :data:`MIN_PEAKS_OVER` peaks exceed it, none elsewhere: the rule of the uniform
+    allocation (:func:`_cell_study`), so that both methods screen the same peaks."""
+    threshold = _case(data).threshold
+    table = data.sea_states.copy()
+    if threshold is not None:
+        table["threshold"] = [threshold if int(np.sum(data.lf[s] > threshold)) >= MIN_PEAKS_OVER
+                              else np.nan for s in table["name"]]
+    return table
+
+
 def _pas_long_term(data, p_exceed, seed, max_hf):
     from ..longterm import run_long_term
 
     peaks = {s: pd.DataFrame({"lf": data.lf[s], "id": data.ids[s]}) for s in data.lf}
-    res = run_long_term(data.sea_states, peaks, data.oracle(), p_exceed=p_exceed, seed=seed,
-                        max_hf=max_hf, eps1=_case(data).eps1)
+    res = run_long_term(_with_thresholds(data), peaks, data.oracle(), p_exceed=p_exceed,
+                        seed=seed, max_hf=max_hf, eps1=_case(data).eps1)
     return res.value, tuple(float(b) for b in res.band), res.n_hf, {}
 
 
