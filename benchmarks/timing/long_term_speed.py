@@ -12,7 +12,7 @@ as it is), the sequence of asked events and the value and band.  The
 ratios and whether the two asked the same events in the same order are
 printed, and written as JSON with ``--json``.
 
-Run: python benchmarks/timing/long_term.py [--analogue 2] [--scale 0.2] [--max-hf 60]
+Run: python benchmarks/timing/long_term_speed.py [--analogue 2] [--scale 0.2] [--max-hf 60]
      [--baseline 9224ca2] [--model-band] [--json out.json]
 """
 
