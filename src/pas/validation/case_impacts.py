@@ -1,75 +1,12 @@
 """Cases 3 and 4, paper-like: green water and bow-flare slamming on the 190 m ferry.
 
-Conditions Heavy and Extreme (150°, bow-quartering), waves, ship motions and
-LF indicators exactly as the hard variants (:mod:`~pas.validation.case_impacts_hard`:
-same seeds, same ``c_sw``, so ``3a`` and ``3a-hard`` share their LF peaks);
-only the HF models differ.  The paper reports for its basin data (§3.2–3.3,
-§5.4, App. E–F) what the hard variants do not show: lower-tail-dominant
-dependence (λ_L ≥ λ_U; Clayton the usual alternative to Gaussian), misses
-spread over the whole LF range (case 3a at convergence: 51 HF samples of
-which 28 true positives, Fig. 9) and a large bow flare that "may deflect water
-to the sides", so that "a high RWE would then not correspond well to the green
-water load" (§5.4).  The models below are built so that *small* relative
-motions give small loads consistently, while *large* ones do not guarantee a
-large load.
-
-Relative wave elevation (shared with the hard variants)
--------------------------------------------------------
-``R'' = c_sw (η1 + η2) − (z − x θ)`` at the bow (plus the steady bow wave
-``V²/2g``) and at station 19, weather side: Sharma–Dean second-order
-surface, linear heave/pitch (:mod:`pas.validation._impact_signals`).
-
-Case 3, green water on the accommodation (kN)
----------------------------------------------
-Per event (LF window), with ``h = max R''_bow − f − δ0`` the freeboard
-exceedance beyond a fixed flare-deflection margin ``δ0`` (``gw_margin``: the
-paper's "events with RWEs only marginally exceeding the freeboard are often
-deflected to the sides", §3.2):
-
-1. *Deflection.*  With probability ``q`` (``gw_deflected``), independent of
-   ``h``, the shipped water is turned over the side by the flare before it
-   reaches the accommodation (in bow-quartering seas the direction of the
-   deck flow depends on the 3-D flow around the flare, which this model does
-   not resolve): HF = 0, a miss at any LF level.
-2. *Quasi-static load.*  The water that comes aboard flows aft as a dam-break
-   bore (Ritter 1892: front speed ``2√(g h)``; the dam-break analogy of
-   green water, Buchner 2002) and loads the 14.4 m wide accommodation front
-   with ``F_qs = C_gw ρ g W h²`` (stagnation of the bore).
-3. *Impulsive part.*  In a fraction ``p_imp`` (``gw_impulse_p``) of the
-   events the water arrives as a jet (plunging-type shipping rather than a
-   dam-break flow; Greco, Faltinsen & Landrini 2005) and adds an impulsive
-   peak ``F_qs · κ h · E``, ``E ~ Exponential(1)``, whose relative size grows
-   with the exceedance ``h`` (``κ = gw_impulse``, 1/m): the more violent the
-   shipping, the more the load depends on details no indicator resolves —
-   repeated, nominally identical violent impacts scatter most (Moalemi et al.
-   2024).  It can only *add* load, so large exceedances never give a small
-   non-zero load: small HF values come from small LF values.
-4. Event scatter ``exp(σ z)``, ``σ = gw_scatter``, then the experiments'
-   100 kN noise threshold.
-
-``F = C_gw ρ g W h² (1 + I κ h E) exp(σ z)`` if not deflected, else 0.
-
-Case 4, bow-flare slamming (kN)
--------------------------------
-Panels 2.875 m above the calm waterline at station 19, weather side.  The
-water reaches the panels if ``max R''_19 > z_p`` in the event.  The impact
-velocity is that of the *non-linear* relative motion: with the relative rise
-velocity of ``R''`` (peak ``A`` over the time from its zero up-crossing to the
-peak, ``T_r`` — the paper's RRV applied to the HF relative motion) and a
-quarter-sine rise, the water passes the panel level at
-``v = (π/2)(A/T_r)·√(1 − (z_p/A)²)``: slowly when the peak barely reaches the
-panels, at nearly the full rise velocity when it overshoots them.  Wagner
-(1932) momentum load on the three panels (9.72 m²) at the flare angle
-``β_f``, ``F_W = ½ ρ C0 π cot β_f A v²``, plus the same kind of impulsive
-part as case 3 with relative size ``κ v / v_Ochi`` (``v_Ochi = 0.093 √(g L)``
-the slamming threshold velocity of Ochi 1964 as the velocity scale; near-flat,
-air-cushioned impacts make the peak force of violent impacts scatter, cf.
-Lewison & Maclean 1968), scatter ``exp(σ z)`` and the 100 kN threshold:
-
-``F = ½ ρ C0 π cot β_f A v² (1 + I κ (v / v_Ochi) E) exp(σ z)``.
-
-The LF indicator (linear RRV) sees neither the second-order part of the
-rise nor the impulsive part.
+Waves, ship motions and LF indicators exactly as the hard variants
+(:mod:`~pas.validation.case_impacts_hard`: same seeds, same ``c_sw``, so
+``3a`` and ``3a-hard`` share their LF peaks); only the HF models differ: a
+dam-break bore with flare deflection and an impulsive part for green water,
+a Wagner momentum load at the non-linear impact velocity for slamming.  The
+models, their physics, calibration and references are in
+``docs/explanation/impact-models.md``.
 
 HF model as a function of an episode
 ------------------------------------
@@ -101,32 +38,6 @@ episode.  A mapping gives the inputs explicitly — green water ``u_deflect``,
 ``u_impulse`` (uniform), ``e_impulse`` (exponential), ``z_scatter``
 (standard normal); slamming the last three — e.g. to re-evaluate one event
 of a generated data set.
-
-Calibration (once, on data properties the paper reports, never on a PAS/AS
-result; ``python cases/calibrate.py 3`` / ``4``): ``gw_margin``,
-``gw_deflected``, ``gw_impulse`` and ``C_gw`` against the green-water rates
-(≈3 % / 8 % of encounters), the miss share of an ln-d-uniform sample on 3a
-(≈45 %), λ_L ≥ λ_U and the truth MPMs of 3a/3b (±10 %); ``C0`` and
-``slam_impulse`` against the truth MPMs of 4a/4b and λ_L ≥ λ_U.
-``c_sw``, ``bow_wave`` and ``beta_flare_deg`` are the hard variants' frozen
-values, not re-tuned.
-
-References
-----------
-Buchner, B. (2002). Green water on ship-type offshore structures. PhD thesis,
-Delft University of Technology.
-Greco, M., Faltinsen, O.M., Landrini, M. (2005). Shipping of water on a
-two-dimensional structure. J. Fluid Mech. 525, 309–332.
-Lewison, G., Maclean, W.M. (1968). On the cushioning of water impact by
-entrapped air. J. Ship Res. 12(2), 116–130.
-Moalemi, A., Bredmose, H., Kristiansen, T., Pierella, F. (2024). Wave front
-perturbation effect on the variability of monopile wave impact loads.
-J. Fluid Mech.
-Ochi, M.K. (1964). Prediction of occurrence and severity of ship slamming at
-sea. 5th Symp. Naval Hydrodynamics, Bergen.
-Ritter, A. (1892). Die Fortpflanzung der Wasserwellen. Z. Ver. Dtsch. Ing. 36.
-Wagner, H. (1932). Über Stoß- und Gleitvorgänge an der Oberfläche von
-Flüssigkeiten. ZAMM 12, 193–215.
 """
 
 from __future__ import annotations
@@ -232,7 +143,7 @@ def _slamming_force(v, d, c):
 
 
 def green_water_load(r_bow, *, speed, window=None, rng=None, coefficients=None) -> float:
-    """HF green-water force (kN) of one episode; see the module docs.
+    """HF green-water force (kN) of one episode (``docs/explanation/impact-models.md``).
 
     Parameters
     ----------
@@ -278,7 +189,7 @@ def _event_window(window, n):
 
 
 def slamming_load(r_19, dt, *, window=None, rng=None, coefficients=None) -> float:
-    """HF bow-flare slamming force (kN) of one episode; see the module docs.
+    """HF bow-flare slamming force (kN) of one episode (``docs/explanation/impact-models.md``).
 
     Parameters
     ----------
