@@ -22,11 +22,11 @@ command again resumes it); the result goes to stdout and to ``--out``
 
 from __future__ import annotations
 
-import argparse
 import json
 import math
 from pathlib import Path
 
+from ._parsers import command_parser
 from .run import _positive_int  # the same rule as pas run's options
 
 __all__ = ["add_parser", "lf_files", "run"]
@@ -47,10 +47,7 @@ _LF_SUFFIXES = (".csv", ".parquet", ".npy", ".txt")
 
 def add_parser(sub) -> None:
     """Register ``pas long-term`` on the sub-command parser ``sub``."""
-    p = sub.add_parser(
-        "long-term", help="long-term design value over a scatter diagram (one HF budget)",
-        description=__doc__.split("\n\n")[0].replace("``", ""),
-        formatter_class=argparse.RawDescriptionHelpFormatter, epilog=EPILOG)
+    p = command_parser(sub, "long-term", "long-term design value over a scatter diagram (one HF budget)", __doc__, EPILOG)
     p.add_argument("sea_states", metavar="SEA_STATES", help="sea-state table (.csv or .parquet)")
     p.add_argument("--lf", required=True, metavar="DIR_OR_PATTERN",
                    help="folder of <name>.csv/.parquet/.npy files, or a pattern with {name}")

@@ -13,12 +13,13 @@ the final copula; no oracle is called again.
 
 from __future__ import annotations
 
-import argparse
 import math
 import sys
 from pathlib import Path
 
 import numpy as np
+
+from ._parsers import command_parser
 
 __all__ = ["add_parser", "run", "load_result", "KINDS"]
 
@@ -84,9 +85,7 @@ def _draw(kind, result, summary, lf_curve, args):
 
 def add_parser(sub) -> None:
     """Register ``pas plot`` on the sub-command parser ``sub``."""
-    p = sub.add_parser("plot", help="draw the figures of a 'pas run' output folder",
-                       description=__doc__.split("\n\n")[0].replace("``", ""),
-                       formatter_class=argparse.RawDescriptionHelpFormatter, epilog=EPILOG)
+    p = command_parser(sub, "plot", "draw the figures of a 'pas run' output folder", __doc__, EPILOG)
     p.add_argument("result_dir", metavar="RESULT_DIR", help="the --out folder of 'pas run'")
     p.add_argument("--kind", choices=KINDS + ("all",), default="mpm",
                    help="which figure (default: mpm); 'all' draws every figure that applies")

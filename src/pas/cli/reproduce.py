@@ -20,9 +20,10 @@ one row per run) with figures per case (``case_<id>.png``;
 
 from __future__ import annotations
 
-import argparse
 import json
 import sys
+
+from ._parsers import command_parser
 
 __all__ = ["add_parser", "run"]
 
@@ -43,10 +44,7 @@ cases: 1a 1b (2nd-order crests), 2a 2b (hog/sag VBM), 3a 3b (green water), 4a 4b
 
 def add_parser(sub) -> None:
     """Register ``pas reproduce`` on the sub-command parser ``sub``."""
-    p = sub.add_parser(
-        "reproduce", help="reproduce the paper's validation on synthetic analogues",
-        description=__doc__.split("\n\n")[0].replace("``", ""),
-        formatter_class=argparse.RawDescriptionHelpFormatter, epilog=EPILOG)
+    p = command_parser(sub, "reproduce", "reproduce the paper's validation on synthetic analogues", __doc__, EPILOG)
     p.add_argument("cases", nargs="*", metavar="CASE", help="case ids (1a ... 4b)")
     p.add_argument("--all", action="store_true",
                    help="all twelve cases (eight paper-like, four -hard)")

@@ -62,6 +62,7 @@ import sys
 from pathlib import Path
 
 from ..study.schema import DEFAULT_MAX_HF, RESUMABLE
+from ._parsers import command_parser
 from ._stopping_options import optional_number, precision_option
 
 __all__ = ["add_parser", "run"]
@@ -147,10 +148,7 @@ no strategy (a test checks that the two agree)."""
 
 def add_parser(sub) -> None:
     """Register ``pas run`` on the sub-command parser ``sub``."""
-    p = sub.add_parser(
-        "run", help="run PAS (or AS) on an LF peak file with an HF oracle",
-        description=__doc__.split("\n\n")[0].replace("``", ""),
-        formatter_class=argparse.RawDescriptionHelpFormatter, epilog=EPILOG)
+    p = command_parser(sub, "run", "run PAS (or AS) on an LF peak file with an HF oracle", __doc__, EPILOG)
     p.add_argument("lf_file", metavar="LF_FILE", help="LF peaks: .csv (header row), .parquet or .npy")
     p.add_argument("--lf-column", metavar="COL",
                    help="column with the LF peaks (default: 'lf', or the only column)")

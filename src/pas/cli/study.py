@@ -42,13 +42,13 @@ store's audit trail (``pas study status --events``).
 
 from __future__ import annotations
 
-import argparse
 import json
 import math
 import os
 import sys
 from pathlib import Path
 
+from ._parsers import command_parser
 from ._stopping_options import precision_option
 from .study_config import load_config, load_peaks, study_objects
 from .study_loads import add_parsers as add_load_parsers
@@ -73,9 +73,7 @@ examples:
 
 
 def add_parser(sub) -> None:
-    p = sub.add_parser("study", help="ask/tell HF campaigns kept in a crash-safe study file",
-                       description=__doc__.split("\n\n")[0].replace("``", ""),
-                       formatter_class=argparse.RawDescriptionHelpFormatter, epilog=EPILOG)
+    p = command_parser(sub, "study", "ask/tell HF campaigns kept in a crash-safe study file", __doc__, EPILOG)
     cmds = p.add_subparsers(dest="study_command", metavar="<action>", required=True)
     c = cmds.add_parser("create", help="create STUDY.db from a TOML configuration")
     c.add_argument("study", metavar="STUDY.db")

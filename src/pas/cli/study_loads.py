@@ -17,7 +17,6 @@ the study's target, and ``--out`` receives the files ``pas run`` writes.
 
 from __future__ import annotations
 
-import argparse
 import json
 import sys
 from pathlib import Path

@@ -46,10 +46,11 @@ from .._support.threads import one_blas_thread
 from ..stats.lognormal import LogNormal3
 from ..stats.weibull import Weibull3
 from ..stats.weibull_mixture import WeibullMixture
-from .copula_densities import GRADIENT_FAMILIES, scores
+from .copula_densities import GRADIENT_FAMILIES
 from .copulas import CopulaFit, _at_bound, _family_and_rotation
 from .joint_likelihood import (
     copula_parameters,
+    fixed_pair_terms,
     loglik_and_copula_gradient,
     negloglik_closure,
 )
@@ -144,10 +145,7 @@ def joint_objective(name: str, u, h, *, location: bool = True, censor: float = 0
 
     negloglik = negloglik_closure(base, rotation, u, density, marginal_terms, unpack, per_pair)
 
-    # what every evaluation of the gradient reads of the fixed pairs
-    censored = np.flatnonzero(~density)
-    dens = density.astype(float)
-    u_scores = None if base == "student" else scores(base, None, u)
+    censored, dens, u_scores = fixed_pair_terms(base, u, density)
 
     @np.errstate(all="ignore")
     def negloglik_grad(x):

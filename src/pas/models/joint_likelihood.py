@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .copula_densities import censored_terms, copula_loghfunc, copula_logpdf
+from .copula_densities import censored_terms, copula_loghfunc, copula_logpdf, scores
 
 __all__ = ["copula_parameters", "parameter_slope", "loglik_and_copula_gradient",
            "negloglik_closure", "NU_STEP"]
@@ -69,6 +69,13 @@ def _pair_terms(base, rotation, p, u, v, log_f, density) -> np.ndarray:
 
 NU_STEP = 1e-6
 """Step in Student-t's optimiser value of ν for its one forward difference."""
+
+
+def fixed_pair_terms(base: str, u, density):
+    """What every gradient evaluation reads of the fixed pairs: ``(censored indices,
+    density as 0/1 floats, scores of u)`` (the Student-t scores depend on ν: None)."""
+    u_scores = None if base == "student" else scores(base, None, u)
+    return np.flatnonzero(~density), density.astype(float), u_scores
 
 
 def loglik_and_copula_gradient(base, c, u, v, log_f, density, *, censored=None, u_scores=None):

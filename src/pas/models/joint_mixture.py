@@ -24,20 +24,24 @@ from ..stats.weibull_mixture import (
     WeibullMixture,
     split_start,
 )
-from .copula_densities import GRADIENT_FAMILIES, scores
+from .copula_densities import GRADIENT_FAMILIES
 from .joint import (
     HF_MARGINALS,
     JointFit,
     _prepare,
     best_per_family,
     fit_joint_all,
-    joint_objective,
     joint_fit_result,
+    joint_objective,
     location_bounds,
     minimise_bounded,
     starts_cold,
 )
-from .joint_likelihood import loglik_and_copula_gradient, negloglik_closure
+from .joint_likelihood import (
+    fixed_pair_terms,
+    loglik_and_copula_gradient,
+    negloglik_closure,
+)
 
 __all__ = [
     "HF_CHOICES",
@@ -88,9 +92,7 @@ def mixture_objective(name: str, u, h, *, location: bool = True, censor: float =
 
     negloglik = negloglik_closure(base, rotation, u, density, marginal_terms, unpack, per_pair)
 
-    censored = np.flatnonzero(~density)
-    dens = density.astype(float)
-    u_scores = None if base == "student" else scores(base, None, u)
+    censored, dens, u_scores = fixed_pair_terms(base, u, density)
 
     @np.errstate(all="ignore")
     def negloglik_grad(x):

@@ -249,12 +249,15 @@ def _collect(out, **arrays):
         out[name].append(v)
 
 
+def _generator_state(coeffs, seed, model_seed):
+    """A generator's coefficients, empty event columns, the HF model's seed and sea cache."""
+    out = {k: [] for k in ("lf", "hf", "seed_no", "t_start", "t_end")}
+    return _coeffs(coeffs), out, seed if model_seed is None else model_seed, [None]
+
+
 def generate_green_water(spec, seed, n_seeds, duration, *, coeffs=None, model_seed=None):
     """Events of case 3a/3b: LF bow RWE peak (m), HF green-water force (kN)."""
-    c = _coeffs(coeffs)
-    out = {k: [] for k in ("lf", "hf", "seed_no", "t_start", "t_end")}
-    rseed = seed if model_seed is None else model_seed  # the HF model's random parts
-    box = [None]
+    c, out, rseed, box = _generator_state(coeffs, seed, model_seed)
     for k in range(n_seeds):
         sea, kern = impact_sea(spec, seed, k, duration, box)
         lin, nl = relative_elevation_coefficients(sea, kern, x=FERRY_190M.length / 2.0,
@@ -285,10 +288,7 @@ def _nonlinear_rise(t, r_hf, u):
 
 def generate_slamming(spec, seed, n_seeds, duration, *, coeffs=None, model_seed=None):
     """Events of case 4a/4b: LF RRV at station 19 (m/s), HF slamming force (kN)."""
-    c = _coeffs(coeffs)
-    out = {k: [] for k in ("lf", "hf", "seed_no", "t_start", "t_end")}
-    rseed = seed if model_seed is None else model_seed  # the HF model's random parts
-    box = [None]
+    c, out, rseed, box = _generator_state(coeffs, seed, model_seed)
     for k in range(n_seeds):
         sea, kern = impact_sea(spec, seed, k, duration, box)
         lin, nl = relative_elevation_coefficients(sea, kern, x=FERRY_190M.station_x(19),
