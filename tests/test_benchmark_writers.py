@@ -31,11 +31,12 @@ def _copy(page: Path, tmp_path) -> Path:
     return copy
 
 
-def _write_investigations(tmp_path, script: str, csv: str) -> Path:
-    """Run ``script --write`` on a copy of the investigations page with the results ``csv``."""
+def _write_investigations(tmp_path, script: str, csv: str) -> str:
+    """The investigations page as ``script --write`` rewrites a copy of it from the results
+    ``csv``, checked to differ only between the script's markers."""
     copy = _copy(INVESTIGATIONS, tmp_path)
     load_script(script).main(["--write", str(copy), "--from-csv", csv])
-    return copy
+    return _written(tmp_path, INVESTIGATIONS, Path(script).name)
 
 
 def _written(tmp_path, page: Path, tag: str) -> str:
@@ -75,9 +76,8 @@ def test_final_sample_refits_write_fills_the_three_tables(tmp_path, capsys):
     every = _refits([("4a", "every", "default", 0, -0.3), ("4a", "every", "default", 1, -0.2)])
     final.to_csv(tmp_path / "final.csv", index=False)
     every.to_csv(tmp_path / "every.csv", index=False)
-    _write_investigations(tmp_path, "benchmarks/investigations/final_sample_refits.py",
-                          f"{tmp_path / 'final.csv'},{tmp_path / 'every.csv'}")
-    page = _written(tmp_path, INVESTIGATIONS, "final_sample_refits.py")
+    page = _write_investigations(tmp_path, "benchmarks/investigations/final_sample_refits.py",
+                                 f"{tmp_path / 'final.csv'},{tmp_path / 'every.csv'}")
     # censoring: 4a every-event default |0.3|, |0.2| -> 25.0 / 30.0; 4a final c 0.2 -> 16.2 / 20.0
     assert "| 0 (default) | 25.0 / 30.0 % | – | – | – |" in page
     assert "| 0.2 | – | – | 16.2 / 20.0 % | – |" in page
@@ -100,9 +100,8 @@ def test_stop_movement_write_fills_its_table(tmp_path):
                lf_within_eps1=0.684, lf_draws=250, lf_error=0.098)
     pd.DataFrame([row, {**row, "case": "3b", "pas_stopped": 3}]).to_csv(tmp_path / "m.csv",
                                                                        index=False)
-    _write_investigations(tmp_path, "benchmarks/investigations/stop_movement.py",
-                          str(tmp_path / "m.csv"))
-    page = _written(tmp_path, INVESTIGATIONS, "stop_movement.py")
+    page = _write_investigations(tmp_path, "benchmarks/investigations/stop_movement.py",
+                                 str(tmp_path / "m.csv"))
     assert ("| 4a (k 104) | 1.3 % | 9.9 % [5.4, 16.7] at 160 HF | 9.2 % | 5.7 % | "
             "0 % of 1000, 68 % of 250 | 17.2 / 9.8 % |") in page
     assert "| 3b (k 104) | 1.3 % | 9.9 % [5.4, 16.7] at its stop or 160 HF |" in page
@@ -123,9 +122,8 @@ def test_sampling_reference_write_fills_its_three_tables(tmp_path):
         rows += [dict(case="3a", k=k, reference=ref, tau=0.57, median=m, p_targets=0.5)
                  for ref in ("known law", "gaussian", "gumbel")]
     pd.DataFrame(rows).to_csv(tmp_path / "s.csv", index=False)
-    _write_investigations(tmp_path, "benchmarks/studies/sampling_reference.py",
-                          str(tmp_path / "s.csv"))
-    page = _written(tmp_path, INVESTIGATIONS, "sampling_reference.py")
+    page = _write_investigations(tmp_path, "benchmarks/studies/sampling_reference.py",
+                                 str(tmp_path / "s.csv"))
     assert ("| 3a | 50 / 60 | 26 / 22 % · 94 / 64 % | 0.00 / 0.00 | 26 / 23 % · 55 / 49 % | "
             "9.3 / 67 % (60 pairs) |") in page
     assert "| 3a | 13.7 / 34.1 % | 0.11 | 9.3 / 67 % |" in page
@@ -165,8 +163,9 @@ def test_a_write_leaves_the_tables_it_has_no_results_for(tmp_path, capsys):
     """Results of one --every-event run fill the censoring and HF-marginal tables; the
     estimator-settings table (final samples of 3a, 3b) keeps its rows."""
     _refits([("4a", "every", "default", 0, -0.3)]).to_csv(tmp_path / "e.csv", index=False)
-    copy = _write_investigations(tmp_path, "benchmarks/investigations/final_sample_refits.py",
-                                 str(tmp_path / "e.csv"))
+    _write_investigations(tmp_path, "benchmarks/investigations/final_sample_refits.py",
+                          str(tmp_path / "e.csv"))
+    copy = tmp_path / INVESTIGATIONS.name
     tag = "final_sample_refits.py settings"
     block = re.compile(rf"<!-- BEGIN {tag} -->.*?<!-- END {tag} -->", re.DOTALL)
     assert (block.search(copy.read_text(encoding="utf-8")).group()
