@@ -1,86 +1,14 @@
 """The model band's bootstrap replicates (:meth:`pas.strategies.pas.PAS.model_band`), in parallel.
 
-The replicates draw what they drew when they ran one after another in one
-process — the resampled events from ``rng`` in turn, the LF ranks
-(``band_lf_ranks="redrawn"``) from one stream of their own in turn — so the
-band is the one it was, and the same for every ``n_jobs``: before the
-replicates run in parallel, each one's draw of the LF ranks is made here in
-turn and the stream copied for it (:func:`_lf_rank_streams`).  Only when the
-uniforms are not common to the study (``common_random_numbers=False``) does
-each replicate draw them from a stream of its own, no longer interleaved
-with the resampling.
-
-The joint fits of a replicate start from the final model's fits
-(:data:`WARM_BAND`): the replicate is a resample of the same pairs, so its
-optimum lies near the final one.  Student-t also starts from the data
-(:data:`COLD_FAMILIES`): its ν sits on a logistic map that a warm start
-near a bound barely moves.  Measured (``benchmarks/timing/study_parts.py``, 50
-replicates of a 15 000-peak Gumbel problem): a cold start found a better
-optimum (by > 1e-6 in log-likelihood) in 7 of 101 Student-t fits at 80 pairs
-and 10 of 101 at 160, against 0–4 of 50 for each other family and marginal;
-the band ends of that run did not move either way, but on a log-normal
-problem of ``tests/strategies/test_estimator.py`` the warm-only Student-t fit made
-replicates select another family and marginal.  The price: the band's CPU
-time is 0.82 (80 pairs) and about 1.0 (160) of the old path's, against
-0.56 and 0.64 with every family warm only.
-
-A replicate fits only the copula families that can win it (:data:`PRUNE_AIC`):
-each candidate's AIC on the replicate's pairs — their own conditioning set
-and censored load — at the final fit's parameters, where its warm start
-begins; a family whose every HF marginal is more than :data:`PRUNE_AIC`
-behind the best eligible candidate there is not refitted.  Whole families,
-because a marginal's start can be far from its replicate optimum: on a
-36-pair Gumbel problem of ``benchmarks/known_truth.py`` the log-normal
-started 38–48 units behind its family's Weibull and won three replicates
-after its refit.  The margin is for what a family's refit gains over the
-best start's: on a 45-pair Gumbel problem there the Gaussian started 37
-behind and won a replicate by 5 after its refit (a gain of 42), on a Frank
-problem a replicate's winner gained 13 (the AIC summed from the full
-sample's per-pair terms, without the replicate's own conditioning set, had
-put it 65 behind); 100 is over twice the largest gain seen.  Families
-further behind than that (Clayton and Frank on a Gumbel problem of
-``benchmarks/timing/study_parts.py``: 130–190 on the full sample) are the saving.
-Counted by ``benchmarks/timing/study_parts.py`` (before the replicates were
-fitted together), the replicates whose MPM pruning changed:
-none of 50 at 80 and at 160 pairs, for 0.80 and 0.85 of the CPU time of
-refitting every family (Student-t, Gaussian and Gumbel kept; Student-t's
-cold start is most of what remains); on 10 known-truth problems (one data
-set each, 27–160 pairs) none of 500, the same 8 of 10 bands covering.
-
-The replicates are fitted together (:data:`BATCHED`): each is prepared here
-in plan order — its pairs, conditioning set, LF-rank draw and the fits that
-can win it — and then each candidate family and marginal is fitted to all
-of them at once (:mod:`pas.strategies.band_batch`): every replicate keeps
-its own L-BFGS-B with scipy's tolerances, and the objectives of all
-replicates are evaluated in one vectorised call on their distinct pairs
-weighted by their counts (:mod:`pas.models.joint_batch`).  The replicate
-MPMs are those of one replicate after another but for the order of
-summation.  ``benchmarks/timing/study_parts.py --parts band`` (one run, the
-2-core machine at a load of about 1.5, CPU time on one core): 2.56 s against
-4.99 s at 80 pairs (0.51) and 2.78 s against 5.71 s at 160 (0.49); a loaded
-run gave 0.40 and 0.53.  The largest change of a replicate MPM 4.7e-10 and
-7.0e-9, the same band on 1 and 2 processes (two gained no wall time in
-those runs: the second core was busy); of
-what remains Student-t's t quantiles (``special.stdtrit``) are about 60 %
-and the draws about 30 %.  On 20 known-truth problems (one data set each,
-27–160 pairs; the final band of the same study both ways): 0.28–0.62 of the
-band's CPU time (median 0.43), the largest change of a band end 7.6e-6, 4 of
-1 000 replicate MPMs changed by more than 1e-6, the same 17 of 20 U95s
-covering the truth and no truth between an old and a new band end; the
-whole runs, whose stopping reads the band, gave the same MPM and HF count
-in all 20.
-A mixture marginal or a rotated family (no batched objective) and a band
-not started from the final fits keep one replicate after another.
-
-Worker processes (``n_jobs`` > 1, or -1 for every core) are forked (POSIX),
-so they inherit the study's state instead of receiving it pickled (fitted
-together: a contiguous chunk of the replicates each, padded to the same
-number of distinct pairs, so that a replicate's fit does not depend on its
-chunk); where fork is not available the replicates run in this process.  The default (None)
-is every core the process may use on Linux, but one process when this
-process runs other threads (an oracle's, a Dask client's): forking a
-threaded process can copy a lock that one of them holds; and one process
-elsewhere (macOS: system libraries that are not fork-safe).
+The replicates draw what they drew one after another in one process, so the
+band is the same for any ``n_jobs``; they start from the final fits
+(:data:`WARM_BAND`; Student-t also from the data, :data:`COLD_FAMILIES`),
+refit only the copula families that can win them (:data:`PRUNE_AIC`) and are
+fitted together (:data:`BATCHED`, :mod:`pas.models.joint_batch`).  Workers
+are forked processes (POSIX); the default ``n_jobs=None`` is every core, but
+one process when this process runs other threads or where fork is unsafe.
+Why each choice, and what it was measured to change:
+``docs/explanation/model-band.md``.
 """
 
 from __future__ import annotations
