@@ -13,10 +13,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..models.copulas import select_family
 from ..models.joint import HF_MARGINALS, best_per_family, starts_cold
 from ..models.joint_batch import fit_joint_batch
-from .steps import FittedModel
+from .steps import FittedModel, joint_candidates
 
 __all__ = ["Replicate", "batch_fits", "fits_in_order", "replicate_model"]
 
@@ -65,19 +64,8 @@ def batch_fits(strategy, replicates: dict, cold_families, width: int) -> dict:
 
 def replicate_model(strategy, lfset, rep, fits: dict) -> FittedModel:
     """The replicate's model from its joint fits, as :meth:`pas.strategies.pas.PAS.fit`
-    with ``update=False`` makes it."""
-    _, impact, n0, u_cond, _ = rep
-    joint = best_per_family(fits)
-    copulas = {k: j.copula for k, j in joint.items()}
-    family = select_family(copulas, None, delta_aic=strategy.delta_aic,
-                           exclude_at_bound=strategy.exclude_at_bound)
-    cond = lfset.lf[:n0]
-    ascending = cond[::-1], u_cond[::-1]
-
-    def lf_to_u(x):
-        return np.interp(x, *ascending)
-
-    return FittedModel(copulas[family], joint[family].hf_marginal, lf_to_u,
-                       np.asarray(lf_to_u(cond), float), None if impact is None else impact(cond),
-                       copulas, 0)
-
+    with ``update=False`` makes it (:meth:`~pas.strategies.pas.PAS.model_of`)."""
+    pairs, impact, n0, u_cond, _ = rep
+    fitted = joint_candidates(best_per_family(fits), lfset.lf[:n0], u_cond,
+                              np.ones(len(pairs), dtype=bool))
+    return strategy.model_of(fitted, lfset, impact)

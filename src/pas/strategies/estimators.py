@@ -18,7 +18,7 @@ fits with one method, :meth:`fit`, which returns :class:`CandidateFits`.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Callable, ClassVar, NamedTuple
+from typing import Callable, ClassVar
 
 import numpy as np
 
@@ -28,7 +28,14 @@ from ..models.joint import JOINT_FAMILIES, best_per_family, unrefitted
 from ..models.joint_mixture import HF_CHOICES, MIXTURE, fit_hf_candidates
 from ..stats.dependence import pseudo_observations
 from . import band
-from .steps import cold_turns, conditioning_set, fit_marginals, remove_outliers
+from .steps import (
+    CandidateFits,
+    cold_turns,
+    conditioning_set,
+    fit_marginals,
+    joint_candidates,
+    remove_outliers,
+)
 
 __all__ = ["ConditionalLikelihood", "SelectedSample", "ESTIMATORS", "CandidateFits", "FitRequest"]
 
@@ -55,17 +62,6 @@ COLD_IN_TURN = False
 shared scores and cold start of :mod:`pas.models.joint_starts`, worst x0.68-0.75 and median
 x0.97-1.14 in ``benchmarks/timing/study_parts.py --parts cold``), instead of all at once.  Off: it changes answers (3 of 17 analogue MPMs by up to 1.9e-6; a 13-pair
 study by 1 %, 30 % in between), and 0.2 keeps the results of 0.1."""
-
-
-class CandidateFits(NamedTuple):
-    """What an estimator fitted: per candidate ``copulas`` and ``hf_marginals`` (by family),
-    ``lf_to_u`` (LF value -> LF rank), ``n0`` (conditioning peaks) and ``keep`` (pairs used)."""
-
-    copulas: dict
-    hf_marginals: dict
-    lf_to_u: Callable
-    n0: int
-    keep: np.ndarray
 
 
 @dataclass(frozen=True)
@@ -169,10 +165,7 @@ class ConditionalLikelihood:
         if update and not request.one_family:
             pas._joint = every
             pas._n_fits += 1
-        ascending = cond_lf[::-1], u_cond[::-1]
-        return CandidateFits({k: j.copula for k, j in joint.items()},
-                             {k: j.hf_marginal for k, j in joint.items()},
-                             lambda x: np.interp(x, *ascending), n0, keep)
+        return joint_candidates(joint, cond_lf, u_cond, keep)
 
     def _add_unrefitted(self, pas, every, joint, far, u, h, choice):
         """``(every, joint)`` of :meth:`fit` with the families ``far`` behind added not

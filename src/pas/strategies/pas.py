@@ -43,7 +43,13 @@ from . import band, model_form, tail_draws
 from .acquisition import md_select
 from .band import ModelBand
 from .base import Pairs, Prediction, Strategy
-from .estimators import ESTIMATORS, ConditionalLikelihood, FitRequest, SelectedSample
+from .estimators import (
+    ESTIMATORS,
+    CandidateFits,
+    ConditionalLikelihood,
+    FitRequest,
+    SelectedSample,
+)
 from .flat import moved_setting, pas_kwargs, pas_to_flat
 from .random_numbers import PeakUniforms
 from .screening import LFSet
@@ -213,7 +219,13 @@ class PAS(Strategy):
         request = FitRequest(self.families if family is None else (family,), impact,
                              one_family=family is not None, update=update,
                              hf_marginal=hf_marginal, lf_ranks_rng=lf_ranks_rng, starts=starts)
-        fitted = self.estimator.fit(self, pairs, lfset, request)
+        return self.model_of(self.estimator.fit(self, pairs, lfset, request), lfset, impact,
+                             family, update=update)
+
+    def model_of(self, fitted: CandidateFits, lfset: LFSet, impact, family: str | None = None,
+                 *, update: bool = False) -> FittedModel:
+        """The model of :meth:`fit` from an estimator's ``fitted`` candidates: ``family``, or
+        the selection (§2.2, with hysteresis and :attr:`family_` updated when ``update``)."""
         if family is None:
             family = select_family(fitted.copulas, self.family_ if update else None,
                                    delta_aic=self.delta_aic,

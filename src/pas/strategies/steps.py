@@ -7,6 +7,7 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Callable, NamedTuple
 
 import numpy as np
 
@@ -18,6 +19,26 @@ __all__ = ["EPS", "FittedModel", "SharedOnCopy", "remove_outliers", "conditionin
            "hf_distribution", "cold_turns"]
 
 EPS = 1e-6
+
+
+class CandidateFits(NamedTuple):
+    """What an estimator fitted: per candidate ``copulas`` and ``hf_marginals`` (by family),
+    ``lf_to_u`` (LF value -> LF rank), ``n0`` (conditioning peaks) and ``keep`` (pairs used)."""
+
+    copulas: dict
+    hf_marginals: dict
+    lf_to_u: Callable
+    n0: int
+    keep: np.ndarray
+
+
+def joint_candidates(joint: dict, cond_lf, u_cond, keep) -> CandidateFits:
+    """:class:`CandidateFits` of the best joint fit per family, the LF ranks ``u_cond`` of
+    the conditioning peaks ``cond_lf`` (descending) read by interpolation."""
+    ascending = cond_lf[::-1], u_cond[::-1]
+    return CandidateFits({k: j.copula for k, j in joint.items()},
+                         {k: j.hf_marginal for k, j in joint.items()},
+                         lambda x: np.interp(x, *ascending), len(cond_lf), keep)
 
 
 def remove_outliers(lf, hf, *, k: float = 3.0) -> np.ndarray:

@@ -170,6 +170,11 @@ def _q(model, q, uniforms, cols, rows=None):
     return None if model.impact is None else uniforms.q_for(q, model.impact[cols], cols, rows)
 
 
+def _every_draw(model, r, q, uniforms) -> np.ndarray:
+    """``model.draws`` of every uniform in ``r`` (shape ``(z, n0)``)."""
+    return model.draws(r, _q(model, q, uniforms, np.arange(model.n0)))
+
+
 def full_distribution(model, r, q, n_waves: int, uniforms):
     """:func:`~pas.strategies.steps.hf_distribution` of ``model.draws(r, q)``.
 
@@ -180,7 +185,7 @@ def full_distribution(model, r, q, n_waves: int, uniforms):
     """
     z, n0 = r.shape
     if r.size <= ROWWISE_ABOVE:
-        return hf_distribution(model.draws(r, _q(model, q, uniforms, np.arange(n0))), n_waves)
+        return hf_distribution(_every_draw(model, r, q, uniforms), n_waves)
 
     def sorted_row(j):
         h = np.empty(n0)
@@ -259,9 +264,8 @@ def predict_from_top(model, uniforms, lfset, rng, record=None, columns=None) -> 
     the stopping range read, the rest when read (:class:`TailPrediction`)."""
     r, q, r_max, again = uniforms.replayable(model.n0, rng, model.impact is not None)
     if not TOP_DRAWS:
-        draws = model.draws(r, _q(model, q, uniforms, np.arange(model.n0)))
-        return Prediction.read_at(lfset.p_exp, *hf_distribution(draws, lfset.n_waves), record,
-                                  columns)
+        return Prediction.read_at(lfset.p_exp, *hf_distribution(
+            _every_draw(model, r, q, uniforms), lfset.n_waves), record, columns)
     k = order_statistics_read(range_grid(lfset.p_exp)[-1], lfset.n_waves, model.n0)
     top = top_draws(model, r, q, r_max, k, uniforms)
     if top is None:
@@ -278,11 +282,11 @@ def mpm_from_top(model, uniforms, lfset, rng) -> float:
     k = order_statistics_read(lfset.p_exp, lfset.n_waves, model.n0)
     top = top_draws(model, r, q, r_max, k, uniforms) if TOP_DRAWS else None
     if top is None:
-        top = model.draws(r, _q(model, q, uniforms, np.arange(model.n0)))
+        top = _every_draw(model, r, q, uniforms)
     return mpm_of_realisations(top, lfset.n_waves, lfset.p_exp)
 
 
 def whole_draws(model, uniforms, rng) -> np.ndarray:
     """Every draw of ``model`` (shape ``(z, n0)``), from the uniforms :func:`mpm_from_top` reads."""
     r, q, _, _ = uniforms.replayable(model.n0, rng, model.impact is not None)
-    return model.draws(r, _q(model, q, uniforms, np.arange(model.n0)))
+    return _every_draw(model, r, q, uniforms)
