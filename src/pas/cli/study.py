@@ -36,8 +36,9 @@ stopping limits or the budget of a study, converged or not (recorded in the
 store; no decision taken so far depends on them).  ``pas study retry`` runs
 failed events again once their cause is fixed: the study continues as if they
 had not failed (:mod:`pas.study.amend`; no told result is lost).  ``tell
---replace`` corrects a told value or a failure; the old one stays in the
-store's audit trail (``pas study status --events``).
+--replace`` corrects a told value, a failure or named loads (``--load
+NAME=VALUE``); the old ones stay in the store's audit trail (``pas study
+status --events``).
 """
 
 from __future__ import annotations
@@ -68,6 +69,7 @@ examples:
   pas study set campaign.db --eps1 10 --max-hf 80    # tighter limit, bigger budget
   pas study run campaign.db -q 4 --workers 4         # drive it with the TOML's [oracle]
   pas study tell campaign.db 1532 120.5 --replace    # correct a typo (old value kept)
+  pas study tell campaign.db 1532 --load panel_p3=40.1 --load deck=812.5 --replace
   pas study retry campaign.db                        # failed events run again
 """
 

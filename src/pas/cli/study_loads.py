@@ -81,8 +81,10 @@ def tell_loads(args) -> int:
                                               source="cli", replace=args.replace))
     bad = sorted({n for _k, (_v, loads), _e in told for n, (_x, e) in (loads or {}).items()
                   if e})
-    print(f"stored the loads of {new} event(s) in {args.study}"
-          + (f" ({len(told) - new} already stored)" if new < len(told) else "")
+    print(f"{'replaced' if args.replace else 'stored'} the loads of {new} event(s) in "
+          f"{args.study}" + (f" ({len(told) - new} already stored)" if new < len(told) else "")
+          + ("; the old values are listed by 'pas study status --events'" if args.replace
+             and new else "")
           + (f"; invalid {', '.join(bad)} kept as missing" if bad else ""))
     return 0
 

@@ -1,7 +1,7 @@
 """``pas study status``: where a stored study stands, and with ``--events`` every event it asked.
 
-``--events`` adds the events table, the audit trail of replaced results
-(``pas study tell --replace``) and the asks a retry took out of the log
+``--events`` adds the events table, the audit trail of replaced results and
+named loads (``pas study tell --replace``) and the asks a retry took out of the log
 (``pas study retry``), whose results are kept.  The result shown is the one
 stored for the current state of the log (:mod:`pas.study.stored_results`);
 ``--refresh`` replays the log instead.
@@ -35,7 +35,8 @@ def status(args) -> int:
             shown, n_told = _replayed(store, waiting, key)
         events = store.events()
         changes = store.get("settings_changes", [])
-        audit = {"replacements": store.replacements(), "dropped": store.dropped()}
+        audit = {"replacements": store.replacements(), "dropped": store.dropped(),
+                 "load_replacements": store.load_replacements()}
     pend = events[events["state"] == "pending"]
     # a stored result covers the results the study used; waiting ones are left out of it
     left_out = len(waiting) if from_store else 0
@@ -134,7 +135,9 @@ def _print_status(info, counts_text, band_text, fitted, included, left_out,
 
 
 def _result_text(hf, error) -> str:
-    return f"error {error!r}" if error is not None else f"{hf:.6g}"
+    if error is not None:
+        return f"error {error!r}"
+    return "none" if hf is None else f"{hf:.6g}"
 
 
 def _print_events(events, audit) -> None:
@@ -146,6 +149,12 @@ def _print_events(events, audit) -> None:
         print(f"replaced: event {r['key']} {_result_text(r['old_hf'], r['old_error'])} -> "
               f"{_result_text(r['new_hf'], r['new_error'])} at {r['replaced_at']} "
               f"(source {r['source']}, old from {r['old_source'] or 'the study'}); {r['note']}")
+    keys = dict(zip(events["idx"], events["event_id"]))
+    for r in audit["load_replacements"]:
+        print(f"replaced load {r['name']!r} of event {keys.get(r['idx'], r['idx'])}: "
+              f"{_result_text(r['old_value'], r['old_error'])} -> "
+              f"{_result_text(r['new_value'], r['new_error'])} at {r['replaced_at']} "
+              f"(source {r['source']})")
     for r in audit["dropped"]:
         kept = ("no result" if r["result_seq"] is None else
                 _result_text(r["hf"], r["error"]) + (" (reused)" if r["reused_seq"] else

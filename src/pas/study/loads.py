@@ -22,8 +22,8 @@ from __future__ import annotations
 from .answers import screened_load
 from .schema import StoreError, _now
 
-__all__ = ["add_event_loads", "put_loads", "record_loads", "stored_loads", "load_names",
-           "answers_from_loads", "adopt_target"]
+__all__ = ["add_event_loads", "put_loads", "replace_loads", "record_loads", "stored_loads",
+           "load_names", "answers_from_loads", "adopt_target"]
 
 EVENT_LOADS = """
 CREATE TABLE IF NOT EXISTS event_loads (
@@ -32,14 +32,23 @@ CREATE TABLE IF NOT EXISTS event_loads (
     PRIMARY KEY (study, idx, name))
 """
 
+LOAD_REPLACEMENTS = """
+CREATE TABLE IF NOT EXISTS load_replacements (
+    id INTEGER PRIMARY KEY AUTOINCREMENT, study TEXT NOT NULL DEFAULT '', idx INTEGER NOT NULL,
+    name TEXT NOT NULL, old_value REAL, old_error TEXT, new_value REAL, new_error TEXT,
+    source TEXT, replaced_at TEXT NOT NULL)
+"""
+
 
 def add_event_loads(c) -> None:
-    """Create the ``event_loads`` table when missing (new stores and older ones alike).
+    """Create the ``event_loads`` and ``load_replacements`` tables when missing.
 
     Idempotent; run in the opening transaction of
-    :class:`~pas.study.store.StudyStore`, so it needs no schema version of its own.
+    :class:`~pas.study.store.StudyStore` for new stores and older ones alike,
+    so it needs no schema version of its own.
     """
     c.execute(EVENT_LOADS)
+    c.execute(LOAD_REPLACEMENTS)
 
 
 def put_loads(c, idx: int, loads, path, scope: str = "") -> None:
@@ -56,7 +65,31 @@ def put_loads(c, idx: int, loads, path, scope: str = "") -> None:
                       (scope, idx, name, value, error))
         elif tuple(row) != (value, error):
             raise StoreError(f"load {name!r} of event index {idx} is already stored in {path} "
-                             f"(value={row[0]}, error={row[1]!r}); refusing to overwrite it")
+                             f"(value={row[0]}, error={row[1]!r}); refusing to overwrite it "
+                             "(correct it with --replace, or replace=True)")
+
+
+def replace_loads(c, idx: int, loads, scope: str = "", source: str | None = None) -> bool:
+    """Replace the stored named ``loads`` of event ``idx``, each old value to ``load_replacements``.
+
+    Loads not named in ``loads`` stay as they are; a load the event did not
+    have is added (its old value NULL in the audit row).  Returns whether any
+    stored load changed.
+    """
+    changed = False
+    for name, (value, error) in (loads or {}).items():
+        row = c.execute("SELECT value, error FROM event_loads WHERE study = ? AND idx = ? AND "
+                        "name = ?", (scope, idx, name)).fetchone()
+        if row is not None and tuple(row) == (value, error):
+            continue
+        old = (None, None) if row is None else tuple(row)
+        c.execute("INSERT INTO load_replacements (study, idx, name, old_value, old_error, "
+                  "new_value, new_error, source, replaced_at) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?)",
+                  (scope, idx, name, *old, value, error, source, _now()))
+        c.execute("INSERT OR REPLACE INTO event_loads VALUES (?, ?, ?, ?, ?)",
+                  (scope, idx, name, value, error))
+        changed = True
+    return changed
 
 
 def record_loads(store, event, loads) -> None:

@@ -36,7 +36,7 @@ import numpy as np
 
 from .._version import __version__
 from . import amend
-from .loads import add_event_loads, put_loads
+from .loads import add_event_loads, put_loads, replace_loads
 from .stored_results import add_results_table
 from .schema import (RESUMABLE, with_legacy_settings, SCHEMA_VERSION, STATES, STORED, StoreConflict, StoreError,
                      _now, named_errors, _pool_hash, _pool_records, create_or_upgrade, dumps)
@@ -270,17 +270,26 @@ class StudyStore(StoreViews):
         overwrite a different one.  With ``replace`` the event's result was
         used already: the new one is stored as its replacement (audited,
         :func:`pas.study.amend.stage_replacement`), unless that replacement
-        already waits.
+        already waits, and named ``loads`` replace the stored ones
+        (:func:`pas.study.loads.replace_loads`; with the screened load
+        unchanged, they are all that changes).
         """
         idx = int(event if isinstance(event, (int, np.integer)) else event.index)
         value = _as_result(value, error)
         with self.transaction() as c:
             if replace:
-                _refuse_replaced_loads(f"event index {idx}", loads)
-                amend.stage_replacement(self, c, idx, value, error, source or "python")
+                loads_changed = replace_loads(c, idx, loads, self.scope, source or "python")
+                if not (loads_changed and self._holds(c, idx, value, error)):
+                    amend.stage_replacement(self, c, idx, value, error, source or "python")
                 return
             self._put_result(c, idx, value, error, source)
             put_loads(c, idx, loads, self.path, self.scope)
+
+    def _holds(self, c, idx, value, error) -> bool:
+        """Whether event ``idx``'s stored result is ``(value, error)``."""
+        row = c.execute("SELECT hf, error FROM events WHERE study = ? AND idx = ?",
+                        (self.scope, idx)).fetchone()
+        return row is not None and tuple(row) == (value, error)
 
     def _put_result(self, c, idx, value, error, source):
         row = c.execute("SELECT key, state, hf, error, result_seq FROM events "
@@ -352,11 +361,13 @@ class StudyStore(StoreViews):
                 raise StoreError(f"event {key} was not asked for in {self.path}")
             idx, state, result_seq, hf, err = found
             if result_seq is not None:
-                if (hf, err) == (value, error):
-                    return False
                 if replace:
-                    _refuse_replaced_loads(f"event {key}", loads)
-                    return amend.replace_result(self, c, idx, value, error, source)
+                    loads_changed = replace_loads(c, idx, loads, self.scope, source)
+                    return amend.replace_result(self, c, idx, value, error, source) or \
+                        loads_changed
+                if (hf, err) == (value, error):
+                    put_loads(c, idx, loads, self.path, self.scope)  # a different load: refused
+                    return False
                 raise StoreError(f"event {key} is already told ({state}, hf={hf}, "
                                  f"error={err!r}); to correct it, tell it again with "
                                  "--replace (replace=True)")
@@ -377,12 +388,6 @@ class StudyStore(StoreViews):
 def _as_result(value, error):
     """The stored form of a result: ``value`` as a float, None for a failure."""
     return None if error is not None else float(value)
-
-
-def _refuse_replaced_loads(what: str, loads) -> None:
-    if loads:
-        raise StoreError(f"{what}: --replace takes the screened load alone (VALUE), not --load "
-                         "NAME=VALUE; named loads cannot be corrected yet")
 
 
 def read_settings(path) -> dict:

@@ -201,6 +201,10 @@ class StoreViews:
         """The audit trail of replaced results (``replacements`` table), oldest first."""
         return self._table("replacements")
 
+    def load_replacements(self) -> list[dict]:
+        """The audit trail of corrected named loads (``load_replacements`` table), oldest first."""
+        return self._table("load_replacements")
+
     def dropped(self) -> list[dict]:
         """The asks a retry took out of the log, with their kept results (``dropped`` table)."""
         return self._table("dropped")

@@ -254,6 +254,9 @@ class Study(Corrections):
         ``replace=True`` corrects a told result (a typo, a re-run basin test,
         a value for a failure): :class:`~pas.study.corrections.Corrections`
         says what changes and what stays; for a pending event it is a plain tell.
+        Named loads replace the stored ones they name (the old ones are kept,
+        ``store.load_replacements()``); when the screened load is unchanged
+        nothing is refitted and the event's last history row is returned.
         """
         idx = event.index if isinstance(event, Event) else int(event)
         pos = self.lfset.position_of(idx)
@@ -270,8 +273,11 @@ class Study(Corrections):
         ev = self.lfset.event(pos)
         replacing = state != EventState.PENDING
         if replacing and loads:
-            raise ValueError(f"event {idx}: replace=True takes the screened load alone, not "
-                             "named loads; named loads cannot be corrected yet")
+            old = next(r for r in reversed(self.rows) if r["position"] == pos)
+            if (old["hf"], old["error"]) == (value, error):  # the other loads alone change
+                if self.store is not None:
+                    self.store.record_result(ev, value, error, loads=loads, replace=True)
+                return old
         if self.store is not None:  # on disk before the fit; record_tell only marks it used
             self.store.record_result(ev, value, error, loads=loads, replace=replacing)
         if replacing:
