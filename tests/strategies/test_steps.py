@@ -152,6 +152,37 @@ def test_impact_probability_rises_with_lf():
     assert low < 0.15 and 0.3 < mid < 0.7 and high > 0.9
 
 
+def test_a_falling_impact_probability_is_kept_only_where_the_test_rejects_a_flat_one():
+    from pas.strategies.selection import FALLING_P, impact_probability
+
+    rng = np.random.default_rng(1)
+    lf = rng.uniform(10, 20, 200)
+    hit = rng.uniform(size=200) < np.where(lf > 17.5, 0.3, 0.95)  # misses high up: a step
+    tested = impact_probability(lf[hit], lf[~hit], falling_p=FALLING_P)
+    low, high = tested(np.array([11.0, 19.5]))
+    assert low > 0.85 and high < 0.6            # the drop the evaluated events show
+    rising = impact_probability(lf[hit], lf[~hit])
+    assert np.ptp(rising(np.array([11.0, 19.5]))) == 0.0
+    assert rising([11.0])[0] == pytest.approx(hit.mean(), rel=1e-12)
+    flat = rng.uniform(size=200) < 0.7            # no trend: a falling fit is chance
+    slope = [impact_probability(lf[f], lf[~f], falling_p=FALLING_P)(np.array([10.0, 20.0]))
+             for f in (flat, ~(rng.uniform(size=200) < 0.3))]
+    assert all(np.ptp(p) < 0.1 for p in slope)
+    with pytest.raises(ValueError, match="impact_trend must be one of"):
+        PAS(impact_trend="falling")
+
+
+def test_the_impact_trend_acts_in_the_fit_and_the_paper_keeps_rising():
+    s = LFSet(np.linspace(10, 0.1, 500), n_waves=600, p_exp=0.01)
+    pos = np.arange(0, 120, 2)
+    fp = np.arange(1, 16, 2)                     # misses among the largest peaks only
+    pairs = Pairs(pos, s.lf[pos], 2 * s.lf[pos] + 1, s.d[pos], fp_position=fp, fp_lf=s.lf[fp])
+    tested, rising = PAS(), PAS(impact_trend="rising")
+    assert tested.impact_of(pairs)(s.lf[:1])[0] < 0.7 < rising.impact_of(pairs)(s.lf[:1])[0]
+    assert PAS.paper().impact_trend == "rising" and PAS().impact_trend == "tested"
+    assert PAS(impact_model=False).impact_of(pairs) is None
+
+
 def test_outliers_leave_the_selected_space_marginals_by_default():
     s = LFSet(np.linspace(10, 0.1, 500), n_waves=600, p_exp=0.01)
     pos = np.arange(0, 500, 25)

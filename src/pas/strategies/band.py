@@ -28,7 +28,6 @@ from ..models.joint_batch import batchable
 from ..models.joint_mixture import MIXTURE, pair_logliks
 from . import model_form as model_forms
 from .band_batch import Replicate, batch_fits, replicate_model
-from .selection import impact_probability
 from .steps import conditioning_set
 
 __all__ = ["ModelBand", "WARM_BAND", "COLD_FAMILIES", "PRUNE_AIC", "BATCHED", "ReplicateStarts",
@@ -144,7 +143,7 @@ def _lf_rank_streams(strategy, pairs, lfset, plan, lf_rng) -> list:
         if b is None or strategy.estimator.name != "conditional":
             continue
         try:
-            impact = impact_probability(b.lf, b.fp_lf) if strategy.impact_model else None
+            impact = strategy.impact_of(b)
         except (ValueError, np.linalg.LinAlgError):
             continue  # the fit fails before it draws
         n0 = conditioning_set(lfset.lf, b.lf.min()).size
@@ -168,7 +167,7 @@ def replicate_starts(strategy, b, lfset, starts: dict, choice) -> ReplicateStart
     keys = [k for k in starts if k[1] in _choice_marginals(strategy, choice)]
     if PRUNE_AIC is None:
         return ReplicateStarts((k, starts[k]) for k in keys)
-    impact = impact_probability(b.lf, b.fp_lf) if strategy.impact_model else None
+    impact = strategy.impact_of(b)
     n0 = conditioning_set(lfset.lf, b.lf.min()).size
     u = strategy._population_ranks(lfset, n0, impact, None)[b.position]
     aic = {k: 2.0 * starts[k].copula.npars
@@ -259,7 +258,7 @@ def _prepared(strategy, pairs, lfset, starts, plan, lf_rng) -> list:
             if b is None:
                 raise ValueError("too few or all alike")
             kept = replicate_starts(strategy, b, lfset, starts, choice)
-            impact = impact_probability(b.lf, b.fp_lf) if strategy.impact_model else None
+            impact = strategy.impact_of(b)
             n0 = conditioning_set(lfset.lf, b.lf.min()).size
             out.append(Replicate(b, impact, n0,
                                  strategy._population_ranks(lfset, n0, impact, lf_rng), kept))

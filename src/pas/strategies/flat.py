@@ -21,7 +21,7 @@ __all__ = ["OWN_NAMES", "BAND_NAMES", "FLAT_NAMES", "MOVED", "pas_to_flat", "pas
            "moved_setting"]
 
 OWN_NAMES = ("families", "z", "delta_aic", "exclude_at_bound", "skip_unsplittable",
-             "impact_model", "common_random_numbers")
+             "impact_model", "impact_trend", "common_random_numbers")
 """Settings that are :class:`~pas.strategies.pas.PAS` arguments themselves."""
 
 BAND_NAMES = {"n_bootstrap": "n_bootstrap", "marginals": "band_marginals",

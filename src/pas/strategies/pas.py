@@ -14,10 +14,11 @@ Estimator (``estimator``, :mod:`pas.strategies.estimators`)
     likelihood of HF given the LF population ranks, which selection by LF
     (MD) leaves valid; :class:`~pas.strategies.estimators.SelectedSample`:
     the paper's fit in selected-sample space (Eq. 5, 15; §5.4).
-Impact model (``impact_model``)
+Impact model (``impact_model``, ``impact_trend``)
     Once false positives have been seen, ``P(impact | LF)`` (logistic
     regression on true vs false positives) zeroes draws, instead of a
-    positive draw for every conditioning peak (:mod:`pas.strategies.selection`).
+    positive draw for every conditioning peak (:mod:`pas.strategies.selection`);
+    it falls with LF only where a test says the evaluated events show it.
 Common random numbers (``common_random_numbers``)
     Each LF peak keeps its ``z`` uniforms for the whole study, so the
     stopping rule measures model change, not redrawn noise.
@@ -36,7 +37,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._support.checks import check_finite, check_int
+from .._support.checks import check_finite, check_int, check_option
 from ..models.copulas import PAPER_FAMILIES, _family_and_rotation, select_family
 from ..stats.dependence import empirical_tail_dependence, kendall_tau
 from . import band, model_form, tail_draws
@@ -53,7 +54,7 @@ from .estimators import (
 from .flat import moved_setting, pas_kwargs, pas_to_flat
 from .random_numbers import PeakUniforms
 from .screening import LFSet
-from .selection import impact_probability, population_lf_ranks
+from .selection import FALLING_P, impact_probability, population_lf_ranks
 from .steps import (
     FittedModel,
     SharedOnCopy,
@@ -104,6 +105,11 @@ class PAS(Strategy):
     impact_model : bool, default True
         Zero draws by the estimated impact probability once false positives
         have been seen (:mod:`pas.strategies.selection`); False is the paper.
+    impact_trend : {"tested", "rising"}, default "tested"
+        Whether that probability may fall with LF: ``"tested"`` where a
+        one-sided likelihood-ratio test rejects a flat one at 5 %
+        (:func:`~pas.strategies.selection.falls_significantly`), ``"rising"``
+        never (a falling fit gives the constant impact share, as before 0.2).
     common_random_numbers : bool, default True
         Each LF peak keeps its own ``z`` uniforms for the whole study, so the
         stopping measures see model change, not redrawn noise (module docs);
@@ -130,7 +136,8 @@ class PAS(Strategy):
 
     def __init__(self, *, families=PAPER_FAMILIES, z: int = 10, delta_aic: float = 4.0,
                  exclude_at_bound: bool = True, skip_unsplittable: bool = True,
-                 impact_model: bool = True, common_random_numbers: bool = True,
+                 impact_model: bool = True, impact_trend: str = "tested",
+                 common_random_numbers: bool = True,
                  estimator: ConditionalLikelihood | SelectedSample = ConditionalLikelihood(),
                  band: ModelBand = ModelBand(), **moved):
         if moved:
@@ -143,6 +150,7 @@ class PAS(Strategy):
         self.exclude_at_bound = bool(exclude_at_bound)
         self.skip_unsplittable = bool(skip_unsplittable)
         self.impact_model = bool(impact_model)
+        self.impact_trend = check_option(impact_trend, "impact_trend", ("tested", "rising"))
         self.common_random_numbers = bool(common_random_numbers)
         if not isinstance(estimator, tuple(ESTIMATORS.values())):
             raise TypeError(f"estimator must be ConditionalLikelihood(...) or SelectedSample(...)"
@@ -169,7 +177,7 @@ class PAS(Strategy):
         :meth:`pas.study.settings.Budget.paper`) unless told otherwise.
         """
         strategy = cls(exclude_at_bound=False, skip_unsplittable=False,
-                       common_random_numbers=False, z=10, impact_model=False,
+                       common_random_numbers=False, z=10, impact_model=False, impact_trend="rising",
                        estimator=SelectedSample.paper(),
                        band=ModelBand(n_bootstrap=0, marginals="fitted", lf_ranks="fixed"))
         strategy.paper_study = True
@@ -200,6 +208,14 @@ class PAS(Strategy):
         return md_select(lfset.ln_d, available, np.log(selected_d), q,
                          skip_unsplittable=self.skip_unsplittable)
 
+    def impact_of(self, pairs: Pairs):
+        """``P(impact | LF)`` of ``pairs`` (:func:`~pas.strategies.selection.impact_probability`),
+        None without the impact model or before a false positive."""
+        if not self.impact_model:
+            return None
+        return impact_probability(pairs.lf, pairs.fp_lf,
+                                  falling_p=FALLING_P if self.impact_trend == "tested" else None)
+
     # -- Steps 7–9: the model ------------------------------------------------
     def fit(self, pairs: Pairs, lfset: LFSet, family: str | None = None, *,
             update: bool = True, hf_marginal: str | None = None,
@@ -215,7 +231,7 @@ class PAS(Strategy):
         conditional estimator (:class:`~pas.strategies.estimators.FitRequest`;
         :meth:`model_band`).
         """
-        impact = impact_probability(pairs.lf, pairs.fp_lf) if self.impact_model else None
+        impact = self.impact_of(pairs)
         request = FitRequest(self.families if family is None else (family,), impact,
                              one_family=family is not None, update=update,
                              hf_marginal=hf_marginal, lf_ranks_rng=lf_ranks_rng, starts=starts)
@@ -322,7 +338,7 @@ class PAS(Strategy):
         """Joint fits of every family and the marginals of ``hf_marginal`` to ``pairs``
         (conditional estimator; the band's starts): from the study's last fits, which are
         of these pairs, as a replicate starts; a marginal the study did not fit, from the data."""
-        impact = impact_probability(pairs.lf, pairs.fp_lf) if self.impact_model else None
+        impact = self.impact_of(pairs)
         self.estimator.fit(self, pairs, lfset, FitRequest(self.families, impact, update=False,
                                                           hf_marginal=hf_marginal,
                                                           starts=self._joint))

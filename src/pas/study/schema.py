@@ -94,7 +94,8 @@ LEGACY_SETTINGS = {
     "strategy_settings": {"estimator": "selected", "copula_fit": "mle",
                           "common_random_numbers": False, "hf_location": True,
                           "hf_marginal": "weibull", "band_marginals": "fitted",
-                          "band_lf_ranks": "fixed", "lf_tail": "ranks"},
+                          "band_lf_ranks": "fixed", "lf_tail": "ranks",
+                          "impact_trend": "rising"},
     "stop_measure": "step",
     "legacy_md": True,
 }
