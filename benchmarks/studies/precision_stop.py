@@ -55,17 +55,17 @@ FACTOR = 1.5  # "within a factor 1.5" of the HF still needed
 PAGE, TAG = Path("docs/results/precision.md"), "precision_stop.py"
 
 
-def problems(types, cases, n, scale):
+def problems(types, cases, n, scale, first=1):
     """``(problem name, data set, lf, oracle, run_pas arguments, truth)`` for every data set."""
     for name in types:
-        for rep in range(1, n + 1):
+        for rep in range(first, first + n):
             p = make_problem(KNOWN_TRUTH[name], rep)
             yield name, rep, p.lf, p.oracle(), {"n_waves": p.n_waves, "p_exp": p.p_exp,
                                                 "threshold": p.threshold}, p.truth_mpm
     for case in cases:
         from pas.validation import generate_case
 
-        for rep in range(1, n + 1):
+        for rep in range(first, first + n):
             d = generate_case(case, seed=rep, scale=scale)
             kw = {k: v for k, v in d.run_kwargs().items() if k != "eps1"}
             yield f"analogue-{case}", rep, d.lf, d.oracle(), kw, d.truth_mpm
@@ -83,12 +83,18 @@ def halfway_forecast(fitted: pd.DataFrame, n_stop: int):
     return float(row["forecast_hf"]), float(n_stop - row["n_hf"])
 
 
-def run_one(lf, oracle, kw, truth, *, seed, target, max_hf) -> dict:
-    """One study with ``precision=target``; what the table needs of it."""
+def run_one(lf, oracle, kw, truth, *, seed, target, max_hf, history=None) -> dict:
+    """One study with ``precision=target``; what the table needs of it.
+
+    ``history``: a CSV path to keep the study's history at (its band widths per fit,
+    for evaluating forecasts offline: ``benchmarks/investigations/forecast_variants.py``).
+    """
     t0 = time.perf_counter()
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         res = pas.run_pas(lf, oracle, **kw, precision=target, seed=seed, max_hf=max_hf)
+    if history is not None:
+        res.history.assign(truth=truth).to_csv(history, index=False)
     lo, hi = res.mpm_band
     forecast, needed = (halfway_forecast(res.fitted, res.n_hf) if res.converged
                         else (np.nan, np.nan))
@@ -194,6 +200,9 @@ def main(argv=None):
     ap.add_argument("--max-budget-for", default="0.05:160",
                     help="target:budget pairs lowering the largest budget for a target")
     ap.add_argument("--csv", default="precision_runs.csv")
+    ap.add_argument("--histories", type=Path, metavar="DIR",
+                    help="keep each study's history as DIR/<problem>_<set>_<target>.csv")
+    ap.add_argument("--first", type=int, default=1, help="first data set (fresh seeds)")
     ap.add_argument("--cost", type=int, metavar="HF", help="measure the loop's cost instead")
     ap.add_argument("--from-csv", metavar="A.csv,B.csv",
                     help="tabulate the runs of earlier --csv files instead of running")
@@ -216,11 +225,16 @@ def main(argv=None):
     cap = {float(k): int(v) for k, v in
            (item.split(":") for item in args.max_budget_for.split(",") if item)}
     rows = []
-    for name, rep, lf, oracle, kw, truth in problems(*split, args.n, args.scale):
+    for name, rep, lf, oracle, kw, truth in problems(*split, args.n, args.scale, args.first):
         for target in targets:
             budget = min(budgets[-1], cap.get(target, budgets[-1]))
+            history = None
+            if args.histories:
+                args.histories.mkdir(parents=True, exist_ok=True)
+                history = args.histories / f"{name}_{rep}_{target:g}.csv"
             row = {"problem": name, "data_set": rep,
-                   **run_one(lf, oracle, kw, truth, seed=rep, target=target, max_hf=budget)}
+                   **run_one(lf, oracle, kw, truth, seed=rep, target=target, max_hf=budget,
+                             history=history)}
             rows.append(row)
             print(f"{name} set {rep} ±{target:.0%}: {'reached' if row['converged'] else 'not'} "
                   f"at {row['n_hf']} HF, error {row['error']:+.1%}, covered {row['covered']}, "
