@@ -21,9 +21,12 @@ Per variant: the studies that reached their target, the share whose halfway
 forecast was within a factor 1.5 of the HF then needed (a missing forecast
 counts as a miss), how often its 95 % interval held that number, and the
 median ratio; per target as well.  ``--problems`` picks the histories of some
-problems (e.g. the tuning types only).
+problems (e.g. the tuning types only); ``--write [PAGE]`` puts the table
+between the ``<!-- BEGIN forecast_variants.py variants -->`` markers of
+``docs/results/precision.md``.
 
-Run: ``python benchmarks/investigations/forecast_variants.py DIR [--problems a,b] [--csv out.csv]``
+Run: ``python benchmarks/investigations/forecast_variants.py DIR [--problems a,b] [--csv out.csv]
+[--write]``
 """
 
 from __future__ import annotations
@@ -37,8 +40,10 @@ import pandas as pd
 
 from pas.strategies.forecast import forecast_pairs, relative_half_width
 from pas.strategies.stopping import StoppingRule
+from pas.validation.result_tables import rewrite_page
 
 FACTOR = 1.5
+PAGE, TAG = Path("docs/results/precision.md"), "forecast_variants.py"
 VARIANTS = {
     "fit alone (before)": {"prior_sd": math.inf, "centre": "mean"},
     "b = 1/2, mean": {"prior_sd": 1e-3, "centre": "mean"},
@@ -47,6 +52,11 @@ VARIANTS = {
     "shrink 0.2, mean": {"prior_sd": 0.2, "centre": "mean"},
     "shrink 0.2, median": {"prior_sd": 0.2, "centre": "median"},
     "shrink 0.4, median": {"prior_sd": 0.4, "centre": "median"},
+    "b = 1/2, min": {"prior_sd": 1e-3, "centre": "min"},
+    "b = 1/2, last": {"prior_sd": 1e-3, "centre": "last"},
+    "shrink 0.1, min": {"prior_sd": 0.1, "centre": "min"},
+    "shrink 0.2, min": {"prior_sd": 0.2, "centre": "min"},
+    "shrink 0.1, last": {"prior_sd": 0.1, "centre": "last"},
 }
 
 
@@ -93,7 +103,7 @@ def further_hf(state: dict, *, rule_floor: bool, sampling_widths: bool = False, 
     if ahead is None:
         return (np.nan,) * 3
     if rule_floor:
-        ahead = ahead.at_least(state["n_pairs"] + rule.fewest_more_fits())
+        ahead = ahead.at_least(state["n_pairs"] + max(rule.fewest_more_fits(), 1))  # not met
     return ahead.further(state["n_pairs"], state["n_hf"] / max(state["n_pairs"], 1))
 
 
@@ -128,18 +138,39 @@ def summary(runs: pd.DataFrame) -> pd.DataFrame:
     return out.reset_index()
 
 
+def markdown(table: pd.DataFrame) -> str:
+    """The summary as the page's Markdown table, shares in per cent."""
+    targets = [c for c in table.columns if c.startswith("within at")]
+    head = ["variant", "studies", "forecasts", "within ×1.5", "95 % interval held",
+            "median ratio", *(f"within ×1.5, {c[len('within at '):]}" for c in targets)]
+    lines = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
+    for _, r in table.iterrows():
+        cells = [r["variant"], str(int(r["studies"])), str(int(r["forecasts"])),
+                 *(f"{100 * r[c]:.0f} %" if np.isfinite(r[c]) else "–"
+                   for c in ("within", "interval_held")),
+                 f"{r['median_ratio']:.2f}" if np.isfinite(r["median_ratio"]) else "–",
+                 *(f"{100 * r[c]:.0f} %" if np.isfinite(r[c]) else "–" for c in targets)]
+        lines.append("| " + " | ".join(cells) + " |")
+    return "\n".join(lines)
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("histories", type=Path, help="the --histories DIR of precision_stop.py")
     ap.add_argument("--problems", default="", help="comma-separated problem names (default all)")
     ap.add_argument("--csv", help="write the per-study forecasts here")
+    ap.add_argument("--write", nargs="?", const=PAGE, type=Path, metavar="PAGE",
+                    help=f"write the table between the markers of PAGE (default {PAGE})")
     args = ap.parse_args(argv)
     problems = {p for p in args.problems.split(",") if p}
     runs = evaluate(list(halfway_states(args.histories, problems)))
     if args.csv:
         runs.to_csv(args.csv, index=False)
+    table = summary(runs)
     with pd.option_context("display.width", 220, "display.max_columns", 20):
-        print(summary(runs).to_string(index=False, float_format=lambda x: f"{x:.2f}"))
+        print(table.to_string(index=False, float_format=lambda x: f"{x:.2f}"))
+    if args.write:
+        rewrite_page(args.write, {"variants": markdown(table)}, TAG)
 
 
 if __name__ == "__main__":

@@ -56,7 +56,12 @@ def test_the_rule_floor_counts_the_k2_window():
     assert rule.forecast(n_now=8, extra=(8, 0.05)).n_pairs == pytest.approx(23, rel=1e-12)
     # an MPM 30 % off must leave the window first (±10 % spans at most 22 %)
     assert rule_with([100.0, 130.0, 100.0, 100.0], k2=4).fewest_more_fits() == 2
-    assert rule_with([100.0, 105.0, 100.0, 100.0], k2=4).fewest_more_fits() == 0
+    settled = rule_with([100.0, 105.0, 100.0, 100.0], k2=4)
+    assert settled.fewest_more_fits() == 0
+    # a fit at which the rule did not hold needs one more, one at which it held none
+    assert settled.forecast(n_now=30, extra=(30, 0.05)).n_pairs == pytest.approx(31, rel=1e-12)
+    assert settled.forecast(n_now=30, extra=(30, 0.05), met=True).n_pairs == pytest.approx(
+        30, rel=1e-12)
 
 
 def test_the_rule_floor_is_never_more_than_the_rule_needs():

@@ -48,7 +48,7 @@ SCATTER = 0.25
 SCATTER_DOF = 2
 """Degrees of freedom :data:`SCATTER` counts for when pooled with the measured scatter."""
 
-CENTRE = "median"
+CENTRE = "min"
 """How the level of the power law is taken from the widths (:func:`forecast_pairs`)."""
 
 SPAN = 4.0
@@ -141,9 +141,12 @@ def forecast_pairs(n, widths, target: float, floor: float = 0.0, *, prior_sd: fl
         Standard deviation of the prior on the exponent ``b`` (centred on
         :data:`PRIOR_EXPONENT`); ``inf`` fits ``b`` by least squares alone
         (and needs :data:`MIN_POINTS` widths), a small value fixes it.
-    centre : {"median", "mean"}, default :data:`CENTRE`
-        How the level ``a`` is taken from the points given ``b``: the median
-        ignores a single bootstrap width far off the line.
+    centre : {"min", "median", "mean", "last"}, default :data:`CENTRE`
+        How the level ``a`` is taken from the points given ``b``: ``"min"``
+        the lowest (a bootstrap width errs upward — replicates that fall apart
+        widen it, none narrows it — and the rule stops at the first band below
+        the target, before the trend reaches it), ``"median"`` ignores one
+        wild width, ``"last"`` is the newest width alone.
 
     Returns
     -------
@@ -157,8 +160,8 @@ def forecast_pairs(n, widths, target: float, floor: float = 0.0, *, prior_sd: fl
     >>> round(f.n_pairs, 6), round(f.exponent, 6)
     (160.0, 0.5)
     """
-    if centre not in ("median", "mean"):
-        raise ValueError(f"centre must be 'median' or 'mean', got {centre!r}")
+    if centre not in ("median", "mean", "min", "last"):
+        raise ValueError(f"centre must be 'min', 'median', 'mean' or 'last', got {centre!r}")
     n, w = np.asarray(n, dtype=float), np.asarray(widths, dtype=float)
     keep = np.isfinite(w) & (w > 0) & (n >= n[-1] / SPAN) if n.size else n.astype(bool)
     n, w = n[keep], w[keep]
@@ -172,9 +175,12 @@ def forecast_pairs(n, widths, target: float, floor: float = 0.0, *, prior_sd: fl
     if b <= 0:
         return Forecast(inf, inf, inf, b)
     level = y + b * (x - x.mean())  # ln w at the mean ln n, one value per point
-    gap = float(np.median(level) if centre == "median" else level.mean()) - math.log(target)
+    pick = {"median": np.median, "mean": np.mean, "min": np.min, "last": lambda v: v[-1]}[centre]
+    gap = float(pick(level)) - math.log(target)
     log_n = x.mean() + gap / b
-    spread = s2 / n.size * (math.pi / 2 if centre == "median" and n.size > 2 else 1.0)
+    # the lowest or the last point carries one point's scatter, the mean 1/k of it
+    median = math.pi / 2 / n.size if n.size > 2 else 1 / n.size
+    spread = s2 * {"mean": 1 / n.size, "median": median}.get(centre, 1.0)
     se = math.sqrt(spread / b ** 2 + (gap / b ** 2) ** 2 * var_b)
     t = float(stats.t.ppf(0.975, max(dof, 1)))
     big = 700.0  # exp() of more overflows: as good as never
