@@ -172,3 +172,33 @@ def test_a_write_leaves_the_tables_it_has_no_results_for(tmp_path, capsys):
             == block.search(INVESTIGATIONS.read_text(encoding="utf-8")).group())
     assert "| 0 (default) | 30.0 / 30.0 % | – | – | – |" in copy.read_text(encoding="utf-8")
     assert "left as they were" in capsys.readouterr().out
+
+
+def _history(path, n_hf: int, band_at: int, band, target: float):
+    """A kept history: one fit per HF (a pair each), MPM 100, the model band at one fit only,
+    the rule holding at the last fit."""
+    rows = [{"n_hf": k, "n_pairs": k, "mpm": 100.0, "halfwidth_sampling": 0.01,
+             "model_low": band[0] if k == band_at else None,
+             "model_high": band[1] if k == band_at else None, "stop": k == n_hf}
+            for k in range(1, n_hf + 1)]
+    pd.DataFrame(rows).to_csv(path / f"p_1_{target:g}.csv", index=False)
+
+
+def test_forecast_variants_write_fills_the_variants_table(tmp_path):
+    histories = tmp_path / "histories"
+    histories.mkdir()
+    # stops at 8 HF; halfway (4 HF, 4 pairs) it knew one band, ±40 % at 2 pairs
+    _history(histories, 8, 2, (60.0, 140.0), 0.2)
+    copy = _copy(PRECISION, tmp_path)
+    load_script("benchmarks/investigations/forecast_variants.py").main(
+        [str(histories), "--write", str(copy)])
+    page = _written(tmp_path, PRECISION, "forecast_variants.py")
+    table = page.split("<!-- BEGIN forecast_variants.py variants -->")[1].split("<!-- END")[0]
+    rows = {r.split(" | ")[0].strip("| "): r for r in table.strip().splitlines()[2:]}
+    # the fit alone needs three bands: no forecast, a miss
+    assert rows["fit alone (before)"].startswith("| fit alone (before) | 1 | 0 | 0 % |")
+    # b = 1/2 through 0.4 at 2 pairs reaches 0.2 at 8 pairs: 4 more, as needed
+    assert rows["b = 1/2, mean"] == ("| b = 1/2, mean | 1 | 1 | 100 % | 100 % | 1.00 | "
+                                     "100 % |")
+    # the rule needs 20 MPMs: 16 more fits after the 4th, four times what it took here
+    assert "| 1 | 1 | 0 % | 0 % | 4.00 |" in rows["shrink 0.2, lowest (adopted) + k2 floor"]

@@ -141,7 +141,8 @@ def markdown(table: pd.DataFrame) -> str:
     """The summary as the page's Markdown table, shares in per cent."""
     targets = [c for c in table.columns if c.startswith("within at")]
     head = ["variant", "studies", "forecasts", "within ×1.5", "95 % interval held",
-            "median ratio", *(f"within ×1.5, {c[len('within at '):]}" for c in targets)]
+            "median ratio", *(f"within ×1.5, ±{100 * float(c[len('within at ±'):]):g} %"
+                              for c in targets)]
     lines = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
     for _, r in table.iterrows():
         cells = [r["variant"], str(int(r["studies"])), str(int(r["forecasts"])),

@@ -100,7 +100,11 @@ def run_one(lf, oracle, kw, truth, *, seed, target, max_hf, history=None) -> dic
     t0 = time.perf_counter()
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        res = pas.run_pas(lf, oracle, **kw, precision=target, seed=seed, max_hf=max_hf)
+        if "n_waves_convention" in kw:  # an analogue states its n_w: make_study takes that
+            res = pas.make_study("pas", lf, **kw, precision=target, seed=seed,
+                                 max_hf=max_hf).optimize(oracle)
+        else:
+            res = pas.run_pas(lf, oracle, **kw, precision=target, seed=seed, max_hf=max_hf)
     if history is not None:
         res.history.assign(truth=truth).to_csv(history, index=False)
     lo, hi = res.mpm_band
