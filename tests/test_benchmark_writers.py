@@ -11,6 +11,7 @@ import shutil
 from pathlib import Path
 from types import SimpleNamespace
 
+import numpy as np
 import pandas as pd
 import pytest
 from _snippets import load_script
@@ -202,3 +203,24 @@ def test_forecast_variants_write_fills_the_variants_table(tmp_path):
                                      "100 % |")
     # the rule needs 20 MPMs: 16 more fits after the 4th, four times what it took here
     assert "| 1 | 1 | 0 % | 0 % | 4.00 |" in rows["shrink 0.2, lowest (adopted) + k2 floor"]
+
+
+def test_precision_table_counts_a_missing_halfway_forecast_and_pools_the_easy_types():
+    script = load_script("benchmarks/studies/precision_stop.py")
+    run = {"precision": 0.1, "max_hf": 400, "truth": 100.0, "covered": True, "error": 0.01,
+           "halfwidth": 0.08, "seconds": 1.0}
+    runs = pd.DataFrame([
+        {**run, "problem": "core-a", "converged": True, "n_hf": 30, "forecast_halfway": 12.0,
+         "needed_halfway": 10.0, "forecast_halfway_low": 5.0, "forecast_halfway_high": 20.0},
+        {**run, "problem": "core-a", "converged": True, "n_hf": 40, "forecast_halfway": np.nan,
+         "needed_halfway": np.nan, "forecast_halfway_low": np.nan,
+         "forecast_halfway_high": np.nan},
+        {**run, "problem": "core-b", "converged": False, "n_hf": 400, "halfwidth": 0.3,
+         "forecast_halfway": np.nan, "needed_halfway": np.nan, "forecast_halfway_low": np.nan,
+         "forecast_halfway_high": np.nan}])
+    rows = script.markdown(script.table(runs, [400])).split("\n")[2:]
+    # core-a: both reached, one forecast halfway (12 for 10: within ×1.5, its interval held)
+    assert rows[0] == ("| core-a | ±10 % | 400 | 2 | 100 % | 100 % | 100 % | 35 | – | 1 | 50 % | "
+                       "1.20 | 100 % |")
+    assert rows[2] == ("| copula + Weibull types, pooled | ±10 % | 400 | 3 | 67 % | 100 % | "
+                       "100 % | 35 | ±30 % | 1 | 50 % | 1.20 | 100 % |")
