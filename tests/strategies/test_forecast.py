@@ -60,7 +60,7 @@ def test_the_rule_floor_counts_the_k2_window():
     assert settled.fewest_more_fits() == 0
     # a fit at which the rule did not hold needs one more, one at which it held none
     assert settled.forecast(n_now=30, extra=(30, 0.05)).n_pairs == pytest.approx(31, rel=1e-12)
-    assert settled.forecast(n_now=30, extra=(30, 0.05), met=True).n_pairs == pytest.approx(
+    assert settled.forecast(n_now=30, extra=(30, 0.05), may_stop_now=True).n_pairs == pytest.approx(
         30, rel=1e-12)
 
 
@@ -78,3 +78,19 @@ def test_the_rule_floor_is_never_more_than_the_rule_needs():
                 checked += 1
                 assert not rule.precision_met(m, (0.9 * m, 1.1 * m))
     assert checked > 50
+
+
+def test_a_gated_band_is_due_where_the_forecast_says_the_target_is_reached():
+    """Between growth bands, a band is due once the forecast's pairs are reached: the floor of
+    "one more fit" must not keep it waiting for a fit that never comes."""
+    from pas.strategies.stopping import BAND_EVERY, BAND_GROWTH
+
+    rule = rule_with([100.0] * 40, k2=4)
+    for n, w in ((20, 0.2), (25, 0.15), (30, 0.105)):
+        rule.record_band(n, w)
+    for _ in range(BAND_EVERY):
+        rule.update(CURVE, 100.0)
+    ahead = rule.forecast(n_now=31, may_stop_now=True)
+    assert ahead.low <= 31 and ahead.n_pairs / BAND_GROWTH <= 31 < BAND_GROWTH * 30
+    assert rule.band_due(31, True, 0.0)
+    assert not rule.band_due(31, False, 0.0)  # the cheap gate still decides first

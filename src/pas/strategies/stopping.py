@@ -166,7 +166,7 @@ class StoppingRule:
             return True
         if not gate or len(self.mpms) - self.band_at[-1] < BAND_EVERY:
             return False
-        ahead = self.forecast(floor, n_now=n_pairs, met=False)
+        ahead = self.forecast(floor, n_now=n_pairs, may_stop_now=True)
         # the interval of a fit to a few widths is wide: its lower end alone would compute
         # the band at nearly every such iteration; the growth schedule bounds a late forecast
         return ahead is None or n_pairs >= max(ahead.low, ahead.n_pairs / BAND_GROWTH)
@@ -198,11 +198,12 @@ class StoppingRule:
         return self.k2
 
     def forecast(self, floor: float = 0.0, extra=None, n_now: int | None = None,
-                 met: bool = False) -> Forecast | None:
+                 may_stop_now: bool = False) -> Forecast | None:
         """:func:`~pas.strategies.forecast.forecast_pairs` of the recorded widths (and an
         ``extra`` ``(n_pairs, width)`` measured since) against ``precision``; with the
         pairs ``n_now``, never fewer than ``n_now`` plus :meth:`fewest_more_fits` (one
-        pair per fitted iteration), and at least one more unless the rule was ``met``."""
+        pair per fitted iteration), and at least one more unless the rule ``may_stop_now``
+        (it held at this fit, or :meth:`band_due` asks whether a band now could meet it)."""
         n, w = list(self.band_pairs), list(self.band_widths)
         if extra is not None and (not n or extra[0] > n[-1]):
             n.append(extra[0])
@@ -210,4 +211,4 @@ class StoppingRule:
         ahead = forecast_pairs(n, w, self.precision, floor) if self.precision else None
         if ahead is None or n_now is None:
             return ahead
-        return ahead.at_least(n_now + max(self.fewest_more_fits(), 0 if met else 1))
+        return ahead.at_least(n_now + max(self.fewest_more_fits(), 0 if may_stop_now else 1))
