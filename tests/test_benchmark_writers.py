@@ -3,7 +3,7 @@ investigations.md, run in process on small fixtures against copies of the pages.
 
 Expected rows are worked out by hand from the fixtures; the precision page is
 checked against the recorded runs it was written from
-(``tests/data/precision_runs.csv``, the runs of 2026-12-02).
+(``tests/data/precision_runs.csv`` and ``precision_heldout_runs.csv``, the runs of 2026-12-02).
 """
 
 import re
@@ -47,13 +47,18 @@ def _written(tmp_path, page: Path, tag: str) -> str:
     return new
 
 
-def test_precision_write_from_the_recorded_runs_gives_the_page_as_it_stands(tmp_path):
+@pytest.mark.parametrize("runs, section", [("precision_runs.csv", "summary"),
+                                           ("precision_heldout_runs.csv", "held-out")])
+def test_precision_write_from_the_recorded_runs_gives_the_page_as_it_stands(tmp_path, runs,
+                                                                          section):
     copy = _copy(PRECISION, tmp_path)
-    copy.write_text(copy.read_text(encoding="utf-8").replace("| core-gumbel-t0.6 |", "| x |"),
-                    encoding="utf-8")
+    begin = f"<!-- BEGIN precision_stop.py {section} -->\n"
+    text = copy.read_text(encoding="utf-8")
+    head, rest = text.split(begin)
+    copy.write_text(head + begin + rest[rest.index("<!-- END"):], encoding="utf-8")  # emptied
     load_script("benchmarks/studies/precision_stop.py").main(
-        ["--from-csv", str(ROOT / "tests" / "data" / "precision_runs.csv"),
-         "--write", str(copy)])
+        ["--from-csv", str(ROOT / "tests" / "data" / runs), "--write", str(copy),
+         "--section", section])
     assert copy.read_text(encoding="utf-8") == PRECISION.read_text(encoding="utf-8")
 
 
