@@ -3,7 +3,7 @@ investigations.md, run in process on small fixtures against copies of the pages.
 
 Expected rows are worked out by hand from the fixtures; the precision page is
 checked against the recorded runs it was written from
-(``tests/data/precision_runs.csv``, the runs of 2026-12-02).
+(``tests/data/precision_runs.csv`` and ``precision_heldout_runs.csv``, the runs of 2026-12-02).
 """
 
 import re
@@ -11,6 +11,7 @@ import shutil
 from pathlib import Path
 from types import SimpleNamespace
 
+import numpy as np
 import pandas as pd
 import pytest
 from _snippets import load_script
@@ -46,13 +47,18 @@ def _written(tmp_path, page: Path, tag: str) -> str:
     return new
 
 
-def test_precision_write_from_the_recorded_runs_gives_the_page_as_it_stands(tmp_path):
+@pytest.mark.parametrize("runs, section", [("precision_runs.csv", "summary"),
+                                           ("precision_heldout_runs.csv", "held-out")])
+def test_precision_write_from_the_recorded_runs_gives_the_page_as_it_stands(tmp_path, runs,
+                                                                          section):
     copy = _copy(PRECISION, tmp_path)
-    copy.write_text(copy.read_text(encoding="utf-8").replace("| core-gumbel-t0.6 |", "| x |"),
-                    encoding="utf-8")
+    begin = f"<!-- BEGIN precision_stop.py {section} -->\n"
+    text = copy.read_text(encoding="utf-8")
+    head, rest = text.split(begin)
+    copy.write_text(head + begin + rest[rest.index("<!-- END"):], encoding="utf-8")  # emptied
     load_script("benchmarks/studies/precision_stop.py").main(
-        ["--from-csv", str(ROOT / "tests" / "data" / "precision_runs.csv"),
-         "--write", str(copy)])
+        ["--from-csv", str(ROOT / "tests" / "data" / runs), "--write", str(copy),
+         "--section", section])
     assert copy.read_text(encoding="utf-8") == PRECISION.read_text(encoding="utf-8")
 
 
@@ -172,3 +178,54 @@ def test_a_write_leaves_the_tables_it_has_no_results_for(tmp_path, capsys):
             == block.search(INVESTIGATIONS.read_text(encoding="utf-8")).group())
     assert "| 0 (default) | 30.0 / 30.0 % | – | – | – |" in copy.read_text(encoding="utf-8")
     assert "left as they were" in capsys.readouterr().out
+
+
+def _history(path, n_hf: int, band_at: int, band, target: float):
+    """A kept history: one fit per HF (a pair each), MPM 100, the model band at one fit only,
+    the rule holding at the last fit."""
+    rows = [{"n_hf": k, "n_pairs": k, "mpm": 100.0, "halfwidth_sampling": 0.01,
+             "model_low": band[0] if k == band_at else None,
+             "model_high": band[1] if k == band_at else None, "stop": k == n_hf}
+            for k in range(1, n_hf + 1)]
+    pd.DataFrame(rows).to_csv(path / f"p_1_{target:g}.csv", index=False)
+
+
+def test_forecast_variants_write_fills_the_variants_table(tmp_path):
+    histories = tmp_path / "histories"
+    histories.mkdir()
+    # stops at 8 HF; halfway (4 HF, 4 pairs) it knew one band, ±40 % at 2 pairs
+    _history(histories, 8, 2, (60.0, 140.0), 0.2)
+    copy = _copy(PRECISION, tmp_path)
+    load_script("benchmarks/investigations/forecast_variants.py").main(
+        [str(histories), "--write", str(copy)])
+    page = _written(tmp_path, PRECISION, "forecast_variants.py")
+    table = page.split("<!-- BEGIN forecast_variants.py variants -->")[1].split("<!-- END")[0]
+    rows = {r.split(" | ")[0].strip("| "): r for r in table.strip().splitlines()[2:]}
+    # the fit alone needs three bands: no forecast, a miss
+    assert rows["fit alone (before)"].startswith("| fit alone (before) | 1 | 0 | 0 % |")
+    # b = 1/2 through 0.4 at 2 pairs reaches 0.2 at 8 pairs: 4 more, as needed
+    assert rows["b = 1/2, mean"] == ("| b = 1/2, mean | 1 | 1 | 100 % | 100 % | 1.00 | "
+                                     "100 % |")
+    # the rule needs 20 MPMs: 16 more fits after the 4th, four times what it took here
+    assert "| 1 | 1 | 0 % | 0 % | 4.00 |" in rows["shrink 0.2, lowest (adopted) + k2 floor"]
+
+
+def test_precision_table_counts_a_missing_halfway_forecast_and_pools_the_easy_types():
+    script = load_script("benchmarks/studies/precision_stop.py")
+    run = {"precision": 0.1, "max_hf": 400, "truth": 100.0, "covered": True, "error": 0.01,
+           "halfwidth": 0.08, "seconds": 1.0}
+    runs = pd.DataFrame([
+        {**run, "problem": "core-a", "converged": True, "n_hf": 30, "forecast_halfway": 12.0,
+         "needed_halfway": 10.0, "forecast_halfway_low": 5.0, "forecast_halfway_high": 20.0},
+        {**run, "problem": "core-a", "converged": True, "n_hf": 40, "forecast_halfway": np.nan,
+         "needed_halfway": np.nan, "forecast_halfway_low": np.nan,
+         "forecast_halfway_high": np.nan},
+        {**run, "problem": "core-b", "converged": False, "n_hf": 400, "halfwidth": 0.3,
+         "forecast_halfway": np.nan, "needed_halfway": np.nan, "forecast_halfway_low": np.nan,
+         "forecast_halfway_high": np.nan}])
+    rows = script.markdown(script.table(runs, [400])).split("\n")[2:]
+    # core-a: both reached, one forecast halfway (12 for 10: within ×1.5, its interval held)
+    assert rows[0] == ("| core-a | ±10 % | 400 | 2 | 100 % | 100 % | 100 % | 35 | – | 1 | 50 % | "
+                       "1.20 | 100 % |")
+    assert rows[2] == ("| copula + Weibull types, pooled | ±10 % | 400 | 3 | 67 % | 100 % | "
+                       "100 % | 35 | ±30 % | 1 | 50 % | 1.20 | 100 % |")

@@ -5,8 +5,11 @@ Per problem type, precision target (``--precisions``, default 0.05, 0.10,
 the share of studies that reach the target within the budget; of those, the
 share whose U95 holds the truth and whose MPM is within ±10 % of it; the
 median HF count at the stop; and the forecast made halfway (in HF count) to
-where a study reached the target against the HF it then still needed
-(the share within a factor 1.5, and the median ratio).
+where a study reached the target against the HF it then still needed (the
+share of the studies that reached the target whose halfway forecast was within
+a factor 1.5 — none halfway counts as a miss —, the median ratio, and how often
+the forecast's 95 % interval held the HF then needed).  With two or more
+copula + Weibull problems (``core-*``) their studies are also pooled in one row.
 
 A run with budget 400 asks what the run with budget 160 asks up to 160 HF
 (the budget decides when a study stops, never which event it asks for), so
@@ -26,11 +29,14 @@ bands), and the model bands each computed.
 
 ``--write [PAGE]`` puts the table it made (the summary, or with ``--cost``
 the cost table) between the markers of ``docs/results/precision.md``
-(``<!-- BEGIN precision_stop.py summary -->`` and ``… cost``).
+(``<!-- BEGIN precision_stop.py summary -->``, or the markers ``--section``
+names, e.g. ``held-out``, and ``… cost``).  ``--histories DIR`` keeps each
+study's history (``benchmarks/investigations/forecast_variants.py`` replays
+forecasts on them); ``--first`` is the first data set (fresh seeds).
 
 Run: ``python benchmarks/studies/precision_stop.py [N] [--types a,b] [--cases 1a,3a]
 [--precisions 0.05,0.1,0.2] [--budgets 160,400] [--csv runs.csv] [--markdown]
-[--from-csv runs.csv,...] [--cost 80] [--write]``
+[--from-csv runs.csv,...] [--cost 80] [--write] [--section held-out] [--histories DIR] [--first 21]``
 """
 
 from __future__ import annotations
@@ -52,65 +58,85 @@ from pas.validation.result_tables import rewrite_page
 TYPES = ("core-gumbel-t0.6", "core-gaussian-t0.75", "tail-gaussian-mix", "miss-low-gaussian-t0.7")
 CASES = ("1a", "3a")
 FACTOR = 1.5  # "within a factor 1.5" of the HF still needed
+POOLED = "copula + Weibull types, pooled"
 PAGE, TAG = Path("docs/results/precision.md"), "precision_stop.py"
 
 
-def problems(types, cases, n, scale):
+def problems(types, cases, n, scale, first=1):
     """``(problem name, data set, lf, oracle, run_pas arguments, truth)`` for every data set."""
     for name in types:
-        for rep in range(1, n + 1):
+        for rep in range(first, first + n):
             p = make_problem(KNOWN_TRUTH[name], rep)
             yield name, rep, p.lf, p.oracle(), {"n_waves": p.n_waves, "p_exp": p.p_exp,
                                                 "threshold": p.threshold}, p.truth_mpm
     for case in cases:
         from pas.validation import generate_case
 
-        for rep in range(1, n + 1):
+        for rep in range(first, first + n):
             d = generate_case(case, seed=rep, scale=scale)
             kw = {k: v for k, v in d.run_kwargs().items() if k != "eps1"}
             yield f"analogue-{case}", rep, d.lf, d.oracle(), kw, d.truth_mpm
 
 
 def halfway_forecast(fitted: pd.DataFrame, n_stop: int):
-    """``(forecast further HF, HF then still needed)`` from the last fit at or below half of
-    ``n_stop`` HF with a finite forecast, or ``(nan, nan)``."""
+    """``(forecast further HF, its 95 % low, high, HF then still needed)`` from the last fit
+    at or below half of ``n_stop`` HF with a finite forecast, or NaNs."""
     if "forecast_hf" not in fitted:
-        return np.nan, np.nan
+        return (np.nan,) * 4
     early = fitted[(fitted["n_hf"] <= n_stop / 2) & np.isfinite(fitted["forecast_hf"])]
     if early.empty:
-        return np.nan, np.nan
+        return (np.nan,) * 4
     row = early.iloc[-1]
-    return float(row["forecast_hf"]), float(n_stop - row["n_hf"])
+    return (float(row["forecast_hf"]), float(row["forecast_hf_low"]),
+            float(row["forecast_hf_high"]), float(n_stop - row["n_hf"]))
 
 
-def run_one(lf, oracle, kw, truth, *, seed, target, max_hf) -> dict:
-    """One study with ``precision=target``; what the table needs of it."""
+def run_one(lf, oracle, kw, truth, *, seed, target, max_hf, history=None) -> dict:
+    """One study with ``precision=target``; what the table needs of it.
+
+    ``history``: a CSV path to keep the study's history at (its band widths per fit,
+    for evaluating forecasts offline: ``benchmarks/investigations/forecast_variants.py``).
+    """
     t0 = time.perf_counter()
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        res = pas.run_pas(lf, oracle, **kw, precision=target, seed=seed, max_hf=max_hf)
+        if "n_waves_convention" in kw:  # an analogue states its n_w: make_study takes that
+            res = pas.make_study("pas", lf, **kw, precision=target, seed=seed,
+                                 max_hf=max_hf).optimize(oracle)
+        else:
+            res = pas.run_pas(lf, oracle, **kw, precision=target, seed=seed, max_hf=max_hf)
+    if history is not None:
+        res.history.assign(truth=truth).to_csv(history, index=False)
     lo, hi = res.mpm_band
-    forecast, needed = (halfway_forecast(res.fitted, res.n_hf) if res.converged
-                        else (np.nan, np.nan))
+    forecast, low, high, needed = (halfway_forecast(res.fitted, res.n_hf) if res.converged
+                                   else (np.nan,) * 4)
     return {"precision": target, "max_hf": max_hf, "converged": bool(res.converged),
             "n_hf": res.n_hf, "mpm": res.mpm, "truth": truth, "error": res.mpm / truth - 1,
             "band_low": lo, "band_high": hi, "covered": bool(lo <= truth <= hi),
             "halfwidth": max(hi - res.mpm, res.mpm - lo) / res.mpm,
             "forecast_halfway": forecast, "needed_halfway": needed,
+            "forecast_halfway_low": low, "forecast_halfway_high": high,
             "n_bands": int(res.history.get("halfwidth", pd.Series(dtype=float)).notna().sum()),
             "seconds": time.perf_counter() - t0}
 
 
 def table(runs: pd.DataFrame, budgets) -> pd.DataFrame:
-    """Per problem, target and budget: the shares the module docs list."""
+    """Per problem, target and budget: the shares the module docs list; with two or more
+    copula + Weibull problems (``core-*``) also their studies pooled (:data:`POOLED`)."""
     out = []
-    for (name, target), g in runs.groupby(["problem", "precision"], sort=False):
+    core = runs["problem"].str.startswith("core-")
+    groups = list(runs.groupby(["problem", "precision"], sort=False))
+    if runs.loc[core, "problem"].nunique() > 1:
+        groups += [((POOLED, target), g) for target, g in
+                   runs[core].groupby("precision", sort=False)]
+    for (name, target), g in groups:
         for budget in budgets:
             if g["max_hf"].max() < budget:
                 continue
             reached = g[g["converged"] & (g["n_hf"] <= budget)]
             ratio = reached["forecast_halfway"] / reached["needed_halfway"]
             ok = ratio.dropna()
+            held = _interval_held(reached.loc[ok.index])
             out.append({"problem": name, "precision": target, "budget": budget, "n": len(g),
                         "reached": len(reached) / len(g),
                         "covered": reached["covered"].mean() if len(reached) else np.nan,
@@ -119,12 +145,24 @@ def table(runs: pd.DataFrame, budgets) -> pd.DataFrame:
                         "median_hf": reached["n_hf"].median() if len(reached) else np.nan,
                         "short_halfwidth": (g.loc[~g.index.isin(reached.index), "halfwidth"]
                                             .median() if len(reached) < len(g) else np.nan),
-                        "forecast_ok": (((ok <= FACTOR) & (ok >= 1 / FACTOR)).mean()
-                                        if len(ok) else np.nan),
+                        # of the studies that reached the target: none halfway is a miss
+                        "forecast_ok": (((ok <= FACTOR) & (ok >= 1 / FACTOR)).sum()
+                                        / len(reached) if len(reached) else np.nan),
+                        "interval_held": held,
                         "n_forecasts": len(ok),
                         "forecast_ratio": ok.median() if len(ok) else np.nan,
                         "seconds": g["seconds"].median()})
     return pd.DataFrame(out)
+
+
+def _interval_held(reached: pd.DataFrame) -> float:
+    """Share of the halfway forecasts whose 95 % interval held the HF then needed (NaN: none,
+    or runs recorded without the interval)."""
+    if reached.empty or "forecast_halfway_low" not in reached:
+        return np.nan
+    needed = reached["needed_halfway"]
+    return float(((reached["forecast_halfway_low"] <= needed)
+                  & (needed <= reached["forecast_halfway_high"])).mean())
 
 
 def loop_cost(max_hf: int) -> pd.DataFrame:
@@ -150,17 +188,18 @@ def loop_cost(max_hf: int) -> pd.DataFrame:
 def markdown(summary: pd.DataFrame) -> str:
     """The summary table as Markdown, shares in per cent (the docs page's table)."""
     cols = ["problem", "precision", "budget", "n", "reached", "covered", "within_10pct",
-            "median_hf", "short_halfwidth", "n_forecasts", "forecast_ok", "forecast_ratio"]
+            "median_hf", "short_halfwidth", "n_forecasts", "forecast_ok", "forecast_ratio",
+            "interval_held"]
     head = ["problem", "target", "budget", "studies", "reached", "U95 holds truth¹",
             "within ±10 %¹", "median HF¹", "U95 of the others²", "halfway forecasts¹",
-            "within ×1.5", "median ratio"]
+            "within ×1.5¹", "median ratio", "95 % interval held"]
 
     def cell(col, x):
         if isinstance(x, float) and np.isnan(x):
             return "–"
         if col == "precision":
             return f"±{100 * x:g} %"
-        if col in ("reached", "covered", "within_10pct", "forecast_ok"):
+        if col in ("reached", "covered", "within_10pct", "forecast_ok", "interval_held"):
             return f"{100 * x:.0f} %"
         if col == "short_halfwidth":
             return f"±{100 * x:.0f} %"
@@ -194,10 +233,15 @@ def main(argv=None):
     ap.add_argument("--max-budget-for", default="0.05:160",
                     help="target:budget pairs lowering the largest budget for a target")
     ap.add_argument("--csv", default="precision_runs.csv")
+    ap.add_argument("--histories", type=Path, metavar="DIR",
+                    help="keep each study's history as DIR/<problem>_<set>_<target>.csv")
+    ap.add_argument("--first", type=int, default=1, help="first data set (fresh seeds)")
     ap.add_argument("--cost", type=int, metavar="HF", help="measure the loop's cost instead")
     ap.add_argument("--from-csv", metavar="A.csv,B.csv",
                     help="tabulate the runs of earlier --csv files instead of running")
     ap.add_argument("--markdown", action="store_true", help="print the table as Markdown")
+    ap.add_argument("--section", default="summary",
+                    help="the markers --write fills with the summary (summary, held-out)")
     ap.add_argument("--write", nargs="?", const=PAGE, type=Path, metavar="PAGE",
                     help=f"write the table between the markers of PAGE (default {PAGE})")
     args = ap.parse_args(argv)
@@ -216,11 +260,16 @@ def main(argv=None):
     cap = {float(k): int(v) for k, v in
            (item.split(":") for item in args.max_budget_for.split(",") if item)}
     rows = []
-    for name, rep, lf, oracle, kw, truth in problems(*split, args.n, args.scale):
+    for name, rep, lf, oracle, kw, truth in problems(*split, args.n, args.scale, args.first):
         for target in targets:
             budget = min(budgets[-1], cap.get(target, budgets[-1]))
+            history = None
+            if args.histories:
+                args.histories.mkdir(parents=True, exist_ok=True)
+                history = args.histories / f"{name}_{rep}_{target:g}.csv"
             row = {"problem": name, "data_set": rep,
-                   **run_one(lf, oracle, kw, truth, seed=rep, target=target, max_hf=budget)}
+                   **run_one(lf, oracle, kw, truth, seed=rep, target=target, max_hf=budget,
+                             history=history)}
             rows.append(row)
             print(f"{name} set {rep} ±{target:.0%}: {'reached' if row['converged'] else 'not'} "
                   f"at {row['n_hf']} HF, error {row['error']:+.1%}, covered {row['covered']}, "
@@ -238,7 +287,7 @@ def _report(summary: pd.DataFrame, args) -> None:
         with pd.option_context("display.width", 200, "display.max_columns", 20):
             print(summary.to_string(index=False, float_format=lambda x: f"{x:.3g}"))
     if args.write:
-        rewrite_page(args.write, {"summary": markdown(summary)}, TAG)
+        rewrite_page(args.write, {args.section: markdown(summary)}, TAG)
 
 
 if __name__ == "__main__":

@@ -92,8 +92,9 @@ def test_band_schedule_grows_geometrically_and_then_follows_the_gate():
         rule.update(CURVE, 100.0)
     assert not rule.band_due(n_next + 1, True, 0.0)
     rule.update(CURVE, 100.0)
-    # with two widths there is no forecast yet: the gate alone decides
-    assert rule.band_due(n_next + 1, True, 0.0)
+    # two widths and the prior on b forecast the target far off: no gated band yet
+    assert rule.forecast(n_now=n_next + 1).n_pairs > BAND_GROWTH * (n_next + 1)
+    assert not rule.band_due(n_next + 1, True, 0.0)
     assert not rule.band_due(n_next + 1, False, 0.0)
 
 
@@ -109,10 +110,10 @@ def test_gated_band_waits_for_the_forecast():
     assert rule.band_due(int(ahead.n_pairs / BAND_GROWTH) + 1, True, 0.0)
 
 
-def test_forecast_recovers_a_known_exponent():
+def test_forecast_fit_alone_recovers_a_known_exponent():
     n = np.array([10, 15, 22, 33, 50, 75])
     w = 0.6 * (n / 10.0) ** -0.4
-    f = forecast_pairs(n, w, 0.1)
+    f = forecast_pairs(n, w, 0.1, prior_sd=math.inf)
     assert f.exponent == pytest.approx(0.4, rel=1e-9)
     assert f.n_pairs == pytest.approx(10.0 * 6.0 ** (1 / 0.4), rel=1e-9)
     assert f.low == pytest.approx(f.n_pairs, rel=1e-6) == pytest.approx(f.high, rel=1e-6)
@@ -134,11 +135,17 @@ def test_forecast_interval_covers_the_truth_of_noisy_widths():
 
 def test_forecast_out_of_reach_and_too_few_points():
     n = [10, 15, 22]
-    assert forecast_pairs(n, [0.3, 0.3, 0.31], 0.1).n_pairs == math.inf  # not narrowing
+    assert forecast_pairs(n, [0.3, 0.3, 0.31], 0.1, prior_sd=math.inf).n_pairs == math.inf
+    # not narrowing over so few pairs is weak evidence against b = 1/2: finite, and vague
+    flat = forecast_pairs(n, [0.3, 0.3, 0.31], 0.1)
+    assert math.isfinite(flat.n_pairs) and flat.high > 100 * flat.low
     assert forecast_pairs(n, [0.3, 0.2, 0.15], 0.1, floor=0.12).n_pairs == math.inf
-    assert forecast_pairs(n[:2], [0.3, 0.2], 0.1) is None
+    assert forecast_pairs(n[:2], [0.3, 0.2], 0.1, prior_sd=math.inf) is None
+    assert forecast_pairs([], [], 0.1) is None
     # only the last two doublings count: widths at n < n_last / 4 are left out
-    assert forecast_pairs([2, 3, 4, 20, 30], [9, 9, 9, 0.3, 0.2], 0.1) is None
+    assert forecast_pairs([2, 3, 4, 20, 30], [9, 9, 9, 0.3, 0.2], 0.1, prior_sd=math.inf) is None
+    assert (forecast_pairs([2, 3, 4, 20, 30], [9, 9, 9, 0.3, 0.2], 0.1)
+            == forecast_pairs([20, 30], [0.3, 0.2], 0.1))
 
 
 @pytest.mark.parametrize("value", [0, 1, 10, -0.1, float("nan"), "10%", True])

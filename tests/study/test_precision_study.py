@@ -114,3 +114,16 @@ def test_a_resumed_precision_study_reuses_its_bands_and_decides_the_same(tmp_pat
     assert first.history["model_low"].notna().sum() == 1 and len(calls) == 1
     assert again.mpm_band == pytest.approx(first.mpm_band, rel=1e-12)
     assert again.summary() == first.summary()
+
+
+def test_the_forecast_never_says_fewer_than_the_window_needs(reached, short):
+    """Before k2 MPMs the forecast is at least the fits still missing (one pair each), and at a
+    fit where the rule did not hold at least one more."""
+    for res in (reached, short):
+        rows = res.fitted[res.fitted["forecast_hf"].notna()]
+        assert len(rows)
+        fits = np.arange(1, len(res.fitted) + 1)[res.fitted["forecast_hf"].notna().to_numpy()]
+        per_pair = rows["n_hf"].to_numpy() / rows["n_pairs"].to_numpy()
+        still = np.maximum(FAST["k2"] - fits, np.where(rows["stop"].astype(bool), 0, 1))
+        assert np.all(rows["forecast_hf"].to_numpy() >= still * per_pair * (1 - 1e-9))
+        assert np.all(rows["forecast_hf_low"].to_numpy() >= still * per_pair * (1 - 1e-9))

@@ -166,7 +166,7 @@ class StoppingRule:
             return True
         if not gate or len(self.mpms) - self.band_at[-1] < BAND_EVERY:
             return False
-        ahead = self.forecast(floor)
+        ahead = self.forecast(floor, n_now=n_pairs, may_stop_now=True)
         # the interval of a fit to a few widths is wide: its lower end alone would compute
         # the band at nearly every such iteration; the growth schedule bounds a late forecast
         return ahead is None or n_pairs >= max(ahead.low, ahead.n_pairs / BAND_GROWTH)
@@ -177,11 +177,38 @@ class StoppingRule:
         self.band_widths.append(float(width))
         self.band_at.append(len(self.mpms))
 
-    def forecast(self, floor: float = 0.0, extra=None) -> Forecast | None:
+    def fewest_more_fits(self) -> int:
+        """Fewest further fitted iterations before :meth:`precision_met` can hold.
+
+        It needs ``K2`` MPMs, and a band of half-width ``≤ precision × MPM'`` around
+        the MPM ``MPM'`` then holding the MPMs of the window: the ones of today
+        that stay in it span at most ``2 precision MPM' ≤ 2 precision min / (1 −
+        precision)`` (for positive MPMs), so the ones that span more must first
+        leave it, one per fit.
+        """
+        p, window = self.precision, self.mpms[-self.k2:]
+        fewest = max(self.k2 - len(self.mpms), 0)
+        if p is None or p >= 1:
+            return fewest
+        for more in range(fewest, self.k2 + 1):
+            kept = window[len(window) - (self.k2 - more):] if more < self.k2 else []
+            low = min(kept, default=0.0)
+            if low <= 0 or max(kept) - low <= 2 * p * low / (1 - p):
+                return more
+        return self.k2
+
+    def forecast(self, floor: float = 0.0, extra=None, n_now: int | None = None,
+                 may_stop_now: bool = False) -> Forecast | None:
         """:func:`~pas.strategies.forecast.forecast_pairs` of the recorded widths (and an
-        ``extra`` ``(n_pairs, width)`` measured since) against ``precision``."""
+        ``extra`` ``(n_pairs, width)`` measured since) against ``precision``; with the
+        pairs ``n_now``, never fewer than ``n_now`` plus :meth:`fewest_more_fits` (one
+        pair per fitted iteration), and at least one more unless the rule ``may_stop_now``
+        (it held at this fit, or :meth:`band_due` asks whether a band now could meet it)."""
         n, w = list(self.band_pairs), list(self.band_widths)
         if extra is not None and (not n or extra[0] > n[-1]):
             n.append(extra[0])
             w.append(extra[1])
-        return forecast_pairs(n, w, self.precision, floor) if self.precision else None
+        ahead = forecast_pairs(n, w, self.precision, floor) if self.precision else None
+        if ahead is None or n_now is None:
+            return ahead
+        return ahead.at_least(n_now + max(self.fewest_more_fits(), 0 if may_stop_now else 1))

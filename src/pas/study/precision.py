@@ -83,7 +83,7 @@ def judge(study, pred, pairs, row: dict, paper_stop: bool) -> bool:
         if model is not None:
             row.update(model_low=model[0], model_high=model[1])
         met = gate and rule.precision_met(pred.mpm, band)
-    row.update(forecast_row(study, rule.forecast(floor), len(pairs)))
+    row.update(forecast_row(study, rule.forecast(floor, n_now=len(pairs), may_stop_now=met), len(pairs)))
     return met
 
 
@@ -114,7 +114,8 @@ def final_forecast(study, pairs, pred, model) -> dict | None:
         extra = (len(pairs), relative_half_width(pred.mpm, model))
     elif not has_model:
         extra = (len(pairs), sampling)
-    forecast = rule.forecast(sampling if has_model else 0.0, extra)
+    forecast = rule.forecast(sampling if has_model else 0.0, extra, n_now=len(pairs),
+                             may_stop_now=bool(study.converged))
     row = forecast_row(study, forecast, len(pairs))
     return {**row, "out_of_reach": forecast is not None and not np.isfinite(forecast.n_pairs),
             "sampling_halfwidth": sampling if has_model else None}
