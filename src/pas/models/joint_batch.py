@@ -12,7 +12,9 @@ likelihood is written as its distinct pairs weighted by how often they
 were drawn (:func:`weighted_pairs`): fewer t quantiles for Student-t, whose
 ``special.stdtrit`` is most of a band's time.  The value and gradient are
 those of :func:`pas.models.joint.joint_objective` (Weibull and log-normal
-marginal, unrotated families with a gradient), summed in another order.
+marginal, unrotated families with a gradient), summed in another order — but for Student-t's derivative in ν, which here
+follows from the t quantiles' (:func:`_student_parts`) instead of a
+difference of the whole likelihood (:data:`IMPLICIT_NU`).
 """
 
 from __future__ import annotations
@@ -27,6 +29,9 @@ from ..stats.weibull import Weibull3
 from .copula_densities import (
     GRADIENT_FAMILIES,
     copula_loghfunc,
+    _log_t_pdf,
+    _student_logc,
+    _student_logh,
     copula_logpdf,
     logc_grad,
     logh_grad,
@@ -36,10 +41,18 @@ from .joint import _TINY, _prepare, joint_fit_result, location_bounds
 from .joint_likelihood import NU_STEP, copula_parameters, parameter_slope
 from .joint_starts import _lognormal_start, _weibull_start, copula_start
 
-__all__ = ["batchable", "weighted_pairs", "minimise_together", "fit_joint_batch"]
+__all__ = ["batchable", "weighted_pairs", "minimise_together", "fit_joint_batch", "IMPLICIT_NU"]
 
 _MAXCOR, _FTOL, _GTOL, _MAXLS, _MAXFUN = 10, 2.2204460492503131e-09, 1e-5, 20, 15000
 """scipy.optimize.minimize's L-BFGS-B defaults, as :func:`pas.models.joint.minimise_bounded` uses."""
+
+IMPLICIT_NU = True
+"""Student-t's derivative in ν from the t quantiles' (:func:`_student_parts`: two t
+quantiles and two t CDFs a pair); False: a forward difference of the copula terms, as
+:mod:`pas.models.joint_likelihood` (four t quantiles; ``benchmarks/timing/study_parts.py``)."""
+
+_T_STEP = 1e-6
+"""Step in ν of the forward difference of the t CDF ``∂T_ν(x)/∂ν`` (:func:`_student_parts`)."""
 
 
 def batchable(name: str, marginal: str) -> bool:
@@ -102,6 +115,66 @@ def _copula_values(base, c, u, v, density):
     return total
 
 
+def _t_quantile_and_slope(nu, w):
+    """The t quantile ``x = t_ν⁻¹(w)`` and its ``dx/dν`` at fixed ``w``.
+
+    ``dx/dν = −(∂T_ν(x)/∂ν) / f_ν(x)`` (implicit function theorem), with
+    ``∂T_ν/∂ν`` a forward difference of the CDF from ``T_ν(x) = w``.  Both in
+    the lower tail, ``x = −t_ν⁻¹(1 − w)`` above the median: there ``1 − w`` is
+    exact and the CDF's difference keeps its digits (``T_ν(x)`` near 1 leaves
+    ``∂T_ν/∂ν`` none).
+    """
+    upper = w > 0.5
+    tail = np.where(upper, 1.0 - w, w)
+    x = special.stdtrit(nu, tail)
+    slope = -(special.stdtr(nu + _T_STEP, x) - tail) / _T_STEP * np.exp(-_log_t_pdf(x, nu))
+    sign = np.where(upper, -1.0, 1.0)
+    return sign * x, sign * slope
+
+
+def _student_parts(rho, nu, u, v, density, live):
+    """Student-t per pair ``(log c or, censored, log h, ∂/∂v, ∂/∂ρ, d/dν)`` for rows of
+    ``rho`` and ``nu`` (k, 1); pairs not ``live`` (the padding) are left at zero.
+
+    ``d/dν`` is the total derivative, the t quantiles ``x = t_ν⁻¹(u)`` and
+    ``y = t_ν⁻¹(v)`` moving with ν (:func:`_t_quantile_and_slope`).
+    """
+    nu_b = np.broadcast_to(nu, u.shape)[live]
+    rho_b = np.broadcast_to(rho, u.shape)[live]
+    u, v, density = u[live], v[live], density[live]
+    (x, dx), (y, dy) = _t_quantile_and_slope(nu_b, u), _t_quantile_and_slope(nu_b, v)
+    total, d_v, d_rho = _student_logc((rho_b, nu_b), u, v, x, y, True)
+    r2 = 1.0 - rho_b * rho_b
+    q = x * x + y * y - 2 * rho_b * x * y
+    den = nu_b * r2 + q
+    explicit = (0.5 * (special.digamma((nu_b + 2) / 2) + special.digamma(nu_b / 2))
+                - special.digamma((nu_b + 1) / 2) - 0.5 * np.log1p(q / (nu_b * r2))
+                + (nu_b + 2) / 2 * q / (nu_b * den)
+                + 0.5 * (np.log1p(x * x / nu_b) + np.log1p(y * y / nu_b))
+                - (nu_b + 1) / 2 * (x * x / (nu_b * (nu_b + x * x))
+                                    + y * y / (nu_b * (nu_b + y * y))))
+    d_x = -(nu_b + 2) * (x - rho_b * y) / den + (nu_b + 1) * x / (nu_b + x * x)
+    d_y = -(nu_b + 2) * (y - rho_b * x) / den + (nu_b + 1) * y / (nu_b + y * y)
+    d_nu = explicit + d_x * dx + d_y * dy
+    cens = ~density
+    if cens.any():  # log h = log T_{ν+1}(z), z = (y − ρx)/s, s² = (ν + x²)(1 − ρ²)/(ν + 1)
+        n1, xc, yc, rc = nu_b[cens] + 1.0, x[cens], y[cens], rho_b[cens]
+        lh, dh_v, dh_rho = _student_logh((rc, n1 - 1.0), u[cens], v[cens], xc, yc, True)
+        s = np.sqrt((n1 - 1.0 + xc * xc) * (1.0 - rc * rc) / n1)
+        z = (yc - rc * xc) / s
+        h = np.exp(lh)
+        ds = 0.5 * ((1.0 + 2.0 * xc * dx[cens]) / (n1 - 1.0 + xc * xc) - 1.0 / n1)  # ds/dν / s
+        dz = (dy[cens] - rc * dx[cens]) / s - z * ds
+        d_h = (special.stdtr(n1 + _T_STEP, z) - h) / _T_STEP + np.exp(_log_t_pdf(z, n1)) * dz
+        total[cens], d_v[cens], d_rho[cens], d_nu[cens] = lh, dh_v, dh_rho, d_h / h
+    out = []
+    for part in (total, d_v, d_rho, d_nu):
+        full = np.zeros(live.shape)
+        full[live] = part
+        out.append(full)
+    return out
+
+
 def batch_objective(name: str, data: dict, *, location: bool = True, marginal: str = "weibull"):
     """``objective(X, rows) -> (negloglik (k,), gradient (k, p))`` of the problems ``rows``
     of ``data`` (:func:`weighted_pairs`) at optimiser values ``X`` (k, p), as
@@ -128,7 +201,12 @@ def batch_objective(name: str, data: dict, *, location: bool = True, marginal: s
             zb = np.exp(b * ln_z)
             log_f = np.log(b / a) + (b - 1.0) * ln_z - zb
             v = np.clip(-np.expm1(-zb), _TINY, 1 - _TINY)
-        total, d_v, d_p = _copula_parts(base, c, u, v, dens)
+        implicit = base == "student" and IMPLICIT_NU
+        if implicit:
+            rho, nu = (q[0] for q in copula_parameters(base, [ci[:, None] for ci in c]))
+            total, d_v, d_p, d_nu = _student_parts(rho, nu, u, v, dens, wt > 0)
+        else:
+            total, d_v, d_p = _copula_parts(base, c, u, v, dens)
         val = np.sum(wt * np.where(dens, log_f + total, total), axis=1)
         dens_w, d_v = wt * dens, wt * d_v
         if lognormal:  # a = μ, b = σ; X holds μ and ln σ
@@ -144,7 +222,10 @@ def batch_objective(name: str, data: dict, *, location: bool = True, marginal: s
                             axis=1)]
         grads[0] = grads[0] * -gap[:, 0] if location else None
         grads.append(np.sum(wt * d_p, axis=1) * parameter_slope(base, c))
-        if base == "student":  # ν: a forward difference of the copula terms, as joint_likelihood
+        if implicit:  # dν/dc of ν = 2 + 48 / (1 + e^−c)
+            share = 1.0 / (1.0 + np.exp(-c[1]))
+            grads.append(np.sum(wt * d_nu, axis=1) * 48.0 * share * (1.0 - share))
+        elif base == "student":  # ν: a forward difference of the copula terms, as joint_likelihood
             moved = _copula_values(base, [c[0], c[1] + NU_STEP], u, v, dens)
             grads.append((np.sum(wt * moved, axis=1) - np.sum(wt * total, axis=1)) / NU_STEP)
         g = -np.column_stack([x for x in grads if x is not None])
