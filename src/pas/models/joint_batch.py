@@ -28,10 +28,10 @@ from ..stats.lognormal import LogNormal3
 from ..stats.weibull import Weibull3
 from .copula_densities import (
     GRADIENT_FAMILIES,
-    copula_loghfunc,
     _log_t_pdf,
     _student_logc,
     _student_logh,
+    copula_loghfunc,
     copula_logpdf,
     logc_grad,
     logh_grad,
