@@ -321,26 +321,33 @@ def fit_joint_batch(name: str, samples, starts, *, location: bool = True, censor
     objective = batch_objective(name, data, location=location, marginal=marginal)
 
     def run(problems, x0s):
+        if not problems:
+            return []
         with one_blas_thread():  # an L-BFGS-B step in five parameters (pas._support.threads)
-            return dict(zip(problems, minimise_together(
-                objective, x0s, [bounds[j] for j in problems], np.array(problems, int))))
+            return minimise_together(objective, x0s, [bounds[j] for j in problems],
+                                     np.array(problems, int))
+
+    def data_start(j):
+        u, h = samples[j]
+        u = np.clip(np.asarray(u, float), _TINY, 1 - _TINY)
+        h = np.asarray(h, float)
+        tau = kendall_tau(u, h) if u.size > 2 else 0.3
+        start_marginal = _lognormal_start if lognormal else _weibull_start
+        return np.r_[start_marginal(h, location), copula_start(base, tau)]
 
     warm = [j for j, s in enumerate(starts) if s is not None and len(s) == n_par]
-    best = run(warm, [np.asarray(starts[j], float) for j in warm]) if warm else {}
-    fresh = [j for j in range(len(samples))
-             if cold or j not in best or best[j].fun >= 1e299]
-    if fresh:
-        x0s = []
-        for j in fresh:
-            u, h = samples[j]
-            u = np.clip(np.asarray(u, float), _TINY, 1 - _TINY)
-            h = np.asarray(h, float)
-            tau = kendall_tau(u, h) if u.size > 2 else 0.3
-            start_marginal = _lognormal_start if lognormal else _weibull_start
-            x0s.append(np.r_[start_marginal(h, location), copula_start(base, tau)])
-        for j, res in run(fresh, x0s).items():
-            if j not in best or res.fun < best[j].fun:
-                best[j] = res
+    warm_x0 = [np.asarray(starts[j], float) for j in warm]
+    if cold:  # every problem's warm and cold start stepped together: half the objective calls
+        fresh = list(range(len(samples)))
+        both = run(warm + fresh, warm_x0 + [data_start(j) for j in fresh])
+        best, fresh_res = dict(zip(warm, both[:len(warm)])), both[len(warm):]
+    else:
+        best = dict(zip(warm, run(warm, warm_x0)))
+        fresh = [j for j in range(len(samples)) if j not in best or best[j].fun >= 1e299]
+        fresh_res = run(fresh, [data_start(j) for j in fresh])
+    for j, res in zip(fresh, fresh_res):
+        if j not in best or res.fun < best[j].fun:
+            best[j] = res
     for j, i in enumerate(valid):
         res = best[j]
         x = res.x
