@@ -7,7 +7,7 @@ each problem keeps its own L-BFGS-B — scipy's, stepped through its
 reverse-communication routine with the tolerances of
 :func:`scipy.optimize.minimize`, so every problem stops where it would on
 its own — and the objectives all problems ask for at a step are evaluated
-in one vectorised call (:func:`minimise_together`).  A resample's
+in one vectorised call (:func:`pas.models.lbfgsb.minimise_together`).  A resample's
 likelihood is written as its distinct pairs weighted by how often they
 were drawn (:func:`weighted_pairs`): fewer t quantiles for Student-t, whose
 ``special.stdtrit`` is most of a band's time.  The value and gradient are
@@ -21,7 +21,6 @@ from __future__ import annotations
 
 import numpy as np
 from scipy import special
-from scipy.optimize import OptimizeResult, _lbfgsb
 
 from .._support.threads import one_blas_thread
 from ..stats.lognormal import LogNormal3
@@ -40,11 +39,9 @@ from .copulas import kendall_tau
 from .joint import _TINY, _prepare, joint_fit_result, location_bounds
 from .joint_likelihood import NU_STEP, copula_parameters, parameter_slope
 from .joint_starts import _lognormal_start, _weibull_start, copula_start
+from .lbfgsb import minimise_together
 
 __all__ = ["batchable", "weighted_pairs", "minimise_together", "fit_joint_batch", "IMPLICIT_NU"]
-
-_MAXCOR, _FTOL, _GTOL, _MAXLS, _MAXFUN = 10, 2.2204460492503131e-09, 1e-5, 20, 15000
-"""scipy.optimize.minimize's L-BFGS-B defaults, as :func:`pas.models.joint.minimise_bounded` uses."""
 
 IMPLICIT_NU = True
 """Student-t's derivative in ν from the t quantiles' (:func:`_student_parts`: two t
@@ -233,60 +230,6 @@ def batch_objective(name: str, data: dict, *, location: bool = True, marginal: s
         return np.where(bad, 1e300, -val), np.where(bad[:, None], 0.0, g)
 
     return objective
-
-
-def _bound_arrays(bounds):
-    """scipy's ``(lower, upper, nbd)`` of L-BFGS-B bounds given as ``(lo or None, hi or None)``."""
-    lo = np.array([-np.inf if b[0] is None else b[0] for b in bounds], float)
-    hi = np.array([np.inf if b[1] is None else b[1] for b in bounds], float)
-    nbd = np.where(np.isfinite(lo), 1, 0) + np.where(np.isfinite(hi), 2, 0)
-    nbd = np.array([0, 1, 3, 2])[nbd].astype(np.int32)  # none, lower, upper, both
-    return np.where(np.isfinite(lo), lo, 0.0), np.where(np.isfinite(hi), hi, 0.0), nbd, lo, hi
-
-
-def minimise_together(objective, starts, bounds, rows):
-    """Each problem's L-BFGS-B from ``starts[j]`` within ``bounds[j]``, the objectives
-    evaluated together: ``objective(X, rows)`` for the problems that ask at a step.
-
-    The iterates are those of ``scipy.optimize.minimize(method="L-BFGS-B",
-    jac=True)`` on each problem alone (its defaults; module docs).  Returns one
-    ``OptimizeResult`` (``x``, ``fun``, ``nfev``, ``message``) per problem.
-    """
-    n = len(starts[0])
-    m = _MAXCOR
-    factr = _FTOL / np.finfo(float).eps
-    args = []  # per problem setulb's arguments: x at 1, f at 5, g at 6, task at 11
-    for x0, bnd in zip(starts, bounds):
-        low, up, nbd, lo, hi = _bound_arrays(bnd)
-        args.append([m, np.clip(np.asarray(x0, float), lo, hi), low, up, nbd, 0.0, np.zeros(n),
-                     factr, _GTOL, np.zeros(2 * m * n + 5 * n + 11 * m * m + 8 * m),
-                     np.zeros(3 * n, np.int32), np.zeros(2, np.int32), np.zeros(4, np.int32),
-                     np.zeros(44, np.int32), np.zeros(29), _MAXLS, np.zeros(2, np.int32)])
-    nfev, nit = np.zeros(len(args), int), np.zeros(len(args), int)
-    setulb = _lbfgsb.setulb
-    active = list(range(len(args)))
-    while active:
-        asking = []
-        for j in active:
-            a = args[j]
-            task = a[11]
-            setulb(*a)
-            while task[0] == 1:  # a new iterate; 3: wants f and g; anything else: stopped
-                nit[j] += 1
-                if nfev[j] > _MAXFUN:
-                    task[:] = 5, 502
-                setulb(*a)
-            if task[0] == 3:
-                asking.append(j)
-        if asking:
-            f, g = objective(np.array([args[j][1] for j in asking]), rows[asking])
-            for k, j in enumerate(asking):
-                args[j][5] = float(f[k])
-                args[j][6][:] = g[k]
-            nfev[asking] += 1
-        active = asking
-    return [OptimizeResult(x=a[1], fun=a[5], nfev=int(nfev[j]), nit=int(nit[j]),
-                           message=f"L-BFGS-B task {tuple(a[11])}") for j, a in enumerate(args)]
 
 
 def fit_joint_batch(name: str, samples, starts, *, location: bool = True, censor: float = 0.0,
