@@ -129,47 +129,40 @@ def _t_quantile_and_slope(nu, w):
     return sign * x, sign * slope
 
 
-def _student_parts(rho, nu, u, v, density, live):
+def _student_parts(rho, nu, u, v, density):
     """Student-t per pair ``(log c or, censored, log h, ∂/∂v, ∂/∂ρ, d/dν)`` for rows of
-    ``rho`` and ``nu`` (k, 1); pairs not ``live`` (the padding) are left at zero.
+    ``rho`` and ``nu`` (k, 1).
 
     ``d/dν`` is the total derivative, the t quantiles ``x = t_ν⁻¹(u)`` and
     ``y = t_ν⁻¹(v)`` moving with ν (:func:`_t_quantile_and_slope`).
     """
-    nu_b = np.broadcast_to(nu, u.shape)[live]
-    rho_b = np.broadcast_to(rho, u.shape)[live]
-    u, v, density = u[live], v[live], density[live]
-    (x, dx), (y, dy) = _t_quantile_and_slope(nu_b, u), _t_quantile_and_slope(nu_b, v)
-    total, d_v, d_rho = _student_logc((rho_b, nu_b), u, v, x, y, True)
-    r2 = 1.0 - rho_b * rho_b
-    q = x * x + y * y - 2 * rho_b * x * y
-    den = nu_b * r2 + q
-    explicit = (0.5 * (special.digamma((nu_b + 2) / 2) + special.digamma(nu_b / 2))
-                - special.digamma((nu_b + 1) / 2) - 0.5 * np.log1p(q / (nu_b * r2))
-                + (nu_b + 2) / 2 * q / (nu_b * den)
-                + 0.5 * (np.log1p(x * x / nu_b) + np.log1p(y * y / nu_b))
-                - (nu_b + 1) / 2 * (x * x / (nu_b * (nu_b + x * x))
-                                    + y * y / (nu_b * (nu_b + y * y))))
-    d_x = -(nu_b + 2) * (x - rho_b * y) / den + (nu_b + 1) * x / (nu_b + x * x)
-    d_y = -(nu_b + 2) * (y - rho_b * x) / den + (nu_b + 1) * y / (nu_b + y * y)
+    (x, dx), (y, dy) = _t_quantile_and_slope(nu, u), _t_quantile_and_slope(nu, v)
+    total, d_v, d_rho = _student_logc((rho, nu), u, v, x, y, True)
+    r2 = 1.0 - rho * rho
+    q = x * x + y * y - 2 * rho * x * y
+    den = nu * r2 + q
+    explicit = (0.5 * (special.digamma((nu + 2) / 2) + special.digamma(nu / 2))
+                - special.digamma((nu + 1) / 2) - 0.5 * np.log1p(q / (nu * r2))
+                + (nu + 2) / 2 * q / (nu * den)
+                + 0.5 * (np.log1p(x * x / nu) + np.log1p(y * y / nu))
+                - (nu + 1) / 2 * (x * x / (nu * (nu + x * x)) + y * y / (nu * (nu + y * y))))
+    d_x = -(nu + 2) * (x - rho * y) / den + (nu + 1) * x / (nu + x * x)
+    d_y = -(nu + 2) * (y - rho * x) / den + (nu + 1) * y / (nu + y * y)
     d_nu = explicit + d_x * dx + d_y * dy
     cens = ~density
     if cens.any():  # log h = log T_{ν+1}(z), z = (y − ρx)/s, s² = (ν + x²)(1 − ρ²)/(ν + 1)
-        n1, xc, yc, rc = nu_b[cens] + 1.0, x[cens], y[cens], rho_b[cens]
+        n1 = np.broadcast_to(nu, u.shape)[cens] + 1.0
+        rc = np.broadcast_to(rho, u.shape)[cens]
+        xc, yc, dxc = x[cens], y[cens], dx[cens]
         lh, dh_v, dh_rho = _student_logh((rc, n1 - 1.0), u[cens], v[cens], xc, yc, True)
         s = np.sqrt((n1 - 1.0 + xc * xc) * (1.0 - rc * rc) / n1)
         z = (yc - rc * xc) / s
         h = np.exp(lh)
-        ds = 0.5 * ((1.0 + 2.0 * xc * dx[cens]) / (n1 - 1.0 + xc * xc) - 1.0 / n1)  # ds/dν / s
-        dz = (dy[cens] - rc * dx[cens]) / s - z * ds
+        ds = 0.5 * ((1.0 + 2.0 * xc * dxc) / (n1 - 1.0 + xc * xc) - 1.0 / n1)  # ds/dν / s
+        dz = (dy[cens] - rc * dxc) / s - z * ds
         d_h = (special.stdtr(n1 + _T_STEP, z) - h) / _T_STEP + np.exp(_log_t_pdf(z, n1)) * dz
         total[cens], d_v[cens], d_rho[cens], d_nu[cens] = lh, dh_v, dh_rho, d_h / h
-    out = []
-    for part in (total, d_v, d_rho, d_nu):
-        full = np.zeros(live.shape)
-        full[live] = part
-        out.append(full)
-    return out
+    return total, d_v, d_rho, d_nu
 
 
 def batch_objective(name: str, data: dict, *, location: bool = True, marginal: str = "weibull"):
@@ -201,7 +194,7 @@ def batch_objective(name: str, data: dict, *, location: bool = True, marginal: s
         implicit = base == "student" and IMPLICIT_NU
         if implicit:
             rho, nu = (q[0] for q in copula_parameters(base, [ci[:, None] for ci in c]))
-            total, d_v, d_p, d_nu = _student_parts(rho, nu, u, v, dens, wt > 0)
+            total, d_v, d_p, d_nu = _student_parts(rho, nu, u, v, dens)
         else:
             total, d_v, d_p = _copula_parts(base, c, u, v, dens)
         val = np.sum(wt * np.where(dens, log_f + total, total), axis=1)
