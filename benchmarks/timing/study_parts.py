@@ -21,7 +21,9 @@ time, the forked band workers' included; wall time on a shared machine):
   fitted one after another (old: warm from the final fits, Student-t also
   cold, the families that can win each replicate) against each candidate
   fitted to all replicates at once (``band.BATCHED``), on 1 and 2 cores, the
-  band ends and the largest change of a replicate MPM;
+  band ends and the largest change of a replicate MPM; fitted together, Student-t's
+  ν derivative by a difference (old) vs the t quantiles' (``joint_batch.IMPLICIT_NU``);
+* ``driver``: the loop's fits by ``scipy.optimize.minimize`` (old) vs ``pas.models.lbfgsb``;
 * ``long``: one iteration at n = 15 k / 150 k / 1.5 M (default families,
   Gaussian, Student-t) drawing all ``z × n`` values and sorting them (old,
   ``tail_draws.TOP_DRAWS = False``) against drawing only the uniforms that can
@@ -29,13 +31,14 @@ time, the forked band workers' included; wall time on a shared machine):
   and the MPM change; one ``run_pas`` at 1.5 M to 8 HF, old and new, peak RSS;
   a band replicate's full sort against the partial one.
 
-Run: python benchmarks/timing/study_parts.py [--parts fit,cold,band,long] [--max-hf 80] [--json out.json]
+Run: python benchmarks/timing/study_parts.py [--parts fit,cold,band,driver,long] [--max-hf 80] [--json out.json]
 """
 
 from __future__ import annotations
 
 import argparse
 import contextlib
+import importlib
 import json
 import time
 
@@ -51,15 +54,24 @@ from pas.validation.timing_problem import N_W, P_EXP, N, cpu_seconds, scenario
 
 
 @contextlib.contextmanager
-def numerical_student():
-    """The old path: the Student-t joint fit by scipy's numerical differences."""
-    saved = pas.models.joint.GRADIENT_FAMILIES, pas.models.joint_mixture.GRADIENT_FAMILIES
-    old = tuple(f for f in saved[0] if f != "student")
-    pas.models.joint.GRADIENT_FAMILIES = pas.models.joint_mixture.GRADIENT_FAMILIES = old
+def module_setting(module, name, value):
+    """``module.name = value`` while the block runs."""
+    mod = importlib.import_module(module)
+    saved = getattr(mod, name)
+    setattr(mod, name, value)
     try:
         yield
     finally:
-        pas.models.joint.GRADIENT_FAMILIES, pas.models.joint_mixture.GRADIENT_FAMILIES = saved
+        setattr(mod, name, saved)
+
+
+@contextlib.contextmanager
+def numerical_student():
+    """The old path: the Student-t joint fit by scipy's numerical differences."""
+    old = tuple(f for f in pas.models.joint.GRADIENT_FAMILIES if f != "student")
+    with module_setting("pas.models.joint", "GRADIENT_FAMILIES", old), module_setting(
+            "pas.models.joint_mixture", "GRADIENT_FAMILIES", old):
+        yield
 
 
 def run(max_hf, n=N, n_waves=N_W, fit_seconds=None, **settings):
@@ -110,7 +122,7 @@ def part_prune(max_hf):
           f"{estimators.PRUNE_AIC_TRIED:g} AIC behind not refitted (new; off by default)")
     out, histories = {}, {}
     for label, limit in (("old", None), ("new", estimators.PRUNE_AIC_TRIED)):
-        with estimator_setting("PRUNE_AIC", limit):
+        with module_setting("pas.strategies.estimators", "PRUNE_AIC", limit):
             res, loop, _, _ = run(max_hf, fit_seconds=(fits := []), n_bootstrap=0)
         out[label], histories[label] = summary(res), res.history
         out[label]["times"] = [float(np.median(loop)), float(loop.max()), float(np.sum(fits))]
@@ -127,26 +139,12 @@ def part_prune(max_hf):
     return out
 
 
-@contextlib.contextmanager
-def estimator_setting(name, value):
-    """The study's fits with ``pas.strategies.estimators.<name> = value`` (``COLD_IN_TURN``:
-    the families' cold starts in turn, ``steps.cold_turns``; ``PRUNE_AIC``)."""
-    from pas.strategies import estimators
-
-    saved = getattr(estimators, name)
-    setattr(estimators, name, value)
-    try:
-        yield
-    finally:
-        setattr(estimators, name, saved)
-
-
 def part_cold(max_hf):
     """Cold starts all at once (old) against the families in turn (new), no band."""
     print("-- the study's cold starts: all families every tenth fit (old) vs in turn (new)")
     out = {}
     for label, in_turn in (("old", False), ("new", True)):
-        with estimator_setting("COLD_IN_TURN", in_turn):
+        with module_setting("pas.strategies.estimators", "COLD_IN_TURN", in_turn):
             res, loop, _, _ = run(max_hf, n_bootstrap=0)
         out[label] = summary(res)
         out[label]["times"] = [float(np.median(loop)), float(loop.max())]
@@ -217,19 +215,6 @@ def final_study(max_hf):
     return study, lambda: np.random.default_rng([study.seed, len(study.rows), 1])
 
 
-@contextlib.contextmanager
-def band_path(batched):
-    """The band's replicates fitted together (new, ``band.BATCHED``) or one after another (old)."""
-    from pas.strategies import band
-
-    saved = band.BATCHED
-    band.BATCHED = batched
-    try:
-        yield
-    finally:
-        band.BATCHED = saved
-
-
 def band_seconds(study, rng, n_jobs):
     """``(wall s, CPU s with the workers', band)`` of the final model band."""
     t, c = time.perf_counter(), cpu_seconds()
@@ -247,7 +232,7 @@ def part_band(max_hf):
         rows = {}
         for label, batched, jobs in (("old 1 core", False, 1), ("old 2 cores", False, 2),
                                      ("new 1 core", True, 1), ("new 2 cores", True, 2)):
-            with band_path(batched):
+            with module_setting("pas.strategies.band", "BATCHED", batched):
                 rows[label] = band_seconds(study, rng, jobs)
             wall, cpu, (low, high), _ = rows[label]
             print(f"  {m:3d} pairs, {label:>11}: {wall:5.2f} s wall, {cpu:5.2f} s CPU; "
@@ -261,7 +246,37 @@ def part_band(max_hf):
               f"{new[2][0] / old[2][0] - 1:+.1e}, {new[2][1] / old[2][1] - 1:+.1e}; replicate "
               f"MPMs: largest relative change {change.max():.1e}, {int(np.sum(change > 1e-6))} "
               f"of {change.size} by more than 1e-6")
+        with module_setting("pas.models.joint_batch", "IMPLICIT_NU", False):
+            diff = band_seconds(study, rng, 1)
+        change = np.abs(new[3] / diff[3] - 1)
+        print(f"  {m:3d} pairs, fitted together, ν by difference (old): {diff[0]:5.2f} s wall, "
+              f"{diff[1]:5.2f} s CPU; implicit (new) / old CPU {new[1] / diff[1]:.2f}; band ends "
+              f"{new[2][0] / diff[2][0] - 1:+.1e}, {new[2][1] / diff[2][1] - 1:+.1e}; replicate "
+              f"MPMs: largest relative change {change.max():.1e}")
+        rows["new 1 core, ν by difference"] = diff
         out[m] = {k: [v[0], v[1], list(v[2])] for k, v in rows.items()}
+    return out
+
+
+def part_driver(max_hf, rounds=2):
+    """The loop's fits by scipy.optimize.minimize (old) vs the setulb driver, ``rounds`` times."""
+    from scipy import optimize
+
+    print("-- the loop's joint fits: scipy.optimize.minimize (old) vs pas.models.lbfgsb (new), no band")
+    out, results = {"old": [], "new": []}, {}
+    for _ in range(rounds):
+        for label, driver in (("old", lambda grad, x0, bounds: optimize.minimize(
+                grad, x0, jac=True, method="L-BFGS-B", bounds=bounds)),  # minimise_bounded's old line
+                              ("new", pas.models.joint.minimise_one)):
+            with module_setting("pas.models.joint", "minimise_one", driver):
+                results[label], loop, _, _ = run(max_hf, n_bootstrap=0)
+            out[label].append([float(loop.sum()), float(np.median(loop)), float(loop.max())])
+            print(f"  {label}: loop {loop.sum():5.2f} s CPU, median {1e3 * np.median(loop):5.1f} ms,"
+                  f" worst {1e3 * loop.max():6.1f} ms")
+    old, new = (np.median(out[k], axis=0) for k in ("old", "new"))
+    same = results["old"].mpm == results["new"].mpm and results["old"].history.equals(results["new"].history)
+    print(f"  ratio new/old (medians of the rounds): loop {new[0] / old[0]:.2f}, median "
+          f"{new[1] / old[1]:.2f}; MPM and history {'the same' if same else 'DIFFERENT'}")
     return out
 
 
@@ -363,14 +378,16 @@ def part_long(max_hf):
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--max-hf", type=int, default=80)
-    parser.add_argument("--parts", default="fit", help="comma-separated: fit, cold, band, long")
+    parser.add_argument("--parts", default="fit",
+                        help="comma-separated: fit, cold, band, driver, long")
     parser.add_argument("--json", help="write the figures here")
     parser.add_argument("--long-child", nargs="+", help=argparse.SUPPRESS)
     args = parser.parse_args()
     if args.long_child:
         return long_child(args.long_child)
     out = {}
-    parts = {"fit": part_fit, "cold": part_cold, "band": part_band, "long": part_long}
+    parts = {"fit": part_fit, "cold": part_cold, "band": part_band, "driver": part_driver,
+             "long": part_long}
     for part in args.parts.split(","):
         out[part] = parts[part](args.max_hf)
     if args.json:

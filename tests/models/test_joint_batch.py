@@ -101,3 +101,26 @@ def test_a_resample_that_cannot_be_fitted_gives_its_error_and_leaves_the_others(
     for j, (uj, hj) in ((0, good[0]), (3, good[1])):
         alone = fit_joint("gumbel", uj, hj, start=final.x, cold=False)
         assert out[j].copula.loglik == pytest.approx(alone.copula.loglik, rel=1e-9)
+
+
+@pytest.mark.parametrize("marginal, location, censor",
+                         [("weibull", True, 0.0), ("lognormal", True, 0.2), ("weibull", False, 0.0)])
+def test_student_nu_derivative_is_the_objectives_own(marginal, location, censor):
+    # the ν derivative from the t quantiles' (implicit function theorem) against a central
+    # difference of the objective's value; at these points the second resample has a pair
+    # with v = F_H(h) within 1.2e-9 of 1, where a CDF difference taken above the median
+    # loses its digits (it was 2 % off)
+    u, h = _pairs(0)
+    samples = _resamples(u, h, 3, 1)
+    data = weighted_pairs("student", samples, location=location, censor=censor,
+                          width=u.size + 3)  # with padding
+    objective = batch_objective("student", data, location=location, marginal=marginal)
+    n_par = (3 if location else 2) + 2
+    x = np.random.default_rng(2).normal(0.0, 0.3, (3, n_par)) + np.r_[
+        [-1.0] if location else [], 0.5, 0.3, 0.6, 0.6]
+    _, g = objective(x, np.arange(3))
+    step = np.zeros(n_par)
+    step[-1] = 1e-5
+    central = (objective(x + step, np.arange(3))[0]
+               - objective(x - step, np.arange(3))[0]) / 2e-5
+    np.testing.assert_allclose(g[:, -1], central, rtol=1e-5, atol=1e-7)

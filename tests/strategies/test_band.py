@@ -1,10 +1,13 @@
 """The model band's replicates: the same band on any number of processes, warm starts."""
 
+import copy
+
 import numpy as np
 import pytest
 from test_estimator import _problem
 
 from pas.strategies import band
+from pas.strategies.base import Pairs
 from pas.strategies.band import ModelBand
 from pas.strategies.estimators import ConditionalLikelihood
 from pas.strategies.pas import PAS
@@ -186,3 +189,34 @@ def test_a_mixture_band_is_fitted_one_replicate_after_another():
     starts = strategy.final_joint_fits(pairs, s, "all")
     plan = band.replicate_plan(pairs, np.random.default_rng(0), 3, ("all",))
     assert not band._can_batch(strategy, starts, plan)
+
+
+@pytest.mark.slow
+def test_replicates_too_alike_to_fit_draw_no_lf_ranks_either_way(monkeypatch):
+    # three HF levels, two of them rare: about a quarter of the resamples hold two and
+    # cannot be fitted; neither path may read the LF-rank stream for them, so the
+    # replicates after them find it where they would one after another
+    s, pairs, _ = _problem(2, tau=0.6, p_impact=0.7, m=24)
+    hf = np.full(len(pairs), 1000.0)
+    order = np.argsort(pairs.lf)
+    hf[order[-2:]], hf[order[-4:-2]] = 3000.0, 2000.0
+    pairs = Pairs(pairs.position, pairs.lf, hf, pairs.d, pairs.fp_lf, pairs.fp_position)
+    strategy = PAS(band=ModelBand(n_bootstrap=12))
+    strategy.reset(0)
+    strategy.predict(pairs, s, np.random.default_rng(0))
+    starts = strategy.final_joint_fits(pairs, s, "both")
+    rng = np.random.default_rng(3)
+    lf_rng = rng.spawn(1)[0]
+    plan = band.replicate_plan(pairs, rng, 12, ("both",))
+    alike = [np.unique(pairs.hf[tp]).size < 3 for tp, _, _, _ in plan]
+    assert 0 < sum(alike) < 12
+    out = {}
+    for batched in (True, False):
+        monkeypatch.setattr(band, "BATCHED", batched)
+        out[batched] = band.replicate_mpms(strategy, pairs, s, starts, plan,
+                                           copy.deepcopy(lf_rng), n_jobs=1)
+    assert [m is None for m in out[True]] == [m is None for m in out[False]]
+    assert all(m is None for m, a in zip(out[True], alike) if a)
+    kept = [i for i, m in enumerate(out[True]) if m is not None]
+    np.testing.assert_allclose([out[True][i] for i in kept], [out[False][i] for i in kept],
+                               rtol=1e-6)

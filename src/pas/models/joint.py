@@ -55,6 +55,7 @@ from .joint_likelihood import (
     negloglik_closure,
 )
 from .joint_starts import DataStarts, copula_start
+from .lbfgsb import minimise_one
 
 __all__ = ["JOINT_FAMILIES", "HF_MARGINALS", "JointFit", "censoring_level", "fit_joint",
            "fit_joint_all", "best_per_family", "starts_cold", "location_bounds", "minimise_bounded",
@@ -299,8 +300,8 @@ def minimise_bounded(negloglik, negloglik_grad, x0, bounds):
     """L-BFGS-B from ``x0`` clipped into ``bounds``, with the exact gradient when there is one."""
     x0 = np.array([np.clip(x, lo if lo is not None else -np.inf, hi if hi is not None else np.inf)
                    for x, (lo, hi) in zip(x0, bounds)])
-    if negloglik_grad is not None:
-        return optimize.minimize(negloglik_grad, x0, jac=True, method="L-BFGS-B", bounds=bounds)
+    if negloglik_grad is not None:  # scipy.optimize.minimize's iterates (pas.models.lbfgsb)
+        return minimise_one(negloglik_grad, x0, bounds)
     return optimize.minimize(negloglik, x0, method="L-BFGS-B", bounds=bounds)
 
 

@@ -7,25 +7,29 @@ each problem keeps its own L-BFGS-B — scipy's, stepped through its
 reverse-communication routine with the tolerances of
 :func:`scipy.optimize.minimize`, so every problem stops where it would on
 its own — and the objectives all problems ask for at a step are evaluated
-in one vectorised call (:func:`minimise_together`).  A resample's
+in one vectorised call (:func:`pas.models.lbfgsb.minimise_together`).  A resample's
 likelihood is written as its distinct pairs weighted by how often they
 were drawn (:func:`weighted_pairs`): fewer t quantiles for Student-t, whose
 ``special.stdtrit`` is most of a band's time.  The value and gradient are
 those of :func:`pas.models.joint.joint_objective` (Weibull and log-normal
-marginal, unrotated families with a gradient), summed in another order.
+marginal, unrotated families with a gradient), summed in another order — but for Student-t's derivative in ν, which here
+follows from the t quantiles' (:func:`_student_parts`) instead of a
+difference of the whole likelihood (:data:`IMPLICIT_NU`).
 """
 
 from __future__ import annotations
 
 import numpy as np
 from scipy import special
-from scipy.optimize import OptimizeResult, _lbfgsb
 
 from .._support.threads import one_blas_thread
 from ..stats.lognormal import LogNormal3
 from ..stats.weibull import Weibull3
 from .copula_densities import (
     GRADIENT_FAMILIES,
+    _log_t_pdf,
+    _student_logc,
+    _student_logh,
     copula_loghfunc,
     copula_logpdf,
     logc_grad,
@@ -35,11 +39,17 @@ from .copulas import kendall_tau
 from .joint import _TINY, _prepare, joint_fit_result, location_bounds
 from .joint_likelihood import NU_STEP, copula_parameters, parameter_slope
 from .joint_starts import _lognormal_start, _weibull_start, copula_start
+from .lbfgsb import minimise_together
 
-__all__ = ["batchable", "weighted_pairs", "minimise_together", "fit_joint_batch"]
+__all__ = ["batchable", "weighted_pairs", "minimise_together", "fit_joint_batch", "IMPLICIT_NU"]
 
-_MAXCOR, _FTOL, _GTOL, _MAXLS, _MAXFUN = 10, 2.2204460492503131e-09, 1e-5, 20, 15000
-"""scipy.optimize.minimize's L-BFGS-B defaults, as :func:`pas.models.joint.minimise_bounded` uses."""
+IMPLICIT_NU = True
+"""Student-t's derivative in ν from the t quantiles' (:func:`_student_parts`: two t
+quantiles and two t CDFs a pair); False: a forward difference of the copula terms, as
+:mod:`pas.models.joint_likelihood` (four t quantiles; ``benchmarks/timing/study_parts.py``)."""
+
+_T_STEP = 1e-6
+"""Step in ν of the forward difference of the t CDF ``∂T_ν(x)/∂ν`` (:func:`_student_parts`)."""
 
 
 def batchable(name: str, marginal: str) -> bool:
@@ -102,6 +112,59 @@ def _copula_values(base, c, u, v, density):
     return total
 
 
+def _t_quantile_and_slope(nu, w):
+    """The t quantile ``x = t_ν⁻¹(w)`` and its ``dx/dν`` at fixed ``w``.
+
+    ``dx/dν = −(∂T_ν(x)/∂ν) / f_ν(x)`` (implicit function theorem), with
+    ``∂T_ν/∂ν`` a forward difference of the CDF from ``T_ν(x) = w``.  Both in
+    the lower tail, ``x = −t_ν⁻¹(1 − w)`` above the median: there ``1 − w`` is
+    exact and the CDF's difference keeps its digits (``T_ν(x)`` near 1 leaves
+    ``∂T_ν/∂ν`` none).
+    """
+    upper = w > 0.5
+    tail = np.where(upper, 1.0 - w, w)
+    x = special.stdtrit(nu, tail)
+    slope = -(special.stdtr(nu + _T_STEP, x) - tail) / _T_STEP * np.exp(-_log_t_pdf(x, nu))
+    sign = np.where(upper, -1.0, 1.0)
+    return sign * x, sign * slope
+
+
+def _student_parts(rho, nu, u, v, density):
+    """Student-t per pair ``(log c or, censored, log h, ∂/∂v, ∂/∂ρ, d/dν)`` for rows of
+    ``rho`` and ``nu`` (k, 1).
+
+    ``d/dν`` is the total derivative, the t quantiles ``x = t_ν⁻¹(u)`` and
+    ``y = t_ν⁻¹(v)`` moving with ν (:func:`_t_quantile_and_slope`).
+    """
+    (x, dx), (y, dy) = _t_quantile_and_slope(nu, u), _t_quantile_and_slope(nu, v)
+    total, d_v, d_rho = _student_logc((rho, nu), u, v, x, y, True)
+    r2 = 1.0 - rho * rho
+    q = x * x + y * y - 2 * rho * x * y
+    den = nu * r2 + q
+    explicit = (0.5 * (special.digamma((nu + 2) / 2) + special.digamma(nu / 2))
+                - special.digamma((nu + 1) / 2) - 0.5 * np.log1p(q / (nu * r2))
+                + (nu + 2) / 2 * q / (nu * den)
+                + 0.5 * (np.log1p(x * x / nu) + np.log1p(y * y / nu))
+                - (nu + 1) / 2 * (x * x / (nu * (nu + x * x)) + y * y / (nu * (nu + y * y))))
+    d_x = -(nu + 2) * (x - rho * y) / den + (nu + 1) * x / (nu + x * x)
+    d_y = -(nu + 2) * (y - rho * x) / den + (nu + 1) * y / (nu + y * y)
+    d_nu = explicit + d_x * dx + d_y * dy
+    cens = ~density
+    if cens.any():  # log h = log T_{ν+1}(z), z = (y − ρx)/s, s² = (ν + x²)(1 − ρ²)/(ν + 1)
+        n1 = np.broadcast_to(nu, u.shape)[cens] + 1.0
+        rc = np.broadcast_to(rho, u.shape)[cens]
+        xc, yc, dxc = x[cens], y[cens], dx[cens]
+        lh, dh_v, dh_rho = _student_logh((rc, n1 - 1.0), u[cens], v[cens], xc, yc, True)
+        s = np.sqrt((n1 - 1.0 + xc * xc) * (1.0 - rc * rc) / n1)
+        z = (yc - rc * xc) / s
+        h = np.exp(lh)
+        ds = 0.5 * ((1.0 + 2.0 * xc * dxc) / (n1 - 1.0 + xc * xc) - 1.0 / n1)  # ds/dν / s
+        dz = (dy[cens] - rc * dxc) / s - z * ds
+        d_h = (special.stdtr(n1 + _T_STEP, z) - h) / _T_STEP + np.exp(_log_t_pdf(z, n1)) * dz
+        total[cens], d_v[cens], d_rho[cens], d_nu[cens] = lh, dh_v, dh_rho, d_h / h
+    return total, d_v, d_rho, d_nu
+
+
 def batch_objective(name: str, data: dict, *, location: bool = True, marginal: str = "weibull"):
     """``objective(X, rows) -> (negloglik (k,), gradient (k, p))`` of the problems ``rows``
     of ``data`` (:func:`weighted_pairs`) at optimiser values ``X`` (k, p), as
@@ -128,7 +191,12 @@ def batch_objective(name: str, data: dict, *, location: bool = True, marginal: s
             zb = np.exp(b * ln_z)
             log_f = np.log(b / a) + (b - 1.0) * ln_z - zb
             v = np.clip(-np.expm1(-zb), _TINY, 1 - _TINY)
-        total, d_v, d_p = _copula_parts(base, c, u, v, dens)
+        implicit = base == "student" and IMPLICIT_NU
+        if implicit:
+            rho, nu = (q[0] for q in copula_parameters(base, [ci[:, None] for ci in c]))
+            total, d_v, d_p, d_nu = _student_parts(rho, nu, u, v, dens)
+        else:
+            total, d_v, d_p = _copula_parts(base, c, u, v, dens)
         val = np.sum(wt * np.where(dens, log_f + total, total), axis=1)
         dens_w, d_v = wt * dens, wt * d_v
         if lognormal:  # a = μ, b = σ; X holds μ and ln σ
@@ -144,7 +212,10 @@ def batch_objective(name: str, data: dict, *, location: bool = True, marginal: s
                             axis=1)]
         grads[0] = grads[0] * -gap[:, 0] if location else None
         grads.append(np.sum(wt * d_p, axis=1) * parameter_slope(base, c))
-        if base == "student":  # ν: a forward difference of the copula terms, as joint_likelihood
+        if implicit:  # dν/dc of ν = 2 + 48 / (1 + e^−c)
+            share = 1.0 / (1.0 + np.exp(-c[1]))
+            grads.append(np.sum(wt * d_nu, axis=1) * 48.0 * share * (1.0 - share))
+        elif base == "student":  # ν: a forward difference of the copula terms, as joint_likelihood
             moved = _copula_values(base, [c[0], c[1] + NU_STEP], u, v, dens)
             grads.append((np.sum(wt * moved, axis=1) - np.sum(wt * total, axis=1)) / NU_STEP)
         g = -np.column_stack([x for x in grads if x is not None])
@@ -152,60 +223,6 @@ def batch_objective(name: str, data: dict, *, location: bool = True, marginal: s
         return np.where(bad, 1e300, -val), np.where(bad[:, None], 0.0, g)
 
     return objective
-
-
-def _bound_arrays(bounds):
-    """scipy's ``(lower, upper, nbd)`` of L-BFGS-B bounds given as ``(lo or None, hi or None)``."""
-    lo = np.array([-np.inf if b[0] is None else b[0] for b in bounds], float)
-    hi = np.array([np.inf if b[1] is None else b[1] for b in bounds], float)
-    nbd = np.where(np.isfinite(lo), 1, 0) + np.where(np.isfinite(hi), 2, 0)
-    nbd = np.array([0, 1, 3, 2])[nbd].astype(np.int32)  # none, lower, upper, both
-    return np.where(np.isfinite(lo), lo, 0.0), np.where(np.isfinite(hi), hi, 0.0), nbd, lo, hi
-
-
-def minimise_together(objective, starts, bounds, rows):
-    """Each problem's L-BFGS-B from ``starts[j]`` within ``bounds[j]``, the objectives
-    evaluated together: ``objective(X, rows)`` for the problems that ask at a step.
-
-    The iterates are those of ``scipy.optimize.minimize(method="L-BFGS-B",
-    jac=True)`` on each problem alone (its defaults; module docs).  Returns one
-    ``OptimizeResult`` (``x``, ``fun``, ``nfev``, ``message``) per problem.
-    """
-    n = len(starts[0])
-    m = _MAXCOR
-    factr = _FTOL / np.finfo(float).eps
-    args = []  # per problem setulb's arguments: x at 1, f at 5, g at 6, task at 11
-    for x0, bnd in zip(starts, bounds):
-        low, up, nbd, lo, hi = _bound_arrays(bnd)
-        args.append([m, np.clip(np.asarray(x0, float), lo, hi), low, up, nbd, 0.0, np.zeros(n),
-                     factr, _GTOL, np.zeros(2 * m * n + 5 * n + 11 * m * m + 8 * m),
-                     np.zeros(3 * n, np.int32), np.zeros(2, np.int32), np.zeros(4, np.int32),
-                     np.zeros(44, np.int32), np.zeros(29), _MAXLS, np.zeros(2, np.int32)])
-    nfev, nit = np.zeros(len(args), int), np.zeros(len(args), int)
-    setulb = _lbfgsb.setulb
-    active = list(range(len(args)))
-    while active:
-        asking = []
-        for j in active:
-            a = args[j]
-            task = a[11]
-            setulb(*a)
-            while task[0] == 1:  # a new iterate; 3: wants f and g; anything else: stopped
-                nit[j] += 1
-                if nfev[j] > _MAXFUN:
-                    task[:] = 5, 502
-                setulb(*a)
-            if task[0] == 3:
-                asking.append(j)
-        if asking:
-            f, g = objective(np.array([args[j][1] for j in asking]), rows[asking])
-            for k, j in enumerate(asking):
-                args[j][5] = float(f[k])
-                args[j][6][:] = g[k]
-            nfev[asking] += 1
-        active = asking
-    return [OptimizeResult(x=a[1], fun=a[5], nfev=int(nfev[j]), nit=int(nit[j]),
-                           message=f"L-BFGS-B task {tuple(a[11])}") for j, a in enumerate(args)]
 
 
 def fit_joint_batch(name: str, samples, starts, *, location: bool = True, censor: float = 0.0,
@@ -240,26 +257,33 @@ def fit_joint_batch(name: str, samples, starts, *, location: bool = True, censor
     objective = batch_objective(name, data, location=location, marginal=marginal)
 
     def run(problems, x0s):
+        if not problems:
+            return []
         with one_blas_thread():  # an L-BFGS-B step in five parameters (pas._support.threads)
-            return dict(zip(problems, minimise_together(
-                objective, x0s, [bounds[j] for j in problems], np.array(problems, int))))
+            return minimise_together(objective, x0s, [bounds[j] for j in problems],
+                                     np.array(problems, int))
+
+    def data_start(j):
+        u, h = samples[j]
+        u = np.clip(np.asarray(u, float), _TINY, 1 - _TINY)
+        h = np.asarray(h, float)
+        tau = kendall_tau(u, h) if u.size > 2 else 0.3
+        start_marginal = _lognormal_start if lognormal else _weibull_start
+        return np.r_[start_marginal(h, location), copula_start(base, tau)]
 
     warm = [j for j, s in enumerate(starts) if s is not None and len(s) == n_par]
-    best = run(warm, [np.asarray(starts[j], float) for j in warm]) if warm else {}
-    fresh = [j for j in range(len(samples))
-             if cold or j not in best or best[j].fun >= 1e299]
-    if fresh:
-        x0s = []
-        for j in fresh:
-            u, h = samples[j]
-            u = np.clip(np.asarray(u, float), _TINY, 1 - _TINY)
-            h = np.asarray(h, float)
-            tau = kendall_tau(u, h) if u.size > 2 else 0.3
-            start_marginal = _lognormal_start if lognormal else _weibull_start
-            x0s.append(np.r_[start_marginal(h, location), copula_start(base, tau)])
-        for j, res in run(fresh, x0s).items():
-            if j not in best or res.fun < best[j].fun:
-                best[j] = res
+    warm_x0 = [np.asarray(starts[j], float) for j in warm]
+    if cold:  # every problem's warm and cold start stepped together: half the objective calls
+        fresh = list(range(len(samples)))
+        both = run(warm + fresh, warm_x0 + [data_start(j) for j in fresh])
+        best, fresh_res = dict(zip(warm, both[:len(warm)])), both[len(warm):]
+    else:
+        best = dict(zip(warm, run(warm, warm_x0)))
+        fresh = [j for j in range(len(samples)) if j not in best or best[j].fun >= 1e299]
+        fresh_res = run(fresh, [data_start(j) for j in fresh])
+    for j, res in zip(fresh, fresh_res):
+        if j not in best or res.fun < best[j].fun:
+            best[j] = res
     for j, i in enumerate(valid):
         res = best[j]
         x = res.x

@@ -13,6 +13,7 @@ Why each choice, and what it was measured to change:
 
 from __future__ import annotations
 
+import contextlib
 import copy
 import multiprocessing
 import os
@@ -93,7 +94,7 @@ one, judged at the final fits' parameters on its resampled pairs (module docs); 
 every family."""
 
 _JOB = None  # (strategy, pairs, lfset, starts, plan, lf_rngs) while replicate_mpms runs;
-# batched: (strategy, lfset, plan, replicates, width)
+# batched: (strategy, pairs, lfset, starts, plan, replicates, width)
 
 
 class ReplicateStarts(dict):
@@ -123,9 +124,10 @@ def replicate_plan(pairs, rng: np.random.Generator, n: int, marginals) -> list:
 
 
 def _resampled(pairs, tp, fp):
-    """The replicate's pairs, or None when too few or all alike to fit."""
+    """The replicate's pairs, or None when too few or too alike to fit (the joint fit
+    needs 3 different HF loads: :func:`pas.models.joint.fit_joint`)."""
     b = pairs.take(tp, fp)
-    return None if tp.size < 4 or np.ptp(b.lf) == 0 or np.ptp(b.hf) == 0 else b
+    return None if tp.size < 4 or np.ptp(b.lf) == 0 or np.unique(b.hf).size < 3 else b
 
 
 def _lf_rank_streams(strategy, pairs, lfset, plan, lf_rng) -> list:
@@ -248,29 +250,35 @@ def _can_batch(strategy, starts, plan) -> bool:
             and all(_choice_marginals(strategy, p[2]) <= set(HF_MARGINALS) for p in plan))
 
 
-def _prepared(strategy, pairs, lfset, starts, plan, lf_rng) -> list:
-    """Per replicate its :class:`Replicate` (None when it cannot be fitted), made in plan
-    order, so the LF-rank draws read ``lf_rng`` as one replicate after another would."""
+def _prepared(strategy, pairs, lfset, plan, lf_rng) -> list:
+    """Per replicate its :class:`Replicate` without its starts (None when it cannot be
+    fitted), made in plan order, so the LF-rank draws read ``lf_rng`` as one replicate
+    after another would; the starts are chosen by the worker (:func:`_chunk_mpms`)."""
     out = []
-    for tp, fp, choice, _ in plan:
+    for tp, fp, _, _ in plan:
         b = _resampled(pairs, tp, fp)
         try:
             if b is None:
                 raise ValueError("too few or all alike")
-            kept = replicate_starts(strategy, b, lfset, starts, choice)
             impact = strategy.impact_of(b)
             n0 = conditioning_set(lfset.lf, b.lf.min()).size
             out.append(Replicate(b, impact, n0,
-                                 strategy._population_ranks(lfset, n0, impact, lf_rng), kept))
+                                 strategy._population_ranks(lfset, n0, impact, lf_rng), None))
         except (ValueError, np.linalg.LinAlgError):
             out.append(None)
     return out
 
 
 def _chunk_mpms(indices) -> list:
-    """The MPMs of the replicates ``indices`` of the running batched job, fitted together."""
-    strategy, pairs, lfset, plan, replicates, width = _JOB
-    chunk = {i: replicates[i] for i in indices if replicates[i] is not None}
+    """The MPMs of the replicates ``indices`` of the running batched job, fitted together
+    from the starts that can win each (:func:`replicate_starts`)."""
+    strategy, pairs, lfset, starts, plan, replicates, width = _JOB
+    chunk = {}
+    for i in indices:
+        if replicates[i] is not None:
+            with contextlib.suppress(ValueError, np.linalg.LinAlgError):
+                chunk[i] = Replicate(*replicates[i][:4], replicate_starts(
+                    strategy, replicates[i][0], lfset, starts, plan[i][2]))
     fits = batch_fits(strategy, chunk, COLD_FAMILIES, width)
     out = []
     for i in indices:
@@ -286,17 +294,20 @@ def _chunk_mpms(indices) -> list:
 
 
 def _batched_mpms(strategy, pairs, lfset, starts, plan, lf_rng, n_jobs) -> list:
-    """:func:`replicate_mpms` with the replicates fitted together, in ``n_jobs`` chunks."""
+    """:func:`replicate_mpms` with the replicates fitted together, in ``n_jobs`` chunks:
+    this process fits the first, forked workers the others meanwhile."""
     global _JOB
-    replicates = _prepared(strategy, pairs, lfset, starts, plan, lf_rng)
+    replicates = _prepared(strategy, pairs, lfset, plan, lf_rng)
     width = max([np.unique(r[0].position).size for r in replicates if r is not None] or [1])
-    _JOB = (strategy, pairs, lfset, plan, replicates, width)
+    _JOB = (strategy, pairs, lfset, starts, plan, replicates, width)
     chunks = [list(c) for c in np.array_split(np.arange(len(plan)), n_jobs) if c.size]
     try:
         if len(chunks) <= 1:
             return _chunk_mpms(chunks[0]) if chunks else []
-        with multiprocessing.get_context("fork").Pool(len(chunks)) as pool:
-            return [x for part in pool.map(_chunk_mpms, chunks, chunksize=1) for x in part]
+        with multiprocessing.get_context("fork").Pool(len(chunks) - 1) as pool:
+            others = pool.map_async(_chunk_mpms, chunks[1:], chunksize=1)
+            first = _chunk_mpms(chunks[0])
+            return first + [x for part in others.get() for x in part]
     finally:
         _JOB = None
 
