@@ -111,3 +111,8 @@ def test_a_level_that_is_not_positive_is_refused(bad, capsys):
     with pytest.raises(SystemExit):
         load_script(SCRIPT).main(["run", "3", "--out", "x", f"--p-exceed={bad}"])
     assert "--p-exceed: must be a number > 0" in capsys.readouterr().err
+
+
+def test_pending_runs_the_seeds_from_first_to_last_that_are_not_done():
+    assert load_script(SCRIPT)._pending(3, 6, {1, 2, 4}) == [3, 5, 6]
+    assert load_script(SCRIPT)._pending(1, 2, {1, 2}) == []

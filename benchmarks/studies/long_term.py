@@ -1,7 +1,8 @@
 """The long-term validation table: four methods on the same redrawn data sets (issue 29).
 
 Run: python benchmarks/studies/long_term.py run ANALOGUE --seeds N --out DIR   (one analogue: 3 or 2)
-         [--p-exceed P] [--scale S]   (the level, default 2e-6; S × 100 h per kept cell)
+         [--p-exceed P] [--scale S] [--first F]   (the level, default 2e-6; S × 100 h per
+         kept cell; data sets F … N, default 1 … N)
      python benchmarks/studies/long_term.py write DIR [DIR ...] --page docs/results/long-term.md
 
 ``run`` generates data sets ``1 … N`` of a long-term analogue
@@ -70,8 +71,14 @@ def _truth_row(data, seconds, plan, p_exceed, kept_hours):
     return row
 
 
-def run(analogue, seeds, out, methods, *, p_exceed=None, scale=1.0):
-    """Data sets ``1 … seeds`` and the ``methods`` on each at ``p_exceed``; appends to ``out``."""
+def _pending(first, last, done):
+    """The data seeds ``first … last`` not yet in ``done``, in order."""
+    return [seed for seed in range(int(first), int(last) + 1) if seed not in done]
+
+
+def run(analogue, seeds, out, methods, *, p_exceed=None, scale=1.0, first=1):
+    """Data sets ``first … seeds`` and the ``methods`` on each at ``p_exceed``; appends to
+    ``out``."""
     from pas.validation.long_term_compare import P_VALIDATED, compare, long_term_data
     from pas.validation.long_term_compare import _lf_only as lf_only
 
@@ -80,9 +87,7 @@ def run(analogue, seeds, out, methods, *, p_exceed=None, scale=1.0):
     out.mkdir(parents=True, exist_ok=True)
     runs_file, truth_file = out / f"runs_{analogue}.csv", out / f"truth_{analogue}.csv"
     done = set(pd.read_csv(truth_file)["data_seed"]) if truth_file.exists() else set()
-    for seed in range(1, seeds + 1):
-        if seed in done:
-            continue
+    for seed in _pending(first, seeds, done):
         t0 = time.perf_counter()
         data, plan = long_term_data(analogue, seed=seed, scale=scale, p_exceed=p_exceed)
         hours = _kept_hours(plan, scale)
@@ -321,13 +326,15 @@ def main(argv=None):
         p.add_argument("--scale", type=_positive, default=1.0,
                        help="hours per kept cell, in units of 100 h (default 1)")
     r.add_argument("--methods", default="pas-long-term,uniform,contour,lf-only")
+    r.add_argument("--first", type=int, default=1,
+                   help="the first data seed to run (default 1; the last is --seeds)")
     w = sub.add_parser("write")
     w.add_argument("dirs", nargs="+", type=Path)
     w.add_argument("--page", type=Path)
     args = parser.parse_args(argv)
     if args.cmd == "run":
         run(args.analogue, args.seeds, args.out, tuple(args.methods.split(",")),
-            p_exceed=args.p_exceed, scale=args.scale)
+            p_exceed=args.p_exceed, scale=args.scale, first=args.first)
         return
     if args.cmd == "truth":
         truth_only(args.analogue, args.seeds, args.out, p_exceed=args.p_exceed,
