@@ -58,6 +58,9 @@ def folders(tmp_path):
                   _truth_row(2, 120.0, halves=(1.0, 1.0))]).to_csv(new / "truth_3.csv",
                                                                    index=False)
     _cells(5e-6, 400).to_csv(new / "cells_3.csv", index=False)
+    pd.DataFrame([{"analogue": 3, "kept_hours": 400, "p_exceed": 5e-6, "data_sets": 2,
+                   "truth_5e-06": 110.0, "truth_2e-06": 130.0, "truth_1e-06": 150.0}]).to_csv(
+        new / "pooled_3.csv", index=False)
     return old, new
 
 
@@ -116,3 +119,20 @@ def test_a_level_that_is_not_positive_is_refused(bad, capsys):
 def test_pending_runs_the_seeds_from_first_to_last_that_are_not_done():
     assert load_script(SCRIPT)._pending(3, 6, {1, 2, 4}) == [3, 5, 6]
     assert load_script(SCRIPT)._pending(1, 2, {1, 2}) == []
+
+
+def test_the_pooled_table_measures_against_the_truth_of_the_data_sets_together(folders):
+    rows = _rows(load_script(SCRIPT).tables(list(folders))["pooled"])
+    assert [r[:6] for r in rows] == [
+        ["green water (kN)", "5e-06", "400 h", "110 (2)", "each data set's own truth", "2"],
+        ["green water (kN)", "5e-06", "400 h", "110 (2)", "pas-long-term", "2"],
+        ["green water (kN)", "5e-06", "400 h", "110 (2)", "uniform", "1"]]
+    assert rows[0][6:8] == ["9.1 %", "9.1 %"]                        # 100 and 120 against 110
+    assert rows[0][8] in ("+0.0 %", "-0.0 %")
+    assert rows[1][6:] == ["36.4 %", "72.7 %", "+36.4 %", "1/2"]     # 110 and 190; 95…130 holds it
+    assert rows[2][6:] == ["5.5 %", "5.5 %", "-5.5 %", "–"]          # 104, no band
+
+
+def test_without_a_pooled_file_there_is_no_pooled_block(folders):
+    (folders[1] / "pooled_3.csv").unlink()
+    assert "pooled" not in load_script(SCRIPT).tables(list(folders))

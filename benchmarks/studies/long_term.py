@@ -3,28 +3,27 @@
 Run: python benchmarks/studies/long_term.py run ANALOGUE --seeds N --out DIR   (one analogue: 3 or 2)
          [--p-exceed P] [--scale S] [--first F]   (the level, default 2e-6; S × 100 h per
          kept cell; data sets F … N, default 1 … N)
+     python benchmarks/studies/long_term.py pool ANALOGUE --seeds N --out DIR [--scale S]
      python benchmarks/studies/long_term.py write DIR [DIR ...] --page docs/results/long-term.md
 
-``run`` generates data sets ``1 … N`` of a long-term analogue
+``run`` generates data sets of a long-term analogue
 (:func:`pas.validation.long_term_compare.long_term_data`: the North-Atlantic
-scatter, the cells a pilot keeps with 100 one-hour realisations each, the
+scatter, the cells a pilot keeps with 100 · S one-hour realisations each, the
 others 4), computes the brute-force truth at 5e-6, 2e-6 and 1e-6 per
 encounter on the whole set and on its two halves (odd and even
 realisations: the convergence check) and the 20-year level, then runs the
 four methods (:data:`~pas.validation.long_term_compare.METHODS`) at
-``--p-exceed`` (default ``P_VALIDATED``); it writes ``runs_<a>.csv``, ``truth_<a>.csv`` and
-``cells_<a>.csv`` into DIR, appending seed by seed (a killed run keeps what
-it finished; ``run`` again skips the finished seeds).  ``write`` puts the
-tables between the page's markers (``<!-- BEGIN long_term.py NAME -->`` …
-``<!-- END … NAME -->``): the page's numbers are this script's output, never
-edited by hand.  ≈ 8 min per green-water data set, ≈ 5 min per VBM one here.
+``--p-exceed``; it appends to ``runs_<a>.csv``, ``truth_<a>.csv`` and
+``cells_<a>.csv`` in DIR seed by seed (``run`` again skips the finished
+seeds).  ``pool`` writes the truth over data sets 1 … N together.  ``write``
+puts the tables between the page's markers (``<!-- BEGIN long_term.py NAME
+-->`` … ``<!-- END … NAME -->``): the page's numbers are this script's output.
 
-A data set is named by its analogue, its hours per kept cell (``kept_hours``)
-and its data seed; a run also by its level ``p_exceed``.  The comparison
-table holds, per analogue, the (level, record length) of its PAS long-term
-runs; every other finished run is in the every-run table with its own
-level and record length.  Rows written before these columns existed are
-the 100 h data sets at 2e-6.
+A data set is named by its analogue, hours per kept cell (``kept_hours``) and
+data seed; a run also by its level ``p_exceed``.  The comparison table holds,
+per analogue, the (level, record length) of its PAS long-term runs; every
+finished run is in the every-run table.  Rows written before these columns
+existed are the 100 h data sets at 2e-6.
 """
 
 from __future__ import annotations
@@ -36,10 +35,10 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from pas.validation.long_term_compare import P_VALIDATED
 from pas.validation.result_tables import write_between_markers
 
 LEVELS = (5e-6, 2e-6, 1e-6)
-KEPT_HOURS = 100      # one-hour realisations per kept cell (long_term_compare.KEPT_HOURS)
 TARGET_CV = 0.02      # the truth's spread the green-water goal needs
 
 
@@ -76,23 +75,30 @@ def _pending(first, last, done):
     return [seed for seed in range(int(first), int(last) + 1) if seed not in done]
 
 
-def run(analogue, seeds, out, methods, *, p_exceed=None, scale=1.0, first=1):
+def _data_set(analogue, seed, scale, p_exceed):
+    """A data set (cached), its cell plan, hours per kept cell and its truth row."""
+    from pas.validation.long_term_compare import _lf_only as lf_only
+    from pas.validation.long_term_compare import long_term_data
+
+    t0 = time.perf_counter()
+    data, plan = long_term_data(analogue, seed=seed, scale=scale, p_exceed=p_exceed)
+    hours = _kept_hours(plan, scale)
+    truth = _truth_row(data, time.perf_counter() - t0, plan, p_exceed, hours)
+    truth["lf_only_20y"] = lf_only(data, truth["p_20y"])[0]
+    return data, plan, hours, truth
+
+
+def run(analogue, seeds, out, methods, *, p_exceed=P_VALIDATED, scale=1.0, first=1):
     """Data sets ``first … seeds`` and the ``methods`` on each at ``p_exceed``; appends to
     ``out``."""
-    from pas.validation.long_term_compare import P_VALIDATED, compare, long_term_data
-    from pas.validation.long_term_compare import _lf_only as lf_only
-
-    p_exceed = P_VALIDATED if p_exceed is None else float(p_exceed)
+    from pas.validation.long_term_compare import compare
 
     out.mkdir(parents=True, exist_ok=True)
     runs_file, truth_file = out / f"runs_{analogue}.csv", out / f"truth_{analogue}.csv"
     done = set(pd.read_csv(truth_file)["data_seed"]) if truth_file.exists() else set()
     for seed in _pending(first, seeds, done):
         t0 = time.perf_counter()
-        data, plan = long_term_data(analogue, seed=seed, scale=scale, p_exceed=p_exceed)
-        hours = _kept_hours(plan, scale)
-        truth = _truth_row(data, time.perf_counter() - t0, plan, p_exceed, hours)
-        truth["lf_only_20y"] = lf_only(data, truth["p_20y"])[0]
+        data, plan, hours, truth = _data_set(analogue, seed, scale, p_exceed)
         kept = list(plan["name"][plan["kept"]])
         table = compare(data, p_exceed, kept=kept, methods=methods, seed=0,
                         progress=lambda m: print(m, flush=True))
@@ -106,21 +112,23 @@ def run(analogue, seeds, out, methods, *, p_exceed=None, scale=1.0, first=1):
               f"{time.perf_counter() - t0:.0f} s", flush=True)
 
 
-def truth_only(analogue, seeds, out, *, p_exceed=None, scale=1.0):
+def truth_only(analogue, seeds, out, *, p_exceed=P_VALIDATED, scale=1.0):
     """Rewrite ``truth_<a>.csv`` from the cached data sets (no method is run)."""
-    from pas.validation.long_term_compare import P_VALIDATED, long_term_data
-    from pas.validation.long_term_compare import _lf_only as lf_only
-
-    p_exceed = P_VALIDATED if p_exceed is None else float(p_exceed)
-    rows = []
-    for seed in range(1, seeds + 1):
-        t0 = time.perf_counter()
-        data, plan = long_term_data(analogue, seed=seed, scale=scale, p_exceed=p_exceed)
-        rows.append(_truth_row(data, time.perf_counter() - t0, plan, p_exceed,
-                               _kept_hours(plan, scale)))
-        rows[-1]["lf_only_20y"] = lf_only(data, rows[-1]["p_20y"])[0]
+    rows = [_data_set(analogue, seed, scale, p_exceed)[3] for seed in range(1, seeds + 1)]
     out.mkdir(parents=True, exist_ok=True)
     pd.DataFrame(rows).to_csv(out / f"truth_{analogue}.csv", index=False)
+
+
+def pool(analogue, seeds, out, *, p_exceed=P_VALIDATED, scale=1.0):
+    """Write ``pooled_<a>.csv``: the truth over data sets ``1 … seeds`` together (cached)."""
+    from pas.validation.long_term_data import pool_data_sets
+
+    made = [_data_set(analogue, seed, scale, p_exceed) for seed in range(1, seeds + 1)]
+    pooled = pool_data_sets([m[0] for m in made])
+    row = {"analogue": analogue, "kept_hours": made[0][2], "p_exceed": p_exceed,
+           "data_sets": seeds, **{f"truth_{p:g}": pooled.truth(p) for p in LEVELS}}
+    out.mkdir(parents=True, exist_ok=True)
+    pd.DataFrame([row]).to_csv(out / f"pooled_{analogue}.csv", index=False)
 
 
 def _fmt(v):
@@ -169,7 +177,6 @@ def _read(dirs, stem):
     """Every ``<stem>_*.csv`` of ``dirs``, with the columns older files lack filled in (the 100 h
     data sets at 2e-6: the files written before ``--p-exceed`` and ``--scale``)."""
     from pas.validation.long_term_compare import KEPT_HOURS as hours
-    from pas.validation.long_term_compare import P_VALIDATED
 
     frames = []
     for d in dirs:
@@ -292,6 +299,36 @@ def _cells_table(cells, truth):
     return plan
 
 
+def _pooled_table(runs, truth, pooled):
+    """Each method's error and coverage against the pooled truth of its data sets' group, and
+    how far the data sets' own truths lie from it."""
+    rows = _head("analogue | level | h per kept cell | pooled truth (data sets) | against it | "
+                 "runs | median \\|error\\| | worst \\|error\\| | median error | "
+                 "U95 coverage")
+    for _, ref in pooled.iterrows():
+        same = (runs["analogue"] == ref["analogue"]) & (runs["kept_hours"] == ref["kept_hours"])
+        for p in sorted(set(runs.loc[same, "p_exceed"])):
+            ref_value = ref.get(f"truth_{p:g}", np.nan)
+            g = runs[same & np.isclose(runs["p_exceed"], p, rtol=1e-9)]
+            t = truth[(truth["analogue"] == ref["analogue"])
+                      & (truth["kept_hours"] == ref["kept_hours"])]
+            lead = (f"| {LABELS[ref['analogue']]} | {p:g} | {int(ref['kept_hours'])} h | "
+                    f"{_fmt(ref_value)} ({int(ref['data_sets'])}) |")
+            own = t[f"truth_{p:g}"] / ref_value - 1.0
+            rows.append(f"{lead} each data set's own truth | {len(t)} | "
+                        f"{100 * own.abs().median():.1f} % | {100 * own.abs().max():.1f} % | "
+                        f"{_pct(own.median())} | – |")
+            for m, gm in g.groupby("method", sort=False):
+                err = gm["value"] / ref_value - 1.0
+                banded = gm[np.isfinite(gm["band_low"] + gm["band_high"])]
+                inside = ((banded["band_low"] <= ref_value)
+                          & (ref_value <= banded["band_high"])).sum()
+                rows.append(f"{lead} {m} | {len(gm)} | {100 * err.abs().median():.1f} % | "
+                            f"{100 * err.abs().max():.1f} % | {_pct(err.median())} | "
+                            + (f"{inside}/{len(banded)} |" if len(banded) else "– |"))
+    return rows
+
+
 def tables(dirs):
     """The page's tables from the CSV files of ``dirs`` (a later folder wins a repeated row)."""
     runs = _method_rows(_read(dirs, "runs"))
@@ -299,10 +336,13 @@ def tables(dirs):
                      "kept_hours", "data_seed")
     comp, every, per_run = _comparison_tables(runs)
     conv, spread, hours = _truth_tables(truth)
-    return {"comparison": "\n".join(comp), "every_run": "\n".join(every),
+    blocks = {"comparison": "\n".join(comp), "every_run": "\n".join(every),
             "runs": "\n".join(per_run), "convergence": "\n".join(conv),
             "spread": "\n".join(spread), "truth_hours": "\n".join(hours),
             "cells": "\n".join(_cells_table(_read(dirs, "cells"), truth))}
+    if any(list(Path(d).glob("pooled_*.csv")) for d in dirs):
+        blocks["pooled"] = "\n".join(_pooled_table(runs, truth, _read(dirs, "pooled")))
+    return blocks
 
 
 def _positive(text):
@@ -317,11 +357,12 @@ def main(argv=None):
     sub = parser.add_subparsers(dest="cmd", required=True)
     r = sub.add_parser("run")
     t = sub.add_parser("truth", help="only the truth table, from the cached data sets")
-    for p in (r, t):
+    o = sub.add_parser("pool", help="the truth over data sets 1 … N together, from the cache")
+    for p in (r, t, o):
         p.add_argument("analogue", choices=("3", "2"))
         p.add_argument("--seeds", type=int, default=5)
         p.add_argument("--out", type=Path, required=True)
-        p.add_argument("--p-exceed", type=_positive, default=None,
+        p.add_argument("--p-exceed", type=_positive, default=P_VALIDATED,
                        help="the level per encounter (default 2e-6, the validated one)")
         p.add_argument("--scale", type=_positive, default=1.0,
                        help="hours per kept cell, in units of 100 h (default 1)")
@@ -335,6 +376,9 @@ def main(argv=None):
     if args.cmd == "run":
         run(args.analogue, args.seeds, args.out, tuple(args.methods.split(",")),
             p_exceed=args.p_exceed, scale=args.scale, first=args.first)
+        return
+    if args.cmd == "pool":
+        pool(args.analogue, args.seeds, args.out, p_exceed=args.p_exceed, scale=args.scale)
         return
     if args.cmd == "truth":
         truth_only(args.analogue, args.seeds, args.out, p_exceed=args.p_exceed,
