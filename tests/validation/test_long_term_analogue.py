@@ -6,10 +6,19 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from pas.validation.long_term import (generate_cell, long_term_exceedance, scatter_diagram,
-                                      tz_over_tp, value_at_exceedance_long_term)
+from pas.validation.long_term import (
+    generate_cell,
+    long_term_exceedance,
+    scatter_diagram,
+    tz_over_tp,
+    value_at_exceedance_long_term,
+)
 from pas.validation.long_term_compare import combine_curves, iform_contour
-from pas.validation.long_term_data import LongTermData, generate_long_term
+from pas.validation.long_term_data import (
+    LongTermData,
+    generate_long_term,
+    pool_data_sets,
+)
 
 
 def _two_states():
@@ -142,3 +151,24 @@ def test_generate_long_term_tiny(tmp_path):
     assert c.loc["hi", "share"] > c.loc["lo", "share"]
     with pytest.raises(ValueError, match="analogue"):
         generate_long_term("x")
+
+
+def test_pooled_data_sets_weigh_each_sea_state_by_its_summed_rate():
+    # A: 2 events in 2 s per data set (rate 1), B: 2 events in 2/3 s (rate 3), p 0.5 each:
+    # w_A = 0.5, w_B = 1.5; each of A's 4 pooled events carries 0.5 / (4 · 2) = 1/16, so
+    # Q just below A's second largest (9) is 2/16 and the value at 1/8 is 9 (not 10, the
+    # value with the rates left out: 1/8 per event)
+    def one(seed, a):
+        table = pd.DataFrame({"name": ["A", "B"], "probability": [0.5, 0.5], "n_waves": [2, 2],
+                              "duration": [2.0, 2.0 / 3.0], "hours": [1, 1]})
+        hf = {"A": np.array(a), "B": np.zeros(2)}
+        meta = {k: pd.DataFrame({"seed_no": [0, 1]}) for k in hf}
+        return LongTermData("3", table, hf, hf, {k: np.array(["e0", "e1"]) for k in hf}, meta,
+                            seed, "kN")
+
+    pooled = pool_data_sets([one(1, [10.0, 9.0]), one(2, [8.0, 7.0])])
+    assert pooled.truth(1.0 / 8.0) == pytest.approx(9.0, rel=1e-9)
+    assert pooled.sea_states["n_waves"].tolist() == [4, 4]
+    assert pooled.sea_states["duration"].tolist() == pytest.approx([4.0, 4.0 / 3.0], rel=1e-9)
+    assert list(pooled.ids["A"]) == ["d1-e0", "d1-e1", "d2-e0", "d2-e1"]
+    assert len(pooled.meta["B"]) == 4

@@ -15,10 +15,17 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 import pandas as pd
 
-from .long_term import (ANALOGUES, HOURS_PER_YEAR, encounters_per_year, generate_cell,
-                        long_term_exceedance, scatter_diagram, value_at_exceedance_long_term)
+from .long_term import (
+    ANALOGUES,
+    HOURS_PER_YEAR,
+    encounters_per_year,
+    generate_cell,
+    long_term_exceedance,
+    scatter_diagram,
+    value_at_exceedance_long_term,
+)
 
-__all__ = ["LongTermData", "generate_long_term", "plan_cells"]
+__all__ = ["LongTermData", "generate_long_term", "plan_cells", "pool_data_sets"]
 
 
 @dataclass
@@ -160,6 +167,30 @@ def generate_long_term(analogue, *, seed=0, hours=10, cells=None, cache=True, pa
     return LongTermData(str(analogue), pd.DataFrame(rows), lf, hf, ids, meta, int(seed),
                         a["unit"], {"dropped_probability": dropped,
                                     "seconds": time.perf_counter() - t0})
+
+
+def pool_data_sets(datasets):
+    """One data set of the union of ``datasets`` (redraws of one scatter, same sea states).
+
+    Per sea state every event of every data set (ids prefixed ``d<seed>-``),
+    ``n_waves``, ``duration`` and ``hours`` summed, so that its encounter rate
+    is theirs together; its truth has about the error of one data set's
+    divided by √(number of data sets).
+    """
+    names = list(datasets[0].hf)
+
+    def joined(attr):
+        return {s: np.concatenate([getattr(d, attr)[s] for d in datasets]) for s in names}
+
+    table = datasets[0].sea_states.copy()
+    for col in ("n_waves", "duration", "hours"):
+        table[col] = sum(d.sea_states.set_index("name").loc[table["name"], col].to_numpy()
+                         for d in datasets)
+    ids = {s: np.concatenate([np.char.add(f"d{d.seed}-", d.ids[s].astype(str)) for d in datasets])
+           for s in names}
+    meta = {s: pd.concat([d.meta[s] for d in datasets], ignore_index=True) for s in names}
+    return replace(datasets[0], sea_states=table, lf=joined("lf"), hf=joined("hf"), ids=ids,
+                   meta=meta, info={"pooled_seeds": [d.seed for d in datasets]})
 
 
 def plan_cells(analogue, p_exceed, *, pilot_hours=4, min_share=1e-3, cells=None, cache=True,
