@@ -3,6 +3,7 @@
 Importable by worker processes (forkserver), so it holds only module-level code.
 """
 
+import signal
 import sys
 from pathlib import Path
 
@@ -49,3 +50,14 @@ def campaign(db, root, log, script, batch_size=1):
     table = pd.DataFrame({"lf": lf_peaks()}, index=[f"ev{i}" for i in range(2000)])
     return pas.run_pas(table, oracle, study=db, batch_size=batch_size,
                        strategy=pas.PAS(band=pas.ModelBand(n_bootstrap=0)), **SETTINGS)
+
+
+def sigint_as_in_a_shell():
+    """In the child before exec: SIGINT at its default action, as a shell starts a command.
+
+    A child inherits an ignored SIGINT, and Python then leaves it ignored (no
+    KeyboardInterrupt).  The tests would inherit one whenever pytest itself
+    runs as a background job of a script (``pytest ... &`` ignores SIGINT):
+    ``pas run`` ignored the Ctrl-C, ran to its end (exit 0) or slept on.
+    """
+    signal.signal(signal.SIGINT, signal.SIG_DFL)

@@ -18,6 +18,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 import pytest
+from _campaign import sigint_as_in_a_shell
 
 from pas.cli import main
 
@@ -45,17 +46,6 @@ def inputs(tmp_path_factory):
     return d
 
 
-def _sigint_as_in_a_shell():
-    """In the child before exec: SIGINT at its default action, as a shell starts a command.
-
-    A child inherits an ignored SIGINT, and Python then leaves it ignored (no
-    KeyboardInterrupt).  The tests would inherit one whenever pytest itself
-    runs as a background job of a script (``pytest ... &`` ignores SIGINT):
-    ``pas run`` ignored the Ctrl-C, ran to its end (exit 0) or slept on.
-    """
-    signal.signal(signal.SIGINT, signal.SIG_DFL)
-
-
 def _pas(args, env, **kw):
     import pas
 
@@ -63,7 +53,7 @@ def _pas(args, env, **kw):
     return subprocess.Popen([sys.executable, "-m", "pas", *map(str, args)],
                             env={**os.environ, "PYTHONPATH": path, **env},
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
-                            preexec_fn=_sigint_as_in_a_shell, **kw)
+                            preexec_fn=sigint_as_in_a_shell, **kw)
 
 
 def _wait_for_lines(path, n, proc, timeout=90.0):

@@ -18,6 +18,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 import pytest
+from _campaign import sigint_as_in_a_shell
 
 import pas
 
@@ -68,7 +69,7 @@ def _pas_run(folder, **kw):
             "--preset", "paper", "--out", "out"]
     env = {**os.environ, "PYTHONPATH": SRC, "MPLBACKEND": "Agg"}
     return subprocess.Popen(argv, cwd=folder, env=env, text=True, stdout=subprocess.PIPE,
-                            stderr=subprocess.PIPE, **kw)
+                            stderr=subprocess.PIPE, preexec_fn=sigint_as_in_a_shell, **kw)
 
 
 @pytest.mark.slow
@@ -170,7 +171,7 @@ def test_ctrl_c_in_a_python_campaign_exits_quickly_with_every_result_stored(tmp_
     (folder / "campaign.py").write_text(PYTHON_CAMPAIGN)
     env = {**os.environ, "PYTHONPATH": SRC}
     proc = subprocess.Popen([sys.executable, "campaign.py"], cwd=folder, env=env, text=True,
-                            stderr=subprocess.PIPE)
+                            stderr=subprocess.PIPE, preexec_fn=sigint_as_in_a_shell)
     seen = 0
     for line in proc.stderr:
         seen += line.startswith("told")
