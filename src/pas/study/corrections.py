@@ -54,6 +54,16 @@ class Corrections:
         self._before_fit = (row["row"], copy.deepcopy(
             (vars(self.strategy), self.stopping, self.converged), {id(self.lfset): self.lfset}))
 
+    def _loads_alone(self, pos, ev, value, error, loads) -> dict | None:
+        """The event's last history row when a replacement changes only its other named
+        loads (stored, audited; nothing to refit), else None."""
+        old = next(r for r in reversed(self.rows) if r["position"] == pos)
+        if (old["hf"], old["error"]) != (value, error):
+            return None
+        if self.store is not None:
+            self.store.record_result(ev, value, error, loads=loads, replace=True)
+        return old
+
     def _replace(self, pos, ev, value, error) -> dict:
         old = next(r for r in reversed(self.rows) if r["position"] == pos)
         if self._before_fit is not None and self._before_fit[0] == old["row"] == len(self.rows) - 1:

@@ -272,12 +272,8 @@ class Study(Corrections):
                 raise ValueError(error)
         ev = self.lfset.event(pos)
         replacing = state != EventState.PENDING
-        if replacing and loads:
-            old = next(r for r in reversed(self.rows) if r["position"] == pos)
-            if (old["hf"], old["error"]) == (value, error):  # the other loads alone change
-                if self.store is not None:
-                    self.store.record_result(ev, value, error, loads=loads, replace=True)
-                return old
+        if replacing and loads and (old := self._loads_alone(pos, ev, value, error, loads)):
+            return old
         if self.store is not None:  # on disk before the fit; record_tell only marks it used
             self.store.record_result(ev, value, error, loads=loads, replace=replacing)
         if replacing:
