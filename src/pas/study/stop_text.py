@@ -16,7 +16,7 @@ import pandas as pd
 
 from ..strategies.forecast import relative_half_width
 
-__all__ = ["HFForecast", "hf_forecast", "state", "forecast_text", "percent"]
+__all__ = ["HFForecast", "hf_forecast", "state", "forecast_text", "percent", "HIGHEST_SHOWN"]
 
 
 class HFForecast(NamedTuple):
@@ -41,6 +41,11 @@ def percent(x: float) -> str:
     return f"±{100 * x:.3g} %"
 
 
+HIGHEST_SHOWN = 100_000
+"""A forecast interval's upper end above this many HF is shown as "over" it (the value itself
+stays in the result's ``forecast``): no campaign plans by a larger number."""
+
+
 def forecast_text(forecast: HFForecast | None, target: float, budget_left=None,
                   floor: float | None = None) -> str:
     """``"about 60 more HF for ±10 % (40–95); the budget allows 40"`` and its variants.
@@ -49,6 +54,8 @@ def forecast_text(forecast: HFForecast | None, target: float, budget_left=None,
     --------
     >>> forecast_text(HFForecast(58.6, 40.2, 95.0), 0.1, 40)
     'about 59 more HF for ±10 % (40–95); the budget allows 40'
+    >>> forecast_text(HFForecast(15.2, 12.0, 1.15e11), 0.1)
+    'about 15 more HF for ±10 % (12–over 100,000)'
     >>> forecast_text(None, 0.1, 5)
     'too few model bands yet to forecast the HF needed for ±10 %; the budget allows 5'
     """
@@ -61,7 +68,9 @@ def forecast_text(forecast: HFForecast | None, target: float, budget_left=None,
     elif not math.isfinite(forecast.expected):
         text = f"more HF are not expected to reach {goal}: the band has not narrowed with the pairs"
     else:
-        high = "∞" if not math.isfinite(forecast.high) else f"{forecast.high:.0f}"
+        high = ("∞" if not math.isfinite(forecast.high) else
+                f"over {HIGHEST_SHOWN:,}" if forecast.high > HIGHEST_SHOWN else
+                f"{forecast.high:.0f}")
         text = (f"about {forecast.expected:.0f} more HF for {goal} "
                 f"({forecast.low:.0f}–{high})")
     if budget_left is not None:
