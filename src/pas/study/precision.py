@@ -83,7 +83,8 @@ def judge(study, pred, pairs, row: dict, paper_stop: bool) -> bool:
         if model is not None:
             row.update(model_low=model[0], model_high=model[1])
         met = gate and rule.precision_met(pred.mpm, band)
-    row.update(forecast_row(study, rule.forecast(floor, n_now=len(pairs), may_stop_now=met), len(pairs)))
+    forecast = rule.forecast(floor, n_now=len(pairs), may_stop_now=met)
+    row.update(forecast_row(study, forecast, len(pairs)))
     return met
 
 
