@@ -119,3 +119,25 @@ def test_end_to_end_writes_summary(problem, capsys):
 def test_reproduce_long_term_names(capsys, cases, message):
     assert main(["reproduce", *cases]) == 2
     assert message in capsys.readouterr().err
+
+
+def test_precision_and_figures_reach_the_output(problem):
+    out = problem / "out"
+    argv = _argv(problem, "--p-exceed", "1e-4", "--max-hf", "16", "--seed", "1", "--no-store",
+                 "--precision", "1%", "--figures", "--out", str(out))
+    assert main(argv) == 0
+    summary = json.loads((out / "summary.json").read_text())
+    assert summary["precision"] == 0.01 and summary["converged"] is False
+    assert set(summary["forecast"]) >= {"forecast_hf", "out_of_reach", "sampling_halfwidth"}
+    history = pd.read_csv(out / "history.csv")
+    assert history["n_hf"].iloc[-1] == summary["n_hf"]
+    names = sorted(p.name for p in (out / "figures").iterdir())
+    # one descriptive column (hs): no allocation plane to draw
+    assert names == ["long_term_convergence.png", "long_term_distribution.png"]
+
+
+def test_a_bad_precision_exits_2(problem, capsys):
+    with pytest.raises(SystemExit) as stop:
+        main(_argv(problem, "--p-exceed", "1e-4", "--precision", "150%"))
+    assert stop.value.code == 2
+    assert "expected a fraction" in capsys.readouterr().err

@@ -9,7 +9,7 @@ __all__ = ["precision_option", "optional_number"]
 
 
 def precision_option(text):
-    """``--precision``: a fraction of the MPM, as ``0.1`` or ``10%``.
+    """``--precision``: a fraction (of the MPM, or of the long-term value), as ``0.1`` or ``10%``.
 
     Examples
     --------
@@ -23,7 +23,7 @@ def precision_option(text):
     except ValueError:
         value = math.nan
     if not 0.0 < value < 1.0:
-        raise argparse.ArgumentTypeError(f"expected a fraction of the MPM such as 10% or 0.1, "
+        raise argparse.ArgumentTypeError(f"expected a fraction such as 10% or 0.1, "
                                          f"got {text!r}")
     return value
 

@@ -27,6 +27,7 @@ import math
 from pathlib import Path
 
 from ._parsers import command_parser
+from ._stopping_options import precision_option
 from .run import _positive_int  # the same rule as pas run's options
 
 __all__ = ["add_parser", "lf_files", "run"]
@@ -39,6 +40,10 @@ examples:
   # the 20-year value, a Python oracle, 300 HF events in all
   pas long-term sea_states.csv --lf 'runs/{name}/peaks.npy' \\
       --oracle python:my_oracles.py:green_water --return-period 20 --max-hf 300
+
+  # stop once the U95 of the value is within ±10 % of it; draw the figures
+  pas long-term sea_states.csv --lf lf/ --oracle table:hf.csv --p-exceed 2e-6 \\
+      --precision 10% --figures --out lt2
 
 exit codes: 0 done; 2 bad input; 130 interrupted (see 'pas --help')
 """
@@ -68,6 +73,12 @@ def add_parser(sub) -> None:
                    help="HF evaluations of all sea states together (default 400)")
     p.add_argument("--eps1", type=float, metavar="E",
                    help="stopping limit of each sea state's study (load units)")
+    p.add_argument("--precision", type=precision_option, metavar="P",
+                   help="stop once the U95 of the long-term value is within ±P of it "
+                        "(10%% or 0.1); may change when a stored analysis is continued")
+    p.add_argument("--figures", action="store_true",
+                   help="draw the long-term figures into OUT/figures/ (distribution, "
+                        "allocation over the first two descriptive columns, convergence)")
     p.add_argument("--seed", type=int, help="random seed (default: drawn and reported)")
     p.add_argument("--study", metavar="FILE",
                    help="the analysis' store (default OUT/long-term.sqlite)")
@@ -166,14 +177,22 @@ def run(args) -> int:
     out.mkdir(parents=True, exist_ok=True)
     result = run_long_term(table, peaks, oracle, p_exceed=args.p_exceed,
                            return_period=args.return_period, hours_per_year=args.hours_per_year,
-                           max_hf=args.max_hf, seed=args.seed, study=study, eps1=args.eps1)
+                           max_hf=args.max_hf, seed=args.seed, study=study, eps1=args.eps1,
+                           precision=args.precision)
     summary = {"value": float(result.value), "band": [float(b) for b in result.band],
                "p_exceed": float(result.p_exceed), "n_hf": int(result.n_hf),
+               "precision": result.precision, "converged": result.converged,
+               "forecast": _plain(result.forecast),
                "seed": result.seed, "sea_states": str(args.sea_states), "lf": str(args.lf),
                "oracle": args.oracle, "study": None if study is None else str(study)}
     (out / "summary.json").write_text(json.dumps(summary, indent=2) + "\n")
     result.contributions.to_csv(out / "contributions.csv", index=False)
     result.distribution.to_csv(out / "distribution.csv", index=False)
+    result.history.to_csv(out / "history.csv", index=False)
+    if args.figures:
+        from ..plotting.long_term import save_long_term_figures
+
+        save_long_term_figures(result, out / "figures")
     if args.json:
         print(json.dumps(summary, indent=2))
     else:
@@ -183,3 +202,11 @@ def run(args) -> int:
         print(text)
         print(f"results written to {out}/")
     return 0
+
+
+def _plain(forecast):
+    """The forecast dict as JSON keeps it (no inf or NaN: None)."""
+    if forecast is None:
+        return None
+    return {k: (None if isinstance(v, float) and not math.isfinite(v) else
+                (float(v) if isinstance(v, float) else v)) for k, v in forecast.items()}

@@ -26,7 +26,8 @@ import numpy as np
 from ..stats.exceedance import value_at_exceedance
 from .combination import PASCurve, RecordBand, proxy_curve
 
-__all__ = ["curves_of", "proxy_ratios", "shares", "gains", "lf_shares", "REACH_SHARE",
+__all__ = ["curves_of", "with_record", "proxy_ratios", "shares", "gains", "lf_shares",
+           "REACH_SHARE",
            "UNFITTED_WIDTH"]
 
 UNFITTED_WIDTH = 1.0
@@ -72,9 +73,13 @@ def curves_of(state, study, ratios, model_band=None, record=True) -> tuple:
     (:class:`~pas.longterm.combination.RecordBand`) unless ``record`` is False
     (the gains: HF events do not narrow that part).
     """
-    low, mean, high = _band_ends(state, study, ratios, model_band)
-    if not record:
-        return low, mean, high
+    triple = _band_ends(state, study, ratios, model_band)
+    return with_record(state, triple) if record else triple
+
+
+def with_record(state, triple) -> tuple:
+    """``(low, mean, high)`` with both ends widened to the spread of the sea state's record."""
+    low, mean, high = triple
     return (RecordBand(low, mean, state.n_waves, -1), mean,
             RecordBand(high, mean, state.n_waves, +1))
 

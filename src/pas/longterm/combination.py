@@ -41,8 +41,8 @@ import numpy as np
 
 from ..strategies.base import Z95
 
-__all__ = ["PASCurve", "proxy_curve", "long_term_exceedance", "level_at", "extension_bounds",
-           "RecordBand",
+__all__ = ["PASCurve", "proxy_curve", "long_term_exceedance", "level_at", "value_and_band",
+           "extension_bounds", "RecordBand",
            "TAIL_RANKS", "GRID_POINTS"]
 
 TAIL_RANKS = 20
@@ -210,6 +210,13 @@ def level_at(curves, weights, p: float, start: float) -> float:
         j = below[0] + 1 if below.size else GRID_POINTS - 1
         lo, hi = grid[j - 1], grid[j]
     return 0.5 * (lo + hi)
+
+
+def value_and_band(triples, weights, p: float, start: float) -> tuple[float, float, float]:
+    """``(value, low, high)``: :func:`level_at` of the mean curves and of the band ends of
+    ``triples`` (``(low, mean, high)`` curves per sea state; the low exceedance gives the low
+    level)."""
+    return tuple(level_at([t[k] for t in triples], weights, p, start) for k in (1, 0, 2))
 
 
 def extension_bounds(curves, weights, p: float, start: float) -> tuple[float, float]:

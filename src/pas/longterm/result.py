@@ -21,10 +21,13 @@ from dataclasses import dataclass, field
 import numpy as np
 import pandas as pd
 
+from ..strategies.forecast import relative_half_width
+from ..study import stop_text
 from .allocation import curves_of, proxy_ratios, shares
-from .combination import extension_bounds, level_at
+from .combination import extension_bounds, value_and_band
+from .inputs import REQUIRED_COLUMNS
 
-__all__ = ["LongTermResult"]
+__all__ = ["LongTermResult", "CONTRIBUTION_COLUMNS"]
 
 
 @dataclass
@@ -52,7 +55,8 @@ class LongTermResult:
         ``read_off`` (where its exceedance at the value comes from: ``pas``,
         ``tail`` above its record, ``proxy`` below its PAS range, ``lf`` the
         LF-only proxy of a sea state without a PAS model, ``lf tail`` that
-        proxy above its LF record).
+        proxy above its LF record), then the sea-state table's descriptive
+        columns (``hs``, ``tp`` ...).
     lf_value : float
         The LF-only long-term value of the LF indicator (what chose the studies).
     extension_bounds : tuple of float
@@ -61,8 +65,24 @@ class LongTermResult:
     seed : int
     results : dict
         ``name -> ScreeningResult`` of every sea state that has a study.
-    target : None
-        Reserved for a precision target and forecast (not implemented yet).
+    precision : float or None
+        The precision target the analysis was given (a fraction of the value).
+    converged : bool
+        True exactly when the analysis stopped on its precision target and
+        the band above still meets it (:mod:`pas.longterm.target`); False
+        without a target.
+    forecast : dict or None
+        With a target: ``forecast_hf``, ``forecast_hf_low``,
+        ``forecast_hf_high`` (further HF evaluations expected to reach it and
+        a 95 % interval; NaN before enough bands were measured),
+        ``out_of_reach`` and ``sampling_halfwidth`` (the band's half-width
+        without the model bands: the part more HF events do not narrow).
+    history : pandas.DataFrame
+        One row per allocation round of this call: ``n_hf``, ``value``,
+        ``low_sampling``/``high_sampling`` (the band without the model
+        bands), ``halfwidth_sampling``, and ``low``/``high``/``halfwidth`` of
+        the full band where it was computed (a precision target computes it
+        on a schedule, :mod:`pas.longterm.target`).
     """
 
     value: float
@@ -75,20 +95,25 @@ class LongTermResult:
     extension_bounds: tuple
     seed: int
     results: dict = field(default_factory=dict, repr=False)
-    target: None = None
+    precision: float | None = None
+    converged: bool = False
+    forecast: dict | None = None
+    history: pd.DataFrame = field(default_factory=pd.DataFrame, repr=False)
 
     @classmethod
-    def build(cls, states, weights, studies, p, lf_value, seed, model_band, top):
-        """The result of the studies as they stand."""
+    def build(cls, states, weights, studies, p, lf_value, seed, model_band, top, target=None,
+              table=None):
+        """The result of the studies as they stand (``target``: the
+        :class:`~pas.longterm.target.LongTermTarget` of the run; ``table``: the sea-state
+        table, for its descriptive columns)."""
         results = {s.name: st.result(model_band=model_band)
                    for s, st in zip(states, studies) if st is not None}
         ratios = proxy_ratios(studies)
         triples = [curves_of(s, st, ratios, model_band=_model(results.get(s.name)))
                    for s, st in zip(states, studies)]
         start = top * ratios[1]
-        levels = [[level_at([t[k] for t in triples], weights, q, start) for k in (1, 0, 2)]
-                  for q in _probabilities(p)]
-        value, low, high = (level_at([t[k] for t in triples], weights, p, start) for k in (1, 0, 2))
+        levels = [value_and_band(triples, weights, q, start) for q in _probabilities(p)]
+        value, low, high = value_and_band(triples, weights, p, start)
         distribution = pd.DataFrame(levels, columns=["h_mean", "h_low", "h_high"])
         distribution.insert(0, "exceedance_probability", _probabilities(p))
         share = shares([t[1] for t in triples], weights, value) if np.isfinite(value) else \
@@ -107,10 +132,44 @@ class LongTermResult:
                 "mpm_high": np.nan if r is None else r.mpm_band[1],
                 "read_off": _read_off(t[1], value)})
         bounds = extension_bounds([t[1] for t in triples], weights, p, start)
-        return cls(value=value, band=(low, high), p_exceed=p,
-                   n_hf=sum(st.n_hf for st in studies if st is not None),
-                   distribution=distribution, contributions=pd.DataFrame(rows),
-                   lf_value=lf_value, extension_bounds=bounds, seed=seed, results=results)
+        n_hf = sum(st.n_hf for st in studies if st is not None)
+        converged, forecast = False, None
+        if target is not None and target.precision is not None:
+            cheap = [curves_of(s, st, ratios) for s, st in zip(states, studies)]
+            floor = relative_half_width(value, value_and_band(cheap, weights, p, start)[1:])
+            width = relative_half_width(value, (low, high))
+            converged = target.reached and target.rule.precision_met(value, (low, high))
+            forecast = target.forecast(n_hf, floor, (n_hf, width) if model_band else None)
+        return cls(value=value, band=(low, high), p_exceed=p, n_hf=n_hf,
+                   distribution=distribution,
+                   contributions=_described(pd.DataFrame(rows), table),
+                   lf_value=lf_value, extension_bounds=bounds, seed=seed, results=results,
+                   precision=None if target is None else target.precision,
+                   converged=bool(converged), forecast=forecast,
+                   history=pd.DataFrame() if target is None else target.history())
+
+    @property
+    def forecast_hf(self) -> stop_text.HFForecast | None:
+        """Further HF evaluations expected to reach the precision target: ``(expected, low,
+        high)``, 0 once reached, ``inf`` out of reach; None without a target or a forecast yet."""
+        return stop_text.hf_forecast(self.forecast)
+
+    def precision_text(self) -> str:
+        """The precision target's line of :meth:`summary` (empty without a target)."""
+        if self.precision is None:
+            return ""
+        goal, width = stop_text.percent(self.precision), relative_half_width(self.value, self.band)
+        if self.converged:
+            return f"precision reached: U95 within {goal} of the value ({stop_text.percent(width)})"
+        if not np.isfinite(width):
+            return f"precision NOT reached (target {goal} of the value)"
+        max_hf = (self.forecast or {}).get("max_hf")
+        floor = (self.forecast or {}).get("sampling_halfwidth")
+        text = stop_text.forecast_text(self.forecast_hf, self.precision,
+                                       None if max_hf is None else max_hf - self.n_hf, floor,
+                                       floor_name=FLOOR_NAME)
+        return (f"precision NOT reached: U95 {stop_text.percent(width)} of the value against "
+                f"the target {goal}; {text}")
 
     def summary(self) -> str:
         """A few lines: the value and band, HF spent, the sea states that decide it."""
@@ -120,6 +179,8 @@ class LongTermResult:
                  f"{self.value:.4g} (U95 {lo:.4g} – {hi:.4g})",
                  f"HF evaluations: {self.n_hf} over {int((c['n_hf'] > 0).sum())} of {len(c)} "
                  f"sea states; LF-only long-term level of the indicator: {self.lf_value:.4g}"]
+        if self.precision is not None:
+            lines.append(self.precision_text())
         for row in c.head(5).itertuples():
             lines.append(f"  {row.sea_state}: share {row.share:.1%}, {row.n_hf} HF, "
                          f"read off {row.read_off}")
@@ -131,6 +192,26 @@ class LongTermResult:
                          f"the value is {self.extension_bounds[0]:.4g} – "
                          f"{self.extension_bounds[1]:.4g}")
         return "\n".join(lines)
+
+
+CONTRIBUTION_COLUMNS = ("sea_state", "probability", "weight", "share", "n_hf", "n_false_positive",
+                        "n_failed", "p_exp", "mpm", "mpm_low", "mpm_high", "read_off")
+"""The columns of :attr:`LongTermResult.contributions` before the table's descriptive ones."""
+
+FLOOR_NAME = "the band without the model bands (the sea states' sampling bands and records)"
+"""What the part of the long-term band that more HF events do not narrow is called in a summary."""
+
+
+def _described(contributions, table):
+    """The contributions with the sea-state table's descriptive columns, in table order."""
+    if table is None:
+        return contributions
+    extra = [c for c in table.columns if c not in (*REQUIRED_COLUMNS, "probability", "threshold")]
+    if not extra:
+        return contributions
+    described = table[["name", *extra]].assign(name=table["name"].astype(str))
+    return contributions.merge(described.rename(columns={"name": "sea_state"}), on="sea_state",
+                               how="left", suffixes=("", "_table"))
 
 
 def _model(result):

@@ -17,15 +17,17 @@ import copy
 import numpy as np
 
 from ..strategies.screening import LFSet
+from ..study import precision as study_precision
 from ..study.loop import execute, failure_limit
 from ..study.oracles import OracleFailureLimit, check_oracle
 from ..study.schema import StoreError, dumps
 from ..study.store import StudyStore
 from ..study.study import Study
-from .allocation import REACH_SHARE, curves_of, gains, lf_shares, proxy_ratios
-from .combination import level_at, proxy_curve
+from .allocation import REACH_SHARE, curves_of, gains, lf_shares, proxy_ratios, with_record
+from .combination import level_at, proxy_curve, value_and_band
 from .inputs import design_exceedance, encounter_weights, read_sea_states
 from .result import LongTermResult
+from .target import BANDS_KEY, LongTermTarget
 
 __all__ = ["run_long_term", "LONG_TERM_KEY", "DEFAULT_LONG_TERM_MAX_HF"]
 
@@ -36,8 +38,9 @@ DEFAULT_LONG_TERM_MAX_HF = 400
 
 def run_long_term(sea_states, lf_peaks, oracle, *, p_exceed=None, return_period=None,
                   hours_per_year=8766.0, max_hf=DEFAULT_LONG_TERM_MAX_HF, seed=None, study=None,
-                  strategy=None, eps1=None, study_settings=None, batch_size=1, executor=None,
-                  callback=None, model_band=True, retry_failed=False) -> LongTermResult:
+                  strategy=None, eps1=None, precision=None, study_settings=None, batch_size=1,
+                  executor=None, callback=None, model_band=True,
+                  retry_failed=False) -> LongTermResult:
     """The long-term design value of an HF load over a scatter diagram, one HF budget shared.
 
     Parameters
@@ -76,6 +79,15 @@ def run_long_term(sea_states, lf_peaks, oracle, *, p_exceed=None, return_period=
         :func:`pas.run_pas`): a study that converged gets no more events.
         None: the studies do not stop by themselves; the budget and the
         allocation decide.
+    precision : float, optional
+        A precision target for the long-term value (e.g. 0.10): the analysis
+        stops once the U95 of the value lies within ``±precision × value``
+        of it and the values of the last 20 allocation rounds inside that
+        band (the rule of one sea state's ``precision``,
+        :mod:`pas.longterm.target`); ``result.converged`` is True exactly
+        then, and ``result.forecast_hf`` says how many more HF evaluations
+        the target is expected to need.  None: the budget decides.  It may
+        change when a stored analysis is continued.
     study_settings : dict, optional
         Further settings of every :class:`~pas.study.study.Study` (``eps2``,
         ``k1``, ``max_failures``, ``adaptive_threshold`` ...).
@@ -117,7 +129,8 @@ def run_long_term(sea_states, lf_peaks, oracle, *, p_exceed=None, return_period=
         raise ValueError(f"batch_size must be a positive integer, got {batch_size}")
     top = max(float(s.lf.max()) for s in states)
     lf_value = level_at([proxy_curve(s, 1.0) for s in states], weights, p, top)
-    settings = {"p_exceed": p, "max_hf": max_hf, "eps1": eps1,
+    target = LongTermTarget(precision, max_hf=max_hf)
+    settings = {"p_exceed": p, "max_hf": max_hf, "eps1": eps1, "precision": target.precision,
                 "sea_states": [[s.name, s.probability, s.n_waves, s.duration] for s in states]}
     root, seed = _open_root(study, settings, seed)
     strategy = _default_strategy() if strategy is None else strategy
@@ -129,14 +142,18 @@ def run_long_term(sea_states, lf_peaks, oracle, *, p_exceed=None, return_period=
     for st in studies if retry_failed else ():
         if st is not None and st.n_failed:
             st.retry_failed()
-    run = _Run(states, weights, studies, oracle, executor, callback, max_hf)
+    if root is not None:
+        target.restore(root.get(BANDS_KEY))
+    run = _Run(states, weights, studies, oracle, executor, callback, max_hf, target=target,
+               model_band=model_band, root=root)
     try:
         run.left_over()
         run.allocate(p, batch_size, top)
     finally:
         if root is not None:
             root.close()
-    return LongTermResult.build(states, weights, studies, p, lf_value, seed, model_band, top)
+    return LongTermResult.build(states, weights, studies, p, lf_value, seed, model_band, top,
+                                target=target, table=sea_states)
 
 
 def _default_strategy():
@@ -161,7 +178,7 @@ def _open_root(path, settings, seed):
         return root, seed
     for key in sorted(settings):
         old, new = stored.get(key), settings[key]
-        if key == "max_hf" or dumps(old) == dumps(new):
+        if key in _MAY_CHANGE or dumps(old) == dumps(new):
             continue
         root.close()
         raise StoreError(f"{key} differs from the long-term store {path}: it was created with "
@@ -170,9 +187,13 @@ def _open_root(path, settings, seed):
         root.close()
         raise StoreError(f"seed differs from the long-term store {path}: it was created with "
                          f"seed={stored['seed']}, this call has seed={seed}")
-    if stored.get("max_hf") != settings["max_hf"]:
-        root.put(LONG_TERM_KEY, {**stored, "max_hf": settings["max_hf"]})
+    if any(stored.get(key) != settings[key] for key in _MAY_CHANGE):
+        root.put(LONG_TERM_KEY, {**stored, **{key: settings[key] for key in _MAY_CHANGE}})
     return root, int(stored["seed"])
+
+
+_MAY_CHANGE = ("max_hf", "precision")
+"""Settings a continued analysis may change: its budget and its precision target."""
 
 
 def _seed(seed) -> int:
@@ -201,9 +222,12 @@ def _make_study(state, i, q_lf, strategy, seed, max_hf, eps1, settings, path) ->
 class _Run:
     """The allocation loop over the sea states' studies."""
 
-    def __init__(self, states, weights, studies, oracle, executor, callback, max_hf):
+    def __init__(self, states, weights, studies, oracle, executor, callback, max_hf, target=None,
+                 model_band=True, root=None):
         self.states, self.weights, self.studies = states, weights, studies
         self.oracle, self.executor, self.callback, self.max_hf = oracle, executor, callback, max_hf
+        self.target = LongTermTarget(max_hf=max_hf) if target is None else target
+        self.model_band, self.root = model_band, root
         self.closed: set[int] = set()
         self._curves: dict[int, tuple] = {}
 
@@ -240,10 +264,36 @@ class _Run:
         x = level_at([t[1] for t in triples], self.weights, p, top * ratios[1])
         return triples, x
 
+    def reached(self, triples, x, p, top) -> bool:
+        """Record the round in the target's history; whether the precision target is reached
+        (the full band computed only when :meth:`LongTermTarget.band_due` asks for it)."""
+        ratios = proxy_ratios(self.studies)
+        start = top * ratios[1]
+        wide = [with_record(s, t) for s, t in zip(self.states, triples)]
+        _, low, high = value_and_band(wide, self.weights, p, start)
+        n_hf = sum(st.n_hf for st in self.studies if st is not None)
+        row = self.target.record(n_hf, x, (low, high))
+        if not self.target.band_due(row):
+            return False
+        full = [curves_of(s, st, ratios, model_band=self.model_of(st))
+                for s, st in zip(self.states, self.studies)]
+        _, low, high = value_and_band(full, self.weights, p, start)
+        reached = self.target.judge(row, (low, high))
+        if self.root is not None:
+            self.root.put(BANDS_KEY, self.target.stored())
+        return reached
+
+    def model_of(self, study):
+        """The study's model band (kept until it is told more), None without a fit."""
+        if not self.model_band or study is None or study.last is None:
+            return None
+        return study_precision.model_band(study, study.pairs())
+
     def allocate(self, p, batch_size, top) -> None:
-        while self.spent() < self.max_hf:
+        while True:
             triples, x = self.value_now(p, top)
-            if not np.isfinite(x):
+            if (not np.isfinite(x) or self.reached(triples, x, p, top)
+                    or self.spent() >= self.max_hf):
                 return
             n_hf = [0 if st is None else st.n_hf for st in self.studies]
             fitted = [st is not None and st.last is not None for st in self.studies]

@@ -3,6 +3,8 @@
 from .design import plot_design_points, plot_nonlinear_factor
 from .records import (plot_convergence, plot_record_convergence, plot_record_analysis,
                       plot_record_exceedance)
+from .long_term import (plot_long_term_allocation, plot_long_term_convergence,
+                        plot_long_term_distribution)
 from .impacts import plot_exposure, plot_inter_arrival, plot_occurrence, plot_qq
 from .figures import (
     conditional_quantile_curves,

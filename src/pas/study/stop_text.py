@@ -46,9 +46,16 @@ HIGHEST_SHOWN = 100_000
 stays in the result's ``forecast``): no campaign plans by a larger number."""
 
 
+FLOOR_NAME = "the sampling part alone (the z-draw band)"
+"""What :func:`forecast_text` calls the part of the band more HF events do not narrow."""
+
+
 def forecast_text(forecast: HFForecast | None, target: float, budget_left=None,
-                  floor: float | None = None) -> str:
+                  floor: float | None = None, floor_name: str = FLOOR_NAME) -> str:
     """``"about 60 more HF for ±10 % (40–95); the budget allows 40"`` and its variants.
+
+    ``floor``: the relative half-width of the part that does not narrow, named
+    ``floor_name`` when it alone is wider than the target.
 
     Examples
     --------
@@ -63,8 +70,8 @@ def forecast_text(forecast: HFForecast | None, target: float, budget_left=None,
     if forecast is None:
         text = f"too few model bands yet to forecast the HF needed for {goal}"
     elif not math.isfinite(forecast.expected) and floor is not None and floor >= target:
-        text = (f"more HF will not reach {goal}: the sampling part alone (the z-draw band) is "
-                f"{percent(floor)}, and more pairs do not narrow it")
+        text = (f"more HF will not reach {goal}: {floor_name} is {percent(floor)}, and more "
+                "HF events do not narrow it")
     elif not math.isfinite(forecast.expected):
         text = f"more HF are not expected to reach {goal}: the band has not narrowed with the pairs"
     else:

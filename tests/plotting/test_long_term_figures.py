@@ -1,0 +1,53 @@
+"""The long-term figures draw what the result holds, and say what is missing."""
+
+import _longterm_problem as problem
+import numpy as np
+import pytest
+
+import pas
+from pas.plotting.long_term import (plot_long_term_allocation, plot_long_term_convergence,
+                                    plot_long_term_distribution, save_long_term_figures)
+
+
+@pytest.fixture(scope="module")
+def result():
+    table = problem.table(n_waves=2000).assign(hs=4 * problem.SIGMA, tp=1.3 * problem.PERIOD)
+    return pas.run_long_term(table, problem.lf_peaks(1, n_waves=2000), problem.Oracle(),
+                             p_exceed=1e-3, max_hf=12, seed=4, precision=0.05, model_band=False,
+                             strategy=pas.PAS(band=pas.ModelBand(n_bootstrap=0)))
+
+
+def test_distribution_draws_the_band_and_the_truth(result):
+    truth = problem.true_value(1e-3)
+    fig, ax = plot_long_term_distribution(result, truth=truth, unit="kN")
+    labels = ax.get_legend_handles_labels()[1]
+    assert any(t.startswith("value ") for t in labels) and any("truth" in t for t in labels)
+    star = [line for line in ax.get_lines() if line.get_marker() == "*"][0]
+    assert star.get_ydata()[0] == pytest.approx(truth)
+    assert ax.xaxis_inverted()
+
+
+def test_allocation_marks_every_sea_state_and_the_hf_it_got(result):
+    fig, ax = plot_long_term_allocation(result)
+    c = result.contributions
+    given, none = ax.collections[1], ax.collections[0]
+    assert len(given.get_offsets()) == int((c["n_hf"] > 0).sum())
+    assert len(none.get_offsets()) == int((c["n_hf"] == 0).sum())
+    texts = sorted(int(t.get_text()) for t in ax.texts)
+    assert texts == sorted(c.loc[c["n_hf"] > 0, "n_hf"].tolist())
+    with pytest.raises(ValueError, match="no column 'heading'.*sigma, hs, tp"):
+        plot_long_term_allocation(result, x="heading")
+
+
+def test_convergence_draws_the_history_and_the_target(result):
+    fig, ax = plot_long_term_convergence(result)
+    line = [ln for ln in ax.get_lines() if ln.get_label() == "long-term value"][0]
+    assert np.asarray(line.get_ydata()) == pytest.approx(result.history["value"].to_numpy())
+    assert any("target ±5 %" in t for t in ax.get_legend_handles_labels()[1])
+
+
+def test_save_writes_the_three_figures(result, tmp_path):
+    paths = save_long_term_figures(result, tmp_path / "f")
+    assert [p.name for p in paths] == ["long_term_distribution.png", "long_term_allocation.png",
+                                       "long_term_convergence.png"]
+    assert all(p.stat().st_size > 1000 for p in paths)
