@@ -21,7 +21,8 @@ NOTEBOOKS = sorted((Path(__file__).resolve().parents[2] / "notebooks").glob("*.i
 def test_notebooks_are_there():
     names = [p.name for p in NOTEBOOKS]
     assert names == ["01_quickstart.ipynb", "02_validation_cases.ipynb",
-                     "03_external_hf_results.ipynb", "04_impact_statistics.ipynb"]
+                     "03_external_hf_results.ipynb", "04_impact_statistics.ipynb",
+                     "05_long_term.ipynb"]
 
 
 @pytest.mark.slow

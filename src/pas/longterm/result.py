@@ -82,7 +82,9 @@ class LongTermResult:
         ``low_sampling``/``high_sampling`` (the band without the model
         bands), ``halfwidth_sampling``, and ``low``/``high``/``halfwidth`` of
         the full band where it was computed (a precision target computes it
-        on a schedule, :mod:`pas.longterm.target`).
+        on a schedule, :mod:`pas.longterm.target`); with a target also
+        ``forecast_hf``, ``forecast_hf_low``, ``forecast_hf_high``, the
+        forecast made at that round.
     """
 
     value: float

@@ -273,14 +273,15 @@ class _Run:
         _, low, high = value_and_band(wide, self.weights, p, start)
         n_hf = sum(st.n_hf for st in self.studies if st is not None)
         row = self.target.record(n_hf, x, (low, high))
-        if not self.target.band_due(row):
-            return False
-        full = [curves_of(s, st, ratios, model_band=self.model_of(st))
-                for s, st in zip(self.states, self.studies)]
-        _, low, high = value_and_band(full, self.weights, p, start)
-        reached = self.target.judge(row, (low, high))
-        if self.root is not None:
-            self.root.put(BANDS_KEY, self.target.stored())
+        reached = False
+        if self.target.band_due(row):
+            full = [curves_of(s, st, ratios, model_band=self.model_of(st))
+                    for s, st in zip(self.states, self.studies)]
+            _, low, high = value_and_band(full, self.weights, p, start)
+            reached = self.target.judge(row, (low, high))
+            if self.root is not None:
+                self.root.put(BANDS_KEY, self.target.stored())
+        self.target.forecast_into(row)
         return reached
 
     def model_of(self, study):

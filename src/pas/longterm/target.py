@@ -128,8 +128,19 @@ class LongTermTarget:
         return {**out, "out_of_reach": ahead is not None and not math.isfinite(ahead.n_pairs),
                 "sampling_halfwidth": float(floor), "max_hf": self.max_hf}
 
+    def forecast_into(self, row) -> None:
+        """Add the forecast made at this round to its ``row`` (with a target)."""
+        ahead = self.forecast(row["n_hf"], row["halfwidth_sampling"])
+        if ahead is not None:
+            row.update({k: ahead[k] for k in FORECAST_COLUMNS})
+
     def history(self) -> pd.DataFrame:
-        """One row per allocation round (:meth:`record`, the full band where computed)."""
+        """One row per allocation round (:meth:`record`, the full band where computed, the
+        forecast made then with a target)."""
         columns = ["n_hf", "value", "low_sampling", "high_sampling", "halfwidth_sampling", "low",
-                   "high", "halfwidth"]
+                   "high", "halfwidth", *(FORECAST_COLUMNS if self.rule is not None else ())]
         return pd.DataFrame(self.rows, columns=columns)
+
+
+FORECAST_COLUMNS = ("forecast_hf", "forecast_hf_low", "forecast_hf_high")
+"""The forecast's columns of :meth:`LongTermTarget.history`."""
