@@ -66,7 +66,10 @@ def one_run(data, p, precision, max_hf):
             "floor": (res.forecast or {}).get("sampling_halfwidth", np.nan),
             "covered": bool(lo <= truth <= hi), "reached": bool(res.converged),
             "n_hf": int(res.n_hf), "forecast_halfway": forecast, "needed_halfway": needed,
-            "interval_held": held, "seconds": seconds}
+            "interval_held": held, "seconds": seconds,
+            "fit_seconds": float(res.contributions["fit_seconds"].sum()),
+            "busiest_sea_state_seconds": float(res.contributions["fit_seconds"].max()),
+            "sea_states_with_hf": int((res.contributions["n_hf"] > 0).sum())}
 
 
 def run(analogue, seeds, out, precisions, max_hf, first=1):

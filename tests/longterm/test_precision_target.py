@@ -37,6 +37,11 @@ def test_a_reached_target_holds_its_band_and_the_window(reached):
     truth = problem.true_value(P)
     assert r.band[0] <= truth <= r.band[1]
     assert r.forecast_hf.expected == 0.0
+    # the cost, in all and per sea state (the oracle's time is the caller's)
+    fit = r.contributions["fit_seconds"]
+    assert (fit >= 0).all() and (fit[r.contributions["n_hf"] == 0] == 0).all()
+    assert 0 < fit.sum() <= r.seconds
+    assert f"wall time {r.seconds:.1f} s" in r.summary()
 
 
 def test_the_full_band_is_computed_on_a_schedule_not_every_round(reached):

@@ -16,6 +16,7 @@ their distributions).  Its coverage is measured in
 
 from __future__ import annotations
 
+import time
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -55,8 +56,9 @@ class LongTermResult:
         ``read_off`` (where its exceedance at the value comes from: ``pas``,
         ``tail`` above its record, ``proxy`` below its PAS range, ``lf`` the
         LF-only proxy of a sea state without a PAS model, ``lf tail`` that
-        proxy above its LF record), then the sea-state table's descriptive
-        columns (``hs``, ``tp`` ...).
+        proxy above its LF record), ``fit_seconds`` (wall time of its study's
+        fits and model bands in this call, the oracle's time not included),
+        then the sea-state table's descriptive columns (``hs``, ``tp`` ...).
     lf_value : float
         The LF-only long-term value of the LF indicator (what chose the studies).
     extension_bounds : tuple of float
@@ -77,6 +79,8 @@ class LongTermResult:
         a 95 % interval; NaN before enough bands were measured),
         ``out_of_reach`` and ``sampling_halfwidth`` (the band's half-width
         without the model bands: the part more HF events do not narrow).
+    seconds : float
+        Wall time of the whole call (oracle included).
     history : pandas.DataFrame
         One row per allocation round of this call: ``n_hf``, ``value``,
         ``low_sampling``/``high_sampling`` (the band without the model
@@ -101,15 +105,22 @@ class LongTermResult:
     converged: bool = False
     forecast: dict | None = None
     history: pd.DataFrame = field(default_factory=pd.DataFrame, repr=False)
+    seconds: float = float("nan")
 
     @classmethod
     def build(cls, states, weights, studies, p, lf_value, seed, model_band, top, target=None,
-              table=None):
+              table=None, seconds=None):
         """The result of the studies as they stand (``target``: the
         :class:`~pas.longterm.target.LongTermTarget` of the run; ``table``: the sea-state
-        table, for its descriptive columns)."""
-        results = {s.name: st.result(model_band=model_band)
-                   for s, st in zip(states, studies) if st is not None}
+        table, for its descriptive columns; ``seconds``: wall time spent in each study's fits
+        and bands so far, by position)."""
+        seconds = dict(seconds or {})
+        results = {}
+        for i, (s, st) in enumerate(zip(states, studies)):
+            if st is not None:
+                t0 = time.perf_counter()
+                results[s.name] = st.result(model_band=model_band)
+                seconds[i] = seconds.get(i, 0.0) + time.perf_counter() - t0
         ratios = proxy_ratios(studies)
         triples = [curves_of(s, st, ratios, model_band=_model(results.get(s.name)))
                    for s, st in zip(states, studies)]
@@ -121,7 +132,7 @@ class LongTermResult:
         share = shares([t[1] for t in triples], weights, value) if np.isfinite(value) else \
             np.zeros(len(states))
         rows = []
-        for s, st, w, sh, t in zip(states, studies, weights, share, triples):
+        for i, (s, st, w, sh, t) in enumerate(zip(states, studies, weights, share, triples)):
             r = results.get(s.name)
             rows.append({
                 "sea_state": s.name, "probability": s.probability, "weight": float(w),
@@ -132,7 +143,8 @@ class LongTermResult:
                 "mpm": np.nan if r is None else r.mpm,
                 "mpm_low": np.nan if r is None else r.mpm_band[0],
                 "mpm_high": np.nan if r is None else r.mpm_band[1],
-                "read_off": _read_off(t[1], value)})
+                "read_off": _read_off(t[1], value),
+                "fit_seconds": seconds.get(i, 0.0) if st is not None else 0.0})
         bounds = extension_bounds([t[1] for t in triples], weights, p, start)
         n_hf = sum(st.n_hf for st in studies if st is not None)
         converged, forecast = False, None
@@ -183,6 +195,11 @@ class LongTermResult:
                  f"sea states; LF-only long-term level of the indicator: {self.lf_value:.4g}"]
         if self.precision is not None:
             lines.append(self.precision_text())
+        if np.isfinite(self.seconds):
+            busy = c.sort_values("fit_seconds", ascending=False).iloc[0]
+            lines.append(f"wall time {self.seconds:.1f} s, of it {c['fit_seconds'].sum():.1f} s in "
+                         f"the sea states' fits and model bands (most: {busy['sea_state']}, "
+                         f"{busy['fit_seconds']:.1f} s)")
         for row in c.head(5).itertuples():
             lines.append(f"  {row.sea_state}: share {row.share:.1%}, {row.n_hf} HF, "
                          f"read off {row.read_off}")
@@ -197,7 +214,8 @@ class LongTermResult:
 
 
 CONTRIBUTION_COLUMNS = ("sea_state", "probability", "weight", "share", "n_hf", "n_false_positive",
-                        "n_failed", "p_exp", "mpm", "mpm_low", "mpm_high", "read_off")
+                        "n_failed", "p_exp", "mpm", "mpm_low", "mpm_high", "read_off",
+                        "fit_seconds")
 """The columns of :attr:`LongTermResult.contributions` before the table's descriptive ones."""
 
 FLOOR_NAME = "the band without the model bands (the sea states' sampling bands and records)"

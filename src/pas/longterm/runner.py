@@ -13,6 +13,7 @@ asks nothing twice and loses no result.
 from __future__ import annotations
 
 import copy
+import time
 
 import numpy as np
 
@@ -117,6 +118,7 @@ def run_long_term(sea_states, lf_peaks, oracle, *, p_exceed=None, return_period=
         A sea state's study saw more than ``max_failures`` failed calls; the
         message names the sea state, every result is stored.
     """
+    t_start = time.perf_counter()
     check_oracle(oracle)
     if retry_failed and study is None:
         raise ValueError("retry_failed=True needs study=... (the store of the analysis whose "
@@ -152,8 +154,10 @@ def run_long_term(sea_states, lf_peaks, oracle, *, p_exceed=None, return_period=
     finally:
         if root is not None:
             root.close()
-    return LongTermResult.build(states, weights, studies, p, lf_value, seed, model_band, top,
-                                target=target, table=sea_states)
+    result = LongTermResult.build(states, weights, studies, p, lf_value, seed, model_band, top,
+                                  target=target, table=sea_states, seconds=run.seconds)
+    result.seconds = time.perf_counter() - t_start
+    return result
 
 
 def _default_strategy():
@@ -228,6 +232,7 @@ class _Run:
         self.oracle, self.executor, self.callback, self.max_hf = oracle, executor, callback, max_hf
         self.target = LongTermTarget(max_hf=max_hf) if target is None else target
         self.model_band, self.root = model_band, root
+        self.seconds: dict[int, float] = {}  # wall time of each study's fits and bands
         self.closed: set[int] = set()
         self._curves: dict[int, tuple] = {}
 
@@ -275,8 +280,8 @@ class _Run:
         row = self.target.record(n_hf, x, (low, high))
         reached = False
         if self.target.band_due(row):
-            full = [curves_of(s, st, ratios, model_band=self.model_of(st))
-                    for s, st in zip(self.states, self.studies)]
+            full = [curves_of(s, st, ratios, model_band=self.model_of(i))
+                    for i, (s, st) in enumerate(zip(self.states, self.studies))]
             _, low, high = value_and_band(full, self.weights, p, start)
             reached = self.target.judge(row, (low, high))
             if self.root is not None:
@@ -284,11 +289,15 @@ class _Run:
         self.target.forecast_into(row)
         return reached
 
-    def model_of(self, study):
-        """The study's model band (kept until it is told more), None without a fit."""
+    def model_of(self, i):
+        """Study ``i``'s model band (kept until it is told more), None without a fit."""
+        study = self.studies[i]
         if not self.model_band or study is None or study.last is None:
             return None
-        return study_precision.model_band(study, study.pairs())
+        t0 = time.perf_counter()
+        band = study_precision.model_band(study, study.pairs())
+        self.seconds[i] = self.seconds.get(i, 0.0) + time.perf_counter() - t0
+        return band
 
     def allocate(self, p, batch_size, top) -> None:
         while True:
@@ -342,7 +351,9 @@ class _Run:
             st = self.studies[i]
             for ev in events:
                 value, error = results[(i, ev.index)]
+                t0 = time.perf_counter()
                 row = st.tell(ev, value, error=error)
+                self.seconds[i] = self.seconds.get(i, 0.0) + time.perf_counter() - t0
                 if self.callback is not None:
                     self.callback(self.states[i].name, st, row)
                 if (failure := failure_limit(st)) is not None:
