@@ -103,6 +103,8 @@ def summary(runs) -> pd.DataFrame:
     rows = []
     for (a, prec, budget), g in runs.groupby(["analogue", "precision", "max_hf"], sort=True):
         r = g[g["reached"]]
+        held = r["interval_held"].astype(str)
+        others = g[~g["reached"]]
         ratio = r["forecast_halfway"] / r["needed_halfway"]
         within = ((ratio >= 1 / FACTOR) & (ratio <= FACTOR)).sum()
         rows.append({
@@ -113,11 +115,13 @@ def summary(runs) -> pd.DataFrame:
             "within ±10 %¹": f"{int((r['error'].abs() <= 0.10).sum())}/{len(r)}" if len(r) else "–",
             "median \\|error\\|¹": f"{100 * r['error'].abs().median():.1f} %" if len(r) else "–",
             "median HF¹": f"{r['n_hf'].median():g}" if len(r) else "–",
-            "U95 of the others²": (f"±{100 * g.loc[~g['reached'], 'halfwidth'].median():.0f} %"
-                                   if (~g["reached"]).any() else "–"),
+            "U95 of the others²": (f"±{100 * others['halfwidth'].median():.0f} %"
+                                   if len(others) else "–"),
+            "of it, what HF cannot narrow²": (f"±{100 * others['floor'].median():.0f} %"
+                                              if len(others) else "–"),
             "halfway forecast within ×1.5¹": f"{int(within)}/{len(r)}" if len(r) else "–",
-            "its interval held": (f"{int(r['interval_held'].fillna(False).astype(bool).sum())}"
-                                  f"/{int(r['interval_held'].notna().sum())}") if len(r) else "–",
+            "its interval held": (f"{int((held == 'True').sum())}"
+                                  f"/{int(held.isin(['True', 'False']).sum())}") if len(r) else "–",
             "U95 holds truth (all runs)": f"{int(g['covered'].sum())}/{len(g)}",
         })
     return pd.DataFrame(rows)

@@ -3,7 +3,7 @@
 ::
 
     pas long-term SEA_STATES.csv --lf DIR_OR_PATTERN --oracle KIND:ARGS
-                  (--p-exceed P | --return-period YEARS) [options]
+                  (--p-exceed P | --return-period YEARS) [--precision 10%] [options]
 
 ``SEA_STATES.csv`` has one row per sea state: ``name``, ``probability`` (share
 of time), ``n_waves`` (wave encounters of its LF run), ``duration`` (s, of
@@ -16,7 +16,10 @@ as for ``pas run`` (``table:``, ``python:``, ``command:``); the event it gets
 carries ``event.sea_state``.  :func:`pas.run_long_term` runs the analysis
 (crash-safe in ``--study``, default ``OUT/long-term.sqlite``: the same
 command again resumes it); the result goes to stdout and to ``--out``
-(``summary.json``, ``contributions.csv``, ``distribution.csv``).  Exit codes as
+(``summary.json``, ``contributions.csv``, ``distribution.csv``, ``history.csv``;
+with ``--figures`` the three long-term figures in ``OUT/figures/``).
+``--precision`` stops once the U95 of the value is within that share of it
+(:mod:`pas.longterm.target`).  Exit codes as
 ``pas run``: 0 done, 2 bad input, 130 interrupted.
 """
 
