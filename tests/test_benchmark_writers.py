@@ -229,3 +229,21 @@ def test_precision_table_counts_a_missing_halfway_forecast_and_pools_the_easy_ty
                        "1.20 | 100 % |")
     assert rows[2] == ("| copula + Weibull types, pooled | ±10 % | 400 | 3 | 67 % | 100 % | "
                        "100 % | 35 | ±30 % | 1 | 50 % | 1.20 | 100 % |")
+
+
+def test_long_term_precision_table_counts_by_hand():
+    runs = pd.DataFrame({
+        "analogue": [2, 2, 2], "p_exceed": 2e-6, "precision": 0.1, "max_hf": 400,
+        "reached": [True, True, False], "covered": [True, False, True],
+        "error": [0.02, -0.15, 0.01], "n_hf": [40, 60, 400], "halfwidth": [0.08, 0.09, 0.4],
+        "floor": [0.05, 0.05, 0.12],
+        # halfway: forecast 20 for 20 needed (within x1.5), 50 for 30 (not); none for the third
+        "forecast_halfway": [20.0, 50.0, np.nan], "needed_halfway": [20.0, 30.0, np.nan],
+        "interval_held": [True, False, None]})
+    row = load_script("benchmarks/studies/long_term_precision.py").summary(runs).iloc[0]
+    assert row["reached"] == "2/3" and row["U95 holds truth¹"] == "1/2"
+    assert row["within ±10 %¹"] == "1/2" and row["median HF¹"] == "50"
+    assert row["median \\|error\\|¹"] == "8.5 %"
+    assert row["U95 of the others²"] == "±40 %" and row["of it, what HF cannot narrow²"] == "±12 %"
+    assert row["halfway forecast within ×1.5¹"] == "1/2" and row["its interval held"] == "1/2"
+    assert row["U95 holds truth (all runs)"] == "2/3"
