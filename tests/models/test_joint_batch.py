@@ -124,3 +124,22 @@ def test_student_nu_derivative_is_the_objectives_own(marginal, location, censor)
     central = (objective(x + step, np.arange(3))[0]
                - objective(x - step, np.arange(3))[0]) / 2e-5
     np.testing.assert_allclose(g[:, -1], central, rtol=1e-5, atol=1e-7)
+
+
+def test_student_quantiles_skip_the_padding_with_the_same_values():
+    # the t quantiles and their ν slopes of the pairs of weight above 0 alone, the padding
+    # given its row's first pair's: the same numbers as computing them everywhere
+    from pas.models.joint_batch import _t_quantile_and_slope
+
+    u, h = _pairs(3)
+    data = weighted_pairs("student", _resamples(u, h, 4, 5), width=u.size + 2)
+    live = data["w"] > 0
+    assert not live.all() and live[:, 0].all()
+    nu = np.array([[2.3], [4.0], [11.0], [47.0]])
+    for w in (data["u"], 1.0 - data["u"] ** 3):
+        everywhere = _t_quantile_and_slope(nu, w)
+        skipped = _t_quantile_and_slope(nu, w, live)
+        for a, b in zip(skipped, everywhere):
+            np.testing.assert_array_equal(a[live], b[live])
+            np.testing.assert_array_equal(a, np.where(live, a, a[:, :1]))
+            np.testing.assert_array_equal(a[~live], b[~live])  # padding = copy of pair 0

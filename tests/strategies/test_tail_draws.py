@@ -1,5 +1,7 @@
 """Long records: the top of each realisation drawn alone is the full draw's top (issue 27)."""
 
+import contextlib
+
 import numpy as np
 import pytest
 import pyvinecopulib as pv
@@ -277,3 +279,34 @@ def test_the_impact_uniforms_kept_only_once_asked_for_are_the_streams():
     np.testing.assert_array_equal(r2, r)
     both = PeakUniforms(3, seed=4)  # r and q drawn together from the start
     np.testing.assert_array_equal(both.draw(4000, None)[1][:, :2500], q2)
+
+
+def test_the_results_table_shares_the_predictions_arrays_read_only():
+    from pas.study.result import distribution_frame
+
+    lfset, pairs = _problem(20000)
+    strategy = PAS(band=ModelBand(n_bootstrap=0))
+    strategy.reset(0)
+    pred = strategy.predict(pairs, lfset, np.random.default_rng(0))
+    assert isinstance(pred, tail_draws.TailPrediction)
+    frame = distribution_frame(pred.d, pred.h_mean, pred.h_low, pred.h_high, **pred.columns)
+    kept = pred.h_mean.copy()
+    for column, values in (("h_mean", pred.h_mean), ("h_high", pred.h_high), ("lf", lfset.lf)):
+        assert np.shares_memory(frame[column].to_numpy(), values)  # not a copy
+    lf_kept = lfset.lf[:10].copy()
+    # pandas 2 refuses the write (read-only); with copy-on-write it would copy: either
+    # way the prediction and the LF set stay as they were
+    with contextlib.suppress(ValueError):
+        frame.loc[0, "h_mean"] = -1.0
+    with contextlib.suppress(ValueError):
+        frame["lf"] *= 2.0
+    np.testing.assert_array_equal(pred.h_mean, kept)
+    np.testing.assert_array_equal(lfset.lf[:10], lf_kept)
+    assert lfset.lf.flags.writeable  # only the view handed to the table is read-only
+    writeable = np.arange(5.0)  # an array the caller may still write into is copied
+    table = distribution_frame(writeable, writeable, writeable, writeable)
+    writeable[0] = 9.0
+    assert table["h_mean"].iloc[0] == 0.0
+    copied = frame.copy()  # a copy of the table is the caller's to write into
+    copied.loc[0, "h_mean"] = -1.0
+    assert copied["h_mean"].iloc[0] == -1.0 and pred.h_mean[0] == kept[0]

@@ -112,31 +112,46 @@ def _copula_values(base, c, u, v, density):
     return total
 
 
-def _t_quantile_and_slope(nu, w):
+def _on_pairs(f, nu, a, live):
+    """``f(nu, a)`` (a scipy ufunc, rows of ``nu`` (k, 1)) evaluated only where ``live``;
+    elsewhere — the padding of :func:`weighted_pairs`, a copy of its row's first pair —
+    the value of the row's first pair.  None: everywhere."""
+    if live is None or live.all():
+        return f(nu, a)
+    out = np.empty(a.shape)
+    out[live] = f(np.broadcast_to(nu, a.shape)[live], a[live])
+    return np.where(live, out, out[:, :1])
+
+
+def _t_quantile_and_slope(nu, w, live=None):
     """The t quantile ``x = t_ν⁻¹(w)`` and its ``dx/dν`` at fixed ``w``.
 
     ``dx/dν = −(∂T_ν(x)/∂ν) / f_ν(x)`` (implicit function theorem), with
     ``∂T_ν/∂ν`` a forward difference of the CDF from ``T_ν(x) = w``.  Both in
     the lower tail, ``x = −t_ν⁻¹(1 − w)`` above the median: there ``1 − w`` is
     exact and the CDF's difference keeps its digits (``T_ν(x)`` near 1 leaves
-    ``∂T_ν/∂ν`` none).
+    ``∂T_ν/∂ν`` none).  ``live``: the pairs of weight above 0 (:func:`_on_pairs`:
+    the quantiles, most of the band's time, not computed for the padding; the
+    same values).
     """
     upper = w > 0.5
     tail = np.where(upper, 1.0 - w, w)
-    x = special.stdtrit(nu, tail)
-    slope = -(special.stdtr(nu + _T_STEP, x) - tail) / _T_STEP * np.exp(-_log_t_pdf(x, nu))
+    x = _on_pairs(special.stdtrit, nu, tail, live)
+    t_moved = _on_pairs(special.stdtr, nu + _T_STEP, x, live)
+    slope = -(t_moved - tail) / _T_STEP * np.exp(-_log_t_pdf(x, nu))
     sign = np.where(upper, -1.0, 1.0)
     return sign * x, sign * slope
 
 
-def _student_parts(rho, nu, u, v, density):
+def _student_parts(rho, nu, u, v, density, live=None):
     """Student-t per pair ``(log c or, censored, log h, ∂/∂v, ∂/∂ρ, d/dν)`` for rows of
     ``rho`` and ``nu`` (k, 1).
 
     ``d/dν`` is the total derivative, the t quantiles ``x = t_ν⁻¹(u)`` and
-    ``y = t_ν⁻¹(v)`` moving with ν (:func:`_t_quantile_and_slope`).
+    ``y = t_ν⁻¹(v)`` moving with ν (:func:`_t_quantile_and_slope`; ``live``: the pairs
+    of weight above 0, the others a copy of their row's first pair).
     """
-    (x, dx), (y, dy) = _t_quantile_and_slope(nu, u), _t_quantile_and_slope(nu, v)
+    (x, dx), (y, dy) = _t_quantile_and_slope(nu, u, live), _t_quantile_and_slope(nu, v, live)
     total, d_v, d_rho = _student_logc((rho, nu), u, v, x, y, True)
     r2 = 1.0 - rho * rho
     q = x * x + y * y - 2 * rho * x * y
@@ -194,7 +209,7 @@ def batch_objective(name: str, data: dict, *, location: bool = True, marginal: s
         implicit = base == "student" and IMPLICIT_NU
         if implicit:
             rho, nu = (q[0] for q in copula_parameters(base, [ci[:, None] for ci in c]))
-            total, d_v, d_p, d_nu = _student_parts(rho, nu, u, v, dens)
+            total, d_v, d_p, d_nu = _student_parts(rho, nu, u, v, dens, wt > 0)
         else:
             total, d_v, d_p = _copula_parts(base, c, u, v, dens)
         val = np.sum(wt * np.where(dens, log_f + total, total), axis=1)
@@ -226,15 +241,18 @@ def batch_objective(name: str, data: dict, *, location: bool = True, marginal: s
 
 
 def fit_joint_batch(name: str, samples, starts, *, location: bool = True, censor: float = 0.0,
-                    cold: bool = True, marginal: str = "weibull", width=None) -> list:
+                    cold: bool = True, marginal: str = "weibull", width=None,
+                    memos=None) -> list:
     """:func:`pas.models.joint.fit_joint` of one family and marginal on every sample at once.
 
     ``samples``: per problem ``(u, h)``; ``starts``: per problem the optimiser
     values of an earlier fit or None; ``cold``: also start from the data, the
     better optimum kept (as there; a problem without a start, or whose start
-    fails, starts from the data anyway); ``width``: :func:`weighted_pairs`.
-    Returns per problem the :class:`~pas.models.joint.JointFit` or the
-    ValueError its fit raised.
+    fails, starts from the data anyway); ``width``: :func:`weighted_pairs`;
+    ``memos``: per problem a dict keeping what its start from the data reads
+    (Kendall's τ, the least-squares Weibull), for the next call on the same
+    sample (the other marginal).  Returns per problem the
+    :class:`~pas.models.joint.JointFit` or the ValueError its fit raised.
     """
     base = name.partition("_")[0]
     lognormal = marginal == "lognormal"
@@ -250,6 +268,7 @@ def fit_joint_batch(name: str, samples, starts, *, location: bool = True, censor
     if not valid:
         return out
     samples, starts = [samples[j] for j in valid], [starts[j] for j in valid]
+    memos = [{} for _ in valid] if memos is None else [memos[j] for j in valid]
     data = weighted_pairs(name, samples, location=location, censor=censor, width=width)
     shape = (np.log(0.02), np.log(10.0)) if lognormal else (np.log(0.05), np.log(50.0))
     bounds = [location_bounds(h, censor, location) + [(None, None), shape]
@@ -265,11 +284,19 @@ def fit_joint_batch(name: str, samples, starts, *, location: bool = True, censor
 
     def data_start(j):
         u, h = samples[j]
-        u = np.clip(np.asarray(u, float), _TINY, 1 - _TINY)
+        memo = memos[j]
+        if "tau" not in memo:
+            u = np.clip(np.asarray(u, float), _TINY, 1 - _TINY)
+            memo["tau"] = kendall_tau(u, np.asarray(h, float)) if u.size > 2 else 0.3
         h = np.asarray(h, float)
-        tau = kendall_tau(u, h) if u.size > 2 else 0.3
-        start_marginal = _lognormal_start if lognormal else _weibull_start
-        return np.r_[start_marginal(h, location), copula_start(base, tau)]
+        if (location or not lognormal) and ("weibull", location) not in memo:
+            memo["weibull", location] = _weibull_start(h, location)
+        if lognormal:
+            weibull = memo["weibull", location] if location else None
+            start_marginal = _lognormal_start(h, location, weibull=weibull)
+        else:
+            start_marginal = memo["weibull", location]
+        return np.r_[start_marginal, copula_start(base, memo["tau"])]
 
     warm = [j for j, s in enumerate(starts) if s is not None and len(s) == n_par]
     warm_x0 = [np.asarray(starts[j], float) for j in warm]

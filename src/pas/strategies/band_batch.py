@@ -49,13 +49,15 @@ def batch_fits(strategy, replicates: dict, cold_families, width: int) -> dict:
     for rep in replicates.values():
         keys += [k for k in fits_in_order(strategy, rep[4]) if k not in keys]
     fits = {i: {} for i in replicates}
+    memos = {}  # per replicate: what a cold start reads of its data (every family, marginal)
     for name, marginal in keys:
         rows = [i for i, rep in replicates.items() if (name, marginal) in rep[4]]
         samples = [(replicates[i][3][replicates[i][0].position], replicates[i][0].hf)
                    for i in rows]
         out = fit_joint_batch(name, samples, [replicates[i][4][name, marginal].x for i in rows],
                               location=strategy.estimator.hf_location, marginal=marginal,
-                              cold=starts_cold(cold_families, name), width=width)
+                              cold=starts_cold(cold_families, name), width=width,
+                              memos=[memos.setdefault(i, {}) for i in rows])
         for i, fit in zip(rows, out):
             fits[i][name, marginal] = fit
     return {i: None if any(isinstance(f, Exception) for f in f_i.values())

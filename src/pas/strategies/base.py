@@ -18,7 +18,7 @@ from ..stats.exceedance import value_at_exceedance
 from .acquisition import initial_targets, md_select, nearest_available
 from .screening import LFSet
 
-__all__ = ["Pairs", "Prediction", "Strategy", "Z95", "band95"]
+__all__ = ["Pairs", "Prediction", "Strategy", "Z95", "band95", "read_only"]
 
 Z95 = 1.96
 """Half-width of the U95 bands in standard deviations, as printed in the paper (Eq. 10)."""
@@ -54,6 +54,14 @@ class Pairs:
         fp = slice(None) if fp_idx is None else fp_idx
         return Pairs(self.position[idx], self.lf[idx], self.hf[idx], self.d[idx],
                      np.asarray(self.fp_lf)[fp], np.asarray(self.fp_position, dtype=int)[fp])
+
+
+def read_only(values) -> np.ndarray:
+    """A read-only view of the array ``values`` (the array itself stays writeable): what a
+    prediction hands to the result's table, which shares it instead of copying."""
+    view = np.asarray(values).view()
+    view.flags.writeable = False
+    return view
 
 
 @dataclass

@@ -43,7 +43,7 @@ from ..stats.dependence import empirical_tail_dependence, kendall_tau
 from . import band, model_form, tail_draws
 from .acquisition import md_select
 from .band import ModelBand
-from .base import Pairs, Prediction, Strategy
+from .base import Pairs, Prediction, Strategy, read_only
 from .estimators import (
     ESTIMATORS,
     CandidateFits,
@@ -301,9 +301,9 @@ class PAS(Strategy):
             "lambda_l": lam_l,
             "p_impact": np.nan if model.impact is None else float(model.impact.mean()),
         }
-        columns = {"lf": lfset.lf[:model.n0]}
+        columns = {"lf": read_only(lfset.lf[:model.n0])}  # the result's table shares them
         if model.impact is not None:
-            columns["p_impact"] = model.impact
+            columns["p_impact"] = read_only(model.impact)
         # Steps 9-12: only the top of each realisation is drawn now, the rest when read
         return tail_draws.predict_from_top(model, self._uniforms, lfset, rng, record, columns)
 

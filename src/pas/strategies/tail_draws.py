@@ -41,7 +41,7 @@ from ..stats.exceedance import (
     order_statistics_read,
     value_at_exceedance,
 )
-from .base import Prediction, band95
+from .base import Prediction, band95, read_only
 from .steps import EPS, draw_conditional_hf, hf_distribution
 from .stopping import range_grid
 
@@ -235,8 +235,8 @@ class TailPrediction(Prediction):
         return np.arange(1, self._n0 + 1) / self._n_waves if self._full is None else self._full[0]
 
     def _distribution(self):
-        if self._full is None:
-            self._full = self._whole()
+        if self._full is None:  # read-only: the result's table shares them (result.distribution_frame)
+            self._full = tuple(read_only(a) for a in self._whole())
             self._whole = None
         return self._full
 

@@ -54,7 +54,9 @@ class ScreeningResult:
         One row per HF evaluation (the evaluation sequence), with the fit of
         that iteration where one was made.
     distribution : pandas.DataFrame
-        ``exceedance_probability``, ``h_mean``, ``h_low``, ``h_high``.
+        ``exceedance_probability``, ``h_mean``, ``h_low``, ``h_high`` (and PAS's ``lf``,
+        ``p_impact``).  From a study its columns may be the study's read-only arrays
+        (not copied; writing into them raises, ``.copy()`` the table first).
     pairs : pandas.DataFrame
         The true-positive LF–HF pairs.
     range_curves : pandas.DataFrame
@@ -384,6 +386,21 @@ def clipped_from(distribution: pd.DataFrame, n_false_positive: int):
 
 
 def distribution_frame(d, mean, low, high, **columns) -> pd.DataFrame:
-    """The predicted distribution as a table (``columns``: more per-rank arrays)."""
-    return pd.DataFrame({"exceedance_probability": np.asarray(d), "h_mean": mean,
-                         "h_low": low, "h_high": high, **columns})
+    """The predicted distribution as a table (``columns``: more per-rank arrays).
+
+    A read-only array (the prediction's, :class:`pas.strategies.tail_draws.TailPrediction`)
+    is the table's column, not copied (at 1.5 M LF peaks 12 MB a column): writing into
+    such a column raises ``ValueError: assignment destination is read-only`` instead of
+    changing the study's prediction (``.copy()`` the table to write into it); any other
+    array is copied.
+    """
+    data = {"exceedance_probability": d, "h_mean": mean, "h_low": low, "h_high": high,
+            **columns}
+    return pd.DataFrame({k: _shared_or_copied(v) for k, v in data.items()}, copy=False)
+
+
+def _shared_or_copied(values) -> np.ndarray:
+    """``values`` itself when it is a read-only array, else a copy (:func:`distribution_frame`)."""
+    if isinstance(values, np.ndarray) and not values.flags.writeable:
+        return values
+    return np.array(values)
