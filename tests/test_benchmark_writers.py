@@ -247,3 +247,23 @@ def test_long_term_precision_table_counts_by_hand():
     assert row["U95 of the others²"] == "±40 %" and row["of it, what HF cannot narrow²"] == "±12 %"
     assert row["halfway forecast within ×1.5¹"] == "1/2" and row["its interval held"] == "1/2"
     assert row["U95 holds truth (all runs)"] == "2/3"
+
+
+def test_long_term_precision_page_is_written_from_the_recorded_runs(tmp_path):
+    """docs/results/long-term.md's precision tables are what the script writes from
+    tests/data/long_term_precision_runs.csv (the runs of 2026-12-02); no run that reached its
+    target reports a band wider than it."""
+    page = ROOT / "docs" / "results" / "long-term.md"
+    copy = _copy(page, tmp_path)
+    text = copy.read_text(encoding="utf-8")
+    for name in ("summary", "at-budget"):  # empty both blocks first
+        begin = f"<!-- BEGIN long_term_precision.py {name} -->\n"
+        head, rest = text.split(begin)
+        text = head + begin + rest[rest.index("<!-- END"):]
+    copy.write_text(text, encoding="utf-8")
+    runs = ROOT / "tests" / "data" / "long_term_precision_runs.csv"
+    load_script("benchmarks/studies/long_term_precision.py").main(
+        ["write", str(runs), "--page", str(copy)])
+    assert copy.read_text(encoding="utf-8") == page.read_text(encoding="utf-8")
+    r = pd.read_csv(runs)
+    assert r["reached"].any() and not (r["reached"] & (r["halfwidth"] > r["precision"])).any()

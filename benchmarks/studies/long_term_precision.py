@@ -2,7 +2,7 @@
 
 Run: python benchmarks/studies/long_term_precision.py run ANALOGUE --seeds N --out DIR
          [--first F] [--precisions 0.05,0.1,0.2] [--max-hf 400]
-     python benchmarks/studies/long_term_precision.py write DIR [DIR ...] [--page PAGE]
+     python benchmarks/studies/long_term_precision.py write DIR_OR_CSV [...] [--page PAGE]
 
 ``run`` takes the data sets of :mod:`benchmarks.studies.long_term` (the same
 cache: VBM, analogue 2, at p = 2e-6 with 100 h per kept cell; green water,
@@ -90,7 +90,8 @@ def run(analogue, seeds, out, precisions, max_hf, first=1):
             if data is None:
                 data, _ = long_term_data(analogue, seed=seed, scale=scale, p_exceed=p)
             row = one_run(data, p, precision, max_hf)
-            pd.DataFrame([row]).to_csv(path, mode="a", header=not path.exists(), index=False)
+            old = [pd.read_csv(path)] if path.exists() else []
+            pd.concat([*old, pd.DataFrame([row])], ignore_index=True).to_csv(path, index=False)
             print(f"{analogue} seed {seed} ±{100 * precision:g} %: reached {row['reached']} at "
                   f"{row['n_hf']} HF, error {row['error']:+.1%}, U95 ±{100 * row['halfwidth']:.1f} % "
                   f"covered {row['covered']}, {row['seconds']:.0f} s", flush=True)
@@ -127,6 +128,25 @@ def summary(runs) -> pd.DataFrame:
     return pd.DataFrame(rows)
 
 
+def at_budget(runs) -> pd.DataFrame:
+    """The runs that ended at their budget, one per data set (the lowest target that did not
+    stop it): the analysis as the budget alone leaves it, the sea states without a stop."""
+    rows = []
+    for a, g in runs[~runs["reached"]].groupby("analogue", sort=True):
+        one = g.sort_values("precision").drop_duplicates("data_seed")
+        err = one["error"]
+        rows.append({
+            "analogue": NAMES.get(str(a), str(a)), "level": f"{one['p_exceed'].iloc[0]:g}",
+            "data sets": len(one), "HF": f"{one['n_hf'].median():g}",
+            "median \\|error\\|": f"{100 * err.abs().median():.1f} %",
+            "worst \\|error\\|": f"{100 * err.abs().max():.1f} %",
+            "median error": f"{100 * err.median():+.1f} %",
+            "U95 holds truth": f"{int(one['covered'].sum())}/{len(one)}",
+            "median U95 half-width": f"±{100 * one['halfwidth'].median():.0f} %",
+            "wall time (median)": f"{one['seconds'].median():.0f} s"})
+    return pd.DataFrame(rows)
+
+
 def markdown(table) -> str:
     head = "| " + " | ".join(table.columns) + " |\n|" + "---|" * len(table.columns) + "\n"
     return head + "".join("| " + " | ".join(str(v) for v in row) + " |\n"
@@ -144,19 +164,20 @@ def main(argv=None):
     r.add_argument("--precisions", default="0.05,0.1,0.2")
     r.add_argument("--max-hf", type=int, default=400)
     w = sub.add_parser("write")
-    w.add_argument("dirs", nargs="+", type=Path)
+    w.add_argument("dirs", nargs="+", type=Path, help="run folders or their csv files")
     w.add_argument("--page", type=Path)
     args = ap.parse_args(argv)
     if args.cmd == "run":
         run(args.analogue, args.seeds, args.out,
             [float(x) for x in args.precisions.split(",") if x], args.max_hf, args.first)
         return 0
-    runs = pd.concat([pd.read_csv(f) for d in args.dirs for f in sorted(d.glob("precision_*.csv"))],
-                     ignore_index=True)
-    text = markdown(summary(runs))
-    print(text)
+    files = [f for d in args.dirs
+             for f in ([d] if d.is_file() else sorted(d.glob("precision_*.csv")))]
+    runs = pd.concat([pd.read_csv(f) for f in files], ignore_index=True)
+    blocks = {"summary": markdown(summary(runs)), "at-budget": markdown(at_budget(runs))}
+    print("\n".join(blocks.values()))
     if args.page is not None:
-        args.page.write_text(write_between_markers(args.page.read_text(), {"summary": text}, TAG))
+        args.page.write_text(write_between_markers(args.page.read_text(), blocks, TAG))
     return 0
 
 
