@@ -151,3 +151,17 @@ def _legend_below(ax, handles=None, labels=None, *, ncol=1, grow=False):
         fig.set_figheight(fig.get_figheight()
                           + leg.get_window_extent().height / fig.dpi + _LEGEND_GAP / 72.0)
     return leg
+
+
+def _forecast_mark(ax, result, n_last, level, color, label, target):
+    """The forecast of further HF from the last sample ``n_last`` at ``level``: a bar over its
+    95 % interval, the expected count marked (nothing for a converged result or without one)."""
+    ahead = getattr(result, "forecast_hf", None)
+    if ahead is None or getattr(result, "converged", False) or not np.isfinite(ahead.expected):
+        return
+    high = ahead.high if np.isfinite(ahead.high) else 2.0 * ahead.expected + 1.0
+    ax.plot([n_last + ahead.low, n_last + high], [level, level], lw=3, alpha=0.35, color=color,
+            solid_capstyle="butt")
+    ax.plot([n_last + ahead.expected], [level], marker=">", ms=7, color=color, ls="none",
+            label=f"{label}, about {ahead.expected:.0f} more HF for ±{100 * target:g} % "
+                  f"({ahead.low:.0f}–{'∞' if not np.isfinite(ahead.high) else f'{high:.0f}'})")

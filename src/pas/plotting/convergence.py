@@ -10,8 +10,8 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from ._common import (_fitted, _fmt, _has_band, _history, _is_design, _legend_below,
-                      _new_axes, _plot_with_band, _strategy_name, _with_unit)
+from ._common import (_fitted, _fmt, _forecast_mark, _has_band, _history, _is_design,
+                      _legend_below, _new_axes, _plot_with_band, _strategy_name, _with_unit)
 
 __all__ = ["plot_mpm_convergence", "plot_aic", "stop_text", "aic_to_selected"]
 
@@ -155,16 +155,8 @@ def _precision_marks(ax, result, fitted, target, color, name):
             ax.errorbar(n[at], mpm[at], yerr=[mpm[at] - low, high - mpm[at]], fmt="none",
                         ecolor="0.35", elinewidth=0.8, capsize=2,
                         label=f"{name}: U95 where the loop computed it")
-    ahead = getattr(result, "forecast_hf", None)
-    if ahead is None or getattr(result, "converged", False) or not np.isfinite(ahead.expected):
-        return
-    level = float(getattr(result, "mpm", mpm[-1]))
-    high = ahead.high if np.isfinite(ahead.high) else 2.0 * ahead.expected + 1.0
-    ax.plot([n[-1] + ahead.low, n[-1] + high], [level, level], lw=3, alpha=0.35, color=color,
-            solid_capstyle="butt")
-    ax.plot([n[-1] + ahead.expected], [level], marker=">", ms=7, color=color, ls="none",
-            label=f"{name}: forecast, about {ahead.expected:.0f} more HF for ±{100 * target:g} % "
-                  f"({ahead.low:.0f}–{'∞' if not np.isfinite(ahead.high) else f'{high:.0f}'})")
+    _forecast_mark(ax, result, n[-1], float(getattr(result, "mpm", mpm[-1])), color,
+                   f"{name}: forecast", target)
 
 
 def stop_text(result) -> str:

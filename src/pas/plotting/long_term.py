@@ -17,7 +17,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ._common import _fmt, _legend_below, _new_axes, _with_unit
+from ._common import _fmt, _forecast_mark, _legend_below, _new_axes, _with_unit
 
 __all__ = ["plot_long_term_distribution", "plot_long_term_allocation",
            "plot_long_term_convergence", "save_long_term_figures"]
@@ -126,7 +126,7 @@ def plot_long_term_convergence(result, *, truth=None, unit=None, ax=None):
             ax.plot(n, value * (1.0 + sign * result.precision), ":", lw=0.9, color="C1",
                     drawstyle="steps-post",
                     label=f"target ±{100 * result.precision:g} %" if sign > 0 else None)
-        _forecast_mark(ax, result, n[-1])
+        _forecast_mark(ax, result, n[-1], result.value, "C1", "forecast", result.precision)
     if truth is not None:
         ax.axhline(float(truth), color="C3", ls="--", lw=1.0,
                    label=f"truth {_fmt(float(truth), unit)}")
@@ -138,18 +138,6 @@ def plot_long_term_convergence(result, *, truth=None, unit=None, ax=None):
     ax.set_title(f"{int(result.n_hf)} HF: {state}", fontsize=9)
     _legend_below(ax)
     return fig, ax
-
-
-def _forecast_mark(ax, result, n_last):
-    ahead = result.forecast_hf
-    if ahead is None or result.converged or not np.isfinite(ahead.expected):
-        return
-    high = ahead.high if np.isfinite(ahead.high) else 2.0 * ahead.expected + 1.0
-    ax.plot([n_last + ahead.low, n_last + high], [result.value] * 2, lw=3, alpha=0.35,
-            color="C1", solid_capstyle="butt")
-    ax.plot([n_last + ahead.expected], [result.value], ">", ms=7, color="C1", ls="none",
-            label=f"forecast: about {ahead.expected:.0f} more HF "
-                  f"({ahead.low:.0f}–{'∞' if not np.isfinite(ahead.high) else f'{high:.0f}'})")
 
 
 def _descriptive(contributions):
