@@ -1,4 +1,4 @@
-"""Figures of a long-term analysis (:func:`pas.run_long_term`), ``plot_*(..., ax=None) -> (fig, ax)``.
+"""Figures of a long-term analysis (:func:`pas.run_long_term`): ``plot_*(..., ax=None)``.
 
 * :func:`plot_long_term_distribution` — the long-term exceedance per wave
   encounter with its U95 band, the design value at ``p_exceed`` and, when
