@@ -267,3 +267,24 @@ def test_long_term_precision_page_is_written_from_the_recorded_runs(tmp_path):
     assert copy.read_text(encoding="utf-8") == page.read_text(encoding="utf-8")
     r = pd.read_csv(runs)
     assert r["reached"].any() and not (r["reached"] & (r["halfwidth"] > r["precision"])).any()
+
+
+def test_precision_table_pools_held_out_types_and_analogues_and_finds_wide_stops():
+    script = load_script("benchmarks/studies/precision_stop.py")
+    run = {"precision": 0.1, "max_hf": 400, "truth": 100.0, "covered": True, "error": 0.01,
+           "seconds": 1.0, "forecast_halfway": np.nan, "needed_halfway": np.nan,
+           "forecast_halfway_low": np.nan, "forecast_halfway_high": np.nan}
+    runs = pd.DataFrame([
+        {**run, "problem": "ho-a", "converged": True, "n_hf": 30, "halfwidth": 0.08},
+        {**run, "problem": "ho2-b", "converged": False, "n_hf": 400, "halfwidth": 0.3},
+        {**run, "problem": "analogue-1a", "converged": True, "n_hf": 50, "halfwidth": 0.12},
+        {**run, "problem": "analogue-3a", "converged": True, "n_hf": 70, "halfwidth": 0.05,
+         "error": -0.2, "covered": False}])
+    assert "held-out types, pooled" not in set(script.table(runs, [400])["problem"])
+    rows = script.markdown(script.table(runs, [400], pool_groups=True)).split("\n")[-2:]
+    assert rows == [("| held-out types, pooled | ±10 % | 400 | 2 | 50 % | 100 % | 100 % | 30 | "
+                     "±30 % | 0 | 0 % | – | – |"),
+                    ("| analogues, pooled | ±10 % | 400 | 2 | 100 % | 50 % | 50 % | 60 | – | 0 | "
+                     "0 % | – | – |")]
+    # the 1a stop's band (±12 %) is wider than its target (±10 %); the others are not
+    assert list(script.wide_stops(runs)["problem"]) == ["analogue-1a"]
