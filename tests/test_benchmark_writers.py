@@ -3,7 +3,8 @@ investigations.md, run in process on small fixtures against copies of the pages.
 
 Expected rows are worked out by hand from the fixtures; the precision page is
 checked against the recorded runs it was written from
-(``tests/data/precision_runs.csv`` and ``precision_heldout_runs.csv``, the runs of 2026-12-02).
+(``tests/data/precision_runs.csv``, ``precision_heldout_runs.csv`` and the ten-set runs
+``precision_measured_runs.csv``, the runs of 2026-12-02).
 """
 
 import re
@@ -47,10 +48,11 @@ def _written(tmp_path, page: Path, tag: str) -> str:
     return new
 
 
-@pytest.mark.parametrize("runs, section", [("precision_runs.csv", "summary"),
-                                           ("precision_heldout_runs.csv", "held-out")])
+@pytest.mark.parametrize("runs, section, pool", [
+    ("precision_runs.csv", "summary", []), ("precision_heldout_runs.csv", "held-out", []),
+    ("precision_measured_runs.csv", "measured-10", ["--pool-groups"])])
 def test_precision_write_from_the_recorded_runs_gives_the_page_as_it_stands(tmp_path, runs,
-                                                                          section):
+                                                                          section, pool):
     copy = _copy(PRECISION, tmp_path)
     begin = f"<!-- BEGIN precision_stop.py {section} -->\n"
     text = copy.read_text(encoding="utf-8")
@@ -58,7 +60,7 @@ def test_precision_write_from_the_recorded_runs_gives_the_page_as_it_stands(tmp_
     copy.write_text(head + begin + rest[rest.index("<!-- END"):], encoding="utf-8")  # emptied
     load_script("benchmarks/studies/precision_stop.py").main(
         ["--from-csv", str(ROOT / "tests" / "data" / runs), "--write", str(copy),
-         "--section", section])
+         "--section", section, *pool])
     assert copy.read_text(encoding="utf-8") == PRECISION.read_text(encoding="utf-8")
 
 
