@@ -4,7 +4,8 @@ investigations.md, run in process on small fixtures against copies of the pages.
 Expected rows are worked out by hand from the fixtures; the precision page is
 checked against the recorded runs it was written from
 (``tests/data/precision_runs.csv``, ``precision_heldout_runs.csv`` and the ten-set runs
-``precision_measured_runs.csv``, the runs of 2026-12-02).
+``precision_measured_runs.csv`` and ``precision_measured_5_20_runs.csv``, the runs of
+2026-12-02).
 """
 
 import re
@@ -50,7 +51,8 @@ def _written(tmp_path, page: Path, tag: str) -> str:
 
 @pytest.mark.parametrize("runs, section, pool", [
     ("precision_runs.csv", "summary", []), ("precision_heldout_runs.csv", "held-out", []),
-    ("precision_measured_runs.csv", "measured-10", ["--pool-groups"])])
+    ("precision_measured_runs.csv", "measured-10", ["--pool-groups"]),
+    ("precision_measured_5_20_runs.csv", "measured-5-20", ["--pool-groups"])])
 def test_precision_write_from_the_recorded_runs_gives_the_page_as_it_stands(tmp_path, runs,
                                                                           section, pool):
     copy = _copy(PRECISION, tmp_path)
