@@ -3,7 +3,9 @@ investigations.md, run in process on small fixtures against copies of the pages.
 
 Expected rows are worked out by hand from the fixtures; the precision page is
 checked against the recorded runs it was written from
-(``tests/data/precision_runs.csv`` and ``precision_heldout_runs.csv``, the runs of 2026-12-02).
+(``tests/data/precision_runs.csv``, ``precision_heldout_runs.csv`` and the ten-set runs
+``precision_measured_runs.csv`` and ``precision_measured_5_20_runs.csv``, the runs of
+2026-12-02).
 """
 
 import re
@@ -47,10 +49,12 @@ def _written(tmp_path, page: Path, tag: str) -> str:
     return new
 
 
-@pytest.mark.parametrize("runs, section", [("precision_runs.csv", "summary"),
-                                           ("precision_heldout_runs.csv", "held-out")])
+@pytest.mark.parametrize("runs, section, pool", [
+    ("precision_runs.csv", "summary", []), ("precision_heldout_runs.csv", "held-out", []),
+    ("precision_measured_runs.csv", "measured-10", ["--pool-groups"]),
+    ("precision_measured_5_20_runs.csv", "measured-5-20", ["--pool-groups"])])
 def test_precision_write_from_the_recorded_runs_gives_the_page_as_it_stands(tmp_path, runs,
-                                                                          section):
+                                                                          section, pool):
     copy = _copy(PRECISION, tmp_path)
     begin = f"<!-- BEGIN precision_stop.py {section} -->\n"
     text = copy.read_text(encoding="utf-8")
@@ -58,7 +62,7 @@ def test_precision_write_from_the_recorded_runs_gives_the_page_as_it_stands(tmp_
     copy.write_text(head + begin + rest[rest.index("<!-- END"):], encoding="utf-8")  # emptied
     load_script("benchmarks/studies/precision_stop.py").main(
         ["--from-csv", str(ROOT / "tests" / "data" / runs), "--write", str(copy),
-         "--section", section])
+         "--section", section, *pool])
     assert copy.read_text(encoding="utf-8") == PRECISION.read_text(encoding="utf-8")
 
 
@@ -267,3 +271,24 @@ def test_long_term_precision_page_is_written_from_the_recorded_runs(tmp_path):
     assert copy.read_text(encoding="utf-8") == page.read_text(encoding="utf-8")
     r = pd.read_csv(runs)
     assert r["reached"].any() and not (r["reached"] & (r["halfwidth"] > r["precision"])).any()
+
+
+def test_precision_table_pools_held_out_types_and_analogues_and_finds_wide_stops():
+    script = load_script("benchmarks/studies/precision_stop.py")
+    run = {"precision": 0.1, "max_hf": 400, "truth": 100.0, "covered": True, "error": 0.01,
+           "seconds": 1.0, "forecast_halfway": np.nan, "needed_halfway": np.nan,
+           "forecast_halfway_low": np.nan, "forecast_halfway_high": np.nan}
+    runs = pd.DataFrame([
+        {**run, "problem": "ho-a", "converged": True, "n_hf": 30, "halfwidth": 0.08},
+        {**run, "problem": "ho2-b", "converged": False, "n_hf": 400, "halfwidth": 0.3},
+        {**run, "problem": "analogue-1a", "converged": True, "n_hf": 50, "halfwidth": 0.12},
+        {**run, "problem": "analogue-3a", "converged": True, "n_hf": 70, "halfwidth": 0.05,
+         "error": -0.2, "covered": False}])
+    assert "held-out types, pooled" not in set(script.table(runs, [400])["problem"])
+    rows = script.markdown(script.table(runs, [400], pool_groups=True)).split("\n")[-2:]
+    assert rows == [("| held-out types, pooled | ±10 % | 400 | 2 | 50 % | 100 % | 100 % | 30 | "
+                     "±30 % | 0 | 0 % | – | – |"),
+                    ("| analogues, pooled | ±10 % | 400 | 2 | 100 % | 50 % | 50 % | 60 | – | 0 | "
+                     "0 % | – | – |")]
+    # the 1a stop's band (±12 %) is wider than its target (±10 %); the others are not
+    assert list(script.wide_stops(runs)["problem"]) == ["analogue-1a"]

@@ -9,7 +9,10 @@ where a study reached the target against the HF it then still needed (the
 share of the studies that reached the target whose halfway forecast was within
 a factor 1.5 — none halfway counts as a miss —, the median ratio, and how often
 the forecast's 95 % interval held the HF then needed).  With two or more
-copula + Weibull problems (``core-*``) their studies are also pooled in one row.
+copula + Weibull problems (``core-*``) their studies are also pooled in one row;
+``--pool-groups`` adds one for the held-out types (``ho*``) and one for the
+analogues.  Every report also counts the studies that stopped on a band wider
+than their target (there must be none) and lists any.
 
 A run with budget 400 asks what the run with budget 160 asks up to 160 HF
 (the budget decides when a study stops, never which event it asks for), so
@@ -36,7 +39,8 @@ forecasts on them); ``--first`` is the first data set (fresh seeds).
 
 Run: ``python benchmarks/studies/precision_stop.py [N] [--types a,b] [--cases 1a,3a]
 [--precisions 0.05,0.1,0.2] [--budgets 160,400] [--csv runs.csv] [--markdown]
-[--from-csv runs.csv,...] [--cost 80] [--write] [--section held-out] [--histories DIR] [--first 21]``
+[--from-csv runs.csv,...] [--cost 80] [--write] [--section held-out] [--histories DIR] [--first 21]
+[--pool-groups]``
 """
 
 from __future__ import annotations
@@ -59,6 +63,7 @@ TYPES = ("core-gumbel-t0.6", "core-gaussian-t0.75", "tail-gaussian-mix", "miss-l
 CASES = ("1a", "3a")
 FACTOR = 1.5  # "within a factor 1.5" of the HF still needed
 POOLED = "copula + Weibull types, pooled"
+GROUPS = {"held-out types, pooled": "ho", "analogues, pooled": "analogue-"}  # --pool-groups
 PAGE, TAG = Path("docs/results/precision.md"), "precision_stop.py"
 
 
@@ -120,15 +125,18 @@ def run_one(lf, oracle, kw, truth, *, seed, target, max_hf, history=None) -> dic
             "seconds": time.perf_counter() - t0}
 
 
-def table(runs: pd.DataFrame, budgets) -> pd.DataFrame:
+def table(runs: pd.DataFrame, budgets, pool_groups: bool = False) -> pd.DataFrame:
     """Per problem, target and budget: the shares the module docs list; with two or more
-    copula + Weibull problems (``core-*``) also their studies pooled (:data:`POOLED`)."""
+    copula + Weibull problems (``core-*``) also their studies pooled (:data:`POOLED`), and
+    with ``pool_groups`` those of the held-out types and of the analogues (:data:`GROUPS`)."""
     out = []
-    core = runs["problem"].str.startswith("core-")
+    pools = {POOLED: "core-", **(GROUPS if pool_groups else {})}
     groups = list(runs.groupby(["problem", "precision"], sort=False))
-    if runs.loc[core, "problem"].nunique() > 1:
-        groups += [((POOLED, target), g) for target, g in
-                   runs[core].groupby("precision", sort=False)]
+    for label, prefix in pools.items():
+        of = runs["problem"].str.startswith(prefix)
+        if runs.loc[of, "problem"].nunique() > 1:
+            groups += [((label, target), g) for target, g in
+                       runs[of].groupby("precision", sort=False)]
     for (name, target), g in groups:
         for budget in budgets:
             if g["max_hf"].max() < budget:
@@ -153,6 +161,12 @@ def table(runs: pd.DataFrame, budgets) -> pd.DataFrame:
                         "forecast_ratio": ok.median() if len(ok) else np.nan,
                         "seconds": g["seconds"].median()})
     return pd.DataFrame(out)
+
+
+def wide_stops(runs: pd.DataFrame) -> pd.DataFrame:
+    """The studies that reached their target with a U95 wider than it (issue 28: there must
+    be none): ``converged`` while the band's wider side exceeds ``precision × MPM``."""
+    return runs[runs["converged"] & (runs["halfwidth"] > runs["precision"] * (1 + 1e-12))]
 
 
 def _interval_held(reached: pd.DataFrame) -> float:
@@ -242,13 +256,15 @@ def main(argv=None):
     ap.add_argument("--markdown", action="store_true", help="print the table as Markdown")
     ap.add_argument("--section", default="summary",
                     help="the markers --write fills with the summary (summary, held-out)")
+    ap.add_argument("--pool-groups", action="store_true",
+                    help="add rows pooling the held-out types (ho*) and the analogues")
     ap.add_argument("--write", nargs="?", const=PAGE, type=Path, metavar="PAGE",
                     help=f"write the table between the markers of PAGE (default {PAGE})")
     args = ap.parse_args(argv)
     budgets = sorted(int(x) for x in args.budgets.split(","))
     if args.from_csv:
         runs = pd.concat([pd.read_csv(f) for f in args.from_csv.split(",")], ignore_index=True)
-        return _report(table(runs, budgets), args)
+        return _report(runs, budgets, args)
     if args.cost:
         cost = loop_cost(args.cost)
         print(cost.to_string(index=False, float_format=lambda x: f"{x:.3g}"))
@@ -276,11 +292,18 @@ def main(argv=None):
                   f"forecast halfway {row['forecast_halfway']:.3g} vs {row['needed_halfway']:.3g}"
                   f", {row['n_bands']} bands, {row['seconds']:.0f} s", flush=True)
             pd.DataFrame(rows).to_csv(args.csv, index=False)
-    _report(table(pd.DataFrame(rows), budgets), args)
+    _report(pd.DataFrame(rows), budgets, args)
 
 
-def _report(summary: pd.DataFrame, args) -> None:
-    """Print the summary (as Markdown with ``--markdown``) and write it with ``--write``."""
+def _report(runs: pd.DataFrame, budgets, args) -> None:
+    """Print the summary (as Markdown with ``--markdown``) and the studies that stopped on a
+    band wider than their target (:func:`wide_stops`), and write the summary with ``--write``."""
+    summary = table(runs, budgets, args.pool_groups)
+    wide = wide_stops(runs)
+    print(f"stopped on a band wider than the target: {len(wide)} of "
+          f"{int(runs['converged'].sum())} stops")
+    if len(wide):
+        print(wide.to_string(index=False))
     if args.markdown:
         print(markdown(summary))
     else:
