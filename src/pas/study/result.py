@@ -388,19 +388,13 @@ def clipped_from(distribution: pd.DataFrame, n_false_positive: int):
 def distribution_frame(d, mean, low, high, **columns) -> pd.DataFrame:
     """The predicted distribution as a table (``columns``: more per-rank arrays).
 
-    A read-only array (the prediction's, :class:`pas.strategies.tail_draws.TailPrediction`)
-    is the table's column, not copied (at 1.5 M LF peaks 12 MB a column): writing into
-    such a column raises ``ValueError: assignment destination is read-only`` instead of
-    changing the study's prediction (``.copy()`` the table to write into it); any other
+    A read-only array (the prediction's, :class:`pas.strategies.tail_draws.TailPrediction`;
+    12 MB a column at 1.5 M LF peaks) becomes the column itself, so writing into it raises
+    instead of changing the study's prediction (``.copy()`` the table first); any other
     array is copied.
     """
     data = {"exceedance_probability": d, "h_mean": mean, "h_low": low, "h_high": high,
             **columns}
-    return pd.DataFrame({k: _shared_or_copied(v) for k, v in data.items()}, copy=False)
-
-
-def _shared_or_copied(values) -> np.ndarray:
-    """``values`` itself when it is a read-only array, else a copy (:func:`distribution_frame`)."""
-    if isinstance(values, np.ndarray) and not values.flags.writeable:
-        return values
-    return np.array(values)
+    shared = {k: v if isinstance(v, np.ndarray) and not v.flags.writeable else np.array(v)
+              for k, v in data.items()}
+    return pd.DataFrame(shared, copy=False)
