@@ -25,7 +25,6 @@ with ``--figures`` the three long-term figures in ``OUT/figures/``).
 
 from __future__ import annotations
 
-import json
 import math
 from pathlib import Path
 
@@ -170,6 +169,7 @@ def read_inputs(args):
 
 def run(args) -> int:
     """Execute ``pas long-term``; returns the exit code (:data:`pas.cli.EXIT_CODES`)."""
+    from .._support.strict_json import dumps
     from .run import output_and_oracle
 
     table, peaks = read_inputs(args)
@@ -185,10 +185,11 @@ def run(args) -> int:
     summary = {"value": float(result.value), "band": [float(b) for b in result.band],
                "p_exceed": float(result.p_exceed), "n_hf": int(result.n_hf),
                "precision": result.precision, "converged": result.converged,
-               "forecast": _plain(result.forecast),
+               "forecast": result.forecast,
                "seed": result.seed, "sea_states": str(args.sea_states), "lf": str(args.lf),
                "oracle": args.oracle, "study": None if study is None else str(study)}
-    (out / "summary.json").write_text(json.dumps(summary, indent=2) + "\n")
+    text = dumps(summary, indent=2, sort_keys=False)  # no inf or NaN: null
+    (out / "summary.json").write_text(text + "\n")
     result.contributions.to_csv(out / "contributions.csv", index=False)
     result.distribution.to_csv(out / "distribution.csv", index=False)
     result.history.to_csv(out / "history.csv", index=False)
@@ -197,7 +198,7 @@ def run(args) -> int:
 
         save_long_term_figures(result, out / "figures")
     if args.json:
-        print(json.dumps(summary, indent=2))
+        print(text)
     else:
         text = result.summary() if callable(getattr(result, "summary", None)) else \
             (f"long-term value {result.value:.6g} (U95 {result.band[0]:.6g} .. "
@@ -205,11 +206,3 @@ def run(args) -> int:
         print(text)
         print(f"results written to {out}/")
     return 0
-
-
-def _plain(forecast):
-    """The forecast dict as JSON keeps it (no inf or NaN: None)."""
-    if forecast is None:
-        return None
-    return {k: (None if isinstance(v, float) and not math.isfinite(v) else
-                (float(v) if isinstance(v, float) else v)) for k, v in forecast.items()}
