@@ -264,15 +264,16 @@ class _Run:
         return cached[2]
 
     def value_now(self, p, top):
+        """``(triples, value, ratios)``: every sea state's curves for the gains, the long-term
+        value they give and the HF/LF ratios of the proxies."""
         ratios = proxy_ratios(self.studies)
         triples = [self.curves(i, ratios) for i in range(len(self.states))]
         x = level_at([t[1] for t in triples], self.weights, p, top * ratios[1])
-        return triples, x
+        return triples, x, ratios
 
-    def reached(self, triples, x, p, top) -> bool:
+    def reached(self, triples, x, ratios, p, top) -> bool:
         """Record the round in the target's history; whether the precision target is reached
         (the full band computed only when :meth:`LongTermTarget.band_due` asks for it)."""
-        ratios = proxy_ratios(self.studies)
         start = top * ratios[1]
         wide = [with_record(s, t) for s, t in zip(self.states, triples)]
         _, low, high = value_and_band(wide, self.weights, p, start)
@@ -301,8 +302,8 @@ class _Run:
 
     def allocate(self, p, batch_size, top) -> None:
         while True:
-            triples, x = self.value_now(p, top)
-            if (not np.isfinite(x) or self.reached(triples, x, p, top)
+            triples, x, ratios = self.value_now(p, top)
+            if (not np.isfinite(x) or self.reached(triples, x, ratios, p, top)
                     or self.spent() >= self.max_hf):
                 return
             n_hf = [0 if st is None else st.n_hf for st in self.studies]
