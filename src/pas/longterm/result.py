@@ -172,18 +172,11 @@ class LongTermResult:
         """The precision target's line of :meth:`summary` (empty without a target)."""
         if self.precision is None:
             return ""
-        goal, width = stop_text.percent(self.precision), relative_half_width(self.value, self.band)
-        if self.converged:
-            return f"precision reached: U95 within {goal} of the value ({stop_text.percent(width)})"
-        if not np.isfinite(width):
-            return f"precision NOT reached (target {goal} of the value)"
         max_hf = (self.forecast or {}).get("max_hf")
-        floor = (self.forecast or {}).get("sampling_halfwidth")
-        text = stop_text.forecast_text(self.forecast_hf, self.precision,
-                                       None if max_hf is None else max_hf - self.n_hf, floor,
-                                       floor_name=FLOOR_NAME)
-        return (f"precision NOT reached: U95 {stop_text.percent(width)} of the value against "
-                f"the target {goal}; {text}")
+        return stop_text.precision_state(
+            relative_half_width(self.value, self.band), self.precision, self.converged,
+            self.forecast, None if max_hf is None else max_hf - self.n_hf, of="the value",
+            words=("precision reached", "precision NOT reached"), floor_name=FLOOR_NAME)
 
     def summary(self) -> str:
         """A few lines: the value and band, HF spent, the sea states that decide it."""

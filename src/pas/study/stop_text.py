@@ -16,7 +16,8 @@ import pandas as pd
 
 from ..strategies.forecast import relative_half_width
 
-__all__ = ["HFForecast", "hf_forecast", "state", "forecast_text", "percent", "HIGHEST_SHOWN"]
+__all__ = ["HFForecast", "hf_forecast", "state", "precision_state", "forecast_text", "percent",
+           "HIGHEST_SHOWN", "FLOOR_NAME"]
 
 
 class HFForecast(NamedTuple):
@@ -85,6 +86,27 @@ def forecast_text(forecast: HFForecast | None, target: float, budget_left=None,
     return text
 
 
+def precision_state(width: float, target: float, reached: bool, forecast: dict | None,
+                    left=None, *, of: str = "the MPM", words=("converged", "NOT converged"),
+                    floor_name: str = FLOOR_NAME) -> str:
+    """How far a band of relative half-width ``width`` is from the precision ``target``:
+    reached, or its width, the target and the forecast (:func:`forecast_text`) of the
+    further HF evaluations (``forecast``: a result's dict; ``left``: what the budget allows).
+
+    Examples
+    --------
+    >>> precision_state(0.08, 0.1, True, None, of="the value", words=("reached", "NOT reached"))
+    'reached: U95 within ±10 % of the value (±8 %)'
+    """
+    goal = percent(target)
+    if reached:
+        return f"{words[0]}: U95 within {goal} of {of} ({percent(width)})"
+    if not math.isfinite(width):
+        return f"{words[1]} (target {goal} of {of})"
+    return (f"{words[1]}: U95 {percent(width)} of {of} against the target {goal}; "
+            f"{forecast_text(hf_forecast(forecast), target, left, _floor(forecast), floor_name)}")
+
+
 def state(result) -> str:
     """``converged`` / ``NOT converged (...)`` for :meth:`ScreeningResult.summary`."""
     settings = result.settings or {}
@@ -92,17 +114,13 @@ def state(result) -> str:
     if target is None:
         return "converged" if result.converged else f"NOT converged{paper_gap(result)}"
     width = relative_half_width(result.mpm, result.mpm_band)
-    paper = " and the eps1 rule" if settings.get("eps1") is not None else ""
-    if result.converged:
-        return f"converged: U95 within {percent(target)} of the MPM ({percent(width)}){paper}"
-    if not math.isfinite(width):
-        return f"NOT converged (target {percent(target)} of the MPM)"
+    paper = settings.get("eps1") is not None
     max_hf = settings.get("max_hf")
     left = None if max_hf is None else max_hf - result.n_hf
-    return (f"NOT converged: U95 {percent(width)} of the MPM against the target "
-            f"{percent(target)}; "
-            f"{forecast_text(result.forecast_hf, target, left, _floor(result.forecast))}"
-            + (paper_gap(result) if paper else ""))
+    text = precision_state(width, target, result.converged, result.forecast, left)
+    if result.converged:
+        return text + (" and the eps1 rule" if paper else "")
+    return text + (paper_gap(result) if paper and math.isfinite(width) else "")
 
 
 def _floor(forecast: dict | None) -> float | None:
