@@ -96,20 +96,23 @@ def halfway_forecast(fitted: pd.DataFrame, n_stop: int):
             float(row["forecast_hf_high"]), float(n_stop - row["n_hf"]))
 
 
-def run_one(lf, oracle, kw, truth, *, seed, target, max_hf, history=None) -> dict:
-    """One study with ``precision=target``; what the table needs of it.
+def run_one(lf, oracle, kw, truth, *, seed, target, max_hf, history=None,
+            fit_check=pas.Stopping.fit_check) -> dict:
+    """One study with ``precision=target`` (and the fit check at level ``fit_check``, None:
+    none); what the table needs of it.
 
     ``history``: a CSV path to keep the study's history at (its band widths per fit,
     for evaluating forecasts offline: ``benchmarks/investigations/forecast_variants.py``).
     """
     t0 = time.perf_counter()
+    stopping = pas.Stopping(precision=target, fit_check=fit_check)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         if "n_waves_convention" in kw:  # an analogue states its n_w: make_study takes that
-            res = pas.make_study("pas", lf, **kw, precision=target, seed=seed,
+            res = pas.make_study("pas", lf, **kw, stopping=stopping, seed=seed,
                                  max_hf=max_hf).optimize(oracle)
         else:
-            res = pas.run_pas(lf, oracle, **kw, precision=target, seed=seed, max_hf=max_hf)
+            res = pas.run_pas(lf, oracle, **kw, stopping=stopping, seed=seed, max_hf=max_hf)
     if history is not None:
         res.history.assign(truth=truth).to_csv(history, index=False)
     lo, hi = res.mpm_band
@@ -122,6 +125,9 @@ def run_one(lf, oracle, kw, truth, *, seed, target, max_hf, history=None) -> dic
             "forecast_halfway": forecast, "needed_halfway": needed,
             "forecast_halfway_low": low, "forecast_halfway_high": high,
             "n_bands": int(res.history.get("halfwidth", pd.Series(dtype=float)).notna().sum()),
+            "fit_check": np.nan if fit_check is None else fit_check,
+            "misfit_checks": int(res.history.get("fit_misfit", pd.Series(dtype=object))
+                                 .notna().sum()),
             "seconds": time.perf_counter() - t0}
 
 
@@ -256,6 +262,8 @@ def main(argv=None):
     ap.add_argument("--markdown", action="store_true", help="print the table as Markdown")
     ap.add_argument("--section", default="summary",
                     help="the markers --write fills with the summary (summary, held-out)")
+    ap.add_argument("--no-fit-check", action="store_true",
+                    help="stop on the band alone, without the fit check (fit_check=None)")
     ap.add_argument("--pool-groups", action="store_true",
                     help="add rows pooling the held-out types (ho*) and the analogues")
     ap.add_argument("--write", nargs="?", const=PAGE, type=Path, metavar="PAGE",
@@ -285,7 +293,8 @@ def main(argv=None):
                 history = args.histories / f"{name}_{rep}_{target:g}.csv"
             row = {"problem": name, "data_set": rep,
                    **run_one(lf, oracle, kw, truth, seed=rep, target=target, max_hf=budget,
-                             history=history)}
+                             history=history,
+                             fit_check=None if args.no_fit_check else pas.Stopping.fit_check)}
             rows.append(row)
             print(f"{name} set {rep} ±{target:.0%}: {'reached' if row['converged'] else 'not'} "
                   f"at {row['n_hf']} HF, error {row['error']:+.1%}, covered {row['covered']}, "

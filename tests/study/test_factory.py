@@ -30,7 +30,7 @@ def test_settings_round_trip_through_from_settings():
     assert again.settings() == study.settings()
     # precision is stored only when set (stores of 0.1 have none)
     assert set(study.settings()) == {"strategy", "strategy_settings", *LF_SETTINGS,
-                                     *STUDY_SETTINGS} - {"precision"}
+                                     *STUDY_SETTINGS} - {"precision", "fit_check"}
 
 
 def test_unknown_names_are_errors_that_list_the_known_ones():

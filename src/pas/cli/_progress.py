@@ -113,6 +113,9 @@ def precision_text(row, target: float) -> str:
     'U95 ±14.2 % (target ±10 %), about 59 more HF (40–95)'
     >>> precision_text({"halfwidth_sampling": 0.031}, 0.1)
     'sampling part ±3.1 % (target ±10 %)'
+    >>> precision_text({"halfwidth_sampling": 0.031, "fit_check_p": 0.004,
+    ...                 "fit_misfit": "the transforms' shape (KS)"}, 0.1)
+    'sampling part ±3.1 % (target ±10 %), the model fails the fit check (p 0.004)'
     """
     from ..study.stop_text import HFForecast, forecast_text, percent
 
@@ -125,6 +128,8 @@ def precision_text(row, target: float) -> str:
     if expected is not None and not math.isnan(expected):
         ahead = HFForecast(expected, row["forecast_hf_low"], row["forecast_hf_high"])
         text += ", " + forecast_text(ahead, target).replace(f" for {percent(target)}", "")
+    if isinstance(row.get("fit_misfit"), str):
+        text += f", the model fails the fit check (p {row['fit_check_p']:.2g})"
     return text
 
 

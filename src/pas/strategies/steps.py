@@ -12,6 +12,7 @@ from typing import Callable, NamedTuple
 import numpy as np
 
 from ..models.copulas import CopulaFit, conditional_quantile
+from ..models.conditional_cdf import conditional_cdf
 from ..models.marginals import fit_marginal
 from .base import band95
 
@@ -164,6 +165,13 @@ class FittedModel:
         if self.impact is not None:
             h[~(q < self.impact[None, peaks])] = 0.0  # in place: no second array of draws
         return h
+
+    def transforms(self, pairs) -> np.ndarray:
+        """``F(h | l)`` of the evaluated ``pairs`` under this model's copula and HF marginal:
+        uniform when the model is right (:func:`pas.stats.fit_check.uniform_check`)."""
+        u = np.clip(self.u_cond[pairs.position], EPS, 1 - EPS)
+        v = np.clip(self.hf_marginal.cdf(np.asarray(pairs.hf, float)), EPS, 1 - EPS)
+        return np.asarray(conditional_cdf(self.copula, v, u), float)
 
     def conditional_quantiles(self, lf, q) -> np.ndarray:
         """HF quantile ``q`` given LF ``lf`` (given an impact), in real space."""

@@ -92,6 +92,7 @@ class StoppingRule:
     k2: int = 20
     measure: str = "window"
     precision: float | None = None
+    fit_check: float | None = 0.01
     changes: list = field(default_factory=list)
     mpms: list = field(default_factory=list)
     curves: list = field(default_factory=list)

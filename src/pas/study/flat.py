@@ -67,7 +67,7 @@ def from_flat(flat: dict, *, strategy: str = "pas", preset: str | None = None,
     --------
     >>> s = from_flat({"n_bootstrap": 0, "k1": 10, "stop_measure": "step", "max_hf": None})
     >>> s["strategy"].band.n_bootstrap, s["stopping"], s["budget"].max_hf
-    (0, Stopping(eps1=None, eps2=0.1, precision=None, k1=10, k2=20, measure='step'), None)
+    (0, Stopping(eps1=None, eps2=0.1, precision=None, fit_check=0.01, k1=10, k2=20, measure='step'), None)
     >>> from_flat({"eps1": 2.0}, preset="paper")["stopping"].measure
     'step'
     """

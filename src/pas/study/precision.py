@@ -69,6 +69,9 @@ def judge(study, pred, pairs, row: dict, paper_stop: bool) -> bool:
     floor = relative_half_width(pred.mpm, pred.mpm_band)
     row["halfwidth_sampling"] = floor
     gate = paper_stop and rule.precision_gate(pred.mpm, pred.mpm_band)
+    # a model that misfits the evaluated loads cannot stop the study: no band computed for it
+    if gate and rule.fit_check is not None:
+        gate = fits_evaluated(study, pairs, row, rule.fit_check)
     has_model = _has_model_band(study.strategy)
     if not has_model:  # the sampling part is the U95, and the part that narrows
         floor = 0.0
@@ -86,6 +89,23 @@ def judge(study, pred, pairs, row: dict, paper_stop: bool) -> bool:
     forecast = rule.forecast(floor, n_now=len(pairs), may_stop_now=met)
     row.update(forecast_row(study, forecast, len(pairs)))
     return met
+
+
+def fits_evaluated(study, pairs, row: dict, alpha: float) -> bool:
+    """Whether the model of this fit passes the fit check on ``pairs`` at level ``alpha``
+    (:class:`~pas.study.settings.Stopping` ``fit_check``); writes its p-value and, when it
+    fails, the failing test to ``row`` (True for a strategy without a fitted model)."""
+    from ..stats.fit_check import uniform_check
+
+    model = getattr(study.strategy, "model_", None)
+    if model is None or not hasattr(model, "transforms"):
+        return True
+    check = uniform_check(model.transforms(pairs))
+    row["fit_check_p"] = check.p
+    if check.rejects(alpha):
+        row["fit_misfit"] = check.worst()
+        return False
+    return True
 
 
 def forecast_row(study, forecast, n_pairs: int) -> dict:

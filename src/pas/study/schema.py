@@ -118,6 +118,8 @@ def with_legacy_settings(stored: dict) -> dict:
     if "eps1" in out:
         for key in ("stop_measure", "legacy_md"):
             out.setdefault(key, LEGACY_SETTINGS[key])
+    if out.get("precision") is not None:  # written before the fit check: none, as it ran
+        out.setdefault("fit_check", None)
     return out
 
 

@@ -34,6 +34,11 @@ class Stopping:
         Limit on the COV of the last ``k2`` MPMs.
     precision : float, optional
         A study setting of that name, passed on when given.
+    fit_check : float or None, default 0.01
+        With ``precision``: the level of the fit check a band that meets the target
+        must also pass (:func:`pas.stats.fit_check.uniform_check` of the evaluated
+        loads' transforms under the fitted model) before the study stops on it;
+        None: no check.
     k1, k2 : int, default 20
         The windows of the two measures.
     measure : {"window", "step"}, default "window"
@@ -45,6 +50,7 @@ class Stopping:
     eps1: float | None = None
     eps2: float = 0.1
     precision: float | None = None
+    fit_check: float | None = 0.01
     k1: int = 20
     k2: int = 20
     measure: str = "window"
@@ -55,11 +61,11 @@ class Stopping:
         return cls(**{"measure": "step", **given})
 
     def flat(self) -> dict:
-        """The flat study settings (``stop_measure`` for ``measure``; ``precision`` only when
-        set)."""
+        """The flat study settings (``stop_measure`` for ``measure``; ``precision`` and
+        ``fit_check``, which acts with it, only when ``precision`` is set)."""
         out = {STOPPING_NAMES[k]: v for k, v in asdict(self).items()}
         if self.precision is None:
-            del out["precision"]
+            del out["precision"], out["fit_check"]
         return out
 
 
@@ -140,7 +146,7 @@ def keep_stored(flat: dict, stored: dict, given) -> dict:
     for k in set(RESUMABLE) - set(given):
         if k in stored:
             out[k] = stored[k]
-        elif k == STOPPING_NAMES["precision"]:  # stored only when set
+        elif k in (STOPPING_NAMES["precision"], STOPPING_NAMES["fit_check"]):  # only when set
             out.pop(k, None)
     return out
 

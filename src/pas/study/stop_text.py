@@ -117,10 +117,36 @@ def state(result) -> str:
     paper = settings.get("eps1") is not None
     max_hf = settings.get("max_hf")
     left = None if max_hf is None else max_hf - result.n_hf
+    misfit = "" if result.converged else misfit_text(result.history)
+    if misfit and width <= target:  # the band alone would have stopped the study
+        return (f"NOT converged: U95 {percent(width)} of the MPM, within the target "
+                f"{percent(target)}{misfit}")
     text = precision_state(width, target, result.converged, result.forecast, left)
     if result.converged:
         return text + (" and the eps1 rule" if paper else "")
-    return text + (paper_gap(result) if paper and math.isfinite(width) else "")
+    return text + (paper_gap(result) if paper and math.isfinite(width) else "") + misfit
+
+
+def misfit_text(history: pd.DataFrame) -> str:
+    """What the last fit check said when it kept the study from taking its band for the
+    precision (:func:`pas.study.precision.fits_evaluated`), else ``""``.
+
+    Examples
+    --------
+    >>> h = pd.DataFrame({"n_hf": [40, 41], "fit_check_p": [0.2, 0.003],
+    ...                   "fit_misfit": [None, "the count above 0.9"]})
+    >>> misfit_text(h)
+    '; at 41 HF the fitted model failed the fit check on the evaluated loads (p 0.003, the count above 0.9), so its band was not taken for the precision: it may not hold the truth'
+    """
+    if "fit_check_p" not in history or "fit_misfit" not in history:
+        return ""
+    checked = history[history["fit_check_p"].notna()]
+    if checked.empty or not isinstance(checked["fit_misfit"].iloc[-1], str):
+        return ""
+    last = checked.iloc[-1]
+    return (f"; at {int(last['n_hf'])} HF the fitted model failed the fit check on the "
+            f"evaluated loads (p {last['fit_check_p']:.2g}, {last['fit_misfit']}), so its "
+            "band was not taken for the precision: it may not hold the truth")
 
 
 def _floor(forecast: dict | None) -> float | None:

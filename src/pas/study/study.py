@@ -83,14 +83,15 @@ class Study(Corrections):
     def __init__(self, lfset: LFSet, strategy: Strategy, *, eps1=None, eps2=0.1, k1=20, k2=20,
                  seed=None, max_hf=None, max_failures=10, stop_on_convergence=True,
                  adaptive_threshold=True, threshold_step=0.02, fp_run=5, stop_measure="window",
-                 legacy_md=False, target=None, precision=None, store=None):
+                 legacy_md=False, target=None, precision=None, fit_check=0.01, store=None):
         self.lfset = lfset
         self.strategy = strategy
         # the keyword settings above, by the rules the study file and 'pas study set' use
         given = {k: v for k, v in locals().items() if k in SETTING_CHECKS}
         ok = {k: check_setting(k, v) for k, v in given.items()}
         self.stopping = StoppingRule(eps1=ok["eps1"], eps2=ok["eps2"], k1=ok["k1"], k2=ok["k2"],
-                                     measure=ok["stop_measure"], precision=ok["precision"])
+                                     measure=ok["stop_measure"], precision=ok["precision"],
+                                     fit_check=ok["fit_check"])
         seed = ok["seed"]
         self.seed = int(np.random.SeedSequence().entropy % (2**63) if seed is None else seed)
         strategy.reset(self.seed)

@@ -1,0 +1,74 @@
+"""A precision study does not take its band for the precision while its fitted model fails the
+fit check on the evaluated loads; the transforms the check reads are the model's own."""
+
+import warnings
+
+import numpy as np
+import pytest
+from conftest import run_flat
+from scipy import stats
+
+import pas
+from pas.stats.fit_check import uniform_check
+
+N = 20_000
+LF = np.random.default_rng(1).rayleigh(1.0, N)
+SECOND = np.random.default_rng(2).random(N) < 0.5
+SCATTER = np.exp(0.05 * np.random.default_rng(3).standard_normal(N))
+FAST = {"n_waves": N, "p_exp": 1e-3, "seed": 0, "n_bootstrap": 12, "z": 5, "k2": 20,
+        "families": ("gaussian", "gumbel"), "band_marginals": "fitted", "max_hf": 50}
+
+
+def two_branches(ev):
+    """Loads on two branches, LF² and 6 LF²: no copula and HF marginal can follow both."""
+    return float(np.where(SECOND[ev.index], 6.0, 1.0) * LF[ev.index] ** 2 * SCATTER[ev.index])
+
+
+def one_branch(ev):
+    return float(LF[ev.index] ** 2 * SCATTER[ev.index])
+
+
+def run(oracle, **kw):
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        return run_flat(LF, oracle, **{**FAST, **kw})
+
+
+@pytest.fixture(scope="module")
+def checked():
+    return run(two_branches, precision=0.9)
+
+
+def test_without_the_check_the_band_alone_stops_the_misfitting_model():
+    res = run(two_branches, precision=0.9, fit_check=None)
+    assert res.converged and res.n_hf < FAST["max_hf"]
+    assert "fit_check_p" not in res.history
+
+
+def test_the_check_keeps_that_band_from_being_taken_for_the_precision(checked):
+    assert not checked.converged and checked.n_hf == FAST["max_hf"]
+    failed = checked.history["fit_misfit"].notna()
+    assert failed.sum() >= 5 and (checked.history.loc[failed, "fit_check_p"] < 0.01).all()
+    line = checked.summary().splitlines()[0]
+    assert "NOT converged" in line and "failed the fit check" in line
+
+
+def test_a_right_model_passes_the_check_and_stops():
+    res = run(one_branch, precision=0.9)
+    assert res.converged and res.n_hf < FAST["max_hf"]
+    assert res.history["fit_check_p"].dropna().iloc[-1] >= 0.01
+
+
+def test_the_transforms_are_the_gaussian_copulas_conditional_law():
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        study = pas.make_study(pas.PAS(families=("gaussian",)), LF, n_waves=N, p_exp=1e-3,
+                               eps1=1e-9, max_hf=30, seed=0)
+        study.optimize(one_branch)
+    model, pairs = study.strategy.model_, study.pairs()
+    rho = float(model.copula.parameters[0])
+    u = model.u_cond[pairs.position]
+    v = model.hf_marginal.cdf(pairs.hf)
+    closed = stats.norm.cdf((stats.norm.ppf(v) - rho * stats.norm.ppf(u)) / np.sqrt(1 - rho**2))
+    np.testing.assert_allclose(model.transforms(pairs), closed, atol=1e-9)
+    assert not uniform_check(model.transforms(pairs)).rejects(0.01)
