@@ -292,3 +292,64 @@ def test_precision_table_pools_held_out_types_and_analogues_and_finds_wide_stops
                      "0 % | – | – |")]
     # the 1a stop's band (±12 %) is wider than its target (±10 %); the others are not
     assert list(script.wide_stops(runs)["problem"]) == ["analogue-1a"]
+
+
+def _fit_runs(rows):
+    cols = ("problem", "data_set", "converged", "covered", "error", "misfit_checks")
+    return pd.DataFrame([{**dict(zip(cols, r)), "precision": 0.1, "max_hf": 400} for r in rows])
+
+
+def test_fit_check_paired_counts_by_hand():
+    script = load_script("benchmarks/studies/fit_check_paired.py")
+    on = _fit_runs([("ho-a", 1, False, False, 0.30, 4),   # held back: its stop is gone
+                    ("ho-a", 2, True, True, 0.02, 0),
+                    ("ho2-b", 1, True, False, -0.15, 0),
+                    ("core-c", 1, True, True, 0.01, 1),   # held back, then stopped later
+                    ("analogue-1a", 1, True, True, 0.00, 0)])
+    off = on.copy()
+    off["misfit_checks"] = 0
+    off.loc[0, ["converged", "covered", "error"]] = [True, False, 0.30]
+    off.loc[3, ["converged", "covered", "error"]] = [True, True, 0.12]
+    table = script.paired(on, off).set_index("group")
+    held = table.loc["held-out types"]
+    assert (held["studies"], held["reached_off"], held["reached_on"]) == (3, 3, 2)
+    assert (held["covered_off"], held["covered_on"], held["within_off"], held["within_on"]) \
+        == (1, 1, 1, 1)
+    assert (held["held_back"], held["lost_stops"], held["lost_covered"]) == (1, 1, 0)
+    core = table.loc["copula + Weibull tuning types"]
+    assert (core["reached_off"], core["reached_on"], core["within_off"], core["within_on"],
+            core["lost_stops"]) == (1, 1, 0, 1, 0)
+    assert list(table.index) == ["held-out types", "copula + Weibull tuning types", "analogues"]
+    lines = script.markdown(table.reset_index()).split("\n")
+    assert lines[2] == "| held-out types | ±10 % | 3 | 3 → 2 | 1 → 1 | 1 → 1 | 1 | 1 (0) |"
+
+
+def test_fit_check_paired_copies_the_studies_the_check_never_held_back():
+    script = load_script("benchmarks/studies/fit_check_paired.py")
+    on = _fit_runs([("ho-a", 1, True, True, 0.02, 0), ("core-c", 3, False, True, 0.05, 0)])
+    off = script.run_off(on)  # nothing to run again
+    pd.testing.assert_frame_equal(off.drop(columns="fit_check"), on)
+    with pytest.raises(ValueError, match="not the same studies"):
+        script.paired(on, off.iloc[:1])
+
+
+def test_fit_check_write_from_the_recorded_runs_gives_the_page_as_it_stands(tmp_path):
+    copy = _copy(PRECISION, tmp_path)
+    begin = "<!-- BEGIN fit_check_paired.py paired -->\n"
+    head, rest = copy.read_text(encoding="utf-8").split(begin)
+    copy.write_text(head + begin + rest[rest.index("<!-- END"):], encoding="utf-8")  # emptied
+    data = ROOT / "tests" / "data"
+    load_script("benchmarks/studies/fit_check_paired.py").main(
+        [str(data / "precision_fit_check_on_runs.csv"), "--off",
+         str(data / "precision_fit_check_off_runs.csv"), "--write", str(copy)])
+    assert copy.read_text(encoding="utf-8") == PRECISION.read_text(encoding="utf-8")
+
+
+def test_no_recorded_study_stopped_on_a_band_wider_than_its_target():
+    data = ROOT / "tests" / "data"
+    on = pd.read_csv(data / "precision_fit_check_on_runs.csv")
+    off = pd.read_csv(data / "precision_fit_check_off_runs.csv")
+    assert (off["misfit_checks"] == 0).all() and (on["misfit_checks"] > 0).sum() == 5
+    for runs in (on, off):
+        stop = runs[runs["converged"]]
+        assert (stop["halfwidth"] <= stop["precision"] * (1 + 1e-12)).all()

@@ -1,4 +1,5 @@
-"""Statistics primitives: peaks, exceedance probabilities, dependence, Weibull and log-normal fits.
+"""Statistics primitives: peaks, exceedance probabilities, dependence, Weibull and log-normal fits,
+and the fit check of the precision stop.
 
 The record statistics of ``pas impacts`` are in :mod:`pas.records`.
 
@@ -20,6 +21,7 @@ _MODULES = {
     "peaks": ("zero_upcrossings", "upcrossing_times", "segment_max", "segment_min",
         "wave_crests", "wave_troughs", "matched_peaks", "rise_times", "rise_velocities",
         "peaks_over_threshold", "mask_near_joins"),
+    "fit_check": ("FitCheck", "uniform_check"),
 }
 _EXPORTS = {name: module for module, names in _MODULES.items() for name in names}
 
