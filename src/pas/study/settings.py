@@ -35,10 +35,10 @@ class Stopping:
     precision : float, optional
         A study setting of that name, passed on when given.
     fit_check : float or None, default 0.01
-        With ``precision``: the level of the fit check a band that meets the target
-        must also pass (:func:`pas.stats.fit_check.uniform_check` of the evaluated
-        loads' transforms under the fitted model) before the study stops on it;
-        None: no check.
+        With ``precision``: the level of the check the fitted model must pass on the
+        evaluated loads (:func:`pas.stats.fit_check.uniform_check` of their
+        transforms) before the study takes its band for the precision; None: the
+        band alone decides.
     k1, k2 : int, default 20
         The windows of the two measures.
     measure : {"window", "step"}, default "window"

@@ -118,7 +118,7 @@ def state(result) -> str:
     max_hf = settings.get("max_hf")
     left = None if max_hf is None else max_hf - result.n_hf
     misfit = "" if result.converged else misfit_text(result.history)
-    if misfit and width <= target:  # the band alone would have stopped the study
+    if misfit and width <= target:  # a band narrow enough, not taken for the precision
         return (f"NOT converged: U95 {percent(width)} of the MPM, within the target "
                 f"{percent(target)}{misfit}")
     text = precision_state(width, target, result.converged, result.forecast, left)

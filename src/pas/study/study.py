@@ -24,6 +24,7 @@ from .answers import check_hf_answer, check_target, lacks_target
 from .corrections import Corrections
 from .factory import LF_SETTINGS, STUDY_SETTINGS, make_strategy, study_settings
 from .replay import attach
+from .settings import STOPPING_NAMES
 from .result import ScreeningResult
 from .state import EventState
 from .store import StudyStore, read_settings
@@ -89,9 +90,7 @@ class Study(Corrections):
         # the keyword settings above, by the rules the study file and 'pas study set' use
         given = {k: v for k, v in locals().items() if k in SETTING_CHECKS}
         ok = {k: check_setting(k, v) for k, v in given.items()}
-        self.stopping = StoppingRule(eps1=ok["eps1"], eps2=ok["eps2"], k1=ok["k1"], k2=ok["k2"],
-                                     measure=ok["stop_measure"], precision=ok["precision"],
-                                     fit_check=ok["fit_check"])
+        self.stopping = StoppingRule(**{f: ok[name] for f, name in STOPPING_NAMES.items()})
         seed = ok["seed"]
         self.seed = int(np.random.SeedSequence().entropy % (2**63) if seed is None else seed)
         strategy.reset(self.seed)
