@@ -46,6 +46,9 @@ class Study(Corrections):
     precision : float, optional
         Stop once the U95 of the MPM is within ``±precision × MPM`` and holds the last ``k2``
         MPMs (e.g. 0.10; :mod:`pas.strategies.stopping`); this, ``eps1`` or both (both hold).
+    fit_check : float or None, default 0.01
+        With ``precision``: the level of the fit check a stop needs
+        (:class:`~pas.study.settings.Stopping`).
     eps2 : float, default 0.1
         Stopping limit on the COV of the MPM (with ``eps1``).
     k1, k2 : int, default 20
