@@ -26,3 +26,37 @@ def test_one_problem_takes_scipys_iterates(name, marginal):
     assert ours.nfev == theirs.nfev and ours.nit == theirs.nit
     assert np.array_equal(ours.x, theirs.x) and ours.fun == theirs.fun
     assert ours.success == theirs.success and ours.message == theirs.message
+
+
+def test_a_changed_private_routine_falls_back_to_scipy_with_a_warning(monkeypatch):
+    # setulb is scipy's private routine; a release that calls it differently must cost
+    # speed, not results: the driver finds out once and hands each problem to minimize
+    import pas.models.lbfgsb as driver
+
+    class Changed:
+        @staticmethod
+        def setulb(*args):
+            raise TypeError("setulb() takes 18 positional arguments")
+
+    monkeypatch.setattr(driver, "_lbfgsb", Changed)
+    monkeypatch.setattr(driver, "_DRIVER_WORKS", None)
+    rng = np.random.default_rng(3)
+    u = rng.uniform(0.02, 0.98, 50)
+    h = 1.0 + rng.weibull(1.4, 50) * (1.0 + 2.0 * u)
+    _, grad, _ = joint_objective("gumbel", u, h)
+    bounds = location_bounds(h, 0.0, True) + [(None, None), (np.log(0.05), np.log(50.0)),
+                                              (None, None)]
+    x0 = np.r_[-1.0, 1.0, 0.3, 0.5]
+    with pytest.warns(RuntimeWarning, match="scipy.optimize.minimize instead"):
+        ours = driver.minimise_one(grad, x0, bounds)
+    theirs = optimize.minimize(grad, x0, jac=True, method="L-BFGS-B", bounds=bounds)
+    assert np.array_equal(ours.x, theirs.x) and ours.fun == theirs.fun
+    assert driver.driver_works() is False  # remembered: asked once
+
+
+def test_the_driver_works_on_the_installed_scipy():
+    # the fast path is the one CI's newest scipy takes; should this fail, the fallback
+    # above keeps results right but the fits slow
+    from pas.models.lbfgsb import driver_works
+
+    assert driver_works()

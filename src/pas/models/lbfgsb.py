@@ -7,19 +7,32 @@ problems that want one at a step in one call: the model band's replicates
 of :func:`pas.models.joint.minimise_bounded` — the same iterates as
 ``scipy.optimize.minimize(method="L-BFGS-B", jac=True)``, without its
 per-call and per-evaluation wrapping (``tests/models/test_joint_batch.py``).
+
+``setulb`` is scipy's private routine: should a scipy release change how it
+is called, :func:`driver_works` finds out once, on a small problem, and the
+problems are then solved one at a time by ``scipy.optimize.minimize`` (the
+same iterates, slower) with a warning that says so.
 """
 
 from __future__ import annotations
 
+import warnings
+
 import numpy as np
-from scipy.optimize import OptimizeResult, _lbfgsb
+from scipy import optimize
+from scipy.optimize import OptimizeResult
+
+try:
+    from scipy.optimize import _lbfgsb
+except ImportError:  # a scipy without the private module: driver_works() says so
+    _lbfgsb = None
 
 try:
     from scipy.optimize._lbfgsb_py import status_messages, task_messages
 except ImportError:  # their text only names why an optimiser stopped
     status_messages, task_messages = {}, {}
 
-__all__ = ["minimise_one", "minimise_together"]
+__all__ = ["driver_works", "minimise_one", "minimise_together"]
 
 _MAXCOR, _FTOL, _GTOL, _MAXLS, _MAXFUN, _MAXITER = 10, 2.2204460492503131e-09, 1e-5, 20, 15000, 15000
 """scipy.optimize.minimize's L-BFGS-B defaults."""
@@ -40,6 +53,31 @@ def _message(task) -> str:
     return f"{status_messages.get(status, status)}: {task_messages.get(detail, detail)}"
 
 
+_DRIVER_WORKS = None
+"""Whether this scipy's ``setulb`` takes the driver's arguments (:func:`driver_works`)."""
+
+
+def driver_works() -> bool:
+    """Whether scipy's private ``setulb`` still works as :func:`minimise_together` calls
+    it: tried once, on a one-parameter quadratic, and remembered."""
+    global _DRIVER_WORKS
+    if _DRIVER_WORKS is None:
+        def square(X, rows):
+            return (X[:, 0] - 1.0) ** 2, 2.0 * (X - 1.0)
+
+        try:
+            res = _step_through(square, [np.zeros(1)], [[(None, None)]], np.zeros(1, int))[0]
+            _DRIVER_WORKS = bool(abs(res.x[0] - 1.0) < 1e-6)
+        except Exception:  # noqa: BLE001 - any failure of a private routine means "not usable"
+            _DRIVER_WORKS = False
+        if not _DRIVER_WORKS:
+            warnings.warn("this scipy's private L-BFGS-B routine (scipy.optimize._lbfgsb."
+                          "setulb) is not called as pas expects: the joint fits use "
+                          "scipy.optimize.minimize instead (the same results, slower)",
+                          RuntimeWarning, stacklevel=2)
+    return _DRIVER_WORKS
+
+
 def minimise_together(objective, starts, bounds, rows):
     """Each problem's L-BFGS-B from ``starts[j]`` within ``bounds[j]``, the objectives
     evaluated together: ``objective(X, rows)`` for the problems that ask at a step.
@@ -49,6 +87,28 @@ def minimise_together(objective, starts, bounds, rows):
     ``OptimizeResult`` (``x``, ``fun``, ``nfev``, ``nit``, ``success``, ``message``)
     per problem.
     """
+    if driver_works():
+        return _step_through(objective, starts, bounds, rows)
+    return [_one_by_scipy(objective, x0, bnd, rows[j:j + 1])
+            for j, (x0, bnd) in enumerate(zip(starts, bounds))]
+
+
+def _one_by_scipy(objective, x0, bounds, row):
+    """One problem of :func:`minimise_together` by ``scipy.optimize.minimize``."""
+    def fun(x):
+        f, g = objective(np.asarray(x, float)[None], row)
+        return float(f[0]), np.asarray(g[0], float)
+
+    lo = [-np.inf if b[0] is None else b[0] for b in bounds]
+    hi = [np.inf if b[1] is None else b[1] for b in bounds]
+    res = optimize.minimize(fun, np.clip(np.asarray(x0, float), lo, hi), jac=True,
+                            method="L-BFGS-B", bounds=bounds)
+    return OptimizeResult(x=res.x, fun=float(res.fun), nfev=int(res.nfev), nit=int(res.nit),
+                          success=bool(res.success), message=str(res.message))
+
+
+def _step_through(objective, starts, bounds, rows):
+    """:func:`minimise_together` by stepping ``setulb`` (module docs)."""
     n = len(starts[0])
     m = _MAXCOR
     factr = _FTOL / np.finfo(float).eps
