@@ -42,6 +42,14 @@ __all__ = ["ConditionalLikelihood", "SelectedSample", "ESTIMATORS", "CandidateFi
 COLD_EVERY = 10
 """Every this many study fits, the conditional estimator also starts from the data."""
 
+COLD_UP_TO = 0
+"""While a study has at most this many pairs, each of its fits also starts from the data.
+0 (the default): only every COLD_EVERY-th fit.  Warm starts from a fit to fewer pairs
+choose another candidate than a cold start in 15 % of the fits at 20 pairs or fewer, and in
+none above; at 20, 3 of the 50 tuning types' final MPMs changed, through the stop (median
+error the same), for x1.11 the CPU, so it stays 0 (``benchmarks/investigations/loop_warm_starts.py``,
+"Do the study's warm starts find the optimum?" in ``docs/results/investigations.md``)."""
+
 PRUNE_AIC = None
 """In the study's own fits, a family whose last AIC was more than this behind the best
 eligible one's (and not the current family) is not refitted: its AIC is that of its last
@@ -146,7 +154,7 @@ class ConditionalLikelihood:
             # COLD_EVERY-th fit (or each family in its turn, COLD_IN_TURN), and every other
             # fit with update=False, also starts from the data, so no fit stays trapped in
             # the basin of another sample
-            cold = not update or (family is None and (
+            cold = not update or len(pairs) <= COLD_UP_TO or (family is None and (
                 cold_turns(request.families, pas._n_fits, COLD_EVERY) if COLD_IN_TURN
                 else pas._n_fits % COLD_EVERY == 0))
         choice = request.hf_marginal or self.hf_marginal
