@@ -8,8 +8,9 @@ too, without letting that change the study.  It prints per study how many
 candidate fits the cold start improved (log-likelihood gain > 1e-3, > 1) and
 in how many fits it would have selected another candidate, then both per
 pair-count bin.  ``--compare`` instead runs each study twice, as it is and
-with ``estimators.COLD_UP_TO = 20`` (every fit on 20 pairs or fewer also
-starts from the data), and prints per group the median |error| of the MPM
+with ``estimators.COLD_UP_TO = 20`` (``--up-to``: every fit on 20 pairs or
+fewer also starts from the data; ``--precision``: both with the precision
+stop instead of ε1), and prints per group the median |error| of the MPM
 against the exact truth, how often the U95 held it, the mean HF count and the
 loop's CPU time, both ways.  Writes ``loop_warm_starts.csv``; ``--write [PAGE]
 --from-csv FILE,…`` puts the probe's per-bin table between the
@@ -17,7 +18,7 @@ loop's CPU time, both ways.  Writes ``loop_warm_starts.csv``; ``--write [PAGE]
 ``docs/results/investigations.md``).
 
 Run: python benchmarks/investigations/loop_warm_starts.py [N] [--types all] [--held-out]
-     [--first 0] [--compare] [--out pas-output/loop-warm]
+     [--first 0] [--compare [--up-to 20] [--precision P]] [--out pas-output/loop-warm]
      python benchmarks/investigations/loop_warm_starts.py --write --from-csv A.csv,B.csv
 """
 
@@ -69,9 +70,12 @@ def probing(records, labels):
     return probe
 
 
-def study_of(name, replication, max_hf, **settings):
+def study_of(name, replication, max_hf, precision=None, **settings):
+    """The known-truth study as the defaults run it: its own ε1 stop, or with ``precision``
+    the precision stop."""
     problem = make_problem(TYPES[name], replication)
-    objects = from_flat({"eps1": problem.eps1, "max_hf": max_hf} | settings)
+    stop = {"eps1": problem.eps1} if precision is None else {"precision": precision}
+    objects = from_flat(stop | {"max_hf": max_hf} | settings)
     study = make_study(objects.pop("strategy"), problem.lf, n_waves=problem.n_waves,
                        p_exp=problem.p_exp, threshold=problem.threshold,
                        seed=problem.replication, **objects)
@@ -95,13 +99,13 @@ def probe_one(name, replication, max_hf, records):
           flush=True)
 
 
-def compare_one(name, replication, max_hf):
+def compare_one(name, replication, max_hf, precision=None, up_to=20):
     row = {"type": name, "group": name.split("-")[0], "replication": replication}
     histories = {}
-    for label, up_to in (("now", estimators.COLD_UP_TO), ("cold20", 20)):
-        saved, estimators.COLD_UP_TO = estimators.COLD_UP_TO, up_to
+    for label, limit in (("now", estimators.COLD_UP_TO), ("cold20", up_to)):
+        saved, estimators.COLD_UP_TO = estimators.COLD_UP_TO, limit
         try:
-            problem, study = study_of(name, replication, max_hf)
+            problem, study = study_of(name, replication, max_hf, precision)
             t = cpu_seconds()
             res = study.optimize(problem.oracle())
             cpu = cpu_seconds() - t
@@ -160,6 +164,10 @@ def main(argv=None):
     ap.add_argument("--first", type=int, default=0)
     ap.add_argument("--max-hf", type=int, default=160)
     ap.add_argument("--compare", action="store_true")
+    ap.add_argument("--up-to", type=int, default=20,
+                    help="--compare: COLD_UP_TO of the second run (its columns keep the name cold20)")
+    ap.add_argument("--precision", type=float,
+                    help="--compare: stop on this precision target instead of ε1")
     ap.add_argument("--out", default="pas-output/loop-warm")
     ap.add_argument("--write", nargs="?", const=PAGE, type=Path, metavar="PAGE",
                     help=f"write the probe's table between the markers of PAGE (default {PAGE})")
@@ -179,7 +187,7 @@ def main(argv=None):
         for name in select_types(args.types, held_out=args.held_out):
             for r in range(args.first, args.first + args.n):
                 if args.compare:
-                    rows.append(compare_one(name, r, args.max_hf))
+                    rows.append(compare_one(name, r, args.max_hf, args.precision, args.up_to))
                 else:
                     probe_one(name, r, args.max_hf, rows)
                 pd.DataFrame(rows).to_csv(out / "loop_warm_starts.csv", index=False)
