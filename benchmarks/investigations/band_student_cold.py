@@ -28,7 +28,7 @@ from pas.strategies import band
 from pas.study.flat import from_flat
 from pas.study.precision import union
 from pas.validation.known_truth import make_problem
-from pas.validation.known_truth_runs import TYPES, select_types
+from pas.validation.known_truth_runs import TYPES, add_study_arguments, select_types
 from pas.validation.timing_problem import cpu_seconds
 
 
@@ -78,11 +78,7 @@ def one(name, replication, max_hf):
 
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("n", nargs="?", type=int, default=2, help="data sets per type")
-    ap.add_argument("--types", default="all")
-    ap.add_argument("--held-out", action="store_true")
-    ap.add_argument("--first", type=int, default=0)
-    ap.add_argument("--max-hf", type=int, default=160)
+    add_study_arguments(ap, n=2)
     ap.add_argument("--out", default="pas-output/band-cold")
     args = ap.parse_args(argv)
     out = Path(args.out)

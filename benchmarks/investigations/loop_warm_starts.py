@@ -35,7 +35,7 @@ from pas.api import make_study
 from pas.strategies import estimators
 from pas.study.flat import from_flat
 from pas.validation.known_truth import make_problem
-from pas.validation.known_truth_runs import TYPES, select_types
+from pas.validation.known_truth_runs import TYPES, add_study_arguments, select_types
 from pas.validation.result_tables import rewrite_page
 from pas.validation.timing_problem import cpu_seconds
 
@@ -158,11 +158,7 @@ def probe_table(records: pd.DataFrame) -> str:
 
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("n", nargs="?", type=int, default=1, help="data sets per type")
-    ap.add_argument("--types", default="all")
-    ap.add_argument("--held-out", action="store_true")
-    ap.add_argument("--first", type=int, default=0)
-    ap.add_argument("--max-hf", type=int, default=160)
+    add_study_arguments(ap, n=1)
     ap.add_argument("--compare", action="store_true")
     ap.add_argument("--up-to", type=int, default=20,
                     help="--compare: COLD_UP_TO of the second run (its columns keep the name cold20)")

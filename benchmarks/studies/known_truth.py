@@ -19,6 +19,7 @@ import pandas as pd
 from pas.validation.known_truth import make_problem
 from pas.validation.known_truth_runs import (
     TYPES,
+    add_study_arguments,
     run_one,
     select_types,
     settings_from_args,
@@ -28,16 +29,10 @@ from pas.validation.known_truth_runs import (
 
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("n", nargs="?", type=int, default=10, help="data sets per type")
-    ap.add_argument("--types", default="all",
-                    help="comma-separated type names or groups (core, tail, miss, outlier, …)")
-    ap.add_argument("--held-out", action="store_true",
-                    help="with --types all: the held-out types, never used to choose settings")
-    ap.add_argument("--first", type=int, default=0, help="first data set (replication)")
+    add_study_arguments(ap, n=10)
     ap.add_argument("--preset", default=None, help="run_pas preset (e.g. paper)")
     ap.add_argument("--set", action="append", default=[],
                     help="extra run_pas setting NAME=VALUE (python literal), repeatable")
-    ap.add_argument("--max-hf", type=int, default=160)
     ap.add_argument("--out", default="pas-output/known-truth")
     args = ap.parse_args(argv)
     try:

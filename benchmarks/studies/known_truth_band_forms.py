@@ -30,7 +30,7 @@ from pas.api import make_study
 from pas.strategies import model_form
 from pas.study.flat import from_flat
 from pas.validation.known_truth import make_problem
-from pas.validation.known_truth_runs import TYPES, select_types
+from pas.validation.known_truth_runs import TYPES, add_study_arguments, select_types
 
 
 def run_forms(problem, max_hf: int = 160) -> dict:
@@ -95,11 +95,7 @@ def table(runs: pd.DataFrame, by: str) -> pd.DataFrame:
 
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("n", nargs="?", type=int, default=2, help="data sets per type")
-    ap.add_argument("--types", default="all", help="comma-separated type names or groups")
-    ap.add_argument("--held-out", action="store_true", help="with --types all: the held-out types")
-    ap.add_argument("--first", type=int, default=0, help="first data set (replication)")
-    ap.add_argument("--max-hf", type=int, default=160)
+    add_study_arguments(ap, n=2)
     ap.add_argument("--out", default="pas-output/known-truth-band-forms")
     ap.add_argument("--table", help="only tabulate these runs.csv files (comma-separated)")
     args = ap.parse_args(argv)

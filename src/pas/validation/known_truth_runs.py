@@ -2,8 +2,9 @@
 
 :func:`run_one` runs one data set and scores its MPM error and U95 coverage,
 :func:`summarise` tabulates runs per type, :func:`select_types` reads a
-``--types`` list and :func:`settings_from_args` the ``--set NAME=VALUE``
-options of the benchmark scripts.
+``--types`` list, :func:`add_study_arguments` declares the options every
+benchmark script that runs these types takes, and :func:`settings_from_args`
+the ``--set NAME=VALUE`` options of the benchmark scripts.
 """
 
 from __future__ import annotations
@@ -26,6 +27,18 @@ TYPES = {**TUNING_TYPES, **HELD_OUT_TYPES, **FRESH_TYPES}
 
 CHECKPOINTS = (20, 40, 80, 160)
 """HF counts at which :func:`run_one` scores the MPM predicted then (``err@k``)."""
+
+
+def add_study_arguments(parser, *, n: int) -> None:
+    """The options of a benchmark script that runs known-truth types: ``n`` (data sets per
+    type, default ``n``), ``--types``, ``--held-out``, ``--first`` and ``--max-hf``."""
+    parser.add_argument("n", nargs="?", type=int, default=n, help="data sets per type")
+    parser.add_argument("--types", default="all",
+                        help="comma-separated type names or groups (core, tail, miss, outlier, …)")
+    parser.add_argument("--held-out", action="store_true",
+                        help="with --types all: the held-out types, never used to choose settings")
+    parser.add_argument("--first", type=int, default=0, help="first data set (replication)")
+    parser.add_argument("--max-hf", type=int, default=160)
 
 
 def select_types(spec: str = "all", *, held_out: bool = False) -> list[str]:
