@@ -23,12 +23,15 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from pas.api import make_study
 from pas.strategies import band
-from pas.study.flat import from_flat
 from pas.study.precision import union
 from pas.validation.known_truth import make_problem
-from pas.validation.known_truth_runs import TYPES, add_study_arguments, select_types
+from pas.validation.known_truth_runs import (
+    TYPES,
+    add_study_arguments,
+    known_truth_study,
+    select_types,
+)
 from pas.validation.timing_problem import cpu_seconds
 
 
@@ -52,10 +55,7 @@ def one(name, replication, max_hf):
     problem = make_problem(TYPES[name], replication)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        objects = from_flat({"eps1": problem.eps1, "max_hf": max_hf})
-        study = make_study(objects.pop("strategy"), problem.lf, n_waves=problem.n_waves,
-                           p_exp=problem.p_exp, threshold=problem.threshold,
-                           seed=problem.replication, **objects)
+        study = known_truth_study(problem, max_hf=max_hf)
         res = study.optimize(problem.oracle())
         bands = final_bands(study)
     truth = problem.truth_mpm

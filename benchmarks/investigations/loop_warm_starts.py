@@ -31,11 +31,15 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from pas.api import make_study
+from pas.models.copulas import select_family
 from pas.strategies import estimators
-from pas.study.flat import from_flat
 from pas.validation.known_truth import make_problem
-from pas.validation.known_truth_runs import TYPES, add_study_arguments, select_types
+from pas.validation.known_truth_runs import (
+    TYPES,
+    add_study_arguments,
+    known_truth_study,
+    select_types,
+)
 from pas.validation.result_tables import rewrite_page
 from pas.validation.timing_problem import cpu_seconds
 
@@ -45,9 +49,8 @@ PAGE = Path("docs/results/investigations.md")
 
 
 def selected(joint):
-    """The candidate a fit selects: lowest AIC, a family on a parameter bound only if all are."""
-    ok = {f: j for f, j in joint.items() if not j.copula.at_bound} or joint
-    return min(ok, key=lambda f: ok[f].copula.aic)
+    """The candidate a fit selects, without the study's hysteresis (:func:`select_family`)."""
+    return select_family({f: j.copula for f, j in joint.items()}, exclude_at_bound=True)
 
 
 def probing(records, labels):
@@ -74,12 +77,8 @@ def study_of(name, replication, max_hf, precision=None, **settings):
     """The known-truth study as the defaults run it: its own ε1 stop, or with ``precision``
     the precision stop."""
     problem = make_problem(TYPES[name], replication)
-    stop = {"eps1": problem.eps1} if precision is None else {"precision": precision}
-    objects = from_flat(stop | {"max_hf": max_hf} | settings)
-    study = make_study(objects.pop("strategy"), problem.lf, n_waves=problem.n_waves,
-                       p_exp=problem.p_exp, threshold=problem.threshold,
-                       seed=problem.replication, **objects)
-    return problem, study
+    stop = {} if precision is None else {"eps1": None, "precision": precision}
+    return problem, known_truth_study(problem, max_hf=max_hf, **stop, **settings)
 
 
 def probe_one(name, replication, max_hf, records):

@@ -1,6 +1,7 @@
 """PAS run on the known-truth problems (:mod:`pas.validation.known_truth`) and scored.
 
-:func:`run_one` runs one data set and scores its MPM error and U95 coverage,
+:func:`run_one` runs one data set (the study of :func:`known_truth_study`) and scores
+its MPM error and U95 coverage,
 :func:`summarise` tabulates runs per type, :func:`select_types` reads a
 ``--types`` list, :func:`add_study_arguments` declares the options every
 benchmark script that runs these types takes, and :func:`settings_from_args`
@@ -61,6 +62,16 @@ def select_types(spec: str = "all", *, held_out: bool = False) -> list[str]:
     return names
 
 
+def known_truth_study(problem: Problem, *, seed=None, max_hf=160, preset=None, **flat):
+    """The :class:`~pas.study.study.Study` of ``problem`` as the benchmarks run it: its own
+    ε1 stop (``eps1=None`` with ``precision=…`` for the precision stop), budget ``max_hf``,
+    seed the data set's unless given, and the flat settings ``flat``."""
+    objects = from_flat({"eps1": problem.eps1, "max_hf": max_hf, **flat}, preset=preset)
+    return make_study(objects.pop("strategy"), problem.lf, n_waves=problem.n_waves,
+                      p_exp=problem.p_exp, threshold=problem.threshold,
+                      seed=problem.replication if seed is None else seed, **objects)
+
+
 def run_one(problem: Problem, *, seed=None, max_hf=160, **settings) -> dict:
     """Run PAS on ``problem`` with ``settings``; score MPM error and U95 coverage.
 
@@ -72,13 +83,8 @@ def run_one(problem: Problem, *, seed=None, max_hf=160, **settings) -> dict:
     t0 = time.perf_counter()
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        flat = {k: v for k, v in settings.items() if k != "preset"}
-        objects = from_flat({"eps1": problem.eps1, "max_hf": max_hf, **flat},
-                            preset=settings.get("preset"))
-        res = make_study(objects.pop("strategy"), problem.lf, n_waves=problem.n_waves,
-                         p_exp=problem.p_exp, threshold=problem.threshold,
-                         seed=problem.replication if seed is None else seed,
-                         **objects).optimize(problem.oracle())
+        res = known_truth_study(problem, seed=seed, max_hf=max_hf,
+                                **settings).optimize(problem.oracle())
     lo, hi = res.mpm_band
     hist = res.history.dropna(subset=["mpm"])
     at = {f"err@{k}": (float(hist.loc[hist["n_hf"] <= k, "mpm"].iloc[-1]) / problem.truth_mpm - 1
