@@ -300,3 +300,8 @@ def test_command_oracle_runs_an_episode_from_its_csv(crest, tmp_path):
     assert res.mpm == pytest.approx(1.5 * res.distribution["linear"].iloc[0], rel=1e-6)
     ep_dir = tmp_path / "runs" / res.history["episode_id"].iloc[0]
     assert (ep_dir / "episode.csv").exists() and (ep_dir / "components.csv").exists()
+    # the inputs were staged, then moved in; the record names the command and their digests
+    assert not [p for p in ep_dir.iterdir() if p.name.startswith(".inputs-")]
+    record = json.loads((ep_dir / ".pas-command.json").read_text())
+    assert sorted(record["files"]) == ["components", "episode"]
+    assert str(ep_dir / "episode.csv") in record["command"]

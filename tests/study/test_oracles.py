@@ -100,11 +100,37 @@ def test_command_oracle_failures_are_recorded_never_zero(tmp_path, script, mode,
 def test_command_oracle_json_result_and_reuse(tmp_path, script):
     oracle = command(script, tmp_path, "ok", '{{"value": 7.5}}')
     assert oracle(EV) == 7.5
-    # a valid result left by an earlier (e.g. orphaned) run is reused, not recomputed
-    assert oracle(EV) == 7.5
+    # a valid result left by an earlier (e.g. orphaned) run of the same command is reused,
+    # not recomputed, and the user is told
+    with pytest.warns(RuntimeWarning, match="ev3: took .*result.txt, left by an earlier run "
+                                            "of the same command"):
+        assert oracle(EV) == 7.5
     assert len((tmp_path / "ev3" / "calls.log").read_text().splitlines()) == 1
-    fresh = command(script, tmp_path, "ok", "8.5", reuse=False)
-    assert fresh(EV) == 8.5
+    rerun = command(script, tmp_path, "ok", '{{"value": 7.5}}', reuse=False)
+    assert rerun(EV) == 7.5
+    assert len((tmp_path / "ev3" / "calls.log").read_text().splitlines()) == 2
+
+
+def test_command_oracle_never_takes_the_result_of_another_command(tmp_path, script):
+    """A second study run into the same root (here: another argument list) finds the first
+    one's result: an error naming the folder, not the old load; the old file stays."""
+    first = command(script, tmp_path, "ok", "7.5")
+    assert first(EV) == 7.5
+    for reuse in (True, False):
+        other = command(script, tmp_path, "ok", "8.5", reuse=reuse)
+        value, err = call_oracle(other, EV)
+        assert value is None and "holds the result of another command" in err
+        assert "give this study a root of its own" in err
+    assert (tmp_path / "ev3" / "result.txt").read_text().strip() == "7.5"
+    assert len((tmp_path / "ev3" / "calls.log").read_text().splitlines()) == 1
+    # a placeholder typo is an error before any kept result is looked at
+    typo = CommandOracle([sys.executable, script, "ok", "{sede}", "{result}"], root=tmp_path)
+    value, err = call_oracle(typo, EV)
+    assert value is None and "placeholder 'sede'" in err
+    # a result no record names (a folder of an earlier pas) is taken, with a warning
+    (tmp_path / "ev3" / ".pas-command.json").unlink()
+    with pytest.warns(RuntimeWarning, match="a command it did not record"):
+        assert command(script, tmp_path, "ok", "8.5")(EV) == 7.5
 
 
 def test_command_oracle_checks_and_pickles(tmp_path, script):

@@ -17,8 +17,11 @@ from __future__ import annotations
 import json
 import math
 import os
+import shutil
 import subprocess
+import tempfile
 import time
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -26,7 +29,7 @@ import numpy as np
 from ._processes import OWN_SESSION, kill_group, try_lock
 from .answers import check_hf_answer, check_hf_value, check_target, lacks_target
 from .inputs import read_table
-from .workdirs import event_dir
+from .workdirs import RECORD, command_record, event_dir, read_record, write_record
 
 __all__ = ["OracleError", "OracleFailureLimit", "check_hf_value", "check_hf_answer",
            "lacks_target", "check_oracle", "call_oracle", "call_oracle_loads", "check_target",
@@ -260,9 +263,14 @@ class CommandOracle:
     env : dict, optional
         Extra environment variables.
     reuse : bool, default True
-        Take a valid result file left by an earlier run of the same event
+        Take a valid result file left by an earlier run of the same command
         (e.g. the driver was killed after the program finished) instead of
-        running it again.
+        running it again, with a warning that says so.  The argument list of
+        every run (and a digest of an episode's input files) is recorded in
+        its working directory (:mod:`pas.study.workdirs`): a result left by
+        another command — a second study run into the same ``root``, or a
+        command changed since — is an :class:`OracleError` naming the folder,
+        never taken, whatever ``reuse`` says.
 
     Notes
     -----
@@ -326,21 +334,42 @@ class CommandOracle:
         os.makedirs(workdir, exist_ok=True)
         result = os.path.join(workdir, self.result_name)
         lock = os.open(os.path.join(workdir, ".lock"), os.O_RDWR | os.O_CREAT, 0o644)
+        staged = None
         try:
             inherited = self._lock(lock, event)
-            if self.reuse:
-                value = self._read(result, missing_ok=True)
-                if _reusable(value):
-                    return value
+            staged, files = _staged_inputs(event, workdir)
+            cmd = self.command(event, workdir, files)
+            record = command_record(cmd, staged)
+            kept = self._read(result, missing_ok=True)
+            if _reusable(kept) and self._reuses(event, workdir, result, record):
+                return kept
             if os.path.exists(result):
                 os.remove(result)
-            # A design-wave episode (pas.waves.Episode) brings its own input files.
-            writer = getattr(event, "write_csv", None)
-            files = writer(workdir) if callable(writer) else None
-            self._run(self.command(event, workdir, files), workdir, (lock,) if inherited else ())
+            for name, path in (staged or {}).items():
+                os.replace(path, files[name])
+            write_record(workdir, record)
+            self._run(cmd, workdir, (lock,) if inherited else ())
             return self._read(result)
         finally:
             os.close(lock)
+            if staged:
+                shutil.rmtree(os.path.dirname(next(iter(staged.values()))), ignore_errors=True)
+
+    def _reuses(self, event, workdir, result, record) -> bool:
+        """Whether to take the valid ``result`` an earlier run left in ``workdir``: only one
+        of the same command (:mod:`pas.study.workdirs`), and only with ``reuse``."""
+        recorded = read_record(workdir)
+        if recorded is not None and recorded != record:
+            shown = " ".join(recorded.get("command", []))
+            raise OracleError(f"{workdir} holds the result of another command ({shown[:120]}, "
+                              f"recorded in its {RECORD}): give this study a root of its own, "
+                              "or delete that folder to run the event again")
+        if not self.reuse:
+            return False
+        how = "the same command" if recorded is not None else "a command it did not record"
+        warnings.warn(f"event {event.id}: took {result}, left by an earlier run of {how} "
+                      "(delete it to run the event again)", RuntimeWarning, stacklevel=3)
+        return True
 
     def _lock(self, fd, event) -> bool:
         """Wait for the event's lock; True when the program can inherit it (``flock``)."""
@@ -386,6 +415,17 @@ class CommandOracle:
             if missing_ok:
                 return None
             raise OracleError(f"{path}: {exc}") from None
+
+
+def _staged_inputs(event, workdir: str):
+    """A design-wave episode's input files (:class:`pas.waves.episode.Episode`), written into
+    a folder of their own in ``workdir`` until the program runs: ``(staged paths, their
+    paths in workdir)``, or ``(None, None)`` for an event without input files."""
+    writer = getattr(event, "write_csv", None)
+    if not callable(writer):
+        return None, None
+    staged = writer(tempfile.mkdtemp(prefix=".inputs-", dir=workdir))
+    return staged, {k: os.path.join(workdir, os.path.basename(v)) for k, v in staged.items()}
 
 
 def _last_line(path: str) -> str:
