@@ -253,7 +253,8 @@ def test_status_does_not_claim_convergence_beside_results_it_has_not_used(tmp_pa
     assert cli("study", "status", db) == 0
     text = capsys.readouterr().out
     assert "30 result(s) told since the last ask" in text
-    assert "open until the waiting results are used (with them: converged)" in text
+    assert ("undecided until the study uses the waiting results (with them it would be "
+            "converged)") in text
     assert "converged (at" not in text
     # once an ask has used them, the verdict is the study's own
     assert cli("study", "ask", db) == 0
@@ -310,3 +311,38 @@ def test_the_documented_study_file_creates_a_study(tmp_path, capsys):
         assert store.get("oracle")["command"][:2] == ["python", "cfd_event.py"]
         assert store.get("batch_size") == 2
     assert (s["eps1"], s["threshold"], s["max_hf"], s["strategy_settings"]["z"]) == (20.0, 12.0, 60, 10)
+
+
+def test_status_names_failed_events_and_ask_prints_what_it_asks_after_a_retry(tmp_path, capsys):
+    """A new user's reproduction: after 'pas study retry', 'ask -n 2' printed no event (the
+    events asked again had kept results) and status said '1 failed' without naming it."""
+    cfg = write_case(tmp_path)
+    db = str(tmp_path / "s.db")
+    assert cli("study", "create", db, "--config", cfg) == 0
+
+    def ask(n):
+        capsys.readouterr()
+        assert cli("study", "ask", db, "-n", str(n), "--format", "json") == 0
+        out, err = capsys.readouterr()
+        return (json.loads(out) if out.strip() else []), err
+
+    first, _ = ask(4)
+    for i, ev in enumerate(first):
+        value = ["--error", "mesh file missing"] if i == 1 else [str(hf_of(ev["lf"]))]
+        assert cli("study", "tell", db, str(ev["id"]), *value) == 0
+    for _ in range(2):
+        for ev in ask(2)[0]:
+            assert cli("study", "tell", db, str(ev["id"]), str(hf_of(ev["lf"]))) == 0
+    capsys.readouterr()
+    assert cli("study", "status", db) == 0
+    text = capsys.readouterr().out
+    assert (f"failed: {first[1]['id']} (mesh file missing) - left out of the fit; "
+            f"'pas study retry {db}' asks them again") in text
+    assert cli("study", "retry", db) == 0
+    capsys.readouterr()
+    assert cli("study", "status", db) == 0
+    text = capsys.readouterr().out
+    assert "failed:" not in text and "counted above, too few for a model yet" in text
+    again, err = ask(2)
+    assert len(again) == 2 and "took their kept result" in err
+    assert not {ev["id"] for ev in again} & {ev["id"] for ev in first}

@@ -202,22 +202,27 @@ def _ask(args) -> int:
     if args.n < 1:
         raise ValueError(f"-n must be at least 1, got {args.n}")
     store = StudyStore(args.study, create=False)
-    with store.transaction():
-        study = open_study(store)
-        initial = not study.state
-        events = study.ask(args.n)
-        if initial and len(events) < args.n:
-            events += study.ask(args.n - len(events))
-        kept = {r.idx for r in store.outstanding() if r.has_result}  # results a retry kept
-        reused = [ev for ev in events if ev.index in kept]
-        events = [ev for ev in events if ev.index not in kept]
-        if events:
-            store.mark_submitted(events)
+    events, reused = [], []
+    while len(events) < args.n:  # an event with a result a retry kept is told, not printed
+        with store.transaction():
+            study = open_study(store)
+            initial = not study.state
+            asked = study.ask(args.n - len(events))
+            if initial and len(asked) < args.n - len(events):
+                asked += study.ask(args.n - len(events) - len(asked))
+            kept = {r.idx for r in store.outstanding() if r.has_result}  # results a retry kept
+            fresh = [ev for ev in asked if ev.index not in kept]
+            if fresh:
+                store.mark_submitted(fresh)
+        events += fresh
+        again = [ev for ev in asked if ev.index in kept]
+        if not again or {ev.index for ev in again} & {ev.index for ev in reused}:
+            break  # nothing reused (the study asked what it could), or no progress
+        reused += again
     store.close()
     if reused:
-        print(f"{args.study}: {len(reused)} event(s) asked again after a retry have their kept "
-              f"result ({', '.join(str(ev.id) for ev in reused)}); the next ask uses it",
-              file=sys.stderr)
+        print(f"{args.study}: {len(reused)} event(s) asked again after a retry took their kept "
+              f"result ({', '.join(str(ev.id) for ev in reused)})", file=sys.stderr)
     if not events and not reused:
         print(f"{args.study}: nothing to ask ({_why_finished(study)})", file=sys.stderr)
         return 0

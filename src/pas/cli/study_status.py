@@ -38,6 +38,7 @@ def status(args) -> int:
         audit = {"replacements": store.replacements(), "dropped": store.dropped(),
                  "load_replacements": store.load_replacements()}
     pend = events[events["state"] == "pending"]
+    failed = events[events["state"] == "failed"]
     # a stored result covers the results the study used; waiting ones are left out of it
     left_out = len(waiting) if from_store else 0
     included = len(waiting) - left_out
@@ -53,7 +54,9 @@ def status(args) -> int:
             "finished": shown["finished"] if not waiting else None,
             "settings_changes": changes, "result_n_told": n_told, "result_stored": from_store,
             "pending": [{"id": r.event_id, "index": int(r.idx), "lf": r.lf, "d": r.d,
-                         "asked_at": r.asked_at} for r in pend.itertuples()]}
+                         "asked_at": r.asked_at} for r in pend.itertuples()],
+            "failed": [{"id": r.event_id, "index": int(r.idx), "error": r.error}
+                       for r in failed.itertuples()]}
     if args.events:
         info["events"] = events.drop(columns=["meta"]).to_dict(orient="records")
         info.update(audit)
@@ -98,8 +101,9 @@ def _print_status(info, counts_text, band_text, fitted, included, left_out,
     print(f"{counts_text}, pending {info['n_pending']}"
           + (f", budget {info['max_hf']}" if info["max_hf"] else ""))
     if included:
-        print(f"{included} result(s) told since the last ask: included below, not yet used "
-              f"by the study ('pas study ask' or 'pas study run' uses them)")
+        print(f"{included} result(s) told since the last ask: "
+              + ("included below" if fitted else "counted above, too few for a model yet")
+              + ", not yet used by the study ('pas study ask' or 'pas study run' uses them)")
     if left_out:
         print(f"{left_out} result(s) told since the last ask are not included below: this is "
               f"the stored result of the {info['result_n_told']} results the study has used "
@@ -112,11 +116,11 @@ def _print_status(info, counts_text, band_text, fitted, included, left_out,
         verdict = ("converged" + (f" (at {at} HF evaluations)" if at is not None else "")
                    if info["converged"] else "not converged")
         if included:
-            verdict = ("open until the waiting results are used (with them: "
-                       + ("converged" if info["converged_with_waiting"] else "not converged")
-                       + ")")
+            verdict = ("undecided until the study uses the waiting results (with them it "
+                       "would be " + ("converged" if info["converged_with_waiting"]
+                                     else "not converged") + ")")
         elif left_out:
-            verdict = "open until the waiting results are used"
+            verdict = "undecided until the study uses the waiting results"
         if info["eps1"] is not None:
             print(f"convergence: E_bar {_fmt(info['E_bar'])} (limit eps1 {info['eps1']:g}), COV "
                   f"{_fmt(info['COV'])} (limit eps2 {info['eps2']:g}): {verdict}")
@@ -128,6 +132,11 @@ def _print_status(info, counts_text, band_text, fitted, included, left_out,
     for ch in info["settings_changes"]:
         print(f"setting changed: {ch['key']} {ch['old']} -> {ch['new']} "
               f"(after {ch['n_told']} results, {ch['at']})")
+    if info["failed"]:
+        shown = [f"{f['id']} ({str(f['error'])[:80]})" for f in info["failed"][:5]]
+        more = len(info["failed"]) - len(shown)
+        print(f"failed: {'; '.join(shown)}" + (f"; and {more} more" if more > 0 else "")
+              + f" - left out of the fit; 'pas study retry {info['study']}' asks them again")
     if info["pending"]:
         print("pending:")
         for p in info["pending"]:
