@@ -86,6 +86,12 @@ def test_progress_line_of_a_precision_study():
     assert "eps1" not in line  # no eps1 rule to report
     assert precision_text({"halfwidth_sampling": 0.031}, 0.1) == \
         "sampling part ±3.1 % (target ±10 %)"
+    # a failed event refits nothing: its line says the last fit stands, not "no fit yet"
+    failed = {"row": 12, "event_id": "e8", "lf": 4.0, "status": "failed", "position": 3,
+              "error": "mesh missing"}
+    assert "no fit yet" in Progress.line(study, failed)
+    study.rows.append(row)
+    assert "no refit (the model of the last fit stands)" in Progress.line(study, failed)
 
 
 def test_status_and_set_of_a_precision_study(tmp_path, capsys):

@@ -85,7 +85,9 @@ class Progress:
             what = "HF 0 (false positive)"
         else:
             what = f"HF {row.get('hf'):.4g}"
-        model = "no fit yet"
+        model = ("no refit (the model of the last fit stands)"
+                 if any(_finite(r.get("mpm")) for r in study.rows if r is not row)
+                 else "no fit yet")
         if _finite(row.get("mpm")):
             fam = f" {row['family']}" if row.get("family") else ""
             model = (f"MPM {row['mpm']:.4g} (sampling band {_num(row.get('mpm_low'), '.4g')}–"
