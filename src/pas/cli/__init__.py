@@ -137,7 +137,9 @@ def _main(argv) -> int:
             return EXIT_BROKEN_PIPE
         except (ValueError, OSError, KeyError) as exc:
             msg = exc.args[0] if isinstance(exc, KeyError) and exc.args else exc
-            _say(f"{name}: error: {option_named(str(msg), parser, args.command)}")
+            if getattr(args, "study_command", None) != "create":  # its settings are a file's
+                msg = option_named(str(msg), parser, args.command)
+            _say(f"{name}: error: {msg}")
             return EXIT_BAD_INPUT
 
 
