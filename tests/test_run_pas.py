@@ -319,7 +319,8 @@ def test_a_study_stopped_by_its_budget_says_how_far_it_was_from_stopping(table_o
     assert np.isfinite(last["E_bar"]) and last["E_bar"] > 1e-6 * truth
     assert last["COV"] < 0.1  # only the measure over its limit is named
     assert res.summary().endswith(
-        f"NOT converged (last Ē {last['E_bar']:.3g} against ε1 {1e-6 * truth:.3g})")
+        f"NOT converged (last Ē {last['E_bar']:.3g} against ε1 {1e-6 * truth:.3g}); the "
+        "budget of 15 HF is spent")
     # stopped by its budget before the rule could stop, both measures within their limits
     early = pas.run_pas(lf, table_oracle(hf), n_waves=n_w, p_exp=p_exp, eps1=10.0 * truth,
                         seed=3, max_hf=5, strategy=no_band())

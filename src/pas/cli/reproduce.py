@@ -45,7 +45,7 @@ cases: 1a 1b (2nd-order crests), 2a 2b (hog/sag VBM), 3a 3b (green water), 4a 4b
 def add_parser(sub) -> None:
     """Register ``pas reproduce`` on the sub-command parser ``sub``."""
     p = command_parser(sub, "reproduce", "reproduce the paper's validation on synthetic analogues", __doc__, EPILOG)
-    p.add_argument("cases", nargs="*", metavar="CASE", help="case ids (1a ... 4b)")
+    p.add_argument("cases", nargs="*", metavar="CASE", help="case ids (1a ... 4b, 3a-hard ... 4b-hard)")
     p.add_argument("--all", action="store_true",
                    help="all twelve cases (eight paper-like, four -hard)")
     p.add_argument("--replications", type=int, default=1, metavar="N",

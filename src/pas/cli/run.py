@@ -74,7 +74,7 @@ examples:
       --n-waves 16364 --p-exp 2.55e-3 --eps1 0.1 --threshold 12 --out run1
 
   # stop once the design load is known to +-10 %, whatever its unit
-  pas run lf_peaks.csv --oracle table:basin.csv --n-waves 16364 --p-exp 2.55e-3 \
+  pas run lf_peaks.csv --oracle table:basin.csv --n-waves 16364 --p-exp 2.55e-3 \\
       --precision 10% --out run2
 
   # the same table with other column names, AS instead of PAS, JSON summary

@@ -112,7 +112,11 @@ def state(result) -> str:
     settings = result.settings or {}
     target = settings.get("precision")
     if target is None:
-        return "converged" if result.converged else f"NOT converged{paper_gap(result)}"
+        if result.converged:
+            return "converged"
+        spent = settings.get("max_hf") is not None and result.n_hf >= settings["max_hf"]
+        return (f"NOT converged{paper_gap(result)}"
+                + (f"; the budget of {settings['max_hf']} HF is spent" if spent else ""))
     width = relative_half_width(result.mpm, result.mpm_band)
     paper = settings.get("eps1") is not None
     max_hf = settings.get("max_hf")
