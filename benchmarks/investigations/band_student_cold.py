@@ -2,12 +2,15 @@
 
 Each known-truth study runs as the defaults have it (its own ε1 stop, budget
 ``--max-hf``); its final model band is then fitted again with Student-t's
-replicate fits started from the final fit only (``band.COLD_FAMILIES = ()``),
-from the same random numbers.  Per study: the U95 both ways (the sampling band
-widened to hold the model band), whether each holds the exact truth, the
-largest relative change of a band end and of a replicate MPM, how many of the
-50 replicate MPMs moved by more than 1e-6, and the band's CPU time both ways
-(one process).  Writes ``band_student_cold.csv``; prints per group and overall.
+replicate fits started from the final fit only (``band.COLD_FAMILIES = ()``), and
+once more started once from the final fit moved off the edges that trap a warm
+start (``band.STUDENT_RESTART``: ν's start that of the data, the location's gap
+at least e⁻⁴ of the span), from the same random numbers.  Per study and way:
+the U95 (the sampling band widened to hold the model band), whether it holds the
+exact truth, the largest relative change of a band end and of a replicate MPM
+against today's band, how many of the 50 replicate MPMs moved by more than 1e-6,
+and the band's CPU time (one process).  Writes ``band_student_cold.csv``;
+prints per group and overall.
 
 Run: python benchmarks/investigations/band_student_cold.py [N] [--types all] [--held-out]
      [--first 0] [--out pas-output/band-cold]
@@ -39,15 +42,17 @@ def final_bands(study):
     """``{label: (low, high, replicate MPMs, CPU s)}`` of the study's final model band with
     Student-t's cold start (as the study's result has it) and without."""
     out = {}
-    for label, cold in (("cold", ("student",)), ("warm", ())):
-        saved, band.COLD_FAMILIES = band.COLD_FAMILIES, cold
+    for label, cold, restart in (("cold", ("student",), False), ("warm", (), False),
+                                 ("restart", ("student",), True)):
+        saved = band.COLD_FAMILIES, band.STUDENT_RESTART
+        band.COLD_FAMILIES, band.STUDENT_RESTART = cold, restart
         try:
             rng = np.random.default_rng([study.seed, study.n_told, 1])  # precision.model_band's
             t = cpu_seconds()
             low, high, mpms = study.strategy.model_band(study.pairs(), study.lfset, rng, n_jobs=1)
             out[label] = (float(low), float(high), np.asarray(mpms, float), cpu_seconds() - t)
         finally:
-            band.COLD_FAMILIES = saved
+            band.COLD_FAMILIES, band.STUDENT_RESTART = saved
     return out
 
 
@@ -68,11 +73,13 @@ def one(name, replication, max_hf):
         lo, hi = union(res.mpm_band_sampling, (low, high))
         row |= {f"{label}_low": lo, f"{label}_high": hi, f"{label}_covered": lo <= truth <= hi,
                 f"{label}_cpu": cpu}
-    c, w = bands["cold"], bands["warm"]
-    row["band_end_change"] = float(max(abs(w[0] / c[0] - 1), abs(w[1] / c[1] - 1)))
-    change = np.abs(w[2] / c[2] - 1)
-    row["replicate_change"] = float(np.nanmax(change))
-    row["replicates_moved"] = int(np.sum(change > 1e-6))
+    c = bands["cold"]
+    for label, prefix in (("warm", ""), ("restart", "restart_")):
+        w = bands[label]
+        row[prefix + "band_end_change"] = float(max(abs(w[0] / c[0] - 1), abs(w[1] / c[1] - 1)))
+        change = np.abs(w[2] / c[2] - 1)
+        row[prefix + "replicate_change"] = float(np.nanmax(change))
+        row[prefix + "replicates_moved"] = int(np.sum(change > 1e-6))
     return row
 
 
@@ -89,28 +96,34 @@ def main(argv=None):
             t = time.perf_counter()
             rows.append(one(name, r, args.max_hf))
             x = rows[-1]
-            print(f"{name:38s} {r:3d} {x['n_hf']:4d} HF  covered cold/warm "
-                  f"{x['cold_covered']:d}/{x['warm_covered']:d}  band end change "
-                  f"{x['band_end_change']:.1e}  replicates moved {x['replicates_moved']:2d}  "
-                  f"CPU warm/cold {x['warm_cpu'] / x['cold_cpu']:.2f}  "
-                  f"({time.perf_counter() - t:.0f} s)", flush=True)
+            print(f"{name:38s} {r:3d} {x['n_hf']:4d} HF  covered cold/warm/restart "
+                  f"{x['cold_covered']:d}/{x['warm_covered']:d}/{x['restart_covered']:d}  band "
+                  f"end change warm {x['band_end_change']:.1e}, restart "
+                  f"{x['restart_band_end_change']:.1e}  replicates moved "
+                  f"{x['replicates_moved']:2d}/{x['restart_replicates_moved']:2d}  CPU "
+                  f"warm/cold {x['warm_cpu'] / x['cold_cpu']:.2f}, restart/cold "
+                  f"{x['restart_cpu'] / x['cold_cpu']:.2f}  ({time.perf_counter() - t:.0f} s)",
+                  flush=True)
             pd.DataFrame(rows).to_csv(out / "band_student_cold.csv", index=False)
     runs = pd.DataFrame(rows)
-    summary = runs.groupby("group").agg(
-        studies=("type", "size"), covered_cold=("cold_covered", "mean"),
-        covered_warm=("warm_covered", "mean"), worst_end_change=("band_end_change", "max"),
-        studies_any_moved=("replicates_moved", lambda m: int((m > 0).sum())),
-        cpu_ratio=("warm_cpu", "sum"))
-    summary["cpu_ratio"] /= runs.groupby("group")["cold_cpu"].sum()
-    print(summary.round(3).to_string())
-    print(f"\n{len(runs)} studies: U95 held the truth cold {runs['cold_covered'].sum()} / warm "
-          f"{runs['warm_covered'].sum()}; coverage changed in "
-          f"{int((runs['cold_covered'] != runs['warm_covered']).sum())}; band ends moved by more "
-          f"than 1e-6 in {int((runs['band_end_change'] > 1e-6).sum())}, by more than 1 % in "
-          f"{int((runs['band_end_change'] > 0.01).sum())}; replicate MPMs moved "
-          f"{int(runs['replicates_moved'].sum())} of {50 * len(runs)}; band CPU warm/cold "
-          f"{runs['warm_cpu'].sum() / runs['cold_cpu'].sum():.2f} in all")
-
+    for label, prefix in (("warm", ""), ("restart", "restart_")):
+        summary = runs.groupby("group").agg(
+            studies=("type", "size"), covered_cold=("cold_covered", "mean"),
+            covered=(f"{label}_covered", "mean"),
+            worst_end_change=(prefix + "band_end_change", "max"),
+            studies_any_moved=(prefix + "replicates_moved", lambda m: int((m > 0).sum())),
+            cpu_ratio=(f"{label}_cpu", "sum"))
+        summary["cpu_ratio"] /= runs.groupby("group")["cold_cpu"].sum()
+        print(f"-- {label} against cold (today's band)")
+        print(summary.round(3).to_string())
+        end = runs[prefix + "band_end_change"]
+        print(f"{len(runs)} studies: U95 held the truth cold {runs['cold_covered'].sum()} / "
+              f"{label} {runs[f'{label}_covered'].sum()}; coverage changed in "
+              f"{int((runs['cold_covered'] != runs[f'{label}_covered']).sum())}; band ends "
+              f"moved by more than 1e-6 in {int((end > 1e-6).sum())}, by more than 1 % in "
+              f"{int((end > 0.01).sum())} (largest {end.max():.1e}); replicate MPMs moved "
+              f"{int(runs[prefix + 'replicates_moved'].sum())} of {50 * len(runs)}; band CPU "
+              f"{label}/cold {runs[f'{label}_cpu'].sum() / runs['cold_cpu'].sum():.2f} in all\n")
 
 if __name__ == "__main__":
     main()

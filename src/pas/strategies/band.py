@@ -41,6 +41,12 @@ study's last fits and from the data (a cold start), as before (``benchmarks/timi
 COLD_FAMILIES = ("student",)
 """Families whose replicate fits also start from the data in a warm band (module docs)."""
 
+STUDENT_RESTART = False
+"""True: a batched band fits Student-t once per replicate, from the final fit with ν and
+the location moved off the edges that trap a warm start
+(:func:`pas.models.joint_starts.student_restart`), instead of from the final fit and from
+the data (:data:`COLD_FAMILIES`) (``benchmarks/investigations/band_student_cold.py``)."""
+
 BATCHED = True
 """A warm band's replicates are fitted together, each candidate to all of them at once
 (:mod:`pas.strategies.band_batch`); False: one replicate after another (module docs)."""
@@ -279,7 +285,9 @@ def _chunk_mpms(indices) -> list:
             with contextlib.suppress(ValueError, np.linalg.LinAlgError):
                 chunk[i] = Replicate(*replicates[i][:4], replicate_starts(
                     strategy, replicates[i][0], lfset, starts, plan[i][2]))
-    fits = batch_fits(strategy, chunk, COLD_FAMILIES, width)
+    restarted = ("student",) if STUDENT_RESTART else ()
+    fits = batch_fits(strategy, chunk, tuple(f for f in COLD_FAMILIES if f not in restarted),
+                      width, restarted)
     out = []
     for i in indices:
         try:

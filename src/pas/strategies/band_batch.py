@@ -15,6 +15,7 @@ import numpy as np
 
 from ..models.joint import HF_MARGINALS, best_per_family, starts_cold
 from ..models.joint_batch import fit_joint_batch
+from ..models.joint_starts import student_restart
 from .steps import FittedModel, joint_candidates
 
 __all__ = ["Replicate", "batch_fits", "fits_in_order", "replicate_model"]
@@ -36,12 +37,15 @@ def fits_in_order(strategy, starts) -> list:
     return [(f, m) for f in strategy.families for m in HF_MARGINALS if (f, m) in starts]
 
 
-def batch_fits(strategy, replicates: dict, cold_families, width: int) -> dict:
+def batch_fits(strategy, replicates: dict, cold_families, width: int,
+               restarted=()) -> dict:
     """Every replicate's joint fits by ``(family, marginal)``, each candidate fitted to all
     the ``replicates`` (by index, :class:`Replicate`) that keep it at once; None for a
     replicate one of whose fits failed (its ValueError), as a fit one after another fails.
 
-    ``cold_families`` also start from the data; ``width``: the padded number of
+    ``cold_families`` also start from the data; ``restarted`` families start from their
+    final fit moved off the edges that trap a warm start
+    (:func:`pas.models.joint_starts.student_restart`); ``width``: the padded number of
     distinct pairs (:func:`pas.models.joint_batch.weighted_pairs`), the same for
     every chunk so that a replicate's fit does not depend on the chunk it is in.
     """
@@ -54,7 +58,10 @@ def batch_fits(strategy, replicates: dict, cold_families, width: int) -> dict:
         rows = [i for i, rep in replicates.items() if (name, marginal) in rep[4]]
         samples = [(replicates[i][3][replicates[i][0].position], replicates[i][0].hf)
                    for i in rows]
-        out = fit_joint_batch(name, samples, [replicates[i][4][name, marginal].x for i in rows],
+        starts = [replicates[i][4][name, marginal].x for i in rows]
+        if name.partition("_")[0] in restarted:
+            starts = [student_restart(x, strategy.estimator.hf_location) for x in starts]
+        out = fit_joint_batch(name, samples, starts,
                               location=strategy.estimator.hf_location, marginal=marginal,
                               cold=starts_cold(cold_families, name), width=width,
                               memos=[memos.setdefault(i, {}) for i in rows])
