@@ -154,5 +154,6 @@ def format_properties(table: pd.DataFrame) -> str:
             "AIC family (gap)": f"{r['family']} ({r['aic_gap']:.0f})" if r["family"] else "–",
         })
     text = pd.DataFrame(rows).to_string(index=False)
-    return (text + "\n[paper values in brackets; paper: λ_L ≥ λ_U on cases 3–4 and "
+    brackets = "paper values in brackets; " if "[" in text else ""
+    return (text + f"\n[{brackets}paper: λ_L ≥ λ_U on cases 3–4 and "
             f"families {PAPER_FAMILY} (App. F); misses = HF 0 in the LF pool]")
