@@ -41,7 +41,7 @@ def write_script(folder) -> str:
 def campaign(db, root, log, script, batch_size=1):
     """Run (or resume) the campaign stored in ``db``; returns the result."""
     import pas
-    from pas.study.oracles import CommandOracle
+    from pas.study.command_oracle import CommandOracle
 
     oracle = CommandOracle([sys.executable, script, "{id}", "{index}", "{lf}", "{result}", log],
                            root=root, timeout=60)

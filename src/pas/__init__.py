@@ -31,7 +31,7 @@ _EXPORTS = {
     "AS": "strategies.as_", "PAS": "strategies.pas",
     "ConditionalLikelihood": "strategies.estimators", "SelectedSample": "strategies.estimators",
     "ModelBand": "strategies.band", "Stopping": "study.settings", "Budget": "study.settings",
-    "CommandOracle": "study.oracles", "OracleFailureLimit": "study.oracles",
+    "CommandOracle": "study.command_oracle", "OracleFailureLimit": "study.oracles",
     "TableOracle": "study.oracles", "ScreeningResult": "study.result", "Study": "study.study",
     "StudyStore": "study.store", "refit": "study.refit",
     "run_long_term": "longterm.runner", "LongTermResult": "longterm.result",

@@ -9,13 +9,8 @@ import pandas as pd
 import pytest
 
 from pas.strategies.screening import Event
-from pas.study.oracles import (
-    CommandOracle,
-    OracleError,
-    TableOracle,
-    call_oracle,
-    parse_result,
-)
+from pas.study.command_oracle import CommandOracle, parse_result
+from pas.study.oracles import OracleError, TableOracle, call_oracle
 
 EV = Event(index=3, id="ev3", lf=2.5, d=0.01, meta={"seed": 11, "t_start": 120.0})
 
@@ -26,6 +21,10 @@ with open("calls.log", "a") as f:
     f.write(" ".join(sys.argv[1:]) + "\n")
 if mode == "fail":
     sys.stderr.write("solver diverged at t=12.5\n")
+    sys.exit(3)
+if mode == "partial":  # a running peak written, then the solver fails
+    with open(out, "w") as f:
+        f.write(value)
     sys.exit(3)
 if mode == "sleep":
     import time; time.sleep(30)
@@ -127,6 +126,10 @@ def test_command_oracle_never_takes_the_result_of_another_command(tmp_path, scri
     typo = CommandOracle([sys.executable, script, "ok", "{sede}", "{result}"], root=tmp_path)
     value, err = call_oracle(typo, EV)
     assert value is None and "placeholder 'sede'" in err
+    # a format spec is a one-line error: the fields are text
+    spec = CommandOracle([sys.executable, script, "ok", "{lf:.3f}", "{result}"], root=tmp_path)
+    value, err = call_oracle(spec, EV)
+    assert value is None and "write {lf}, not {lf:.3f}" in err
     # a result no record names (a folder of an earlier pas) is taken, with a warning
     (tmp_path / "ev3" / ".pas-command.json").unlink()
     with pytest.warns(RuntimeWarning, match="a command it did not record"):
@@ -174,3 +177,44 @@ def test_events_of_two_sea_states_with_one_id_run_in_two_folders(tmp_path):
         "/", __import__("os").sep)
     oracle = CommandOracle([sys.executable, "cfd.py", "{sea_state}", "{id}"], root=tmp_path)
     assert oracle.command(a, "w")[-2:] == ["Hs 2 m", "5"]
+
+
+def test_the_result_a_failed_run_left_is_not_reused(tmp_path, script):
+    """A solver that writes its running peak and then fails (or times out) leaves a valid
+    file: a retry runs the program again instead of taking it."""
+    partial = command(script, tmp_path, "partial", "1.0")
+    value, err = call_oracle(partial, EV)
+    assert value is None and "exited with code 3" in err
+    value, err = call_oracle(partial, EV)
+    assert value is None and "exited with code 3" in err
+    assert len((tmp_path / "ev3" / "calls.log").read_text().splitlines()) == 2
+
+
+def test_a_moved_campaign_folder_reuses_its_results(tmp_path):
+    """The record keeps the command as given, the folders as placeholders: a campaign
+    folder moved elsewhere (a killed driver resumed there) takes its kept results."""
+    first = tmp_path / "A"
+    first.mkdir()
+    (first / "hf.py").write_text(SCRIPT)
+    oracle = CommandOracle([sys.executable, "hf.py", "ok", "{lf}", "{result}"], root="runs",
+                           cwd=first)
+    assert oracle(EV) == 2.5
+    moved = tmp_path / "B"
+    first.rename(moved)
+    again = CommandOracle([sys.executable, "hf.py", "ok", "{lf}", "{result}"], root="runs",
+                          cwd=moved)
+    with pytest.warns(RuntimeWarning, match="of the same command"):
+        assert again(EV) == 2.5
+    assert len((moved / "runs" / "ev3" / "calls.log").read_text().splitlines()) == 1
+
+
+def test_event_meta_is_plain_json_data_before_and_after_a_store():
+    """A NaN meta value reached the command as 'nan' in the first run and as 'None' once
+    stored and resumed (the store keeps JSON), so a resumed study refused its own result."""
+    from pas.strategies.screening import LFSet
+
+    lf = np.linspace(1.0, 3.0, 20)
+    meta = [{"gap": np.nan, "seed": np.int64(i), "t0": np.float32(0.5)} for i in range(20)]
+    ev = LFSet(lf, n_waves=20, p_exp=0.1, meta=meta).event(0)
+    assert ev.meta == {"gap": None, "seed": 19, "t0": 0.5}
+    assert type(ev.meta["seed"]) is int

@@ -34,7 +34,8 @@ except ImportError:
     has_fcntl = False
 import pas
 from pas.strategies.screening import Event
-from pas.study.oracles import CommandOracle, OracleError
+from pas.study.command_oracle import CommandOracle
+from pas.study.oracles import OracleError
 
 write_hf = "import sys; open(sys.argv[2], 'w').write(repr(1.2 * float(sys.argv[1]) ** 1.1))"
 hf = [sys.executable, "-c", write_hf, "{lf}", "{result}"]

@@ -21,7 +21,7 @@ file (a 1-D array, or a structured array with named columns).  The oracle
 ``command:ARGS``
     An external program per event (CFD), given as an argument list split
     like a shell would split it but never run through a shell:
-    :class:`pas.study.oracles.CommandOracle` with placeholders ``{id}``,
+    :class:`pas.study.command_oracle.CommandOracle` with placeholders ``{id}``,
     ``{index}``, ``{lf}``, ``{d}``, ``{workdir}``, ``{result}`` and the
     ``--meta-columns``, and ``{cwd}``, the folder the study was first run
     from; each event runs in ``OUT/hf-runs/<id>/``, and the program and the

@@ -171,7 +171,8 @@ def _check_oracle(spec, event, config) -> None:
     """Build the ``[oracle]`` and, for a command, fill its placeholders for ``event``: a typo
     (``{sede}``) is an error now, not a failure of every event in ``pas study run``."""
     from ..study.oracle_spec import oracle_from_spec
-    from ..study.oracles import CommandOracle, OracleError
+    from ..study.command_oracle import CommandOracle
+    from ..study.oracles import OracleError
 
     if not (isinstance(spec, dict) and "command" in spec):
         return  # a table may not exist yet, a python oracle is not imported before its run

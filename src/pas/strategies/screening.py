@@ -19,6 +19,7 @@ from .._support.checks import (
     check_peaks,
     check_positive_int,
 )
+from .._support.strict_json import json_data
 from ..stats.exceedance import exceedance_probabilities
 
 __all__ = ["Event", "LFSet", "peaks_over_threshold", "check_n_waves", "N_WAVES_CONVENTIONS"]
@@ -44,7 +45,9 @@ class Event:
     d : float
         Its LF exceedance probability ``k / n_w``.
     meta : dict
-        Whatever the user attached to the event (seed, time window, ...).
+        Whatever the user attached to the event (seed, time window, ...), as plain JSON
+        data — numpy scalars as numbers, NaN as None — the same before and after the
+        study is stored and resumed.
     sea_state : str, optional
         The sea state the event belongs to in a long-term analysis
         (:func:`pas.run_long_term`); None for a single-sea-state study.
@@ -199,7 +202,7 @@ class LFSet:
             id=self._ids[i] if self._ids is not None else i,
             lf=float(self.lf[position]),
             d=float(self.d[position]),
-            meta=dict(self._meta[i]) if self._meta is not None else {},
+            meta=json_data(dict(self._meta[i])) if self._meta is not None else {},
             sea_state=self.sea_state,
         )
 

@@ -10,7 +10,7 @@ from __future__ import annotations
 from .._support.lazy import lazy_exports
 
 _EXPORTS = {
-    "CommandOracle": "oracles", "OracleError": "oracles", "OracleFailureLimit": "oracles",
+    "CommandOracle": "command_oracle", "OracleError": "oracles", "OracleFailureLimit": "oracles",
     "TableOracle": "oracles", "check_hf_value": "oracles", "ScreeningResult": "result",
     "EventState": "state", "StoreError": "store", "StudyStore": "store", "Study": "study",
     "open_study": "resume", "refit": "refit", "check_hf_answer": "answers",

@@ -1,6 +1,6 @@
 """Process calls that exist on POSIX only, each with its fallback elsewhere (Windows).
 
-:class:`~pas.study.oracles.CommandOracle` locks an event's folder, starts its
+:class:`~pas.study.command_oracle.CommandOracle` locks an event's folder, starts its
 program where Ctrl-C does not reach it and kills it on a time-out.  ``fcntl``,
 ``os.setsid`` and ``os.killpg`` are looked up when used, so ``import pas`` and
 every study run where they do not exist.

@@ -54,7 +54,7 @@ def optimize(study, oracle, *, batch_size: int = 1, executor: Executor | None = 
         The study, with or without a store (:mod:`pas.study.store`).
     oracle : callable
         ``oracle(event) -> float``; must be picklable for a process pool
-        (the oracles of :mod:`pas.study.oracles` are).
+        (the table and command oracles are).
     batch_size : int, default 1
         Events per ask (``q``); all of a batch run concurrently.
     executor : concurrent.futures.Executor, optional
@@ -114,7 +114,7 @@ def _abandon(pool: ProcessPoolExecutor) -> None:
     """Stop our own process pool without waiting for running oracle calls (Ctrl-C, errors).
 
     Their events stay pending in the store and are resubmitted on resume; a
-    :class:`~pas.study.oracles.CommandOracle` program runs in its own session
+    :class:`~pas.study.command_oracle.CommandOracle` program runs in its own session
     and survives its worker, and the resumed call waits for it and reuses
     its result.
     """
@@ -151,7 +151,8 @@ def _check_picklable(oracle) -> None:
         pickle.dumps(oracle)
     except Exception as exc:
         raise ValueError(f"oracle must be picklable to run in a process pool (use a module-level "
-                         f"function or a pas.study.oracles oracle, not a lambda): {exc}") from None
+                         f"function, pas.TableOracle or pas.CommandOracle, not a lambda): "
+                         f"{exc}") from None
 
 
 class _Loop:

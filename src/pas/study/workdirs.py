@@ -1,6 +1,6 @@
 """Working directories of HF events: one folder per event, and the command that ran there.
 
-:class:`~pas.study.oracles.CommandOracle` runs each event in ``root/<name>``
+:class:`~pas.study.command_oracle.CommandOracle` runs each event in ``root/<name>``
 and reuses a result file it finds there, so two events must never share a
 name: an id that is not a safe file name gets its index appended, and an
 event of a long-term analysis (:mod:`pas.longterm`, where ids repeat across

@@ -49,7 +49,7 @@ class Episode:
         Position in a ladder of levels.
 
     An episode also answers to ``id``, ``index``, ``lf`` (the target), ``d``
-    (the level) and ``meta``, so :class:`~pas.study.oracles.CommandOracle`
+    (the level) and ``meta``, so :class:`~pas.study.command_oracle.CommandOracle`
     can run one; it then writes :meth:`write_csv` into the run's folder and
     fills in ``{episode}`` and ``{components}``.
     """

@@ -1,0 +1,338 @@
+"""The command oracle: an external program per HF event, in a working directory of its own.
+
+:class:`CommandOracle` fills the event's fields into an argument list, runs the
+program in ``root/<event>`` (:mod:`pas.study.workdirs`), never via a shell, and
+reads the HF peak it writes to ``{result}`` (:func:`parse_result`).  The folder
+records the command (:func:`pas.study.workdirs.command_record`), so a result is
+reused only for the same one.  Relative paths in the command are files of the
+folder the campaign is started from (:func:`resolve_paths`).
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import shutil
+import subprocess
+import tempfile
+import time
+import warnings
+
+import numpy as np
+
+from ._processes import OWN_SESSION, kill_group, try_lock
+from .oracles import OracleError
+from .workdirs import command_record, event_dir, read_record, write_record
+
+__all__ = ["CommandOracle", "parse_result", "resolve_paths"]
+
+
+def parse_result(text: str):
+    """An HF answer from a result file: a number, a JSON number or ``{"value": x}``,
+    or several named loads as a JSON object ``{"deck_force": 812.0, "panel_p3": 41.2}``.
+
+    A JSON object with the one key ``value`` is that number; any other object is
+    a mapping of named loads, checked by :func:`check_hf_answer`.
+    """
+    text = text.strip()
+    try:
+        return float(text)
+    except ValueError:
+        pass
+    try:
+        obj = json.loads(text)
+    except ValueError:
+        obj = None
+    if isinstance(obj, dict) and list(obj) == ["value"]:
+        obj = obj["value"]
+    if isinstance(obj, dict) and obj:
+        return obj
+    if isinstance(obj, (int, float)) and not isinstance(obj, bool):
+        return float(obj)
+    raise OracleError(f"result file holds {text[:60]!r}, not a number or a JSON object of "
+                      "named loads")
+
+
+def _reusable(answer) -> bool:
+    """True for a result left by an earlier run that may be taken instead of running again."""
+    return isinstance(answer, dict) or (answer is not None and np.isfinite(answer) and answer >= 0)
+
+
+def resolve_paths(args, cwd: str) -> list[str]:
+    """``args`` with the relative paths that name something in ``cwd`` made absolute.
+
+    The rule of :class:`CommandOracle`: the program (``args[0]``) is resolved
+    when it contains a directory separator (``./cfd.sh``, ``bin/cfd``) or
+    names a file in ``cwd``; a bare name otherwise (``python``) is left to
+    the ``PATH``.  A later argument is resolved when it names an existing
+    file or directory relative to ``cwd`` (``cfd_event.py``, ``mesh/``).
+    Absolute paths, ``.`` and ``..``, options (``-x``, ``--out=f``) and
+    arguments with a placeholder are left as they are (write
+    ``{cwd}/case.json`` to be explicit).
+
+    Examples
+    --------
+    >>> resolve_paths(["python", "./missing.py", "--lf", "{lf}"], "/campaign")
+    ['python', './missing.py', '--lf', '{lf}']
+    """
+    def rel(a: str) -> bool:
+        return bool(a) and "{" not in a and not os.path.isabs(a) and not a.startswith("-") \
+            and os.path.normpath(a) not in (".", "..")
+
+    def here(a: str) -> str:
+        return os.path.normpath(os.path.join(cwd, a))
+
+    program, rest = args[0], list(args[1:])
+    seps = tuple(s for s in (os.sep, os.altsep) if s)
+    if rel(program) and (any(s in program for s in seps) or os.path.isfile(here(program))):
+        program = here(program)
+    return [program] + [here(a) if rel(a) and os.path.exists(here(a)) else a for a in rest]
+
+
+class CommandOracle:
+    """Run an external program per event (a CFD case, a post-processor), never via a shell.
+
+    Parameters
+    ----------
+    args : sequence of str
+        Argument-list template, e.g. ``["python", "cfd.py", "--event", "{id}",
+        "--lf", "{lf}", "--out", "{result}"]``.  Placeholders: ``{id}``,
+        ``{index}``, ``{lf}``, ``{d}``, ``{sea_state}`` (long-term analysis),
+        ``{workdir}``, ``{result}``,
+        ``{cwd}`` and every key of the event's ``meta`` (``{seed}``,
+        ``{t_start}`` …).  For a design-wave
+        :class:`~pas.waves.episode.Episode` (:func:`pas.run_rcw`) also
+        ``{episode}`` and ``{components}``: CSV files of the episode's time
+        series and wave components, written into the working directory, and
+        its ``{level}``, ``{target}`` and ``{t0}``.
+    root : str or os.PathLike
+        Each event runs in its own working directory ``root/<event id>``
+        (``root/<sea state>/<event id>`` in a long-term analysis), with
+        ``stdout.log`` and ``stderr.log``; relative to ``cwd``.
+    cwd : str or os.PathLike, optional
+        The directory the campaign is started from (default: the current
+        one when the oracle is made): relative paths in ``args`` and
+        ``root`` mean paths there, not in the working directory
+        (:func:`resolve_paths` says which arguments are taken as paths).
+        It is stored in the oracle, so a Dask worker or a resumed run in
+        another folder runs the same files; ``{cwd}`` gives it.
+    timeout : float, optional
+        Seconds before the program (and its process group) is killed.
+    result_name : str, default "result.txt"
+        File the program writes its HF peak to (plain number, JSON number or
+        ``{"value": x}``, or a JSON object of named loads, :func:`parse_result`),
+        relative to the working directory.
+    env : dict, optional
+        Extra environment variables.
+    reuse : bool, default True
+        Take a valid result file left by an earlier run of the same command
+        (e.g. the driver was killed after the program finished) instead of
+        running it again, with a warning that says so.  The argument list of
+        every run (and a digest of an episode's input files) is recorded in
+        its working directory (:mod:`pas.study.workdirs`): a result left by
+        another command — a second study run into the same ``root``, or a
+        command changed since — is an :class:`OracleError` naming the folder,
+        never taken, whatever ``reuse`` says.
+
+    Notes
+    -----
+    A non-zero exit status, a time-out, a missing or unreadable result file
+    raise :class:`OracleError` (recorded as a failed event, never as 0).
+    While the program runs it holds an ``flock`` on ``root/<id>/.lock``
+    (inherited by the program), so a resumed driver waits for a program
+    orphaned by a killed driver and reuses its result instead of starting a
+    second copy.  The program runs in a session (POSIX) or process group
+    (Windows) of its own, so Ctrl-C in the driver does not stop it.  Where
+    ``fcntl`` is missing (Windows) the lock is an ``msvcrt`` lock held by
+    the driver only, so it does not cover an orphaned program.
+    """
+
+    def __init__(self, args, *, root, cwd=None, timeout: float | None = None,
+                 result_name: str = "result.txt", env: dict | None = None, reuse: bool = True):
+        if isinstance(args, (str, bytes)) or not all(isinstance(a, str) for a in args) or not args:
+            raise ValueError("args must be a non-empty list of strings (an argument list, "
+                             "not a shell command line)")
+        if timeout is not None and not (isinstance(timeout, (int, float)) and timeout > 0):
+            raise ValueError(f"timeout must be a positive number of seconds, got {timeout!r}")
+        if not isinstance(result_name, str) or not result_name or os.path.isabs(result_name):
+            raise ValueError(f"result_name must be a relative file name, got {result_name!r}")
+        self.cwd = os.path.abspath(os.getcwd() if cwd is None else os.fspath(cwd))
+        if not os.path.isdir(self.cwd):
+            raise ValueError(f"cwd: {self.cwd} is not a directory (give the folder the "
+                             "campaign's files are in)")
+        self.template = list(args)
+        self.args = resolve_paths(self.template, self.cwd)
+        self.root = os.path.normpath(os.path.join(self.cwd, os.fspath(root)))
+        self.timeout = None if timeout is None else float(timeout)
+        self.result_name = result_name
+        self.env = dict(env or {})
+        self.reuse = bool(reuse)
+
+    def __repr__(self) -> str:
+        return f"CommandOracle({self.args!r}, root={self.root!r}, cwd={self.cwd!r})"
+
+    def with_cwd(self, cwd) -> CommandOracle:
+        """The same oracle with its relative paths resolved against ``cwd`` (``root`` kept)."""
+        return CommandOracle(self.template, root=self.root, cwd=cwd, timeout=self.timeout,
+                             result_name=self.result_name, env=self.env, reuse=self.reuse)
+
+    def command(self, event, workdir: str, files: dict | None = None) -> list[str]:
+        """The argument list for ``event`` (``files``: extra placeholders, e.g. an episode's)."""
+        return _filled(self.args, event, files, workdir=workdir, cwd=self.cwd,
+                       result=os.path.join(workdir, self.result_name))
+
+    def recorded_command(self, event, files: dict | None = None) -> list[str]:
+        """The command as an event's folder records it (:mod:`pas.study.workdirs`): the
+        argument list as given, the event's fields filled in and the folders left as
+        ``{workdir}``, ``{cwd}`` and ``{result}``, so that a campaign folder moved
+        elsewhere still matches its records."""
+        inside = {k: "{workdir}/" + os.path.basename(v) for k, v in (files or {}).items()}
+        return _filled(self.template, event, inside, workdir="{workdir}", cwd="{cwd}",
+                       result="{result}")
+
+    def __call__(self, event) -> float:
+        workdir = os.path.join(self.root, event_dir(event))
+        os.makedirs(workdir, exist_ok=True)
+        result = os.path.join(workdir, self.result_name)
+        lock = os.open(os.path.join(workdir, ".lock"), os.O_RDWR | os.O_CREAT, 0o644)
+        staged = None
+        try:
+            inherited = self._lock(lock, event)
+            staged, files = _staged_inputs(event, workdir)
+            cmd = self.command(event, workdir, files)
+            record = command_record(self.recorded_command(event, files), staged)
+            kept = self._read(result, missing_ok=True)
+            if _reusable(kept) and self._reuses(event, workdir, result, record):
+                return kept
+            if os.path.exists(result):
+                os.remove(result)
+            for name, path in (staged or {}).items():
+                os.replace(path, files[name])
+            write_record(workdir, record)
+            try:
+                self._run(cmd, workdir, (lock,) if inherited else ())
+                return self._read(result)
+            except OracleError:  # what a failed run wrote is no result to reuse
+                write_record(workdir, {**record, "failed": True})
+                raise
+        finally:
+            os.close(lock)
+            if staged:
+                shutil.rmtree(os.path.dirname(next(iter(staged.values()))), ignore_errors=True)
+
+    def _reuses(self, event, workdir, result, record) -> bool:
+        """Whether to take the valid ``result`` an earlier run left in ``workdir``: only one
+        of the same command that did not fail (:mod:`pas.study.workdirs`), only with
+        ``reuse``; another command's result is an error."""
+        recorded = read_record(workdir)
+        if recorded is not None and recorded.pop("failed", False):
+            return False
+        if recorded is not None and recorded != record:
+            raise OracleError(f"{workdir} holds the result of another command "
+                              f"({_difference(recorded, record)}): give this study a root of "
+                              "its own, or delete that folder to run the event again")
+        if not self.reuse:
+            return False
+        how = "the same command" if recorded is not None else "a command it did not record"
+        warnings.warn(f"event {event.id}: took {result}, left by an earlier run of {how} "
+                      "(delete it to run the event again)", RuntimeWarning, stacklevel=3)
+        return True
+
+    def _lock(self, fd, event) -> bool:
+        """Wait for the event's lock; True when the program can inherit it (``flock``)."""
+        deadline = None if self.timeout is None else time.monotonic() + self.timeout
+        while (taken := try_lock(fd)) is False:
+            if deadline is not None and time.monotonic() > deadline:
+                raise OracleError(f"event {event.id}: another run of it still holds "
+                                  f"{self.root}/.../.lock after {self.timeout:g} s")
+            time.sleep(0.05)
+        return taken == "flock"
+
+    def _run(self, cmd, workdir, pass_fds) -> None:
+        env = {**os.environ, **{str(k): str(v) for k, v in self.env.items()}}
+        with open(os.path.join(workdir, "stdout.log"), "wb") as out, \
+                open(os.path.join(workdir, "stderr.log"), "wb") as err:
+            try:
+                proc = subprocess.Popen(cmd, cwd=workdir, env=env, stdin=subprocess.DEVNULL,
+                                        stdout=out, stderr=err, pass_fds=pass_fds,
+                                        **OWN_SESSION)
+            except OSError as exc:
+                raise OracleError(f"cannot start {cmd[0]!r}: {exc}") from None
+            try:
+                code = proc.wait(timeout=self.timeout)
+            except subprocess.TimeoutExpired:
+                kill_group(proc)
+                proc.wait()
+                raise OracleError(f"{cmd[0]} timed out after {self.timeout:g} s") from None
+        if code != 0:
+            tail = _last_line(os.path.join(workdir, "stderr.log"))
+            raise OracleError(f"{os.path.basename(cmd[0])} exited with code {code}"
+                              + (f": {tail}" if tail else ""))
+
+    def _read(self, path, *, missing_ok=False):
+        if not os.path.exists(path):
+            if missing_ok:
+                return None
+            raise OracleError(f"the program wrote no result file {path}")
+        with open(path, encoding="utf-8", errors="replace") as f:
+            text = f.read()
+        try:
+            return parse_result(text)
+        except OracleError as exc:
+            if missing_ok:
+                return None
+            raise OracleError(f"{path}: {exc}") from None
+
+
+def _filled(args, event, files, **folders) -> list[str]:
+    """``args`` with ``event``'s fields, its meta, ``files`` and ``folders`` filled in."""
+    fields = {str(k): v for k, v in event.meta.items()}
+    fields.update(files or {})
+    if getattr(event, "sea_state", None) is not None:  # else a meta key of that name
+        fields["sea_state"] = event.sea_state
+    fields.update(id=event.id, index=event.index, lf=repr(float(event.lf)),
+                  d=repr(float(event.d)), **folders)
+    try:
+        return [a.format_map(fields) for a in args]
+    except (KeyError, IndexError) as exc:
+        raise OracleError(f"args: placeholder {exc} is neither an event field nor in its "
+                          "meta") from None
+    except ValueError as exc:  # e.g. {lf:.3f}: the fields are text
+        raise OracleError(f"args: {exc} (the fields are filled in as text: write {{lf}}, "
+                          "not {lf:.3f})") from None
+
+
+def _difference(recorded: dict, record: dict) -> str:
+    """The first argument (or input file) in which two records differ, for a message."""
+    old, new = recorded.get("command", []), record["command"]
+    for i, (a, b) in enumerate(zip(old, new)):
+        if a != b:
+            return f"argument {i + 1} was {a[:60]!r}, now {b[:60]!r}"
+    if len(old) != len(new):
+        return f"{len(old)} arguments then, {len(new)} now"
+    return "its input files differ"
+
+
+def _staged_inputs(event, workdir: str):
+    """A design-wave episode's input files (:class:`pas.waves.episode.Episode`), written into
+    a folder of their own in ``workdir`` until the program runs: ``(staged paths, their
+    paths in workdir)``, or ``(None, None)`` for an event without input files."""
+    writer = getattr(event, "write_csv", None)
+    if not callable(writer):
+        return None, None
+    folder = tempfile.mkdtemp(prefix=".inputs-", dir=workdir)
+    try:
+        staged = writer(folder)
+    except BaseException:
+        shutil.rmtree(folder, ignore_errors=True)
+        raise
+    return staged, {k: os.path.join(workdir, os.path.basename(v)) for k, v in staged.items()}
+
+
+def _last_line(path: str) -> str:
+    try:
+        with open(path, "rb") as f:
+            lines = f.read()[-2000:].decode(errors="replace").strip().splitlines()
+    except OSError:
+        return ""
+    return lines[-1][:200] if lines else ""
