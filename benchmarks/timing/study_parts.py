@@ -22,7 +22,9 @@ time, the forked band workers' included; wall time on a shared machine):
   cold, the families that can win each replicate) against each candidate
   fitted to all replicates at once (``band.BATCHED``), on 1 and 2 cores, the
   band ends and the largest change of a replicate MPM; fitted together, Student-t's
-  ν derivative by a difference (old) vs the t quantiles' (``joint_batch.IMPLICIT_NU``);
+  ν derivative by a difference (old) vs the t quantiles' (``joint_batch.IMPLICIT_NU``),
+  and Student-t started warm and cold vs once from its restarted final fit
+  (``band.STUDENT_RESTART``);
 * ``driver``: the loop's fits by ``scipy.optimize.minimize`` (old) vs ``pas.models.lbfgsb``;
 * ``long``: one iteration at n = 15 k / 150 k / 1.5 M (default families,
   Gaussian, Student-t) drawing all ``z × n`` values and sorting them (old,
@@ -254,6 +256,15 @@ def part_band(max_hf):
               f"{new[2][0] / diff[2][0] - 1:+.1e}, {new[2][1] / diff[2][1] - 1:+.1e}; replicate "
               f"MPMs: largest relative change {change.max():.1e}")
         rows["new 1 core, ν by difference"] = diff
+        with module_setting("pas.strategies.band", "STUDENT_RESTART", True):
+            restart = band_seconds(study, rng, 1)
+        change = np.abs(restart[3] / new[3] - 1)
+        print(f"  {m:3d} pairs, Student-t restarted once instead of warm + cold: "
+              f"{restart[0]:5.2f} s wall, {restart[1]:5.2f} s CPU; restart / warm + cold CPU "
+              f"{restart[1] / new[1]:.2f}; band ends {restart[2][0] / new[2][0] - 1:+.1e}, "
+              f"{restart[2][1] / new[2][1] - 1:+.1e}; replicate MPMs: largest relative change "
+              f"{change.max():.1e}")
+        rows["new 1 core, Student-t restarted"] = restart
         out[m] = {k: [v[0], v[1], list(v[2])] for k, v in rows.items()}
     return out
 

@@ -45,7 +45,10 @@ STUDENT_RESTART = False
 """True: a batched band fits Student-t once per replicate, from the final fit with ν and
 the location moved off the edges that trap a warm start
 (:func:`pas.models.joint_starts.student_restart`), instead of from the final fit and from
-the data (:data:`COLD_FAMILIES`) (``benchmarks/investigations/band_student_cold.py``)."""
+the data (:data:`COLD_FAMILIES`).  On 67 known-truth studies: 0.80 of the band's CPU, the
+same coverage, band ends within 0.6 % but one study's by 4.8 % (an optimum with ν at its
+bound, which only the warm start keeps), so it stays off
+(``benchmarks/investigations/band_student_cold.py``, ``docs/explanation/model-band.md``)."""
 
 BATCHED = True
 """A warm band's replicates are fitted together, each candidate to all of them at once
