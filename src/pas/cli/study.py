@@ -51,7 +51,7 @@ from pathlib import Path
 
 from ._parsers import command_parser
 from ._stopping_options import precision_option
-from .study_config import load_config, load_peaks, study_objects
+from .study_config import check_oracle_command, load_config, load_peaks, study_objects
 from .study_loads import add_parsers as add_load_parsers
 from .study_loads import refit_command, tell_loads
 
@@ -152,7 +152,7 @@ def _create(args) -> int:
                            n_waves=cfg["n_waves"], p_exp=cfg["p_exp"], store=args.study,
                            **kw, **objects)
         if "oracle" in cfg:
-            _check_oracle(cfg["oracle"], study.lfset.event(0), args.config)
+            check_oracle_command(cfg["oracle"], study.lfset.event(0), args.config)
     except BaseException:
         for suffix in ("", "-wal", "-shm"):
             if os.path.exists(args.study + suffix):
@@ -165,28 +165,6 @@ def _create(args) -> int:
     print(f"created {args.study}: {study.strategy.name.upper()} on {study.lfset.n} LF peaks "
           f"(seed {study.seed}); next: pas study ask {args.study}")
     return 0
-
-
-def _check_oracle(spec, event, config) -> None:
-    """Build the ``[oracle]`` and, for a command, fill its placeholders for ``event``: a typo
-    (``{sede}``) is an error now, not a failure of every event in ``pas study run``."""
-    from ..study.oracle_spec import oracle_from_spec
-    from ..study.command_oracle import CommandOracle
-    from ..study.oracles import OracleError
-
-    if not (isinstance(spec, dict) and "command" in spec):
-        return  # a table may not exist yet, a python oracle is not imported before its run
-    try:
-        oracle = oracle_from_spec({**spec, "cwd": os.getcwd()})
-    except ValueError:
-        return  # 'pas study run' says what is wrong with it, where it runs
-    if isinstance(oracle, CommandOracle):
-        try:
-            oracle.command(event, oracle.root)
-        except OracleError as exc:
-            raise ValueError(f"[oracle] command of {config}: {exc} (the event fields are id, "
-                             f"index, lf, d, workdir, result, cwd and the LF table's meta "
-                             f"columns: {', '.join(map(str, event.meta)) or 'none'})") from None
 
 
 def _event_row(ev) -> dict:

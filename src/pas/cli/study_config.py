@@ -7,10 +7,11 @@ every error is one line naming the key to fix (``lf.column``,
 
 from __future__ import annotations
 
+import os
 import tomllib
 from pathlib import Path
 
-__all__ = ["load_config", "load_peaks", "study_objects"]
+__all__ = ["load_config", "load_peaks", "study_objects", "check_oracle_command"]
 
 _TOP = {"n_waves": int, "n_waves_convention": str, "p_exp": float, "eps1": float,
         "precision": (float, str), "eps2": float,
@@ -183,3 +184,26 @@ def load_peaks(lf_cfg: dict):
     return read_lf_peaks(lf_cfg["file"], column=lf_cfg.get("column"),
                          id_column=lf_cfg.get("id_column"),
                          meta_columns=lf_cfg.get("meta_columns", ()), names=_LF_NAMES)
+
+
+def check_oracle_command(spec, event, config) -> None:
+    """Fill the ``[oracle]`` command's placeholders for ``event`` (the first of the study):
+    a typo (``{sede}``) is an error of ``pas study create``, not a failure of every event
+    in ``pas study run``."""
+    from ..study.command_oracle import CommandOracle
+    from ..study.oracle_spec import oracle_from_spec
+    from ..study.oracles import OracleError
+
+    if not (isinstance(spec, dict) and "command" in spec):
+        return  # a table may not exist yet, a python oracle is not imported before its run
+    try:
+        oracle = oracle_from_spec({**spec, "cwd": os.getcwd()})
+    except ValueError:
+        return  # 'pas study run' says what is wrong with it, where it runs
+    if isinstance(oracle, CommandOracle):
+        try:
+            oracle.command(event, oracle.root)
+        except OracleError as exc:
+            raise ValueError(f"[oracle] command of {config}: {exc} (the event fields are id, "
+                             f"index, lf, d, workdir, result, cwd and the LF table's meta "
+                             f"columns: {', '.join(map(str, event.meta)) or 'none'})") from None
