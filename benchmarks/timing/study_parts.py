@@ -248,23 +248,19 @@ def part_band(max_hf):
               f"{new[2][0] / old[2][0] - 1:+.1e}, {new[2][1] / old[2][1] - 1:+.1e}; replicate "
               f"MPMs: largest relative change {change.max():.1e}, {int(np.sum(change > 1e-6))} "
               f"of {change.size} by more than 1e-6")
-        with module_setting("pas.models.joint_batch", "IMPLICIT_NU", False):
-            diff = band_seconds(study, rng, 1)
-        change = np.abs(new[3] / diff[3] - 1)
-        print(f"  {m:3d} pairs, fitted together, ν by difference (old): {diff[0]:5.2f} s wall, "
-              f"{diff[1]:5.2f} s CPU; implicit (new) / old CPU {new[1] / diff[1]:.2f}; band ends "
-              f"{new[2][0] / diff[2][0] - 1:+.1e}, {new[2][1] / diff[2][1] - 1:+.1e}; replicate "
-              f"MPMs: largest relative change {change.max():.1e}")
-        rows["new 1 core, ν by difference"] = diff
-        with module_setting("pas.strategies.band", "STUDENT_RESTART", True):
-            restart = band_seconds(study, rng, 1)
-        change = np.abs(restart[3] / new[3] - 1)
-        print(f"  {m:3d} pairs, Student-t restarted once instead of warm + cold: "
-              f"{restart[0]:5.2f} s wall, {restart[1]:5.2f} s CPU; restart / warm + cold CPU "
-              f"{restart[1] / new[1]:.2f}; band ends {restart[2][0] / new[2][0] - 1:+.1e}, "
-              f"{restart[2][1] / new[2][1] - 1:+.1e}; replicate MPMs: largest relative change "
-              f"{change.max():.1e}")
-        rows["new 1 core, Student-t restarted"] = restart
+        for module, name, value, label, ratio in (
+                ("pas.models.joint_batch", "IMPLICIT_NU", False,
+                 "fitted together, ν by difference (old)", "implicit (new) / old"),
+                ("pas.strategies.band", "STUDENT_RESTART", True,
+                 "Student-t restarted once instead of warm + cold", "warm + cold / restart")):
+            with module_setting(module, name, value):
+                other = band_seconds(study, rng, 1)
+            change = np.abs(new[3] / other[3] - 1)
+            print(f"  {m:3d} pairs, {label}: {other[0]:5.2f} s wall, {other[1]:5.2f} s CPU; "
+                  f"{ratio} CPU {new[1] / other[1]:.2f}; band ends "
+                  f"{new[2][0] / other[2][0] - 1:+.1e}, {new[2][1] / other[2][1] - 1:+.1e}; "
+                  f"replicate MPMs: largest relative change {change.max():.1e}")
+            rows[f"new 1 core, {name}={value}"] = other
         out[m] = {k: [v[0], v[1], list(v[2])] for k, v in rows.items()}
     return out
 
