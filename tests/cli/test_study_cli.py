@@ -347,3 +347,17 @@ def test_status_names_failed_events_and_ask_prints_what_it_asks_after_a_retry(tm
     again, err = ask(2)
     assert len(again) == 2 and "took their kept result" in err
     assert not {ev["id"] for ev in again} & {ev["id"] for ev in first}
+
+
+def test_ask_output_takes_its_format_from_the_file_name(tmp_path, capsys):
+    """'ask -o n2.csv' wrote a fixed-width table into a .csv file."""
+    cfg = write_case(tmp_path)
+    db = str(tmp_path / "s.db")
+    assert cli("study", "create", db, "--config", cfg) == 0
+    assert cli("study", "ask", db, "-n", "2", "-o", str(tmp_path / "n2.csv")) == 0
+    asked = pd.read_csv(tmp_path / "n2.csv")
+    assert list(asked.columns[:3]) == ["id", "index", "lf"] and len(asked) >= 2  # initial: 4
+    assert cli("study", "ask", db, "-n", "1", "-o", str(tmp_path / "n1.json")) == 0
+    assert len(json.loads((tmp_path / "n1.json").read_text())) == 1
+    assert cli("study", "ask", db, "-n", "1", "-o", str(tmp_path / "n1.txt")) == 0
+    assert (tmp_path / "n1.txt").read_text().split()[:3] == ["id", "index", "lf"]

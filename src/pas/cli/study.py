@@ -83,7 +83,8 @@ def add_parser(sub) -> None:
     a = cmds.add_parser("ask", help="print the next event(s) for the HF tool, marked pending")
     a.add_argument("study", metavar="STUDY.db")
     a.add_argument("-n", type=int, default=1, metavar="N", help="events wanted (default 1)")
-    a.add_argument("--format", choices=("table", "csv", "json"), default="table")
+    a.add_argument("--format", choices=("table", "csv", "json"), default=None,
+                   help="default: csv or json for an --output FILE ending so, else table")
     a.add_argument("-o", "--output", metavar="FILE", help="write to FILE instead of stdout")
     t = cmds.add_parser("tell", help="record HF results (from any process)")
     t.add_argument("study", metavar="STUDY.db")
@@ -206,8 +207,15 @@ def _ask(args) -> int:
         print(f"{args.study}: nothing to ask ({_why_finished(study)})", file=sys.stderr)
         return 0
     if events:
-        _emit([_event_row(ev) for ev in events], args.format, args.output)
+        _emit([_event_row(ev) for ev in events], args.format or _format_of(args.output),
+              args.output)
     return 0
+
+
+def _format_of(output) -> str:
+    """The format an ``--output`` file's ending names (``.csv``, ``.json``), else a table."""
+    suffix = Path(output).suffix.lower() if output else ""
+    return {".csv": "csv", ".json": "json"}.get(suffix, "table")
 
 
 def _emit(rows, fmt, output) -> None:
