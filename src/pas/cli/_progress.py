@@ -85,10 +85,11 @@ class Progress:
             what = "HF 0 (false positive)"
         else:
             what = f"HF {row.get('hf'):.4g}"
-        model = ("no refit (the model of the last fit stands)"
-                 if any(_finite(r.get("mpm")) for r in study.rows if r is not row)
-                 else "no fit yet")
-        if _finite(row.get("mpm")):
+        if not _finite(row.get("mpm")):
+            model = ("no refit (the model of the last fit stands)"
+                     if any(_finite(r.get("mpm")) for r in study.rows if r is not row)
+                     else "no fit yet")
+        else:
             fam = f" {row['family']}" if row.get("family") else ""
             model = (f"MPM {row['mpm']:.4g} (sampling band {_num(row.get('mpm_low'), '.4g')}–"
                      f"{_num(row.get('mpm_high'), '.4g')}){fam}")

@@ -190,7 +190,6 @@ def check_oracle_command(spec, event, config) -> None:
     """Fill the ``[oracle]`` command's placeholders for ``event`` (the first of the study):
     a typo (``{sede}``) is an error of ``pas study create``, not a failure of every event
     in ``pas study run``."""
-    from ..study.command_oracle import CommandOracle
     from ..study.oracle_spec import oracle_from_spec
     from ..study.oracles import OracleError
 
@@ -200,10 +199,9 @@ def check_oracle_command(spec, event, config) -> None:
         oracle = oracle_from_spec({**spec, "cwd": os.getcwd()})
     except ValueError:
         return  # 'pas study run' says what is wrong with it, where it runs
-    if isinstance(oracle, CommandOracle):
-        try:
-            oracle.command(event, oracle.root)
-        except OracleError as exc:
-            raise ValueError(f"[oracle] command of {config}: {exc} (the event fields are id, "
-                             f"index, lf, d, workdir, result, cwd and the LF table's meta "
-                             f"columns: {', '.join(map(str, event.meta)) or 'none'})") from None
+    try:
+        oracle.command(event, oracle.root)  # a spec with a command makes a CommandOracle
+    except OracleError as exc:
+        raise ValueError(f"[oracle] command of {config}: {exc} (the event fields are id, "
+                         f"index, lf, d, workdir, result, cwd and the LF table's meta "
+                         f"columns: {', '.join(map(str, event.meta)) or 'none'})") from None

@@ -288,9 +288,8 @@ def _chunk_mpms(indices) -> list:
             with contextlib.suppress(ValueError, np.linalg.LinAlgError):
                 chunk[i] = Replicate(*replicates[i][:4], replicate_starts(
                     strategy, replicates[i][0], lfset, starts, plan[i][2]))
-    restarted = ("student",) if STUDENT_RESTART else ()
-    fits = batch_fits(strategy, chunk, tuple(f for f in COLD_FAMILIES if f not in restarted),
-                      width, restarted)
+    cold = tuple(f for f in COLD_FAMILIES if not (STUDENT_RESTART and f == "student"))
+    fits = batch_fits(strategy, chunk, cold, width, student_restarted=STUDENT_RESTART)
     out = []
     for i in indices:
         try:

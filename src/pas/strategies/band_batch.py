@@ -37,14 +37,14 @@ def fits_in_order(strategy, starts) -> list:
     return [(f, m) for f in strategy.families for m in HF_MARGINALS if (f, m) in starts]
 
 
-def batch_fits(strategy, replicates: dict, cold_families, width: int,
-               restarted=()) -> dict:
+def batch_fits(strategy, replicates: dict, cold_families, width: int, *,
+               student_restarted: bool = False) -> dict:
     """Every replicate's joint fits by ``(family, marginal)``, each candidate fitted to all
     the ``replicates`` (by index, :class:`Replicate`) that keep it at once; None for a
     replicate one of whose fits failed (its ValueError), as a fit one after another fails.
 
-    ``cold_families`` also start from the data; ``restarted`` families start from their
-    final fit moved off the edges that trap a warm start
+    ``cold_families`` also start from the data; ``student_restarted``: Student-t starts
+    from its final fit moved off the edges that trap a warm start
     (:func:`pas.models.joint_starts.student_restart`); ``width``: the padded number of
     distinct pairs (:func:`pas.models.joint_batch.weighted_pairs`), the same for
     every chunk so that a replicate's fit does not depend on the chunk it is in.
@@ -59,7 +59,7 @@ def batch_fits(strategy, replicates: dict, cold_families, width: int,
         samples = [(replicates[i][3][replicates[i][0].position], replicates[i][0].hf)
                    for i in rows]
         starts = [replicates[i][4][name, marginal].x for i in rows]
-        if name.partition("_")[0] in restarted:
+        if student_restarted and name.partition("_")[0] == "student":
             starts = [student_restart(x, strategy.estimator.hf_location) for x in starts]
         out = fit_joint_batch(name, samples, starts,
                               location=strategy.estimator.hf_location, marginal=marginal,

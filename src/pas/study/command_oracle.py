@@ -195,11 +195,10 @@ class CommandOracle:
         os.makedirs(workdir, exist_ok=True)
         result = os.path.join(workdir, self.result_name)
         lock = os.open(os.path.join(workdir, ".lock"), os.O_RDWR | os.O_CREAT, 0o644)
-        staged = None
+        staging = None
         try:
             inherited = self._lock(lock, event)
-            staged, files = _staged_inputs(event, workdir)
-            cmd = self.command(event, workdir, files)
+            staging, staged, files = _staged_inputs(event, workdir)
             record = command_record(self.recorded_command(event, files), staged)
             kept = self._read(result, missing_ok=True)
             if _reusable(kept) and self._reuses(event, workdir, result, record):
@@ -210,15 +209,16 @@ class CommandOracle:
                 os.replace(path, files[name])
             write_record(workdir, record)
             try:
-                self._run(cmd, workdir, (lock,) if inherited else ())
+                self._run(self.command(event, workdir, files), workdir,
+                          (lock,) if inherited else ())
                 return self._read(result)
             except OracleError:  # what a failed run wrote is no result to reuse
                 write_record(workdir, {**record, "failed": True})
                 raise
         finally:
             os.close(lock)
-            if staged:
-                shutil.rmtree(os.path.dirname(next(iter(staged.values()))), ignore_errors=True)
+            if staging:
+                shutil.rmtree(staging, ignore_errors=True)
 
     def _reuses(self, event, workdir, result, record) -> bool:
         """Whether to take the valid ``result`` an earlier run left in ``workdir``: only one
@@ -315,18 +315,20 @@ def _difference(recorded: dict, record: dict) -> str:
 
 def _staged_inputs(event, workdir: str):
     """A design-wave episode's input files (:class:`pas.waves.episode.Episode`), written into
-    a folder of their own in ``workdir`` until the program runs: ``(staged paths, their
-    paths in workdir)``, or ``(None, None)`` for an event without input files."""
+    a folder of their own in ``workdir`` until the program runs: ``(that folder, the staged
+    paths, their paths in workdir)``, or ``(None, None, None)`` for an event without input
+    files."""
     writer = getattr(event, "write_csv", None)
     if not callable(writer):
-        return None, None
+        return None, None, None
     folder = tempfile.mkdtemp(prefix=".inputs-", dir=workdir)
     try:
         staged = writer(folder)
     except BaseException:
         shutil.rmtree(folder, ignore_errors=True)
         raise
-    return staged, {k: os.path.join(workdir, os.path.basename(v)) for k, v in staged.items()}
+    return folder, staged, {k: os.path.join(workdir, os.path.basename(v))
+                            for k, v in staged.items()}
 
 
 def _last_line(path: str) -> str:

@@ -111,16 +111,15 @@ def state(result) -> str:
     """``converged`` / ``NOT converged (...)`` for :meth:`ScreeningResult.summary`."""
     settings = result.settings or {}
     target = settings.get("precision")
+    max_hf = settings.get("max_hf")
+    left = None if max_hf is None else max_hf - result.n_hf
     if target is None:
         if result.converged:
             return "converged"
-        spent = settings.get("max_hf") is not None and result.n_hf >= settings["max_hf"]
-        return (f"NOT converged{paper_gap(result)}"
-                + (f"; the budget of {settings['max_hf']} HF is spent" if spent else ""))
+        spent = f"; the budget of {max_hf} HF is spent" if left is not None and left <= 0 else ""
+        return f"NOT converged{paper_gap(result)}{spent}"
     width = relative_half_width(result.mpm, result.mpm_band)
     paper = settings.get("eps1") is not None
-    max_hf = settings.get("max_hf")
-    left = None if max_hf is None else max_hf - result.n_hf
     misfit = "" if result.converged else misfit_text(result.history)
     if misfit and width <= target:  # a band narrow enough, not taken for the precision
         return (f"NOT converged: U95 {percent(width)} of the MPM, within the target "
