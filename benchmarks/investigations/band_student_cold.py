@@ -5,7 +5,9 @@ Each known-truth study runs as the defaults have it (its own ε1 stop, budget
 replicate fits started from the final fit only (``band.COLD_FAMILIES = ()``), and
 once more started once from the final fit moved off the edges that trap a warm
 start (``band.STUDENT_RESTART``: ν's start that of the data, the location's gap
-at least e⁻⁴ of the span), from the same random numbers.  Per study and way:
+at least e⁻⁴ of the span), and once with the start from the data only where
+the final fit sits on those edges (``band.COLD_AT_EDGES_ONLY``), all from the
+same random numbers.  Per study and way:
 the U95 (the sampling band widened to hold the model band), whether it holds the
 exact truth, the largest relative change of a band end and of a replicate MPM
 against today's band, how many of the 50 replicate MPMs moved by more than 1e-6,
@@ -38,21 +40,25 @@ from pas.validation.known_truth_runs import (
 from pas.validation.timing_problem import cpu_seconds
 
 
+WAYS = (("cold", ("student",), False, False), ("warm", (), False, False),
+        ("restart", ("student",), True, False), ("edges", ("student",), False, True))
+COMPARED = (("warm", ""), ("restart", "restart_"), ("edges", "edges_"))
+
+
 def final_bands(study):
     """``{label: (low, high, replicate MPMs, CPU s)}`` of the study's final model band with
     Student-t's cold start (as the study's result has it) and without."""
     out = {}
-    for label, cold, restart in (("cold", ("student",), False), ("warm", (), False),
-                                 ("restart", ("student",), True)):
-        saved = band.COLD_FAMILIES, band.STUDENT_RESTART
-        band.COLD_FAMILIES, band.STUDENT_RESTART = cold, restart
+    for label, cold, restart, edges in WAYS:
+        saved = band.COLD_FAMILIES, band.STUDENT_RESTART, band.COLD_AT_EDGES_ONLY
+        band.COLD_FAMILIES, band.STUDENT_RESTART, band.COLD_AT_EDGES_ONLY = cold, restart, edges
         try:
             rng = np.random.default_rng([study.seed, study.n_told, 1])  # precision.model_band's
             t = cpu_seconds()
             low, high, mpms = study.strategy.model_band(study.pairs(), study.lfset, rng, n_jobs=1)
             out[label] = (float(low), float(high), np.asarray(mpms, float), cpu_seconds() - t)
         finally:
-            band.COLD_FAMILIES, band.STUDENT_RESTART = saved
+            band.COLD_FAMILIES, band.STUDENT_RESTART, band.COLD_AT_EDGES_ONLY = saved
     return out
 
 
@@ -74,7 +80,7 @@ def one(name, replication, max_hf):
         row |= {f"{label}_low": lo, f"{label}_high": hi, f"{label}_covered": lo <= truth <= hi,
                 f"{label}_cpu": cpu}
     c = bands["cold"]
-    for label, prefix in (("warm", ""), ("restart", "restart_")):
+    for label, prefix in COMPARED:
         w = bands[label]
         row[prefix + "band_end_change"] = float(max(abs(w[0] / c[0] - 1), abs(w[1] / c[1] - 1)))
         change = np.abs(w[2] / c[2] - 1)
@@ -96,17 +102,18 @@ def main(argv=None):
             t = time.perf_counter()
             rows.append(one(name, r, args.max_hf))
             x = rows[-1]
-            print(f"{name:38s} {r:3d} {x['n_hf']:4d} HF  covered cold/warm/restart "
-                  f"{x['cold_covered']:d}/{x['warm_covered']:d}/{x['restart_covered']:d}  band "
-                  f"end change warm {x['band_end_change']:.1e}, restart "
-                  f"{x['restart_band_end_change']:.1e}  replicates moved "
-                  f"{x['replicates_moved']:2d}/{x['restart_replicates_moved']:2d}  CPU "
-                  f"warm/cold {x['warm_cpu'] / x['cold_cpu']:.2f}, restart/cold "
-                  f"{x['restart_cpu'] / x['cold_cpu']:.2f}  ({time.perf_counter() - t:.0f} s)",
+            print(f"{name:38s} {r:3d} {x['n_hf']:4d} HF  covered cold/warm/restart/edges "
+                  f"{x['cold_covered']:d}/{x['warm_covered']:d}/{x['restart_covered']:d}/"
+                  f"{x['edges_covered']:d}  band end change warm {x['band_end_change']:.1e}, "
+                  f"restart {x['restart_band_end_change']:.1e}, edges "
+                  f"{x['edges_band_end_change']:.1e}  CPU against cold: warm "
+                  f"{x['warm_cpu'] / x['cold_cpu']:.2f}, restart "
+                  f"{x['restart_cpu'] / x['cold_cpu']:.2f}, edges "
+                  f"{x['edges_cpu'] / x['cold_cpu']:.2f}  ({time.perf_counter() - t:.0f} s)",
                   flush=True)
             pd.DataFrame(rows).to_csv(out / "band_student_cold.csv", index=False)
     runs = pd.DataFrame(rows)
-    for label, prefix in (("warm", ""), ("restart", "restart_")):
+    for label, prefix in COMPARED:
         summary = runs.groupby("group").agg(
             studies=("type", "size"), covered_cold=("cold_covered", "mean"),
             covered=(f"{label}_covered", "mean"),

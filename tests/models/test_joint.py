@@ -1,5 +1,7 @@
 """The joint fit of copula and HF marginal, its closed-form densities, τ inversion, presets."""
 
+import copy
+
 import numpy as np
 import pytest
 import pyvinecopulib as pv
@@ -374,3 +376,21 @@ def test_student_fit_with_its_gradient_finds_the_numerical_optimum():
     assert analytic.copula.loglik >= numerical.copula.loglik - 1e-6
     assert analytic.copula.loglik == pytest.approx(numerical.copula.loglik, rel=1e-6)
     np.testing.assert_allclose(analytic.copula.parameters, numerical.copula.parameters, rtol=1e-3)
+
+
+def test_a_deep_copy_of_a_joint_fit_shares_it_and_its_values_cannot_change():
+    rng = np.random.default_rng(3)
+    u = rng.uniform(size=40)
+    fit = fit_joint("gaussian", u, 5.0 + 3.0 * u + rng.uniform(size=40))
+    assert copy.deepcopy({"fit": fit})["fit"] is fit
+    with pytest.raises(ValueError):
+        fit.x[0] = 1.0
+
+
+def test_a_student_fit_is_trapped_at_the_nu_bound_or_a_location_at_the_smallest_load():
+    from pas.models.joint_starts import trapped
+
+    assert trapped([-2.0, 1.0, 0.5, 0.3, 10.5], location=True)  # ν ≈ 50
+    assert trapped([-8.4, 1.0, 0.5, 0.3, 0.0], location=True)  # θ at the smallest load
+    assert not trapped([-8.4, 1.0, 0.5, 0.3, 0.0], location=False)
+    assert not trapped([-2.0, 1.0, 0.5, 0.3, 1.0], location=True)

@@ -254,3 +254,16 @@ def test_replicates_too_alike_to_fit_draw_no_lf_ranks_either_way(monkeypatch):
     # with scipy 1.17.1 / numpy 2.4.6 one replicate ends 5.4e-6 apart
     np.testing.assert_allclose([out[True][i] for i in kept], [out[False][i] for i in kept],
                                rtol=1e-4)
+
+
+def test_the_cold_start_at_edges_only_keeps_it_for_a_trapped_final_student_fit(monkeypatch):
+    from types import SimpleNamespace
+
+    free = SimpleNamespace(x=np.array([-2.0, 1.0, 0.5, 0.3, 1.0]))
+    at_nu_bound = SimpleNamespace(x=np.array([-2.0, 1.0, 0.5, 0.3, 11.0]))
+    starts = {("student", "weibull"): free, ("gaussian", "weibull"): free}
+    assert band.cold_families(starts, True) == ("student",)  # the default: always
+    monkeypatch.setattr(band, "COLD_AT_EDGES_ONLY", True)
+    assert band.cold_families(starts, True) == ()
+    starts["student", "lognormal"] = at_nu_bound
+    assert band.cold_families(starts, True) == ("student",)

@@ -79,6 +79,16 @@ class JointFit:
     x: np.ndarray  # the optimiser's unconstrained parameters, for warm starts
     marginal: str = "weibull"
 
+    def __post_init__(self):
+        x = np.array(self.x, dtype=float)
+        x.flags.writeable = False
+        object.__setattr__(self, "x", x)
+
+    def __deepcopy__(self, memo):
+        """A fit is a value (frozen, ``x`` read-only, the copula never refitted): a deep copy
+        of a study's state (``tell(..., replace=True)``) shares it."""
+        return self
+
 
 def censoring_level(h, censor: float, location: bool) -> float:
     """The load at and below which loads enter the likelihood left-censored.

@@ -27,12 +27,14 @@ from .._support.checks import check_int, check_option
 from ..models.joint import HF_MARGINALS
 from ..models.joint_batch import batchable
 from ..models.joint_mixture import MIXTURE, pair_logliks
+from ..models.joint_starts import trapped
 from . import model_form as model_forms
 from .band_batch import Replicate, batch_fits, replicate_model
 from .steps import conditioning_set
 
-__all__ = ["ModelBand", "WARM_BAND", "COLD_FAMILIES", "PRUNE_AIC", "BATCHED", "ReplicateStarts",
-           "bootstrap_band", "default_jobs", "replicate_plan", "replicate_mpms", "replicate_starts"]
+__all__ = ["ModelBand", "WARM_BAND", "COLD_FAMILIES", "COLD_AT_EDGES_ONLY", "PRUNE_AIC", "BATCHED",
+           "ReplicateStarts", "bootstrap_band", "cold_families", "default_jobs", "replicate_plan",
+           "replicate_mpms", "replicate_starts"]
 
 WARM_BAND = True
 """Replicates start their joint fits from the final model's fits only; False: from the
@@ -49,6 +51,14 @@ the data (:data:`COLD_FAMILIES`).  On 67 known-truth studies: 0.80 of the band's
 same coverage, band ends within 0.6 % but one study's by 4.8 % (an optimum with ν at its
 bound, which only the warm start keeps), so it stays off
 (``benchmarks/investigations/band_student_cold.py``, ``docs/explanation/model-band.md``)."""
+
+COLD_AT_EDGES_ONLY = False
+"""True: a replicate's family of :data:`COLD_FAMILIES` also starts from the data only when
+one of the final fits it starts from sits on an edge that traps a warm start
+(:func:`pas.models.joint_starts.trapped`: ν at its bound, a location at the smallest load),
+where the start from the data was seen to win.  On 62 known-truth studies it changed
+no coverage and one band end by 0.44 %, but cost 0.95 of the band's CPU (the final fit is
+trapped in most), so it stays off (``docs/explanation/model-band.md``)."""
 
 BATCHED = True
 """A warm band's replicates are fitted together, each candidate to all of them at once
@@ -167,6 +177,15 @@ def _choice_marginals(strategy, choice) -> set:
     choice = choice or strategy.estimator.hf_marginal
     return set({"both": HF_MARGINALS, MIXTURE: ("weibull", MIXTURE),
                 "all": (*HF_MARGINALS, MIXTURE)}.get(choice, (choice,)))
+
+
+def cold_families(starts, location: bool) -> tuple:
+    """The families of :data:`COLD_FAMILIES` whose replicate fits from the final fits
+    ``starts`` also start from the data (:data:`COLD_AT_EDGES_ONLY`)."""
+    if not COLD_AT_EDGES_ONLY:
+        return tuple(COLD_FAMILIES)
+    return tuple(f for f in COLD_FAMILIES
+                 if any(trapped(fit.x, location) for (g, _), fit in starts.items() if g == f))
 
 
 def replicate_starts(strategy, b, lfset, starts: dict, choice) -> ReplicateStarts:
@@ -288,7 +307,8 @@ def _chunk_mpms(indices) -> list:
             with contextlib.suppress(ValueError, np.linalg.LinAlgError):
                 chunk[i] = Replicate(*replicates[i][:4], replicate_starts(
                     strategy, replicates[i][0], lfset, starts, plan[i][2]))
-    cold = tuple(f for f in COLD_FAMILIES if not (STUDENT_RESTART and f == "student"))
+    cold = tuple(f for f in cold_families(starts, strategy.estimator.hf_location)
+                 if not (STUDENT_RESTART and f == "student"))
     fits = batch_fits(strategy, chunk, cold, width, student_restarted=STUDENT_RESTART)
     out = []
     for i in indices:
