@@ -361,3 +361,13 @@ def test_ask_output_takes_its_format_from_the_file_name(tmp_path, capsys):
     assert len(json.loads((tmp_path / "n1.json").read_text())) == 1
     assert cli("study", "ask", db, "-n", "1", "-o", str(tmp_path / "n1.txt")) == 0
     assert (tmp_path / "n1.txt").read_text().split()[:3] == ["id", "index", "lf"]
+
+
+@pytest.mark.parametrize("action", ["create", "ask", "tell", "run", "status", "set", "retry",
+                                    "refit"])
+def test_every_study_action_help_says_what_it_does(action, capsys):
+    with pytest.raises(SystemExit):
+        main(["study", action, "--help"])
+    lines = capsys.readouterr().out.splitlines()
+    text = lines[lines.index("", 1) + 1]  # the paragraph after the usage lines
+    assert text[0].isupper() and len(text.split()) >= 4 and not text.startswith("positional")

@@ -74,19 +74,24 @@ examples:
 """
 
 
+def _action(cmds, name: str, help: str):
+    """A ``pas study`` action whose ``--help`` starts with its one-line ``help``."""
+    return cmds.add_parser(name, help=help, description=help[0].upper() + help[1:] + ".")
+
+
 def add_parser(sub) -> None:
     p = command_parser(sub, "study", "ask/tell HF campaigns kept in a crash-safe study file", __doc__, EPILOG)
     cmds = p.add_subparsers(dest="study_command", metavar="<action>", required=True)
-    c = cmds.add_parser("create", help="create STUDY.db from a TOML configuration")
+    c = _action(cmds, "create", "create STUDY.db from a TOML configuration")
     c.add_argument("study", metavar="STUDY.db")
     c.add_argument("--config", required=True, metavar="study.toml")
-    a = cmds.add_parser("ask", help="print the next event(s) for the HF tool, marked pending")
+    a = _action(cmds, "ask", "print the next event(s) for the HF tool, marked pending")
     a.add_argument("study", metavar="STUDY.db")
     a.add_argument("-n", type=int, default=1, metavar="N", help="events wanted (default 1)")
     a.add_argument("--format", choices=("table", "csv", "json"), default=None,
                    help="default: csv or json for an --output FILE ending so, else table")
     a.add_argument("-o", "--output", metavar="FILE", help="write to FILE instead of stdout")
-    t = cmds.add_parser("tell", help="record HF results (from any process)")
+    t = _action(cmds, "tell", "record HF results (from any process)")
     t.add_argument("study", metavar="STUDY.db")
     t.add_argument("event", nargs="?", metavar="EVENT", help="event id as printed by ask")
     t.add_argument("value", nargs="?", metavar="VALUE", help="HF peak load (0 = no impact)")
@@ -99,7 +104,7 @@ def add_parser(sub) -> None:
     t.add_argument("--replace", action="store_true",
                    help="replace a result told before (the old one is kept in the audit trail)")
     add_load_parsers(cmds, t)
-    r = cmds.add_parser("run", help="drive the study with the [oracle] of its TOML file")
+    r = _action(cmds, "run", "drive the study with the [oracle] of its TOML file")
     r.add_argument("study", metavar="STUDY.db")
     r.add_argument("-q", "--batch-size", type=int, metavar="Q",
                    help="events per batch (default: the study's batch_size, else 1)")
@@ -107,14 +112,14 @@ def add_parser(sub) -> None:
     r.add_argument("--pending", choices=("resubmit", "wait"), default="resubmit",
                    help="events a killed run left without a result (default resubmit)")
     r.add_argument("--quiet", action="store_true", help="no line per HF result")
-    s = cmds.add_parser("status", help="convergence, MPM so far, counts and pending events")
+    s = _action(cmds, "status", "convergence, MPM so far, counts and pending events")
     s.add_argument("study", metavar="STUDY.db")
     s.add_argument("--json", action="store_true")
     s.add_argument("--events", action="store_true",
                    help="also every event asked, replaced results and asks dropped by a retry")
     s.add_argument("--refresh", action="store_true",
                    help="replay the log and recompute the result (default: the stored one)")
-    c = cmds.add_parser("set", help="change the stopping limits or the budget of a study")
+    c = _action(cmds, "set", "change the stopping limits or the budget of a study")
     c.add_argument("study", metavar="STUDY.db")
     c.add_argument("--precision", type=precision_option, metavar="P",
                    help="precision target, e.g. 10%% or 0.1 (the U95 within +-P of the MPM)")
@@ -124,7 +129,7 @@ def add_parser(sub) -> None:
     c.add_argument("--k2", type=int, metavar="K", help="window of the MPM COV")
     c.add_argument("--max-hf", type=int, metavar="N", help="budget of HF evaluations")
     c.add_argument("--max-failures", type=int, metavar="N", help="failed calls tolerated")
-    y = cmds.add_parser("retry", help="run failed events again (after fixing their cause)")
+    y = _action(cmds, "retry", "run failed events again (after fixing their cause)")
     y.add_argument("study", metavar="STUDY.db")
     y.add_argument("events", nargs="*", metavar="EVENT", help="event ids (default: every failed one)")
     p.set_defaults(func=run)
