@@ -15,7 +15,7 @@ and the band's CPU time (one process).  Writes ``band_student_cold.csv``;
 prints per group and overall.
 
 Run: python benchmarks/investigations/band_student_cold.py [N] [--types all] [--held-out]
-     [--first 0] [--out pas-output/band-cold]
+     [--first 0] [--ways warm,restart,edges,restart:1] [--out pas-output/band-cold]
 """
 
 from __future__ import annotations
@@ -40,35 +40,49 @@ from pas.validation.known_truth_runs import (
 from pas.validation.timing_problem import cpu_seconds
 
 
-WAYS = (("cold", ("student",), False, False), ("warm", (), False, False),
-        ("restart", ("student",), True, False), ("edges", ("student",), False, True))
-COMPARED = (("warm", ""), ("restart", "restart_"), ("edges", "edges_"))
+SETTINGS = ("COLD_FAMILIES", "STUDENT_RESTART", "COLD_AT_EDGES_ONLY", "RESTART_NU")
 
 
-def final_bands(study):
-    """``{label: (low, high, replicate MPMs, CPU s)}`` of the study's final model band with
-    Student-t's cold start (as the study's result has it) and without."""
+def way(label: str) -> tuple:
+    """``(band.COLD_FAMILIES, band.STUDENT_RESTART, band.COLD_AT_EDGES_ONLY,
+    band.RESTART_NU)`` of a way: ``cold`` (today's), ``warm``, ``restart``,
+    ``edges`` or ``restart:C`` (restarted with ν's optimiser value at C, 0 being ν 26)."""
+    fixed = {"cold": (("student",), False, False, 0.0), "warm": ((), False, False, 0.0),
+             "restart": (("student",), True, False, 0.0),
+             "edges": (("student",), False, True, 0.0)}
+    if label in fixed:
+        return fixed[label]
+    if label.startswith("restart:"):
+        return ("student",), True, False, float(label.partition(":")[2])
+    raise ValueError(f"--ways: {label!r} is none of cold, warm, restart, edges, restart:C")
+
+
+def final_bands(study, ways):
+    """``{label: (low, high, replicate MPMs, CPU s)}`` of the study's final model band each
+    way (``cold`` first: as the study's result has it), from the same random numbers."""
     out = {}
-    for label, cold, restart, edges in WAYS:
-        saved = band.COLD_FAMILIES, band.STUDENT_RESTART, band.COLD_AT_EDGES_ONLY
-        band.COLD_FAMILIES, band.STUDENT_RESTART, band.COLD_AT_EDGES_ONLY = cold, restart, edges
+    for label in ("cold", *ways):
+        saved = [getattr(band, k) for k in SETTINGS]
+        for k, v in zip(SETTINGS, way(label)):
+            setattr(band, k, v)
         try:
             rng = np.random.default_rng([study.seed, study.n_told, 1])  # precision.model_band's
             t = cpu_seconds()
             low, high, mpms = study.strategy.model_band(study.pairs(), study.lfset, rng, n_jobs=1)
             out[label] = (float(low), float(high), np.asarray(mpms, float), cpu_seconds() - t)
         finally:
-            band.COLD_FAMILIES, band.STUDENT_RESTART, band.COLD_AT_EDGES_ONLY = saved
+            for k, v in zip(SETTINGS, saved):
+                setattr(band, k, v)
     return out
 
 
-def one(name, replication, max_hf):
+def one(name, replication, max_hf, ways):
     problem = make_problem(TYPES[name], replication)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         study = known_truth_study(problem, max_hf=max_hf)
         res = study.optimize(problem.oracle())
-        bands = final_bands(study)
+        bands = final_bands(study, ways)
     truth = problem.truth_mpm
     row = {"type": name, "group": name.split("-")[0], "held_out": TYPES[name].held_out,
            "replication": replication, "n_hf": res.n_hf, "mpm": res.mpm, "truth": truth}
@@ -80,12 +94,12 @@ def one(name, replication, max_hf):
         row |= {f"{label}_low": lo, f"{label}_high": hi, f"{label}_covered": lo <= truth <= hi,
                 f"{label}_cpu": cpu}
     c = bands["cold"]
-    for label, prefix in COMPARED:
+    for label in ways:
         w = bands[label]
-        row[prefix + "band_end_change"] = float(max(abs(w[0] / c[0] - 1), abs(w[1] / c[1] - 1)))
+        row[label + "_band_end_change"] = float(max(abs(w[0] / c[0] - 1), abs(w[1] / c[1] - 1)))
         change = np.abs(w[2] / c[2] - 1)
-        row[prefix + "replicate_change"] = float(np.nanmax(change))
-        row[prefix + "replicates_moved"] = int(np.sum(change > 1e-6))
+        row[label + "_replicate_change"] = float(np.nanmax(change))
+        row[label + "_replicates_moved"] = int(np.sum(change > 1e-6))
     return row
 
 
@@ -93,27 +107,29 @@ def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     add_study_arguments(ap, n=2)
     ap.add_argument("--out", default="pas-output/band-cold")
+    ap.add_argument("--ways", default="warm,restart,edges",
+                    help="compared with today's band (cold): warm, restart, edges, restart:C")
     args = ap.parse_args(argv)
+    ways = [w for w in args.ways.split(",") if w and w != "cold"]
+    for label in ways:
+        way(label)  # a bad name fails before the first study
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     rows = []
     for name in select_types(args.types, held_out=args.held_out):
         for r in range(args.first, args.first + args.n):
             t = time.perf_counter()
-            rows.append(one(name, r, args.max_hf))
+            rows.append(one(name, r, args.max_hf, ways))
             x = rows[-1]
-            print(f"{name:38s} {r:3d} {x['n_hf']:4d} HF  covered cold/warm/restart/edges "
-                  f"{x['cold_covered']:d}/{x['warm_covered']:d}/{x['restart_covered']:d}/"
-                  f"{x['edges_covered']:d}  band end change warm {x['band_end_change']:.1e}, "
-                  f"restart {x['restart_band_end_change']:.1e}, edges "
-                  f"{x['edges_band_end_change']:.1e}  CPU against cold: warm "
-                  f"{x['warm_cpu'] / x['cold_cpu']:.2f}, restart "
-                  f"{x['restart_cpu'] / x['cold_cpu']:.2f}, edges "
-                  f"{x['edges_cpu'] / x['cold_cpu']:.2f}  ({time.perf_counter() - t:.0f} s)",
-                  flush=True)
+            print(f"{name:38s} {r:3d} {x['n_hf']:4d} HF  held the truth: cold "
+                  f"{x['cold_covered']:d}, " + ", ".join(
+                      f"{w} {x[w + '_covered']:d} (end {x[w + '_band_end_change']:.1e}, CPU "
+                      f"{x[w + '_cpu'] / x['cold_cpu']:.2f})" for w in ways)
+                  + f"  ({time.perf_counter() - t:.0f} s)", flush=True)
             pd.DataFrame(rows).to_csv(out / "band_student_cold.csv", index=False)
     runs = pd.DataFrame(rows)
-    for label, prefix in COMPARED:
+    for label in ways:
+        prefix = label + "_"
         summary = runs.groupby("group").agg(
             studies=("type", "size"), covered_cold=("cold_covered", "mean"),
             covered=(f"{label}_covered", "mean"),

@@ -263,7 +263,30 @@ def test_the_cold_start_at_edges_only_keeps_it_for_a_trapped_final_student_fit(m
     at_nu_bound = SimpleNamespace(x=np.array([-2.0, 1.0, 0.5, 0.3, 11.0]))
     starts = {("student", "weibull"): free, ("gaussian", "weibull"): free}
     assert band.cold_families(starts, True) == ("student",)  # the default: always
+    monkeypatch.setattr(band, "STUDENT_RESTART", True)
+    assert band.cold_families(starts, True) == ()  # restarted instead
+    monkeypatch.setattr(band, "STUDENT_RESTART", False)
     monkeypatch.setattr(band, "COLD_AT_EDGES_ONLY", True)
     assert band.cold_families(starts, True) == ()
     starts["student", "lognormal"] = at_nu_bound
     assert band.cold_families(starts, True) == ("student",)
+
+
+def test_a_restarted_student_start_moves_only_nu_and_a_trapped_location(monkeypatch):
+    monkeypatch.setattr(band, "STUDENT_RESTART", True)
+    s, pairs, _ = _problem(1, tau=0.6, m=30)
+    strategy = PAS(band=ModelBand(n_bootstrap=3))
+    strategy.reset(0)
+    strategy.predict(pairs, s, np.random.default_rng(0))
+    final = strategy.final_joint_fits(pairs, s, "both")
+    starts = band.replicate_starts(strategy, pairs, s, final, "both")
+    assert set(starts) <= set(final) and ("student", "weibull") in starts
+    for key, start in starts.items():
+        if key[0] != "student":
+            assert start is final[key]
+            continue
+        x, old = start.x, final[key].x
+        assert x[-1] == band.RESTART_NU
+        np.testing.assert_array_equal(x[1:-1], old[1:-1])
+        assert x[0] == max(old[0], -4.0)
+        assert start.copula is final[key].copula  # what the pruning read

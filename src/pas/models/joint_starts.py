@@ -46,10 +46,11 @@ def _weibull_start(h, location: bool):
     return [np.log(np.exp(-c / beta)), np.log(beta)]
 
 
-def student_restart(x, location: bool) -> np.ndarray:
+def student_restart(x, location: bool, nu_start: float = 0.0) -> np.ndarray:
     """A Student-t fit's optimiser values ``x`` made a start that can leave their basin:
-    ν's value that of the start from the data (0: ν = 26) and, with a location, the
-    location's gap below the smallest load at least e⁻⁴ of the loads' span.
+    ν's optimiser value ``nu_start`` (0: ν = 26, the start from the data's; 1: ν = 37)
+    and, with a location, the location's gap below the smallest load at least e⁻⁴ of the
+    loads' span.
 
     A fit's ν at its bound of 50 (the logistic map flat there) or a log-normal location
     at the smallest load (log gap −8 … −10) barely moves from a warm start: there a start
@@ -57,7 +58,7 @@ def student_restart(x, location: bool) -> np.ndarray:
     replicates, ``docs/explanation/model-band.md``).
     """
     x = np.array(x, dtype=float)
-    x[-1] = 0.0
+    x[-1] = nu_start
     if location:
         x[0] = max(x[0], -4.0)
     return x

@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import contextlib
 import copy
+import dataclasses
 import multiprocessing
 import os
 import sys
@@ -27,12 +28,13 @@ from .._support.checks import check_int, check_option
 from ..models.joint import HF_MARGINALS
 from ..models.joint_batch import batchable
 from ..models.joint_mixture import MIXTURE, pair_logliks
-from ..models.joint_starts import trapped
+from ..models.joint_starts import student_restart, trapped
 from . import model_form as model_forms
 from .band_batch import Replicate, batch_fits, replicate_model
 from .steps import conditioning_set
 
 __all__ = ["ModelBand", "WARM_BAND", "COLD_FAMILIES", "COLD_AT_EDGES_ONLY", "PRUNE_AIC", "BATCHED",
+           "STUDENT_RESTART", "RESTART_NU",
            "ReplicateStarts", "bootstrap_band", "cold_families", "default_jobs", "replicate_plan",
            "replicate_mpms", "replicate_starts"]
 
@@ -44,13 +46,18 @@ COLD_FAMILIES = ("student",)
 """Families whose replicate fits also start from the data in a warm band (module docs)."""
 
 STUDENT_RESTART = False
-"""True: a batched band fits Student-t once per replicate, from the final fit with ν and
-the location moved off the edges that trap a warm start
-(:func:`pas.models.joint_starts.student_restart`), instead of from the final fit and from
-the data (:data:`COLD_FAMILIES`).  On 67 known-truth studies: 0.80 of the band's CPU, the
-same coverage, band ends within 0.6 % but one study's by 4.8 % (an optimum with ν at its
-bound, which only the warm start keeps), so it stays off
+"""True: Student-t's replicate fits start once, from the final fit with ν's optimiser value
+at :data:`RESTART_NU` and the location's gap at least e⁻⁴ of the span
+(:func:`pas.models.joint_starts.student_restart`), the edges that trap a warm start,
+instead of from the final fit and from the data (:data:`COLD_FAMILIES`).  On the 50
+tuning types it kept every band end within 1.8e-4 at 0.81 of the band's CPU, but on the
+held-out ``ho2-mix-negative-body`` three of 50 replicate fits ended up to 97 below the
+optimum the warm start reaches (a band end 2.9 %), so it stays off
 (``benchmarks/investigations/band_student_cold.py``, ``docs/explanation/model-band.md``)."""
+
+RESTART_NU = 1.0
+"""ν's optimiser value a restarted Student-t begins at (:data:`STUDENT_RESTART`; 1: ν 37,
+between the data's start (0: ν 26, which misses optima at the bound of 50) and the bound)."""
 
 COLD_AT_EDGES_ONLY = False
 """True: a replicate's family of :data:`COLD_FAMILIES` also starts from the data only when
@@ -181,11 +188,24 @@ def _choice_marginals(strategy, choice) -> set:
 
 def cold_families(starts, location: bool) -> tuple:
     """The families of :data:`COLD_FAMILIES` whose replicate fits from the final fits
-    ``starts`` also start from the data (:data:`COLD_AT_EDGES_ONLY`)."""
+    ``starts`` also start from the data (not a restarted Student-t,
+    :data:`STUDENT_RESTART`; :data:`COLD_AT_EDGES_ONLY`)."""
+    cold = tuple(f for f in COLD_FAMILIES if not (STUDENT_RESTART and f == "student"))
     if not COLD_AT_EDGES_ONLY:
-        return tuple(COLD_FAMILIES)
-    return tuple(f for f in COLD_FAMILIES
+        return cold
+    return tuple(f for f in cold
                  if any(trapped(fit.x, location) for (g, _), fit in starts.items() if g == f))
+
+
+def _restarted(starts: ReplicateStarts, location: bool) -> ReplicateStarts:
+    """``starts`` with Student-t's optimiser values moved off the edges that trap a warm
+    start (:data:`STUDENT_RESTART`): a start, whose copula and marginal stay the final
+    fit's (only the pruning above reads them)."""
+    if not STUDENT_RESTART:
+        return starts
+    return ReplicateStarts(
+        (k, dataclasses.replace(f, x=student_restart(f.x, location, RESTART_NU))
+         if k[0] == "student" else f) for k, f in starts.items())
 
 
 def replicate_starts(strategy, b, lfset, starts: dict, choice) -> ReplicateStarts:
@@ -195,20 +215,21 @@ def replicate_starts(strategy, b, lfset, starts: dict, choice) -> ReplicateStart
     fits ``starts`` on ``b`` (its own conditioning set and censoring, the mid-ranks of
     its LF; module docs)."""
     keys = [k for k in starts if k[1] in _choice_marginals(strategy, choice)]
+    location = strategy.estimator.hf_location
     if PRUNE_AIC is None:
-        return ReplicateStarts((k, starts[k]) for k in keys)
+        return _restarted(ReplicateStarts((k, starts[k]) for k in keys), location)
     impact = strategy.impact_of(b)
     n0 = conditioning_set(lfset.lf, b.lf.min()).size
     u = strategy._population_ranks(lfset, n0, impact, None)[b.position]
     aic = {k: 2.0 * starts[k].copula.npars
-           - 2.0 * float(np.sum(pair_logliks(starts[k], u, b.hf, location=strategy.estimator.hf_location)))
+           - 2.0 * float(np.sum(pair_logliks(starts[k], u, b.hf, location=location)))
            for k in keys}
     eligible = [aic[k] for k in keys if not starts[k].copula.at_bound] or list(aic.values())
     # whole families: a marginal's start can be far from its replicate optimum (module docs)
     kept = {f for f, _ in keys
             if min(a if np.isfinite(a) else -np.inf for (g, _), a in aic.items() if g == f)
             <= min(eligible) + PRUNE_AIC}
-    return ReplicateStarts((k, starts[k]) for k in keys if k[0] in kept)
+    return _restarted(ReplicateStarts((k, starts[k]) for k in keys if k[0] in kept), location)
 
 
 def _replicate_mpm(i: int) -> tuple | None:
@@ -307,9 +328,8 @@ def _chunk_mpms(indices) -> list:
             with contextlib.suppress(ValueError, np.linalg.LinAlgError):
                 chunk[i] = Replicate(*replicates[i][:4], replicate_starts(
                     strategy, replicates[i][0], lfset, starts, plan[i][2]))
-    cold = tuple(f for f in cold_families(starts, strategy.estimator.hf_location)
-                 if not (STUDENT_RESTART and f == "student"))
-    fits = batch_fits(strategy, chunk, cold, width, student_restarted=STUDENT_RESTART)
+    fits = batch_fits(strategy, chunk, cold_families(starts, strategy.estimator.hf_location),
+                      width)
     out = []
     for i in indices:
         try:

@@ -15,7 +15,6 @@ import numpy as np
 
 from ..models.joint import HF_MARGINALS, best_per_family, starts_cold
 from ..models.joint_batch import fit_joint_batch
-from ..models.joint_starts import student_restart
 from .steps import FittedModel, joint_candidates
 
 __all__ = ["Replicate", "batch_fits", "fits_in_order", "replicate_model"]
@@ -37,15 +36,12 @@ def fits_in_order(strategy, starts) -> list:
     return [(f, m) for f in strategy.families for m in HF_MARGINALS if (f, m) in starts]
 
 
-def batch_fits(strategy, replicates: dict, cold_families, width: int, *,
-               student_restarted: bool = False) -> dict:
+def batch_fits(strategy, replicates: dict, cold_families, width: int) -> dict:
     """Every replicate's joint fits by ``(family, marginal)``, each candidate fitted to all
     the ``replicates`` (by index, :class:`Replicate`) that keep it at once; None for a
     replicate one of whose fits failed (its ValueError), as a fit one after another fails.
 
-    ``cold_families`` also start from the data; ``student_restarted``: Student-t starts
-    from its final fit moved off the edges that trap a warm start
-    (:func:`pas.models.joint_starts.student_restart`); ``width``: the padded number of
+    ``cold_families`` also start from the data; ``width``: the padded number of
     distinct pairs (:func:`pas.models.joint_batch.weighted_pairs`), the same for
     every chunk so that a replicate's fit does not depend on the chunk it is in.
     """
@@ -59,8 +55,6 @@ def batch_fits(strategy, replicates: dict, cold_families, width: int, *,
         samples = [(replicates[i][3][replicates[i][0].position], replicates[i][0].hf)
                    for i in rows]
         starts = [replicates[i][4][name, marginal].x for i in rows]
-        if student_restarted and name.partition("_")[0] == "student":
-            starts = [student_restart(x, strategy.estimator.hf_location) for x in starts]
         out = fit_joint_batch(name, samples, starts,
                               location=strategy.estimator.hf_location, marginal=marginal,
                               cold=starts_cold(cold_families, name), width=width,
