@@ -4,10 +4,9 @@ Each known-truth study runs as the defaults have it (its own ε1 stop, budget
 ``--max-hf``); its final model band is then fitted again with Student-t's
 replicate fits started from the final fit only (``band.COLD_FAMILIES = ()``), and
 once more started once from the final fit moved off the edges that trap a warm
-start (``band.STUDENT_RESTART``: ν's start that of the data, the location's gap
-at least e⁻⁴ of the span), and once with the start from the data only where
-the final fit sits on those edges (``band.COLD_AT_EDGES_ONLY``), all from the
-same random numbers.  Per study and way:
+start (``band.STUDENT_RESTART``: ν's start that of the data, or ``restart:C``
+ν's optimiser value C, the location's gap at least e⁻⁴ of the span), all from
+the same random numbers.  Per study and way:
 the U95 (the sampling band widened to hold the model band), whether it holds the
 exact truth, the largest relative change of a band end and of a replicate MPM
 against today's band, how many of the 50 replicate MPMs moved by more than 1e-6,
@@ -15,7 +14,7 @@ and the band's CPU time (one process).  Writes ``band_student_cold.csv``;
 prints per group and overall.
 
 Run: python benchmarks/investigations/band_student_cold.py [N] [--types all] [--held-out]
-     [--first 0] [--ways warm,restart,edges,restart:1] [--out pas-output/band-cold]
+     [--first 0] [--ways warm,restart,restart:1] [--out pas-output/band-cold]
 """
 
 from __future__ import annotations
@@ -40,21 +39,19 @@ from pas.validation.known_truth_runs import (
 from pas.validation.timing_problem import cpu_seconds
 
 
-SETTINGS = ("COLD_FAMILIES", "STUDENT_RESTART", "COLD_AT_EDGES_ONLY", "RESTART_NU")
+SETTINGS = ("COLD_FAMILIES", "STUDENT_RESTART", "RESTART_NU")
 
 
 def way(label: str) -> tuple:
-    """``(band.COLD_FAMILIES, band.STUDENT_RESTART, band.COLD_AT_EDGES_ONLY,
-    band.RESTART_NU)`` of a way: ``cold`` (today's), ``warm``, ``restart``,
-    ``edges`` or ``restart:C`` (restarted with ν's optimiser value at C, 0 being ν 26)."""
-    fixed = {"cold": (("student",), False, False, 0.0), "warm": ((), False, False, 0.0),
-             "restart": (("student",), True, False, 0.0),
-             "edges": (("student",), False, True, 0.0)}
+    """``(band.COLD_FAMILIES, band.STUDENT_RESTART, band.RESTART_NU)`` of a way: ``cold``
+    (today's), ``warm``, ``restart`` or ``restart:C`` (ν's optimiser value C, 0 being ν 26)."""
+    fixed = {"cold": (("student",), False, 0.0), "warm": ((), False, 0.0),
+             "restart": (("student",), True, 0.0)}
     if label in fixed:
         return fixed[label]
     if label.startswith("restart:"):
-        return ("student",), True, False, float(label.partition(":")[2])
-    raise ValueError(f"--ways: {label!r} is none of cold, warm, restart, edges, restart:C")
+        return ("student",), True, float(label.partition(":")[2])
+    raise ValueError(f"--ways: {label!r} is none of cold, warm, restart, restart:C")
 
 
 def final_bands(study, ways):
@@ -107,8 +104,8 @@ def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     add_study_arguments(ap, n=2)
     ap.add_argument("--out", default="pas-output/band-cold")
-    ap.add_argument("--ways", default="warm,restart,edges",
-                    help="compared with today's band (cold): warm, restart, edges, restart:C")
+    ap.add_argument("--ways", default="warm,restart,restart:1",
+                    help="compared with today's band (cold): warm, restart, restart:C")
     args = ap.parse_args(argv)
     ways = [w for w in args.ways.split(",") if w and w != "cold"]
     for label in ways:

@@ -386,11 +386,3 @@ def test_a_deep_copy_of_a_joint_fit_shares_it_and_its_values_cannot_change():
     with pytest.raises(ValueError):
         fit.x[0] = 1.0
 
-
-def test_a_student_fit_is_trapped_at_the_nu_bound_or_a_location_at_the_smallest_load():
-    from pas.models.joint_starts import trapped
-
-    assert trapped([-2.0, 1.0, 0.5, 0.3, 10.5], location=True)  # ν ≈ 50
-    assert trapped([-8.4, 1.0, 0.5, 0.3, 0.0], location=True)  # θ at the smallest load
-    assert not trapped([-8.4, 1.0, 0.5, 0.3, 0.0], location=False)
-    assert not trapped([-2.0, 1.0, 0.5, 0.3, 1.0], location=True)

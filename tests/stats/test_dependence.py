@@ -37,3 +37,8 @@ def test_kendall_tau_with_nan_follows_scipy():
     x, y = np.array([1.0, 2.0, np.nan, 4.0]), np.array([1.0, 3.0, 2.0, 5.0])
     assert np.isnan(kendall_tau(x, y)) == np.isnan(stats.kendalltau(x, y).statistic)
 
+
+
+def test_kendall_tau_of_integers_is_not_cast_to_float():
+    # 10**17 and 10**17 + 1 are one float64
+    assert kendall_tau([10**17, 10**17 + 1, 3], [1, 2, 3]) == pytest.approx(-1 / 3)

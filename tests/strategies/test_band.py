@@ -256,20 +256,10 @@ def test_replicates_too_alike_to_fit_draw_no_lf_ranks_either_way(monkeypatch):
                                rtol=1e-4)
 
 
-def test_the_cold_start_at_edges_only_keeps_it_for_a_trapped_final_student_fit(monkeypatch):
-    from types import SimpleNamespace
-
-    free = SimpleNamespace(x=np.array([-2.0, 1.0, 0.5, 0.3, 1.0]))
-    at_nu_bound = SimpleNamespace(x=np.array([-2.0, 1.0, 0.5, 0.3, 11.0]))
-    starts = {("student", "weibull"): free, ("gaussian", "weibull"): free}
-    assert band.cold_families(starts, True) == ("student",)  # the default: always
+def test_a_restarted_student_fits_from_its_moved_start_only(monkeypatch):
+    assert band.cold_families() == ("student",)  # the default: warm and from the data
     monkeypatch.setattr(band, "STUDENT_RESTART", True)
-    assert band.cold_families(starts, True) == ()  # restarted instead
-    monkeypatch.setattr(band, "STUDENT_RESTART", False)
-    monkeypatch.setattr(band, "COLD_AT_EDGES_ONLY", True)
-    assert band.cold_families(starts, True) == ()
-    starts["student", "lognormal"] = at_nu_bound
-    assert band.cold_families(starts, True) == ("student",)
+    assert band.cold_families() == ()
 
 
 def test_a_restarted_student_start_moves_only_nu_and_a_trapped_location(monkeypatch):

@@ -14,7 +14,7 @@ import pyvinecopulib as pv
 from ..stats.weibull import fit_weibull3_ls
 from .copulas import kendall_tau
 
-__all__ = ["DataStarts", "copula_start", "student_restart", "trapped"]
+__all__ = ["DataStarts", "copula_start", "student_restart"]
 
 _TINY = 1e-12
 
@@ -62,14 +62,6 @@ def student_restart(x, location: bool, nu_start: float = 0.0) -> np.ndarray:
     if location:
         x[0] = max(x[0], -4.0)
     return x
-
-
-def trapped(x, location: bool) -> bool:
-    """Whether a Student-t fit's optimiser values ``x`` sit on an edge that traps a warm
-    start from them (:func:`student_restart`): ν within 1 of its bound of 50 (the
-    logistic map's value above 4) or, with a location, the location's gap below the
-    smallest load under e⁻⁴ of the loads' span."""
-    return bool(x[-1] > 4.0 or (location and x[0] < -4.0))
 
 
 def _lognormal_start(h, location: bool, weibull=None):

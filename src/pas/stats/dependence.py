@@ -117,16 +117,18 @@ def _gpd_fit(excess):
 
 
 _PAIRWISE_UP_TO = 200
-"""Samples up to this size count their pairs at once (O(n²) memory); larger ones by
-scipy's O(n log n) merge sort, which costs about 1 ms a call for its p-value and checks."""
+"""Float samples up to this size count their pairs at once (O(n²)); larger ones, and
+integers, by scipy's O(n log n) merge sort and its p-value: the pairs cost 0.05–0.08 of
+its time at 10–40 values, 0.5 at 160, 0.8 at 200."""
 
 
 def kendall_tau(x, y) -> float:
     """Kendall's τ-b of two samples, as :func:`scipy.stats.kendalltau` computes it (NaN for
     fewer than two pairs or a sample all alike)."""
-    x, y = np.asarray(x, float).ravel(), np.asarray(y, float).ravel()
-    if x.size > _PAIRWISE_UP_TO or not (np.isfinite(x).all() and np.isfinite(y).all()):
-        return float(stats.kendalltau(x, y).statistic)
+    x, y = np.asarray(x).ravel(), np.asarray(y).ravel()
+    if (x.size > _PAIRWISE_UP_TO or x.dtype.kind != "f" or y.dtype.kind != "f"
+            or not (np.isfinite(x).all() and np.isfinite(y).all())):
+        return float(stats.kendalltau(x, y).statistic)  # integers: no float cast
     sx, sy = np.sign(x[:, None] - x), np.sign(y[:, None] - y)  # every pair twice
     tot = x.size * (x.size - 1) // 2
     xtie = tot - int(np.count_nonzero(sx)) // 2

@@ -28,12 +28,12 @@ from .._support.checks import check_int, check_option
 from ..models.joint import HF_MARGINALS
 from ..models.joint_batch import batchable
 from ..models.joint_mixture import MIXTURE, pair_logliks
-from ..models.joint_starts import student_restart, trapped
+from ..models.joint_starts import student_restart
 from . import model_form as model_forms
 from .band_batch import Replicate, batch_fits, replicate_model
 from .steps import conditioning_set
 
-__all__ = ["ModelBand", "WARM_BAND", "COLD_FAMILIES", "COLD_AT_EDGES_ONLY", "PRUNE_AIC", "BATCHED",
+__all__ = ["ModelBand", "WARM_BAND", "COLD_FAMILIES", "PRUNE_AIC", "BATCHED",
            "STUDENT_RESTART", "RESTART_NU",
            "ReplicateStarts", "bootstrap_band", "cold_families", "default_jobs", "replicate_plan",
            "replicate_mpms", "replicate_starts"]
@@ -58,14 +58,6 @@ optimum the warm start reaches (a band end 2.9 %), so it stays off
 RESTART_NU = 1.0
 """ν's optimiser value a restarted Student-t begins at (:data:`STUDENT_RESTART`; 1: ν 37,
 between the data's start (0: ν 26, which misses optima at the bound of 50) and the bound)."""
-
-COLD_AT_EDGES_ONLY = False
-"""True: a replicate's family of :data:`COLD_FAMILIES` also starts from the data only when
-one of the final fits it starts from sits on an edge that traps a warm start
-(:func:`pas.models.joint_starts.trapped`: ν at its bound, a location at the smallest load),
-where the start from the data was seen to win.  On 62 known-truth studies it changed
-no coverage and one band end by 0.44 %, but cost 0.95 of the band's CPU (the final fit is
-trapped in most), so it stays off (``docs/explanation/model-band.md``)."""
 
 BATCHED = True
 """A warm band's replicates are fitted together, each candidate to all of them at once
@@ -186,15 +178,10 @@ def _choice_marginals(strategy, choice) -> set:
                 "all": (*HF_MARGINALS, MIXTURE)}.get(choice, (choice,)))
 
 
-def cold_families(starts, location: bool) -> tuple:
-    """The families of :data:`COLD_FAMILIES` whose replicate fits from the final fits
-    ``starts`` also start from the data (not a restarted Student-t,
-    :data:`STUDENT_RESTART`; :data:`COLD_AT_EDGES_ONLY`)."""
-    cold = tuple(f for f in COLD_FAMILIES if not (STUDENT_RESTART and f == "student"))
-    if not COLD_AT_EDGES_ONLY:
-        return cold
-    return tuple(f for f in cold
-                 if any(trapped(fit.x, location) for (g, _), fit in starts.items() if g == f))
+def cold_families() -> tuple:
+    """The families of :data:`COLD_FAMILIES` whose replicate fits also start from the data
+    (not a restarted Student-t, :data:`STUDENT_RESTART`)."""
+    return tuple(f for f in COLD_FAMILIES if not (STUDENT_RESTART and f == "student"))
 
 
 def _restarted(starts: ReplicateStarts, location: bool) -> ReplicateStarts:
@@ -328,8 +315,7 @@ def _chunk_mpms(indices) -> list:
             with contextlib.suppress(ValueError, np.linalg.LinAlgError):
                 chunk[i] = Replicate(*replicates[i][:4], replicate_starts(
                     strategy, replicates[i][0], lfset, starts, plan[i][2]))
-    fits = batch_fits(strategy, chunk, cold_families(starts, strategy.estimator.hf_location),
-                      width)
+    fits = batch_fits(strategy, chunk, cold_families(), width)
     out = []
     for i in indices:
         try:

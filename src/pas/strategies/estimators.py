@@ -145,8 +145,7 @@ class ConditionalLikelihood:
         # a band replicate fits only the candidates that can win it (band.ReplicateStarts)
         only = set(starts) if isinstance(starts, band.ReplicateStarts) else None
         if starts is not None:  # a band replicate from the final fits (model_band)
-            cold = (band.cold_families(starts, self.hf_location) if only is not None
-                    else band.COLD_FAMILIES)
+            cold = band.cold_families() if only is not None else band.COLD_FAMILIES
         else:
             family = request.families[0] if request.one_family else None
             starts = pas._joint if family is None else {
