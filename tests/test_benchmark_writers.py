@@ -353,3 +353,14 @@ def test_no_recorded_study_stopped_on_a_band_wider_than_its_target():
     for runs in (on, off):
         stop = runs[runs["converged"]]
         assert (stop["halfwidth"] <= stop["precision"] * (1 + 1e-12)).all()
+
+
+def test_a_first_passage_comes_before_the_trend_reaches_the_target():
+    script = load_script("benchmarks/investigations/forecast_variants.py")
+    n, w = [10, 20, 40], [0.4 / (k / 10) ** 0.5 for k in (10, 20, 40)]  # 0.1 at 160 pairs
+    median, low, high = script.first_passage_pairs(n, w, 0.1, 0.0, 40, every=3)
+    assert 40 < low <= median < high and median < 160  # noise crosses first
+    # a sparser schedule gives fewer chances to fall below: no earlier
+    assert script.first_passage_pairs(n, w, 0.1, 0.0, 40, every=12)[0] >= median
+    # a target below the part that does not narrow is out of reach
+    assert script.first_passage_pairs(n, w, 0.1, 0.15, 40) == (float("inf"),) * 3

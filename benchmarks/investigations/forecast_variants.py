@@ -16,7 +16,11 @@ replayed offline on what the study knew at its halfway fit:
   ``k2`` MPMs, and the window's MPMs within a band the target allows);
 - "+ sampling widths" (the adopted variant only): where no model band was
   computed yet, the sampling half-widths of the fits stand in for the model
-  band's.
+  band's;
+- "first passage" (:func:`first_passage_pairs`): the widths scatter about the
+  power law (mean level, ``b`` shrunk toward 1/2) and the rule stops at the
+  first band below the target, bands every 1, 3 or 6 pairs: the median of
+  that first passage, with the rule's floor.
 
 Per variant: the studies that reached their target, the share whose halfway
 forecast was within a factor 1.5 of the HF then needed (a missing forecast
@@ -106,6 +110,54 @@ def further_hf(state: dict, *, rule_floor: bool, sampling_widths: bool = False, 
     return ahead.further(state["n_pairs"], state["n_hf"] / max(state["n_pairs"], 1))
 
 
+def first_passage_pairs(n, w, target: float, floor: float, n_now: int, *, every: int = 3,
+                        prior_sd: float = 0.2, horizon: int = 2000):
+    """``(median, 2.5 %, 97.5 %)`` pairs at which a band first falls below ``target`` if
+    bands are computed every ``every`` pairs from ``n_now`` and scatter about the power
+    law of :func:`forecast_pairs`'s fit (mean level, ``b`` shrunk toward 1/2) with the
+    fitted scatter, independently: the first passage of the widths, not the trend's
+    crossing (the rule stops at the first band below the target)."""
+    from scipy import stats as st
+
+    from pas.strategies.forecast import SPAN, _exponent
+
+    n, w = np.asarray(n, float), np.asarray(w, float)
+    keep = np.isfinite(w) & (w > 0) & (n >= n[-1] / SPAN)
+    n, w = n[keep], w[keep]
+    if n.size == 0:
+        return None
+    if floor >= target:
+        return (math.inf,) * 3
+    x, y = np.log(n), np.log(w)
+    b, _, s2, _ = _exponent(x, y, prior_sd)
+    level = float(np.mean(y + b * (x - x.mean())))
+    future = n_now + every * np.arange(1, horizon + 1)
+    mu = level - b * (np.log(future) - x.mean())
+    p_above = st.norm.cdf((mu - math.log(target)) / math.sqrt(s2))
+    survive = np.cumprod(p_above)
+    out = []
+    for q in (0.5, 0.025, 0.975):
+        j = np.searchsorted(-survive, -(1 - q))  # first index where survive <= 1 - q
+        out.append(float(future[j]) if j < future.size else math.inf)
+    return tuple(out)
+
+
+def further_first_passage(state: dict, *, every: int = 3, prior_sd: float = 0.2):
+    """``(expected, low, high)`` further HF of :func:`first_passage_pairs`, with the rule's
+    floor."""
+    if "n" not in state or not len(state["n"]):
+        return (np.nan,) * 3
+    got = first_passage_pairs(state["n"], state["w"], state["target"], state["floor"],
+                              state["n_pairs"], every=every, prior_sd=prior_sd)
+    if got is None:
+        return (np.nan,) * 3
+    rule = StoppingRule(precision=state["target"])
+    rule.mpms = list(state["mpms"])
+    least = state["n_pairs"] + max(rule.fewest_more_fits(), 1)
+    per_pair = state["n_hf"] / max(state["n_pairs"], 1)
+    return tuple(max(0.0, max(v, least) - state["n_pairs"]) * per_pair for v in got)
+
+
 def evaluate(states: list) -> pd.DataFrame:
     """One row per (variant, study): the forecast halfway, the HF then needed."""
     rows = []
@@ -121,6 +173,13 @@ def evaluate(states: list) -> pd.DataFrame:
                                  "data_set": s["data_set"], "target": s["target"],
                                  "needed": s["needed"], "forecast": expected, "low": low,
                                  "high": high})
+    for every in (1, 3, 6):
+        for s in states:
+            expected, low, high = further_first_passage(s, every=every)
+            rows.append({"variant": f"first passage, a band every {every} pairs + k2 floor",
+                         "problem": s["problem"], "data_set": s["data_set"],
+                         "target": s["target"], "needed": s["needed"], "forecast": expected,
+                         "low": low, "high": high})
     return pd.DataFrame(rows)
 
 
