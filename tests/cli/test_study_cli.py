@@ -287,7 +287,8 @@ def test_set_tightens_eps1_and_grows_the_budget_of_a_converged_study(tmp_path, c
     text = capsys.readouterr().out
     assert "setting changed: eps1 0.05 -> 0.001" in text and "limit eps1 0.001" in text
     # settings that decide what is asked cannot change; bad values are named
-    for argv, needle in ((["--eps1", "-1"], "--eps1"), (["--max-hf", "2"], "--max-hf"), ([], "--eps1")):
+    for argv, needle in ((["--eps1", "-1"], "--eps1"), (["--max-hf", "2"], "--max-hf"),
+                         (["--max-hf", "-3"], "--max-hf must be an integer ≥ 4"), ([], "--eps1")):
         assert cli("study", "set", db, *argv) == 2
         assert needle in capsys.readouterr().err
 

@@ -378,6 +378,8 @@ def _set(args) -> int:
     from .._support.checks import check_setting
 
     for key, value in changes.items():  # the rules of the Python API and the study file
+        if key == "max_hf":
+            continue  # its least value is the strategy's: the study checks it when opened
         try:
             check_setting(key, value)
         except ValueError as exc:

@@ -91,8 +91,8 @@ class Study(Corrections):
         self.lfset = lfset
         self.strategy = strategy
         # the keyword settings above, by the rules the study file and 'pas study set' use
-        given = {k: v for k, v in locals().items() if k in SETTING_CHECKS}
-        ok = {k: check_setting(k, v) for k, v in given.items()}
+        given = {k: v for k, v in locals().items() if k in SETTING_CHECKS and k != "max_hf"}
+        ok = {k: check_setting(k, v) for k, v in given.items()}  # max_hf: the strategy's least
         self.stopping = StoppingRule(**{f: ok[name] for f, name in STOPPING_NAMES.items()})
         seed = ok["seed"]
         self.seed = int(np.random.SeedSequence().entropy % (2**63) if seed is None else seed)
