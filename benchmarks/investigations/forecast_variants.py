@@ -43,7 +43,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from pas.strategies.forecast import forecast_pairs, relative_half_width
+from pas.strategies.forecast import Forecast, forecast_pairs, relative_half_width
 from pas.strategies.stopping import StoppingRule
 from pas.validation.result_tables import rewrite_page
 
@@ -100,13 +100,19 @@ def further_hf(state: dict, *, rule_floor: bool, sampling_widths: bool = False, 
     n, w = state["n"], state["w"]
     if sampling_widths and not len(n):
         n, w = state["fit_n"], state["fit_w"]
-    rule = StoppingRule(precision=state["target"])
-    rule.mpms = list(state["mpms"])
     ahead = forecast_pairs(n, w, state["target"], state["floor"], **kw) if len(n) else None
     if ahead is None:
         return (np.nan,) * 3
+    return _further(state, ahead, rule_floor)
+
+
+def _further(state: dict, ahead: Forecast, rule_floor: bool = True):
+    """``(expected, low, high)`` further HF of the pairs ``ahead`` from the halfway fit,
+    with ``rule_floor`` never before the stopping rule can hold (it did not there)."""
     if rule_floor:
-        ahead = ahead.at_least(state["n_pairs"] + max(rule.fewest_more_fits(), 1))  # not met
+        rule = StoppingRule(precision=state["target"])
+        rule.mpms = list(state["mpms"])
+        ahead = ahead.at_least(state["n_pairs"] + max(rule.fewest_more_fits(), 1))
     return ahead.further(state["n_pairs"], state["n_hf"] / max(state["n_pairs"], 1))
 
 
@@ -151,11 +157,7 @@ def further_first_passage(state: dict, *, every: int = 3, prior_sd: float = 0.2)
                               state["n_pairs"], every=every, prior_sd=prior_sd)
     if got is None:
         return (np.nan,) * 3
-    rule = StoppingRule(precision=state["target"])
-    rule.mpms = list(state["mpms"])
-    least = state["n_pairs"] + max(rule.fewest_more_fits(), 1)
-    per_pair = state["n_hf"] / max(state["n_pairs"], 1)
-    return tuple(max(0.0, max(v, least) - state["n_pairs"]) * per_pair for v in got)
+    return _further(state, Forecast(*got, math.nan))
 
 
 def evaluate(states: list) -> pd.DataFrame:
@@ -166,21 +168,21 @@ def evaluate(states: list) -> pd.DataFrame:
             for sampling in (False, True) if rule_floor and name == ADOPTED else (False,):
                 label = name + (" + k2 floor" if rule_floor else "") + (
                     " + sampling widths" if sampling else "")
-                for s in states:
-                    expected, low, high = further_hf(s, rule_floor=rule_floor,
-                                                     sampling_widths=sampling, **kw)
-                    rows.append({"variant": label, "problem": s["problem"],
-                                 "data_set": s["data_set"], "target": s["target"],
-                                 "needed": s["needed"], "forecast": expected, "low": low,
-                                 "high": high})
+                rows += [_row(label, s, further_hf(s, rule_floor=rule_floor,
+                                                   sampling_widths=sampling, **kw))
+                         for s in states]
     for every in (1, 3, 6):
-        for s in states:
-            expected, low, high = further_first_passage(s, every=every)
-            rows.append({"variant": f"first passage, a band every {every} pairs + k2 floor",
-                         "problem": s["problem"], "data_set": s["data_set"],
-                         "target": s["target"], "needed": s["needed"], "forecast": expected,
-                         "low": low, "high": high})
+        rows += [_row(f"first passage, a band every {every} pairs + k2 floor", s,
+                      further_first_passage(s, every=every)) for s in states]
     return pd.DataFrame(rows)
+
+
+def _row(variant: str, state: dict, forecast) -> dict:
+    """A study's row of :func:`evaluate`: its halfway ``forecast`` (expected, low, high)."""
+    expected, low, high = forecast
+    return {"variant": variant, "problem": state["problem"], "data_set": state["data_set"],
+            "target": state["target"], "needed": state["needed"], "forecast": expected,
+            "low": low, "high": high}
 
 
 def summary(runs: pd.DataFrame) -> pd.DataFrame:
