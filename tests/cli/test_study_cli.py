@@ -286,11 +286,17 @@ def test_set_tightens_eps1_and_grows_the_budget_of_a_converged_study(tmp_path, c
     assert cli("study", "status", db) == 0
     text = capsys.readouterr().out
     assert "setting changed: eps1 0.05 -> 0.001" in text and "limit eps1 0.001" in text
+    with StudyStore(db, create=False) as store:
+        before = store.settings()
     # settings that decide what is asked cannot change; bad values are named
     for argv, needle in ((["--eps1", "-1"], "--eps1"), (["--max-hf", "2"], "--max-hf"),
-                         (["--max-hf", "-3"], "--max-hf must be an integer ≥ 4"), ([], "--eps1")):
+                         (["--max-hf", "-3"], "--max-hf must be an integer ≥ 4"),
+                         (["--k1", "-3"], "--k1"), ([], "--eps1")):
         assert cli("study", "set", db, *argv) == 2
         assert needle in capsys.readouterr().err
+    with StudyStore(db, create=False) as store:  # a refused value is not recorded
+        kept = store.settings()
+    assert kept == before and (kept["eps1"], kept["max_hf"]) == (0.001, 45)
 
 
 def test_the_documented_study_file_creates_a_study(tmp_path, capsys):

@@ -375,15 +375,6 @@ def _set(args) -> int:
     changes = {k: getattr(args, k) for k in names if getattr(args, k) is not None}
     if not changes:
         raise ValueError(f"give at least one of {', '.join(names.values())}")
-    from .._support.checks import check_setting
-
-    for key, value in changes.items():  # the rules of the Python API and the study file
-        if key == "max_hf":
-            continue  # its least value is the strategy's: the study checks it when opened
-        try:
-            check_setting(key, value)
-        except ValueError as exc:
-            raise ValueError(_option_names(str(exc), names)) from None
     with StudyStore(args.study, create=False) as store:
         old = store.settings()
         try:

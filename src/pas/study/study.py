@@ -91,13 +91,14 @@ class Study(Corrections):
         self.lfset = lfset
         self.strategy = strategy
         # the keyword settings above, by the rules the study file and 'pas study set' use
-        given = {k: v for k, v in locals().items() if k in SETTING_CHECKS and k != "max_hf"}
-        ok = {k: check_setting(k, v) for k, v in given.items()}  # max_hf: the strategy's least
+        # max_hf first: its least value is the strategy's, stricter than the generic rule
+        self.max_hf = None if max_hf is None else check_int(max_hf, "max_hf", strategy.n_initial)
+        given = {k: v for k, v in locals().items() if k in SETTING_CHECKS}
+        ok = {k: check_setting(k, v) for k, v in given.items()}
         self.stopping = StoppingRule(**{f: ok[name] for f, name in STOPPING_NAMES.items()})
         seed = ok["seed"]
         self.seed = int(np.random.SeedSequence().entropy % (2**63) if seed is None else seed)
         strategy.reset(self.seed)
-        self.max_hf = None if max_hf is None else check_int(max_hf, "max_hf", strategy.n_initial)
         self.max_failures = ok["max_failures"]
         self.stop_on_convergence = ok["stop_on_convergence"]
         self.adaptive_threshold = ok["adaptive_threshold"]
