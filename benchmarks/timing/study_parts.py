@@ -3,7 +3,10 @@
 One scenario throughout: 15 000 Rayleigh LF peaks, ``n_w`` 16 364, a Gumbel
 (θ = 3) copula to a Weibull HF load, stopping off, 80 HF (``--max-hf``).
 Every ratio is measured in this one run, the old path beside the new (CPU
-time, the forked band workers' included; wall time on a shared machine):
+time, the forked band workers' included; wall time on a shared machine); the
+whole runs of ``fit`` and the bands of ``band`` are each the median of
+``--repeats`` runs (default 5: one run of the band on two cores varied by
+±8 % on the 2-core machine):
 
 * ``fit``: the whole run and a Student-t-only run with the Student-t joint
   fit by numerical differences (scipy's L-BFGS-B default, the old path)
@@ -33,7 +36,7 @@ time, the forked band workers' included; wall time on a shared machine):
   and the MPM change; one ``run_pas`` at 1.5 M to 8 HF, old and new, peak RSS;
   a band replicate's full sort against the partial one.
 
-Run: python benchmarks/timing/study_parts.py [--parts fit,cold,band,driver,long] [--max-hf 80] [--json out.json]
+Run: python benchmarks/timing/study_parts.py [--parts fit,cold,band,driver,long] [--max-hf 80] [--repeats 5] [--json out.json]
 """
 
 from __future__ import annotations
@@ -181,21 +184,30 @@ def student_iterations(max_hf):
     return 1e3 * float(np.median(loop)), 1e3 * float(loop.max())
 
 
-def part_fit(max_hf):
-    """The Student-t gradient: the whole run and Student-t alone, numerical vs analytic."""
-    print("-- Student-t joint fit: numerical differences (old) vs analytic gradient (new)")
+def part_fit(max_hf, repeats=1):
+    """The Student-t gradient: the whole run and Student-t alone, numerical vs analytic;
+    each time the median of ``repeats`` runs (their results are the same)."""
+    print("-- Student-t joint fit: numerical differences (old) vs analytic gradient (new)"
+          + (f"; median of {repeats} runs (least-largest ms/HF)" if repeats > 1 else ""))
     out = {}
     for label, ctx in (("old", numerical_student), ("new", contextlib.nullcontext)):
+        times = []
         with ctx():
-            res, loop, band, band_wall = run(max_hf)
-            st = student_iterations(max_hf)
+            for _ in range(repeats):
+                res, loop, band, band_wall = run(max_hf)
+                st = student_iterations(max_hf)
+                times.append([loop.sum() + band, float(np.median(loop)), float(loop.max()),
+                              band, band_wall, *st])
         out[label] = summary(res)
-        total = loop.sum() + band
-        print(f"  {label}: run_pas {max_hf} HF {1e3 * total / max_hf:6.1f} ms/HF (CPU); loop "
-              f"median {1e3 * np.median(loop):5.1f} ms, worst {1e3 * loop.max():6.1f} ms; final "
+        total, loop_median, loop_worst, band, band_wall, *st = np.median(times, axis=0)
+        spread = (f" ({1e3 * min(t[0] for t in times) / max_hf:.1f}-"
+                  f"{1e3 * max(t[0] for t in times) / max_hf:.1f})" if repeats > 1 else "")
+        print(f"  {label}: run_pas {max_hf} HF {1e3 * total / max_hf:6.1f} ms/HF (CPU){spread}; "
+              f"loop median {1e3 * loop_median:5.1f} ms, worst {1e3 * loop_worst:6.1f} ms; final "
               f"band {band:5.2f} s CPU, {band_wall:5.2f} s wall; Student-t-only run: loop "
               f"median {st[0]:5.1f} ms, worst {st[1]:5.1f} ms")
-        out[label]["times"] = [total, float(np.median(loop)), float(loop.max()), band, *st]
+        out[label]["times"] = [float(total), float(loop_median), float(loop_worst), float(band),
+                               *map(float, st)]
     rel, same = largest_change(out["old"], out["new"])
     t_old, t_new = out["old"]["times"], out["new"]["times"]
     print(f"  ratio new/old: run {t_new[0] / t_old[0]:.2f}, loop median {t_new[1] / t_old[1]:.2f}, "
@@ -217,17 +229,27 @@ def final_study(max_hf):
     return study, lambda: np.random.default_rng([study.seed, len(study.rows), 1])
 
 
-def band_seconds(study, rng, n_jobs):
-    """``(wall s, CPU s with the workers', band)`` of the final model band."""
-    t, c = time.perf_counter(), cpu_seconds()
-    low, high, mpms = study.strategy.model_band(study.pairs(), study.lfset, rng(), n_jobs=n_jobs)
-    return time.perf_counter() - t, cpu_seconds() - c, (low, high), mpms
+def band_seconds(study, rng, n_jobs, repeats=1):
+    """``(wall s, CPU s with the workers', band, replicate MPMs)`` of the final model band;
+    with ``repeats`` > 1 the times are the medians of that many runs (the band is the same
+    in each), and ``band_seconds.spread`` holds the least and largest wall time."""
+    walls, cpus = [], []
+    for _ in range(repeats):
+        t, c = time.perf_counter(), cpu_seconds()
+        low, high, mpms = study.strategy.model_band(study.pairs(), study.lfset, rng(),
+                                                    n_jobs=n_jobs)
+        walls.append(time.perf_counter() - t)
+        cpus.append(cpu_seconds() - c)
+    band_seconds.spread = (min(walls), max(walls))
+    return float(np.median(walls)), float(np.median(cpus)), (low, high), mpms
 
 
-def part_band(max_hf):
-    """Band replicates one after another (old) vs fitted together (new), on 1 and 2 cores."""
+def part_band(max_hf, repeats=5):
+    """Band replicates one after another (old) vs fitted together (new), on 1 and 2 cores,
+    each the median of ``repeats`` runs (the shared machine's wall times vary by ±10 %)."""
     print("-- final model band (50 replicates): old = one replicate after another, new = each "
-          "candidate fitted to all replicates at once (pas.models.joint_batch)")
+          f"candidate fitted to all replicates at once (pas.models.joint_batch); median of "
+          f"{repeats} runs (least-largest wall)")
     out = {}
     for m in (max_hf, 2 * max_hf):
         study, rng = final_study(m)
@@ -235,10 +257,11 @@ def part_band(max_hf):
         for label, batched, jobs in (("old 1 core", False, 1), ("old 2 cores", False, 2),
                                      ("new 1 core", True, 1), ("new 2 cores", True, 2)):
             with module_setting("pas.strategies.band", "BATCHED", batched):
-                rows[label] = band_seconds(study, rng, jobs)
+                rows[label] = band_seconds(study, rng, jobs, repeats)
             wall, cpu, (low, high), _ = rows[label]
-            print(f"  {m:3d} pairs, {label:>11}: {wall:5.2f} s wall, {cpu:5.2f} s CPU; "
-                  f"band [{low:.8g}, {high:.8g}]")
+            least, largest = band_seconds.spread
+            print(f"  {m:3d} pairs, {label:>11}: {wall:5.2f} s wall ({least:4.2f}-{largest:4.2f}), "
+                  f"{cpu:5.2f} s CPU; band [{low:.8g}, {high:.8g}]")
         old, new, new2 = rows["old 1 core"], rows["new 1 core"], rows["new 2 cores"]
         change = np.abs(new[3] / old[3] - 1)
         print(f"  {m:3d} pairs: new/old CPU {new[1] / old[1]:.2f} on one core, wall on two "
@@ -254,7 +277,7 @@ def part_band(max_hf):
                 ("pas.strategies.band", "STUDENT_RESTART", True,
                  "Student-t restarted once instead of warm + cold", "warm + cold / restart")):
             with module_setting(module, name, value):
-                other = band_seconds(study, rng, 1)
+                other = band_seconds(study, rng, 1, repeats)
             change = np.abs(new[3] / other[3] - 1)
             print(f"  {m:3d} pairs, {label}: {other[0]:5.2f} s wall, {other[1]:5.2f} s CPU; "
                   f"{ratio} CPU {new[1] / other[1]:.2f}; band ends "
@@ -387,6 +410,9 @@ def main():
     parser.add_argument("--max-hf", type=int, default=80)
     parser.add_argument("--parts", default="fit",
                         help="comma-separated: fit, cold, band, driver, long")
+    parser.add_argument("--repeats", type=int, default=5,
+                        help="runs of each band timing and of each whole run of the fit "
+                             "part, the median printed (default 5)")
     parser.add_argument("--json", help="write the figures here")
     parser.add_argument("--long-child", nargs="+", help=argparse.SUPPRESS)
     args = parser.parse_args()
@@ -396,7 +422,8 @@ def main():
     parts = {"fit": part_fit, "cold": part_cold, "band": part_band, "driver": part_driver,
              "long": part_long}
     for part in args.parts.split(","):
-        out[part] = parts[part](args.max_hf)
+        out[part] = (parts[part](args.max_hf, args.repeats) if part in ("band", "fit")
+                     else parts[part](args.max_hf))
     if args.json:
         with open(args.json, "w") as fh:
             json.dump(out, fh)

@@ -112,7 +112,8 @@ def add_parser(sub) -> None:
     r.add_argument("--pending", choices=("resubmit", "wait"), default="resubmit",
                    help="events a killed run left without a result (default resubmit)")
     r.add_argument("--quiet", action="store_true", help="no line per HF result")
-    s = _action(cmds, "status", "convergence, MPM so far, counts and pending events")
+    s = _action(cmds, "status", "print the MPM so far, whether it has converged, the counts and the "
+                "pending events")
     s.add_argument("study", metavar="STUDY.db")
     s.add_argument("--json", action="store_true")
     s.add_argument("--events", action="store_true",
