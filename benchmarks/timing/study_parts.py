@@ -3,7 +3,9 @@
 One scenario throughout: 15 000 Rayleigh LF peaks, ``n_w`` 16 364, a Gumbel
 (θ = 3) copula to a Weibull HF load, stopping off, 80 HF (``--max-hf``).
 Every ratio is measured in this one run, the old path beside the new (CPU
-time, the forked band workers' included; wall time on a shared machine); the
+time, the forked band workers' included; wall time on a shared machine, whose
+speed at the time a fixed piece of work measures at the start and the end:
+``pas.validation.timing_problem.reference_seconds``); the
 whole runs of ``fit`` and the bands of ``band`` are each the median of
 ``--repeats`` runs (default 5: one run of the band on two cores varied by
 ±8 % on the 2-core machine):
@@ -55,7 +57,15 @@ import pas.models.joint
 import pas.models.joint_mixture
 import pas.stats.exceedance
 from pas.study.flat import from_flat
-from pas.validation.timing_problem import N_W, P_EXP, N, cpu_seconds, scenario
+from pas.validation.timing_problem import (
+    N_W,
+    P_EXP,
+    REFERENCE_QUIET,
+    N,
+    cpu_seconds,
+    reference_seconds,
+    scenario,
+)
 
 
 @contextlib.contextmanager
@@ -419,11 +429,18 @@ def main():
     if args.long_child:
         return long_child(args.long_child)
     out = {}
+    before = reference_seconds()
+    print(f"machine speed: a fixed piece of work took {before:.2f} s CPU "
+          f"({REFERENCE_QUIET:.2f} s when this machine was quiet)")
     parts = {"fit": part_fit, "cold": part_cold, "band": part_band, "driver": part_driver,
              "long": part_long}
     for part in args.parts.split(","):
         out[part] = (parts[part](args.max_hf, args.repeats) if part in ("band", "fit")
                      else parts[part](args.max_hf))
+    after = reference_seconds()
+    print(f"machine speed: the fixed piece of work took {after:.2f} s CPU at the end "
+          f"({before:.2f} s at the start)")
+    out["reference_seconds"] = [before, after]
     if args.json:
         with open(args.json, "w") as fh:
             json.dump(out, fh)
