@@ -194,21 +194,25 @@ def student_iterations(max_hf):
     return 1e3 * float(np.median(loop)), 1e3 * float(loop.max())
 
 
-def part_fit(max_hf, repeats=1):
+def part_fit(max_hf, repeats=5):
     """The Student-t gradient: the whole run and Student-t alone, numerical vs analytic;
-    each time the median of ``repeats`` runs (their results are the same)."""
+    each figure the median of its own over ``repeats`` runs (so the figures of a line may
+    come from different runs), whose results must be the same."""
     print("-- Student-t joint fit: numerical differences (old) vs analytic gradient (new)"
           + (f"; median of {repeats} runs (least-largest ms/HF)" if repeats > 1 else ""))
     out = {}
     for label, ctx in (("old", numerical_student), ("new", contextlib.nullcontext)):
-        times = []
+        times, results = [], []
         with ctx():
             for _ in range(repeats):
                 res, loop, band, band_wall = run(max_hf)
                 st = student_iterations(max_hf)
                 times.append([loop.sum() + band, float(np.median(loop)), float(loop.max()),
                               band, band_wall, *st])
-        out[label] = summary(res)
+                results.append(summary(res))
+        if any(r != results[0] for r in results):
+            raise RuntimeError(f"{label}: the repeated runs gave different results")
+        out[label] = results[0]
         total, loop_median, loop_worst, band, band_wall, *st = np.median(times, axis=0)
         spread = (f" ({1e3 * min(t[0] for t in times) / max_hf:.1f}-"
                   f"{1e3 * max(t[0] for t in times) / max_hf:.1f})" if repeats > 1 else "")
@@ -240,23 +244,26 @@ def final_study(max_hf):
 
 
 def band_seconds(study, rng, n_jobs, repeats=1):
-    """``(wall s, CPU s with the workers', band, replicate MPMs)`` of the final model band;
-    with ``repeats`` > 1 the times are the medians of that many runs (the band is the same
-    in each), and ``band_seconds.spread`` holds the least and largest wall time."""
-    walls, cpus = [], []
+    """``(wall s, CPU s with the workers', band, replicate MPMs, (least, largest wall s))`` of
+    the final model band; the times are the medians of ``repeats`` runs, whose bands must be
+    the same."""
+    walls, cpus, bands = [], [], []
     for _ in range(repeats):
         t, c = time.perf_counter(), cpu_seconds()
         low, high, mpms = study.strategy.model_band(study.pairs(), study.lfset, rng(),
                                                     n_jobs=n_jobs)
         walls.append(time.perf_counter() - t)
         cpus.append(cpu_seconds() - c)
-    band_seconds.spread = (min(walls), max(walls))
-    return float(np.median(walls)), float(np.median(cpus)), (low, high), mpms
+        bands.append(np.r_[low, high, np.array(mpms, float)])
+    if any(not np.array_equal(b, bands[0], equal_nan=True) for b in bands):
+        raise RuntimeError("the repeated bands differ")
+    return (float(np.median(walls)), float(np.median(cpus)), (low, high), mpms,
+            (min(walls), max(walls)))
 
 
 def part_band(max_hf, repeats=5):
     """Band replicates one after another (old) vs fitted together (new), on 1 and 2 cores,
-    each the median of ``repeats`` runs (the shared machine's wall times vary by ±10 %)."""
+    each the median of ``repeats`` runs (the shared machine's wall times vary by ±8 %)."""
     print("-- final model band (50 replicates): old = one replicate after another, new = each "
           f"candidate fitted to all replicates at once (pas.models.joint_batch); median of "
           f"{repeats} runs (least-largest wall)")
@@ -268,8 +275,7 @@ def part_band(max_hf, repeats=5):
                                      ("new 1 core", True, 1), ("new 2 cores", True, 2)):
             with module_setting("pas.strategies.band", "BATCHED", batched):
                 rows[label] = band_seconds(study, rng, jobs, repeats)
-            wall, cpu, (low, high), _ = rows[label]
-            least, largest = band_seconds.spread
+            wall, cpu, (low, high), _, (least, largest) = rows[label]
             print(f"  {m:3d} pairs, {label:>11}: {wall:5.2f} s wall ({least:4.2f}-{largest:4.2f}), "
                   f"{cpu:5.2f} s CPU; band [{low:.8g}, {high:.8g}]")
         old, new, new2 = rows["old 1 core"], rows["new 1 core"], rows["new 2 cores"]
@@ -415,12 +421,19 @@ def part_long(max_hf):
     return out
 
 
+def positive_int(text):
+    """``--repeats``: a whole number of at least 1."""
+    if not text.isdigit() or int(text) < 1:
+        raise argparse.ArgumentTypeError(f"takes a whole number of at least 1, got {text!r}")
+    return int(text)
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--max-hf", type=int, default=80)
     parser.add_argument("--parts", default="fit",
                         help="comma-separated: fit, cold, band, driver, long")
-    parser.add_argument("--repeats", type=int, default=5,
+    parser.add_argument("--repeats", type=positive_int, default=5,
                         help="runs of each band timing and of each whole run of the fit "
                              "part, the median printed (default 5)")
     parser.add_argument("--json", help="write the figures here")

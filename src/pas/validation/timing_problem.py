@@ -36,7 +36,8 @@ def cpu_seconds():
 
 REFERENCE_QUIET = 0.62
 """CPU seconds of :func:`reference_seconds` on the project's 2-core machine when it was quiet
-(2026-12-04; the same work read 0.76 s beside a second copy on the other core)."""
+(2026-12-04: the least of several readings on the idle machine, which ranged 0.62-0.78 s
+within minutes)."""
 
 
 def reference_seconds(repeats: int = 3) -> float:
