@@ -23,7 +23,7 @@ import numpy as np
 import pandas as pd
 
 from ..strategies.forecast import relative_half_width
-from ..study import stop_text
+from ..study import precision, stop_text
 from .allocation import curves_of, proxy_ratios, shares
 from .combination import extension_bounds, value_and_band
 from .inputs import REQUIRED_COLUMNS
@@ -115,6 +115,9 @@ class LongTermResult:
         table, for its descriptive columns; ``seconds``: wall time spent in each study's fits
         and bands so far, by position)."""
         seconds = dict(seconds or {})
+        if model_band:  # every sea state's band at once, one a core (the same bands)
+            for i, wall in precision.model_bands(studies).items():
+                seconds[i] = seconds.get(i, 0.0) + wall
         results = {}
         for i, (s, st) in enumerate(zip(states, studies)):
             if st is not None:

@@ -281,6 +281,9 @@ class _Run:
         row = self.target.record(n_hf, x, (low, high))
         reached = False
         if self.target.band_due(row):
+            if self.model_band:  # the bands the states' new results call for, one a core
+                for i, wall in study_precision.model_bands(self.studies).items():
+                    self.seconds[i] = self.seconds.get(i, 0.0) + wall
             full = [curves_of(s, st, ratios, model_band=self.model_of(i))
                     for i, (s, st) in enumerate(zip(self.states, self.studies))]
             _, low, high = value_and_band(full, self.weights, p, start)

@@ -35,7 +35,8 @@ from .steps import conditioning_set
 
 __all__ = ["ModelBand", "WARM_BAND", "COLD_FAMILIES", "PRUNE_AIC", "BATCHED",
            "STUDENT_RESTART", "RESTART_NU",
-           "ReplicateStarts", "bootstrap_band", "cold_families", "default_jobs", "replicate_plan",
+           "ReplicateStarts", "bootstrap_band", "cold_families", "default_jobs", "process_count",
+           "replicate_plan",
            "replicate_mpms", "replicate_starts"]
 
 WARM_BAND = True
@@ -126,6 +127,19 @@ def default_jobs() -> int:
         return len(os.sched_getaffinity(0))
     except AttributeError:  # not Linux
         return os.cpu_count() or 1
+
+
+def process_count(n_jobs: int | None, n_tasks: int) -> int:
+    """The processes ``n_tasks`` tasks run in for ``n_jobs`` (1: this one; -1: every core;
+    None: every core on Linux unless this process runs other threads, module docs): at
+    most one a task, and this process alone where fork is not available."""
+    if n_jobs is not None and int(n_jobs) != -1 and int(n_jobs) < 1:
+        raise ValueError(f"n_jobs must be at least 1, or -1 for every core, got {n_jobs}")
+    if n_jobs is None:
+        n_jobs = -1 if threading.active_count() == 1 and sys.platform.startswith("linux") else 1
+    n_jobs = int(n_jobs)
+    n_jobs = min(default_jobs() if n_jobs == -1 else n_jobs, max(n_tasks, 1))
+    return n_jobs if "fork" in multiprocessing.get_all_start_methods() else 1
 
 
 def replicate_plan(pairs, rng: np.random.Generator, n: int, marginals) -> list:
@@ -253,14 +267,7 @@ def replicate_mpms(strategy, pairs, lfset, starts, plan, lf_rng=None,
     on Linux unless this process runs other threads, module docs).
     """
     global _JOB
-    if n_jobs is not None and int(n_jobs) != -1 and int(n_jobs) < 1:
-        raise ValueError(f"n_jobs must be at least 1, or -1 for every core, got {n_jobs}")
-    if n_jobs is None:
-        n_jobs = -1 if threading.active_count() == 1 and sys.platform.startswith("linux") else 1
-    n_jobs = int(n_jobs)
-    n_jobs = min(default_jobs() if n_jobs == -1 else n_jobs, max(len(plan), 1))
-    if "fork" not in multiprocessing.get_all_start_methods():
-        n_jobs = 1
+    n_jobs = process_count(n_jobs, len(plan))
     if BATCHED and _can_batch(strategy, starts, plan):
         return _batched_mpms(strategy, pairs, lfset, starts, plan, lf_rng, n_jobs)
     if n_jobs == 1:

@@ -156,6 +156,8 @@ class Strategy(ABC):
         """
         return md_select(lfset.ln_d, available, np.log(selected_d), q)
 
-    def model_band(self, pairs: Pairs, lfset: LFSet, rng: np.random.Generator):
-        """Optional U95 band of the MPM including model uncertainty, or None."""
+    def model_band(self, pairs: Pairs, lfset: LFSet, rng: np.random.Generator, *,
+                   n_jobs: int | None = None):
+        """Optional U95 band of the MPM including model uncertainty, or None (``n_jobs``:
+        the processes it may use, :meth:`pas.strategies.pas.PAS.model_band`)."""
         return None

@@ -13,11 +13,14 @@ a study that stopped on its band reports that band without refitting it.
 
 from __future__ import annotations
 
+import multiprocessing
+import time
+
 import numpy as np
 
 from ..strategies.forecast import relative_half_width
 
-__all__ = ["model_band", "judge", "forecast_row", "union"]
+__all__ = ["model_band", "model_bands", "judge", "forecast_row", "union"]
 
 
 def _has_model_band(strategy) -> bool:
@@ -27,15 +30,21 @@ def _has_model_band(strategy) -> bool:
             and getattr(strategy, "n_bootstrap", 1) > 0)
 
 
-def model_band(study, pairs, row: dict | None = None) -> tuple | None:
+def _band_key(study, pairs) -> tuple:
+    """What a study's model band depends on: its told results, fits and ``pairs``."""
+    return (study.n_told, len(study.rows), tuple(pairs.position), tuple(pairs.hf),
+            tuple(pairs.fp_position))
+
+
+def model_band(study, pairs, row: dict | None = None, n_jobs: int | None = None) -> tuple | None:
     """``(low, high)`` of the strategy's model band for ``study`` as it stands, or None.
 
     ``row``: the history row of the fit; replaying a store, the band that row
     recorded is taken instead of refitted (:func:`pas.study.replay.attach`): the
-    same pairs and draws give the same band.
+    same pairs and draws give the same band.  ``n_jobs``: the processes the band
+    may use (:meth:`pas.strategies.pas.PAS.model_band`; the same band for any).
     """
-    key = (study.n_told, len(study.rows), tuple(pairs.position), tuple(pairs.hf),
-           tuple(pairs.fp_position))
+    key = _band_key(study, pairs)
     cached = getattr(study, "_model_band_cache", None)
     if cached is not None and cached[0] == key:
         return cached[1]
@@ -45,10 +54,57 @@ def model_band(study, pairs, row: dict | None = None) -> tuple | None:
         band = (float(stored["model_low"]), float(stored["model_high"]))
     else:
         rng = np.random.default_rng([study.seed, study.n_told, 1])
-        mb = study.strategy.model_band(pairs, study.lfset, rng)
+        mb = study.strategy.model_band(pairs, study.lfset, rng, n_jobs=n_jobs)
         band = None if mb is None else (float(mb[0]), float(mb[1]))
     study._model_band_cache = (key, band)
     return band
+
+
+_STUDIES = None  # the studies of model_bands while its workers run
+
+
+def _band_in_worker(i: int) -> tuple:
+    """``(band, wall s)`` of study ``i`` of the running :func:`model_bands`, in one process."""
+    t0 = time.perf_counter()
+    study = _STUDIES[i]
+    return model_band(study, study.pairs(), n_jobs=1), time.perf_counter() - t0
+
+
+def model_bands(studies, n_jobs: int | None = None) -> dict:
+    """:func:`model_band` of every study of ``studies`` that has a fit and a model band not
+    yet computed (a long-term analysis's sea states), each study's band in a process of
+    its own, as many at once as ``n_jobs`` allows (:func:`pas.strategies.band.process_count`;
+    the studies with the most pairs first); each study keeps its band as :func:`model_band`
+    keeps it.  The bands are those one study after another gives (the same band for any
+    number of processes), in less time than each band split over the cores.  Returns the
+    wall seconds spent on each study's band, by position (computed at once, their share of
+    the wall time the bands took together, in proportion to each band's own)."""
+    global _STUDIES
+    from ..strategies.band import process_count
+
+    todo = [i for i, st in enumerate(studies)
+            if st is not None and st.last is not None and _has_model_band(st.strategy)
+            and (getattr(st, "_model_band_cache", None) or (None,))[0] != _band_key(st, st.pairs())]
+    seconds = {}
+    if process_count(n_jobs, len(todo)) <= 1:
+        for i in todo:
+            t0 = time.perf_counter()
+            model_band(studies[i], studies[i].pairs(), n_jobs=n_jobs)
+            seconds[i] = time.perf_counter() - t0
+        return seconds
+    todo.sort(key=lambda i: -len(studies[i].pairs()))
+    _STUDIES = studies
+    t0 = time.perf_counter()
+    try:
+        with multiprocessing.get_context("fork").Pool(process_count(n_jobs, len(todo))) as pool:
+            for i, (band, wall) in zip(todo, pool.imap(_band_in_worker, todo, chunksize=1)):
+                studies[i]._model_band_cache = (_band_key(studies[i], studies[i].pairs()), band)
+                seconds[i] = wall
+    finally:
+        _STUDIES = None
+    # the wall time they took together, shared in proportion to each band's own
+    scale = (time.perf_counter() - t0) / max(sum(seconds.values()), 1e-12)
+    return {i: wall * scale for i, wall in seconds.items()}
 
 
 def union(sampling, model) -> tuple:
