@@ -7,8 +7,9 @@ it), at p = 2e-6, ``--max-hf`` HF events.  The same analysis runs twice in
 fresh processes, once with ``pas`` of ``--baseline`` (a commit, unpacked with
 ``git archive``) and once with this tree's; each reports its wall time and
 CPU time, split into the allocation loop and the result (the combination and,
-with ``--model-band``, every study's bootstrap band, which this change leaves
-as it is), the sequence of asked events and the value and band.  The
+with ``--model-band``, every study's bootstrap band), the sequence of asked
+events and the value and band.  CPU time is the analysis's process's alone:
+the band workers' is not in it, so with ``--model-band`` read the wall time.  The
 ratios and whether the two asked the same events in the same order are
 printed, and written as JSON with ``--json``.
 

@@ -1,6 +1,7 @@
 """Several studies' model bands at once, one a process (pas.study.precision.model_bands)."""
 
 import copy
+import os
 
 import _longterm_problem as problem
 import numpy as np
@@ -50,6 +51,57 @@ def test_only_the_bands_not_kept_are_computed():
     assert precision.model_band(studies[0], studies[0].pairs()) == first
 
 
+class _Broken(ValueError):
+    """An error that cannot be rebuilt from its pickle (a keyword-only argument)."""
+
+    def __init__(self, *, why):
+        super().__init__(why)
+
+
+def test_a_band_that_raises_in_a_worker_raises_its_own_error_here(monkeypatch):
+    studies = _studies(sizes=(700, 800), max_hf=10)
+    real = studies[1].strategy.model_band
+
+    def broken(pairs, lfset, rng, *, n_jobs=None):  # takes n_jobs: run in a worker
+        raise _Broken(why="no band")
+
+    studies[1].strategy.model_band = broken  # an override as a user's strategy might have
+    with pytest.raises(_Broken, match="no band"):
+        precision.model_bands(studies, n_jobs=2)
+    studies[1].strategy.model_band = real
+    assert sorted(precision.model_bands(studies, n_jobs=2)) == [1]  # study 0 was kept
+
+
+def test_a_worker_that_dies_leaves_its_band_to_this_process():
+    studies = _studies(sizes=(700, 800), max_hf=10)
+    parent = os.getpid()
+
+    def dies_in_a_worker(pairs, lfset, rng, *, n_jobs=None):
+        if os.getpid() != parent:
+            os._exit(1)  # as the out-of-memory killer would end it
+        return 1.0, 2.0
+
+    studies[0].strategy.model_band = dies_in_a_worker
+    precision.model_bands(studies, n_jobs=2)  # no hang: both bands computed here instead
+    assert precision.model_band(studies[0], studies[0].pairs()) == (1.0, 2.0)
+    assert precision.model_band(studies[1], studies[1].pairs()) is not None
+
+
+def test_a_strategys_own_model_band_without_n_jobs_is_still_called(monkeypatch):
+    studies = _studies(sizes=(700, 800), max_hf=10)
+    calls = []
+
+    def own(pairs, lfset, rng):  # no n_jobs: called in this process, as before
+        calls.append(len(pairs))
+        return 1.0, 2.0
+
+    studies[0].strategy.model_band = own
+    precision.model_bands(studies, n_jobs=2)
+    assert calls == [len(studies[0].pairs())]
+    assert precision.model_band(studies[0], studies[0].pairs()) == (1.0, 2.0)
+    assert precision.model_band(studies[1], studies[1].pairs()) is not None
+
+
 def _process_count(parallel):
     """band.process_count with None meaning two processes (parallel) or one."""
     real = band_module.process_count
@@ -66,23 +118,30 @@ def _process_count(parallel):
 def test_a_long_term_analysis_is_the_same_with_its_bands_in_processes(monkeypatch):
     # the sea states' bands during the allocation (a precision target) and in the result,
     # one study a process against one after another: the same events, value and bands
-    results, computed = {}, []
-    real = precision.model_bands
+    results, computed, forks = {}, [], []
+    real, real_fork = precision.model_bands, os.fork
 
     def counted(studies, n_jobs=None):
         out = real(studies, n_jobs)
         computed.append(len(out))
         return out
 
+    def fork():
+        forks.append(1)
+        return real_fork()
+
     monkeypatch.setattr(precision, "model_bands", counted)
+    monkeypatch.setattr(os, "fork", fork)
     for parallel in (False, True):
         monkeypatch.setattr(band_module, "process_count", _process_count(parallel))
         computed.clear()
+        forks.clear()
         results[parallel] = pas.run_long_term(
             problem.table(n_waves=2000), problem.lf_peaks(1, n_waves=2000), problem.Oracle(),
             p_exceed=1e-3, max_hf=40, precision=0.10, seed=4,
             strategy=pas.PAS(band=pas.ModelBand(n_bootstrap=10)))
-    assert max(computed) >= 2  # several states' bands at once: in processes when parallel
+        # several states' bands at once, in worker processes only when parallel
+        assert max(computed) >= 2 and (len(forks) >= 2) == parallel
     one, many = results[False], results[True]
     assert many.history["halfwidth"].notna().sum() >= 1  # bands during the allocation too
     assert (one.value, one.band, one.n_hf) == (many.value, many.band, many.n_hf)

@@ -13,8 +13,11 @@ a study that stopped on its band reports that band without refitting it.
 
 from __future__ import annotations
 
+import inspect
 import multiprocessing
 import time
+from concurrent.futures import ProcessPoolExecutor
+from concurrent.futures.process import BrokenProcessPool
 
 import numpy as np
 
@@ -54,20 +57,39 @@ def model_band(study, pairs, row: dict | None = None, n_jobs: int | None = None)
         band = (float(stored["model_low"]), float(stored["model_high"]))
     else:
         rng = np.random.default_rng([study.seed, study.n_told, 1])
-        mb = study.strategy.model_band(pairs, study.lfset, rng, n_jobs=n_jobs)
+        kw = {} if n_jobs is None else {"n_jobs": n_jobs}  # an own model_band may not take it
+        mb = study.strategy.model_band(pairs, study.lfset, rng, **kw)
         band = None if mb is None else (float(mb[0]), float(mb[1]))
     study._model_band_cache = (key, band)
     return band
 
 
 _STUDIES = None  # the studies of model_bands while its workers run
+_FAILED = "failed"  # a worker's answer for a band that raised: the caller computes it again
 
 
 def _band_in_worker(i: int) -> tuple:
-    """``(band, wall s)`` of study ``i`` of the running :func:`model_bands`, in one process."""
+    """``(band, wall s)`` of study ``i`` of the running :func:`model_bands`, in one process;
+    :data:`_FAILED` for a band that raised (its error may not survive pickling)."""
     t0 = time.perf_counter()
     study = _STUDIES[i]
-    return model_band(study, study.pairs(), n_jobs=1), time.perf_counter() - t0
+    try:
+        band = model_band(study, study.pairs(), n_jobs=1)
+    except Exception:  # noqa: BLE001 - computed again by the caller, which raises it as it is
+        band = _FAILED
+    return band, time.perf_counter() - t0
+
+
+def _takes_n_jobs(strategy) -> bool:
+    """Whether the strategy's ``model_band`` takes ``n_jobs`` (a strategy's own may not)."""
+    return "n_jobs" in inspect.signature(strategy.model_band).parameters
+
+
+def _in_processes(strategy) -> bool:
+    """Whether a study's band may run in a worker: a bootstrap band that takes ``n_jobs``
+    (any other is computed as before, in this process)."""
+    band = getattr(strategy, "band", None)
+    return getattr(band, "n_bootstrap", 1) > 0 and _takes_n_jobs(strategy)
 
 
 def model_bands(studies, n_jobs: int | None = None) -> dict:
@@ -76,35 +98,45 @@ def model_bands(studies, n_jobs: int | None = None) -> dict:
     its own, as many at once as ``n_jobs`` allows (:func:`pas.strategies.band.process_count`;
     the studies with the most pairs first); each study keeps its band as :func:`model_band`
     keeps it.  The bands are those one study after another gives (the same band for any
-    number of processes), in less time than each band split over the cores.  Returns the
-    wall seconds spent on each study's band, by position (computed at once, their share of
-    the wall time the bands took together, in proportion to each band's own)."""
+    number of processes), in less time than each band split over the cores.  A band that
+    raised in a worker, or whose worker died, is computed again here (and raises here).
+    Returns the wall seconds spent on each study's band, by position (computed at once,
+    their share of the wall time the bands took together, in proportion to each band's
+    own)."""
     global _STUDIES
     from ..strategies.band import process_count
 
     todo = [i for i, st in enumerate(studies)
             if st is not None and st.last is not None and _has_model_band(st.strategy)
             and (getattr(st, "_model_band_cache", None) or (None,))[0] != _band_key(st, st.pairs())]
+    apart = sorted((i for i in todo if _in_processes(studies[i].strategy)),
+                   key=lambda i: -len(studies[i].pairs()))
     seconds = {}
-    if process_count(n_jobs, len(todo)) <= 1:
-        for i in todo:
+    if process_count(n_jobs, len(apart)) > 1:
+        _STUDIES = studies
+        t0 = time.perf_counter()
+        try:
+            with ProcessPoolExecutor(process_count(n_jobs, len(apart)),
+                                     mp_context=multiprocessing.get_context("fork")) as pool:
+                for i, (band, wall) in zip(apart, pool.map(_band_in_worker, apart)):
+                    if band != _FAILED:
+                        key = _band_key(studies[i], studies[i].pairs())
+                        studies[i]._model_band_cache = (key, band)
+                        seconds[i] = wall
+        except BrokenProcessPool:  # a worker died (out of memory, killed): the rest here
+            pass
+        finally:
+            _STUDIES = None
+        # the wall time they took together, shared in proportion to each band's own
+        scale = (time.perf_counter() - t0) / max(sum(seconds.values()), 1e-12)
+        seconds = {i: wall * scale for i, wall in seconds.items()}
+    for i in todo:
+        if i not in seconds:
             t0 = time.perf_counter()
-            model_band(studies[i], studies[i].pairs(), n_jobs=n_jobs)
+            jobs = n_jobs if _takes_n_jobs(studies[i].strategy) else None
+            model_band(studies[i], studies[i].pairs(), n_jobs=jobs)
             seconds[i] = time.perf_counter() - t0
-        return seconds
-    todo.sort(key=lambda i: -len(studies[i].pairs()))
-    _STUDIES = studies
-    t0 = time.perf_counter()
-    try:
-        with multiprocessing.get_context("fork").Pool(process_count(n_jobs, len(todo))) as pool:
-            for i, (band, wall) in zip(todo, pool.imap(_band_in_worker, todo, chunksize=1)):
-                studies[i]._model_band_cache = (_band_key(studies[i], studies[i].pairs()), band)
-                seconds[i] = wall
-    finally:
-        _STUDIES = None
-    # the wall time they took together, shared in proportion to each band's own
-    scale = (time.perf_counter() - t0) / max(sum(seconds.values()), 1e-12)
-    return {i: wall * scale for i, wall in seconds.items()}
+    return seconds
 
 
 def union(sampling, model) -> tuple:
