@@ -39,6 +39,12 @@ def _band_key(study, pairs) -> tuple:
             tuple(pairs.fp_position))
 
 
+def _kept(study, key) -> bool:
+    """Whether ``study`` keeps the model band of ``key`` (:func:`_band_key`)."""
+    cached = getattr(study, "_model_band_cache", None)
+    return cached is not None and cached[0] == key
+
+
 def model_band(study, pairs, row: dict | None = None, n_jobs: int | None = None) -> tuple | None:
     """``(low, high)`` of the strategy's model band for ``study`` as it stands, or None.
 
@@ -49,7 +55,7 @@ def model_band(study, pairs, row: dict | None = None, n_jobs: int | None = None)
     """
     key = _band_key(study, pairs)
     cached = getattr(study, "_model_band_cache", None)
-    if cached is not None and cached[0] == key:
+    if _kept(study, key):
         return cached[1]
     stored = getattr(study, "_stored_bands", {}).get(row["row"]) if row is not None else None
     if (study._replaying and stored is not None and stored.get("event_index") == row["event_index"]
@@ -108,16 +114,16 @@ def model_bands(studies, n_jobs: int | None = None) -> dict:
 
     todo = [i for i, st in enumerate(studies)
             if st is not None and st.last is not None and _has_model_band(st.strategy)
-            and (getattr(st, "_model_band_cache", None) or (None,))[0] != _band_key(st, st.pairs())]
+            and not _kept(st, _band_key(st, st.pairs()))]
     apart = sorted((i for i in todo if _in_processes(studies[i].strategy)),
                    key=lambda i: -len(studies[i].pairs()))
     seconds = {}
-    if process_count(n_jobs, len(apart)) > 1:
+    workers = process_count(n_jobs, len(apart))
+    if workers > 1:
         _STUDIES = studies
         t0 = time.perf_counter()
         try:
-            with ProcessPoolExecutor(process_count(n_jobs, len(apart)),
-                                     mp_context=multiprocessing.get_context("fork")) as pool:
+            with ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("fork")) as pool:
                 for i, (band, wall) in zip(apart, pool.map(_band_in_worker, apart)):
                     if band != _FAILED:
                         key = _band_key(studies[i], studies[i].pairs())
