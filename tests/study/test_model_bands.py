@@ -58,7 +58,7 @@ class _Broken(ValueError):
         super().__init__(why)
 
 
-def test_a_band_that_raises_in_a_worker_raises_its_own_error_here(monkeypatch):
+def test_a_band_that_raises_in_a_worker_raises_its_own_error_here():
     studies = _studies(sizes=(700, 800), max_hf=10)
     real = studies[1].strategy.model_band
 
@@ -87,7 +87,7 @@ def test_a_worker_that_dies_leaves_its_band_to_this_process():
     assert precision.model_band(studies[1], studies[1].pairs()) is not None
 
 
-def test_a_strategys_own_model_band_without_n_jobs_is_still_called(monkeypatch):
+def test_a_strategys_own_model_band_without_n_jobs_is_still_called():
     studies = _studies(sizes=(700, 800), max_hf=10)
     calls = []
 
