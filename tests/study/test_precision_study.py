@@ -92,6 +92,17 @@ def test_eps1_alone_keeps_its_rows_and_has_no_forecast():
     assert res.settings.get("precision") is None  # (stored only when set: 0.1's shape)
 
 
+def test_without_a_model_band_the_sampling_band_is_judged_at_every_fit():
+    # ModelBand(n_bootstrap=0) (and PAS.paper()) computes no model band: the sampling
+    # band is the U95 at every fit, its whole width the part that narrows
+    res = run(precision=0.10, max_hf=20, n_bootstrap=0)
+    rows = res.fitted
+    assert rows["halfwidth"].notna().all() and rows["forecast_hf"].notna().all()
+    assert rows["halfwidth"].to_numpy() == pytest.approx(rows["halfwidth_sampling"].to_numpy(),
+                                                         rel=1e-12)
+    assert res.mpm_band_model is None and res.forecast["sampling_halfwidth"] is None
+
+
 def test_neither_eps1_nor_precision_is_an_error():
     with pytest.raises(ValueError, match="give eps1 .* or precision"):
         run(max_hf=12)

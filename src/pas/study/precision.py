@@ -27,10 +27,12 @@ __all__ = ["model_band", "model_bands", "judge", "forecast_row", "union"]
 
 
 def _has_model_band(strategy) -> bool:
+    """Whether the strategy computes a model band: its own ``model_band``, and for a
+    bootstrap band (PAS's :class:`~pas.strategies.band.ModelBand`) one replicate or more."""
     from ..strategies.base import Strategy
 
     return (type(strategy).model_band is not Strategy.model_band
-            and getattr(strategy, "n_bootstrap", 1) > 0)
+            and getattr(getattr(strategy, "band", strategy), "n_bootstrap", 1) > 0)
 
 
 def _band_key(study, pairs) -> tuple:
