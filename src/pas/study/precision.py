@@ -93,13 +93,6 @@ def _takes_n_jobs(strategy) -> bool:
     return "n_jobs" in inspect.signature(strategy.model_band).parameters
 
 
-def _in_processes(strategy) -> bool:
-    """Whether a study's band may run in a worker: a bootstrap band that takes ``n_jobs``
-    (any other is computed as before, in this process)."""
-    band = getattr(strategy, "band", None)
-    return getattr(band, "n_bootstrap", 1) > 0 and _takes_n_jobs(strategy)
-
-
 def model_bands(studies, n_jobs: int | None = None) -> dict:
     """:func:`model_band` of every study of ``studies`` that has a fit and a model band not
     yet computed (a long-term analysis's sea states), each study's band in a process of
@@ -117,7 +110,8 @@ def model_bands(studies, n_jobs: int | None = None) -> dict:
     todo = [i for i, st in enumerate(studies)
             if st is not None and st.last is not None and _has_model_band(st.strategy)
             and not _kept(st, _band_key(st, st.pairs()))]
-    apart = sorted((i for i in todo if _in_processes(studies[i].strategy)),
+    # a band whose model_band takes no n_jobs (a strategy's own) is computed here, as before
+    apart = sorted((i for i in todo if _takes_n_jobs(studies[i].strategy)),
                    key=lambda i: -len(studies[i].pairs()))
     seconds = {}
     workers = process_count(n_jobs, len(apart))
