@@ -56,9 +56,8 @@ def model_band(study, pairs, row: dict | None = None, n_jobs: int | None = None)
     may use (:meth:`pas.strategies.pas.PAS.model_band`; the same band for any).
     """
     key = _band_key(study, pairs)
-    cached = getattr(study, "_model_band_cache", None)
     if _kept(study, key):
-        return cached[1]
+        return study._model_band_cache[1]
     stored = getattr(study, "_stored_bands", {}).get(row["row"]) if row is not None else None
     if (study._replaying and stored is not None and stored.get("event_index") == row["event_index"]
             and stored.get("hf") == row["hf"]):
@@ -107,9 +106,9 @@ def model_bands(studies, n_jobs: int | None = None) -> dict:
     global _STUDIES
     from ..strategies.band import process_count
 
-    todo = [i for i, st in enumerate(studies)
-            if st is not None and st.last is not None and _has_model_band(st.strategy)
-            and not _kept(st, _band_key(st, st.pairs()))]
+    keys = {i: _band_key(st, st.pairs()) for i, st in enumerate(studies)
+            if st is not None and st.last is not None and _has_model_band(st.strategy)}
+    todo = [i for i, key in keys.items() if not _kept(studies[i], key)]
     # a band whose model_band takes no n_jobs (a strategy's own) is computed here, as before
     apart = sorted((i for i in todo if _takes_n_jobs(studies[i].strategy)),
                    key=lambda i: -len(studies[i].pairs()))
@@ -122,8 +121,7 @@ def model_bands(studies, n_jobs: int | None = None) -> dict:
             with ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("fork")) as pool:
                 for i, (band, wall) in zip(apart, pool.map(_band_in_worker, apart)):
                     if band != _FAILED:
-                        key = _band_key(studies[i], studies[i].pairs())
-                        studies[i]._model_band_cache = (key, band)
+                        studies[i]._model_band_cache = (keys[i], band)
                         seconds[i] = wall
         except BrokenProcessPool:  # a worker died (out of memory, killed): the rest here
             pass
