@@ -38,7 +38,6 @@ from pas.validation.known_truth_runs import (
 )
 from pas.validation.timing_problem import cpu_seconds
 
-
 SETTINGS = ("COLD_FAMILIES", "STUDENT_RESTART", "RESTART_NU")
 
 

@@ -33,13 +33,12 @@ import argparse
 import numpy as np
 
 from pas.stats.peaks import segment_max
-from pas.validation import CASE_IDS, generate_case, get_case
-from pas.validation import case_impacts
+from pas.validation import CASE_IDS, case_impacts, generate_case, get_case
 from pas.validation._common import DT, condition_sea, seed_plan, windows
 from pas.validation._impact_signals import OMEGA_MAX, OMEGA_MAX_2, rwe_coefficients
 from pas.validation.episodes import _window, case_surrogate, run_rcw_case
-from pas.waves.episode import design_episode
 from pas.waves import FERRY_190M, second_order_kernel
+from pas.waves.episode import design_episode
 
 
 def _rwe19_crests(spec, seed):

@@ -22,8 +22,11 @@ import pandas as pd
 
 from pas.validation import CASE_IDS, generate_case
 from pas.validation.properties import data_properties
-from pas.validation.result_tables import (properties_seed_table, properties_spread_table,
-                                          write_between_markers)
+from pas.validation.result_tables import (
+    properties_seed_table,
+    properties_spread_table,
+    write_between_markers,
+)
 
 PAGE = Path("docs/results/analogue-properties.md")
 

@@ -15,11 +15,11 @@ import argparse
 import tempfile
 import time
 
+import pandas as pd
+
 from pas.validation import CASE_IDS, generate_case
 from pas.validation.figures import write_figures
 from pas.validation.reproduce import _strategies, run_case, summarise
-
-import pandas as pd
 
 
 def main():

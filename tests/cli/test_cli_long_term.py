@@ -78,8 +78,8 @@ def test_sea_state_table_without_columns(problem, capsys):
 
 
 def test_inputs_read_with_ids_and_meta(problem):
-    from pas.cli.long_term import read_inputs
     from pas.cli import build_parser
+    from pas.cli.long_term import read_inputs
 
     args = build_parser().parse_args(_argv(problem, "--p-exceed", "1e-4", "--meta-columns", "t0"))
     table, peaks = read_inputs(args)

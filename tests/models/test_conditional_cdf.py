@@ -1,8 +1,8 @@
 """The conditional CDF C(v | u) of the long-record draws against pyvinecopulib and the inverse."""
 
 import numpy as np
-import pyvinecopulib as pv
 import pytest
+import pyvinecopulib as pv
 
 from pas.models.conditional_cdf import CLOSED_FORMS, conditional_cdf
 from pas.models.copulas import conditional_quantile

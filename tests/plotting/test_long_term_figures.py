@@ -5,8 +5,12 @@ import numpy as np
 import pytest
 
 import pas
-from pas.plotting.long_term import (plot_long_term_allocation, plot_long_term_convergence,
-                                    plot_long_term_distribution, save_long_term_figures)
+from pas.plotting.long_term import (
+    plot_long_term_allocation,
+    plot_long_term_convergence,
+    plot_long_term_distribution,
+    save_long_term_figures,
+)
 
 
 @pytest.fixture(scope="module")

@@ -165,7 +165,7 @@ def test_ml_fits_are_scipys_and_match_pyextremes():
     free = fit_load_distribution(x, "frechet")
     assert free["loglik"] >= stats.invweibull.logpdf(x, *stats.invweibull.fit(x)).sum() - 1e-9
     # GEV against pyextremes' MLE model (it reports AICc)
-    pyextremes = pytest.importorskip("pyextremes")
+    pytest.importorskip("pyextremes")
     from pyextremes.models import get_model
 
     y = stats.genextreme(-0.1, loc=1000.0, scale=200.0).rvs(500, random_state=3)

@@ -8,8 +8,8 @@ from test_estimator import _problem
 
 from pas.models import joint_batch
 from pas.strategies import band
-from pas.strategies.base import Pairs
 from pas.strategies.band import ModelBand
+from pas.strategies.base import Pairs
 from pas.strategies.estimators import ConditionalLikelihood
 from pas.strategies.pas import PAS
 

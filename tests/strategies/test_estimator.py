@@ -15,8 +15,8 @@ import pytest
 import pyvinecopulib as pv
 from scipy import stats
 
-from pas.strategies.base import Pairs
 from pas.strategies.band import ModelBand
+from pas.strategies.base import Pairs
 from pas.strategies.estimators import ConditionalLikelihood, SelectedSample
 from pas.strategies.pas import PAS
 from pas.strategies.screening import LFSet

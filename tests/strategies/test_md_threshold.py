@@ -9,8 +9,8 @@ import numpy as np
 import pytest
 
 import pas
-from pas.strategies.base import Pairs
 from pas.strategies.band import ModelBand
+from pas.strategies.base import Pairs
 from pas.strategies.estimators import ConditionalLikelihood, SelectedSample
 from pas.strategies.pas import PAS
 from pas.strategies.screening import LFSet

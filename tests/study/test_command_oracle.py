@@ -19,8 +19,8 @@ import pytest
 import pas
 from pas.cli import main
 from pas.strategies.screening import Event
-from pas.study.oracle_spec import START_DIR_KEY, oracle_from_spec
 from pas.study.command_oracle import CommandOracle, resolve_paths
+from pas.study.oracle_spec import START_DIR_KEY, oracle_from_spec
 from pas.study.store import StudyStore
 
 EV = Event(index=3, id="ev3", lf=2.5, d=0.01, meta={"seed": 11})

@@ -4,10 +4,8 @@ import time
 
 import numpy as np
 import pytest
-
 from conftest import run_flat
 
-import pas
 from pas.study.store import StudyStore
 
 distributed = pytest.importorskip("distributed")

@@ -2,7 +2,6 @@
 
 import numpy as np
 import pytest
-
 from conftest import make_flat, run_flat
 
 import pas

@@ -9,9 +9,9 @@ import warnings
 
 import numpy as np
 import pytest
+from conftest import make_flat
 
 import pas
-from conftest import make_flat
 from pas.cli import main
 from pas.study.loads import stored_loads
 from pas.study.resume import open_study

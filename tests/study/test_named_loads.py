@@ -15,15 +15,14 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 import pytest
-
 from conftest import make_flat, run_flat
 
 import pas
 from pas.cli import main
 from pas.strategies.screening import Event
+from pas.study.command_oracle import CommandOracle, parse_result
 from pas.study.loads import stored_loads
 from pas.study.oracle_spec import oracle_from_spec, parse_oracle_spec
-from pas.study.command_oracle import CommandOracle, parse_result
 from pas.study.oracles import TableOracle, call_oracle_loads
 from pas.study.result import OUTPUT_FILES
 from pas.study.resume import open_study

@@ -12,10 +12,8 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from conftest import make_flat
 
-from conftest import make_flat, run_flat
-
-import pas
 from pas.cli import main
 from pas.study import amend, open_study
 from pas.study.store import SCHEMA_VERSION, StoredResult, StoreError, StudyStore

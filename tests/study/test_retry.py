@@ -13,7 +13,6 @@ import textwrap
 import numpy as np
 import pandas as pd
 import pytest
-
 from conftest import make_flat, run_flat
 
 import pas

@@ -10,7 +10,6 @@ from collections import Counter
 import _campaign
 import numpy as np
 import pytest
-
 from conftest import make_flat, run_flat
 
 import pas

@@ -5,8 +5,12 @@ import pandas as pd
 import pytest
 
 from pas.validation.long_term import tz_over_tp
-from pas.validation.long_term_compare import (_lf_load, _with_thresholds, reproduce_long_term,
-                                             run_method)
+from pas.validation.long_term_compare import (
+    _lf_load,
+    _with_thresholds,
+    reproduce_long_term,
+    run_method,
+)
 from pas.validation.long_term_data import LongTermData, generate_long_term
 
 

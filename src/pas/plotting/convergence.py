@@ -10,8 +10,19 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from ._common import (_fitted, _fmt, _forecast_mark, _has_band, _history, _is_design,
-                      _legend_below, _new_axes, _plot_with_band, _strategy_name, _with_unit)
+from ._common import (
+    _fitted,
+    _fmt,
+    _forecast_mark,
+    _has_band,
+    _history,
+    _is_design,
+    _legend_below,
+    _new_axes,
+    _plot_with_band,
+    _strategy_name,
+    _with_unit,
+)
 
 __all__ = ["plot_mpm_convergence", "plot_aic", "stop_text", "aic_to_selected"]
 

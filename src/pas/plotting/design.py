@@ -7,8 +7,14 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from ._common import _exceedance_axes, _legend_below, _new_axes, _p_exp_line, _strategy_name, \
-    _with_unit
+from ._common import (
+    _exceedance_axes,
+    _legend_below,
+    _new_axes,
+    _p_exp_line,
+    _strategy_name,
+    _with_unit,
+)
 
 __all__ = ["plot_design_points", "plot_nonlinear_factor"]
 

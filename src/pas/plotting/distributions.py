@@ -13,8 +13,18 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from ._common import (_exceedance_axes, _fmt, _has_band, _is_design, _legend_below, _new_axes,
-                      _p_exp_line, _plot_with_band, _strategy_name, _with_unit)
+from ._common import (
+    _exceedance_axes,
+    _fmt,
+    _has_band,
+    _is_design,
+    _legend_below,
+    _new_axes,
+    _p_exp_line,
+    _plot_with_band,
+    _strategy_name,
+    _with_unit,
+)
 
 __all__ = ["plot_distribution", "plot_scatter", "conditional_quantile_curves"]
 

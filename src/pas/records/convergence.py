@@ -46,6 +46,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..stats.weibull import fit_weibull3_ls
 from .positions import read_at_exceedance
 from .records import (
     MPM_QUANTILE,
@@ -56,7 +57,6 @@ from .records import (
     top_peaks,
     weibull_mpm,
 )
-from ..stats.weibull import fit_weibull3_ls
 
 __all__ = ["random_subsets", "rms_difference", "fresh_campaign_rms", "seeds_needed",
            "MPMConvergence", "mpm_convergence"]

@@ -1,8 +1,8 @@
 """Screening strategies behind one interface: PAS (copula) and AS (GPR)."""
 
-from .base import Pairs, Prediction, Strategy
 from .as_ import AS
 from .band import ModelBand
+from .base import Pairs, Prediction, Strategy
 from .estimators import ConditionalLikelihood, SelectedSample
 from .pas import PAS
 

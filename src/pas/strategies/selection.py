@@ -60,8 +60,8 @@ def impact_probability(lf_true, lf_false, *, falling_p: float | None = None):
     if model.coef_[0, 0] < 0 and (falling_p is None
                                   or not falls_significantly(model, z, y, falling_p)):
         share = y.mean()
-        return lambda l: np.full(np.shape(np.atleast_1d(l)), share)
-    return lambda l: model.predict_proba(((np.asarray(l, float) - mu) / sd)[:, None])[:, 1]
+        return lambda lf: np.full(np.shape(np.atleast_1d(lf)), share)
+    return lambda lf: model.predict_proba(((np.asarray(lf, float) - mu) / sd)[:, None])[:, 1]
 
 
 FALLING_P = 0.05

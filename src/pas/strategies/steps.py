@@ -11,8 +11,8 @@ from typing import Callable, NamedTuple
 
 import numpy as np
 
-from ..models.copulas import CopulaFit, conditional_quantile
 from ..models.conditional_cdf import conditional_cdf
+from ..models.copulas import CopulaFit, conditional_quantile
 from ..models.marginals import fit_marginal
 from .base import band95
 

@@ -27,8 +27,14 @@ import inspect
 from ..strategies.as_ import AS
 from ..strategies.base import Strategy
 from ..strategies.pas import PAS
-from .settings import (BUDGET_NAMES, DEFAULT_MAX_HF, OTHER_STUDY_SETTINGS, STOPPING_NAMES, Budget,
-                       Stopping)
+from .settings import (
+    BUDGET_NAMES,
+    DEFAULT_MAX_HF,
+    OTHER_STUDY_SETTINGS,
+    STOPPING_NAMES,
+    Budget,
+    Stopping,
+)
 
 __all__ = ["study_settings", "STRATEGIES", "LF_SETTINGS", "STUDY_SETTINGS", "DEFAULT_MAX_HF",
            "make_strategy"]

@@ -8,10 +8,10 @@ the error an old keyword raises and for ``docs/reference/settings.md``
 
 from __future__ import annotations
 
+from ..strategies.as_ import AS
 from ..strategies.flat import BAND_NAMES, FLAT_NAMES, OWN_NAMES, SETTINGS_PAGE
 from ..strategies.flat import MOVED as STRATEGY_MOVED
 from ..strategies.pas import PAS
-from ..strategies.as_ import AS
 from .factory import make_strategy, strategy_parameters
 from .settings import BUDGET_NAMES, OTHER_STUDY_SETTINGS, STOPPING_NAMES, Budget, Stopping
 

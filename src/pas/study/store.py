@@ -37,11 +37,24 @@ import numpy as np
 from .._version import __version__
 from . import amend
 from .loads import add_event_loads, put_loads, replace_loads
-from .stored_results import add_results_table
-from .schema import (RESUMABLE, with_legacy_settings, SCHEMA_VERSION, STATES, STORED, StoreConflict, StoreError,
-                     _now, named_errors, _pool_hash, _pool_records, create_or_upgrade, dumps)
+from .schema import (
+    RESUMABLE,
+    SCHEMA_VERSION,
+    STATES,
+    STORED,
+    StoreConflict,
+    StoreError,
+    _now,
+    _pool_hash,
+    _pool_records,
+    create_or_upgrade,
+    dumps,
+    named_errors,
+    with_legacy_settings,
+)
 from .state import EventState
 from .store_views import Ask, LFInputs, Outstanding, Replace, StoredResult, StoreViews, Tell
+from .stored_results import add_results_table
 
 __all__ = ["StudyStore", "StoreError", "StoreConflict", "SCHEMA_VERSION", "read_settings", "STATES",
            "LFInputs", "StoredResult", "Outstanding", "Ask", "Tell", "Replace"]

@@ -24,8 +24,8 @@ from .answers import check_hf_answer, check_target, lacks_target
 from .corrections import Corrections
 from .factory import LF_SETTINGS, STUDY_SETTINGS, make_strategy, study_settings
 from .replay import attach
-from .settings import STOPPING_NAMES
 from .result import ScreeningResult
+from .settings import STOPPING_NAMES
 from .state import EventState
 from .store import StudyStore, read_settings
 

@@ -12,8 +12,7 @@ runs PAS (and AS) on them as a user would.  See ``cases/README.md``.
 
 from .data import CaseData
 from .generate import cache_path, generate_case
-from .registry import (CASE_IDS, CASES, CONDITIONS, PAPER_CASE_IDS, CaseSpec, Condition,
-                       get_case)
+from .registry import CASE_IDS, CASES, CONDITIONS, PAPER_CASE_IDS, CaseSpec, Condition, get_case
 from .reproduce import reproduce  # noqa: E402  (the function; the module stays importable)
 
 __all__ = ["CaseData", "generate_case", "cache_path", "CASES", "CASE_IDS", "PAPER_CASE_IDS",

@@ -45,10 +45,16 @@ import numpy as np
 
 from ..design_waves import run_rcw
 from ..stats.peaks import segment_max, segment_min, zero_upcrossings
-from ..waves import (FERRY_190M, jonswap, second_order_elevation, second_order_kernel,
-                     ship_rao, wave_number)
-from ..waves.surrogate import response_surrogate
+from ..waves import (
+    FERRY_190M,
+    jonswap,
+    second_order_elevation,
+    second_order_kernel,
+    ship_rao,
+    wave_number,
+)
 from ..waves.ship import RHO_SEAWATER
+from ..waves.surrogate import response_surrogate
 from . import case_impacts, case_impacts_hard, case_vbm, case_waves
 from ._common import DT
 from ._impact_signals import OMEGA_MAX as IMPACT_OMEGA_MAX

@@ -28,8 +28,12 @@ def write_figures(out, datasets, results, table) -> list[Path]:
     """Write the figures into ``out``; returns the paths."""
     import matplotlib.pyplot as plt
 
-    from ..plotting.figures import (plot_distribution, plot_metrics, plot_mpm_convergence,
-                                    plot_scatter)
+    from ..plotting.figures import (
+        plot_distribution,
+        plot_metrics,
+        plot_mpm_convergence,
+        plot_scatter,
+    )
     from .registry import get_case
 
     out = Path(out)

@@ -113,7 +113,10 @@ class LongTermData:
         """The data set restricted to the sea states ``names`` (probabilities not renormalised)."""
         names = list(names)
         keep = self.sea_states["name"].isin(names)
-        pick = (lambda d: {n: d[n] for n in names})
+
+        def pick(d):
+            return {n: d[n] for n in names}
+
         return replace(self, sea_states=self.sea_states[keep].reset_index(drop=True),
                        lf=pick(self.lf), hf=pick(self.hf), ids=pick(self.ids),
                        meta=pick(self.meta))

@@ -1,19 +1,10 @@
 """Waves and linear ship responses: spectra, realisations, second order, RAOs, design waves,
 scatter diagrams, contours and the linear long-term value."""
 
+from .contour import design_sea_state, iform_contour, linear_design_sea_state
 from .design import FormResult, form_rcw, mler, mler_amplitudes, rayleigh_target
 from .encounter import encounter_frequency, mean_encounter_period, wave_frequency_from_encounter
 from .episode import Episode, design_episode
-from .realisation import ComponentSea, LinearSea, linear_sea, period_domain_sea, synthesise
-from .second_order import (
-    SecondOrderKernel,
-    direct_second_order,
-    second_order_coefficients,
-    second_order_elevation,
-    second_order_kernel,
-    sharma_dean_kernels,
-)
-from .contour import design_sea_state, iform_contour, linear_design_sea_state
 from .lf_records import LFRecord, events_frame, lf_record, lf_records, sea_state_seed
 from .linear_longterm import (
     HOURS_PER_YEAR,
@@ -23,10 +14,17 @@ from .linear_longterm import (
     response_spectrum,
     short_term_linear,
 )
+from .realisation import ComponentSea, LinearSea, linear_sea, period_domain_sea, synthesise
 from .scatter import ScatterDiagram, fit_joint_model, north_atlantic, tz_over_tp
+from .second_order import (
+    SecondOrderKernel,
+    direct_second_order,
+    second_order_coefficients,
+    second_order_elevation,
+    second_order_kernel,
+    sharma_dean_kernels,
+)
 from .ship import FERRY_190M, Ship, ShipRAO, relative_elevation_rao, ship_rao, ship_responses
-from .surrogate import ResponseSurrogate, response_surrogate
-from .transfer import TransferFunction
 from .spectra import (
     GRAVITY,
     jonswap,
@@ -36,6 +34,8 @@ from .spectra import (
     wave_number,
     zero_crossing_period_tz,
 )
+from .surrogate import ResponseSurrogate, response_surrogate
+from .transfer import TransferFunction
 
 __all__ = [
     "GRAVITY", "jonswap", "pierson_moskowitz", "spectral_moments", "mean_period_t1",
