@@ -32,7 +32,7 @@ LAYERS = (
     ("study", {"study"}),
     ("longterm", {"longterm"}),
     ("waves", {"waves"}),
-    ("runners", {"api", "design_waves"}),
+    ("runners", {"api", "design_waves", "cfd"}),
     ("records", {"records"}),
     ("plotting", {"plotting"}),
     ("validation", {"validation"}),

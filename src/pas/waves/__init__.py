@@ -5,6 +5,7 @@ from .contour import design_sea_state, iform_contour, linear_design_sea_state
 from .design import FormResult, form_rcw, mler, mler_amplitudes, rayleigh_target
 from .encounter import encounter_frequency, mean_encounter_period, wave_frequency_from_encounter
 from .episode import Episode, design_episode
+from .event_wave import EventWave, event_wave
 from .lf_records import LFRecord, events_frame, lf_record, lf_records, sea_state_seed
 from .linear_longterm import (
     HOURS_PER_YEAR,
@@ -38,6 +39,8 @@ from .surrogate import ResponseSurrogate, response_surrogate
 from .transfer import TransferFunction
 
 __all__ = [
+    "EventWave",
+    "event_wave",
     "GRAVITY", "jonswap", "pierson_moskowitz", "spectral_moments", "mean_period_t1",
     "zero_crossing_period_tz", "wave_number",
     "LinearSea", "ComponentSea", "linear_sea", "period_domain_sea", "synthesise",
