@@ -31,7 +31,7 @@ from pas.validation.case_cfd import CFD_CASE, cfd_lf_record
 DATA = Path(os.environ.get(
     "PAS_CFD_DATA", Path(__file__).resolve().parents[2] / "src" / "pas" / "validation" / "data"))
 TABLES = {"truth": "cfd_green_water.csv", "equivalence": "cfd_green_water_equivalence.csv",
-          "mesh": "cfd_green_water_mesh.csv"}
+          "mesh": "cfd_green_water_mesh.csv", "design": "cfd_green_water_design.csv"}
 LOCK = threading.Lock()
 COURANT = (0.65, 0.4, 0.25)
 """Courant limits tried in turn: a run that diverges is run again at the next."""
@@ -50,7 +50,21 @@ def jobs(events, a):
     out += [("equivalence", r, 0.5, False) for _, r in ranked.iloc[:a.equivalence].iterrows()]
     mesh_ids = ranked.iloc[:a.top].iloc[np.linspace(0, a.top - 1, a.mesh_events).astype(int)]
     out += [("mesh", r, c, True) for c in a.cells for _, r in mesh_ids.iterrows() if c != 0.5]
+    out.append(("design", {"id": "mler", "lf": mler_target(), "seed": -1, "t_peak": 0.0},
+                0.5, True))
     return out
+
+
+def mler_target():
+    """The linear crest MPM of the exposure (Rayleigh on the realised spectrum's m0)."""
+    from pas.waves import jonswap
+    from pas.waves.design import rayleigh_target
+
+    c = CFD_CASE
+    df = 1.0 / c.duration
+    w = 2 * np.pi * df * np.arange(1, int(c.omega_max / (2 * np.pi * df)) + 1)
+    m0 = float(np.sum(jonswap(w, c.hs, c.tp, c.gamma)) * 2 * np.pi * df)
+    return float(rayleigh_target(m0, cfd_lf_record()[2]))
 
 
 def run(job, root, recipe):
@@ -65,8 +79,9 @@ def run(job, root, recipe):
         result = sub / "result.json"
         if result.exists():
             break
-        cmd = [sys.executable, "-m", "pas.cfd.event", "--sea", recipe, "--seed",
-               str(int(ev["seed"])), "--t-peak", repr(float(ev["t_peak"])), "--out",
+        which = (["--mler", repr(float(ev["lf"]))] if kind == "design" else
+                 ["--seed", str(int(ev["seed"])), "--t-peak", repr(float(ev["t_peak"]))])
+        cmd = [sys.executable, "-m", "pas.cfd.event", "--sea", recipe, *which, "--out",
                str(result), "--cell", str(cell), "--max-courant", str(courant)]
         cmd += [] if structure else ["--no-structure"]
         with open(sub / "stdout.log", "w") as o, open(sub / "stderr.log", "w") as e:
@@ -83,6 +98,8 @@ def run(job, root, recipe):
     row = {"id": ev["id"], "lf": float(ev["lf"]), "seed": int(ev["seed"]),
            "t_peak": float(ev["t_peak"]), "status": "ok", "cell": cell, "max_courant": courant,
            "failed_tries": len(failures)}
+    if kind == "design":
+        row["method"] = "MLER"
     row.update(info.get("loads", {}))
     for k in ("linear_crest", "linear_crest_time", "bow_crest", "bow_crest_time", "t_event",
               "n_components", "energy", "n_cells", "wall_seconds", "openfoam"):

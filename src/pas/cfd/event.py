@@ -46,6 +46,23 @@ def sea_from_recipe(recipe, seed):
                       omega_max=float(recipe.get("omega_max", 3.0)))
 
 
+def mler_wave(recipe, target, *, upwave, lead):
+    """The MLER wave of the recipe's sea whose linear crest at the structure is ``target`` (m)
+    (Adegeest et al. 1998; Dietz 2004), as an :class:`~pas.waves.event_wave.EventWave`
+    with its crest at run time ``lead``."""
+    from ..waves import ComponentSea, jonswap, mler_amplitudes
+    from ..waves.event_wave import event_wave
+
+    df = 1.0 / float(recipe["duration"])
+    omega = 2 * np.pi * df * np.arange(1, int(float(recipe.get("omega_max", 3.0))
+                                                / (2 * np.pi * df)) + 1)
+    s = jonswap(omega, float(recipe["hs"]), float(recipe["tp"]), float(recipe.get("gamma", 3.3)))
+    sigma = np.sqrt(s * 2 * np.pi * df)
+    amp = mler_amplitudes(sigma, np.ones(omega.size), target, omega_e=omega)
+    sea = ComponentSea(omega=omega, amplitude=amp, depth=float(recipe["depth"]))
+    return event_wave(sea, 0.0, upwave=upwave, lead=lead)
+
+
 def _foam_env():
     env = dict(os.environ)
     env.setdefault("WM_PROJECT_DIR", "/usr/share/openfoam")
@@ -140,8 +157,10 @@ def main(argv=None):
     p = argparse.ArgumentParser(prog="python -m pas.cfd.event",
                                 description=__doc__.split("\n\n")[0])
     p.add_argument("--sea", required=True, help="JSON recipe of the LF record's sea")
-    p.add_argument("--seed", required=True, type=int, help="the event's seed ({seed})")
-    p.add_argument("--t-peak", required=True, type=float, help="LF crest time ({t_peak})")
+    p.add_argument("--seed", type=int, help="the event's seed ({seed})")
+    p.add_argument("--t-peak", type=float, help="LF crest time ({t_peak})")
+    p.add_argument("--mler", type=float, metavar="CREST",
+                   help="instead of an event: the MLER wave of this linear crest (m)")
     p.add_argument("--out", required=True, help="result file ({result})")
     p.add_argument("--template", help="your case folder, copied per event (default: the "
                                       "example tank)")
@@ -156,11 +175,18 @@ def main(argv=None):
     p.add_argument("--energy", type=float, default=1.0, help="share of wave energy kept")
     p.add_argument("--procs", type=int, default=1, help="MPI processes (2: decomposePar)")
     a = p.parse_args(argv)
+    with open("starts.log", "a") as f:          # one line per solver start: runs are counted
+        f.write(f"{time.strftime('%Y-%m-%dT%H:%M:%S')} pid {os.getpid()}\n")
     try:
         with open(a.sea) as f:
             recipe = json.load(f)
-        wave = event_wave(sea_from_recipe(recipe, a.seed), a.t_peak, upwave=a.upwave,
-                          lead=a.lead, energy=a.energy)
+        if a.mler is not None:
+            wave = mler_wave(recipe, a.mler, upwave=a.upwave, lead=a.lead)
+        elif a.seed is None or a.t_peak is None:
+            raise ValueError("give --seed and --t-peak of the event (or --mler CREST)")
+        else:
+            wave = event_wave(sea_from_recipe(recipe, a.seed), a.t_peak, upwave=a.upwave,
+                              lead=a.lead, energy=a.energy)
         tank = None if a.template else GreenWaterTank(
             upwave=a.upwave, cell=a.cell, structure=not a.no_structure,
             depth=float(recipe["depth"]), max_courant=a.max_courant)
