@@ -36,7 +36,10 @@ examples:
   pas reproduce --all --properties           # data properties of all twelve analogues
   pas reproduce long-term-3                  # long-term green water: PAS long-term, uniform,
                                              # contour and LF-only on one data set (minutes)
-cases: 1a 1b (2nd-order crests), 2a 2b (hog/sag VBM), 3a 3b (green water), 4a 4b (slamming);
+  pas reproduce cfd --replications 10        # OpenFOAM green water: PAS, paper preset, AS,
+                                             # top-N, MLER against the brute-force CFD truth
+cases: cfd (green water computed by OpenFOAM, from the package's CFD table);
+  1a 1b (2nd-order crests), 2a 2b (hog/sag VBM), 3a 3b (green water), 4a 4b (slamming);
   3a-hard 3b-hard 4a-hard 4b-hard: the first impact analogues (upper-tail dependent, misses
   at the threshold), kept as a robustness test
 """
@@ -73,6 +76,8 @@ def run(args) -> int:
     long_term = [c for c in args.cases if c.strip().lower().startswith("long-term")]
     if long_term:
         return _run_long_term(args, long_term)
+    if any(c.strip().lower() == "cfd" for c in args.cases):
+        return _run_cfd(args)
     if args.all and args.cases:
         raise ValueError("give case ids or --all, not both")
     if not args.all and not args.cases:
@@ -97,6 +102,36 @@ def run(args) -> int:
         if args.out:
             print(f"written: {', '.join(str(f) for f in res['files'])}")
     return 0
+
+
+def _run_cfd(args) -> int:
+    """``pas reproduce cfd``: the strategies against the brute-force OpenFOAM truth."""
+    from ..validation.cfd_compare import compare_cfd, format_cfd, summarise_cfd
+
+    if len(args.cases) != 1 or args.all:
+        raise ValueError("give the cfd case on its own: pas reproduce cfd")
+    names = [s for s in parse_strategy_names(args.strategies) if s in ("pas", "paper", "as")]
+    runs, facts = compare_cfd(seeds=range(args.seed, args.seed + args.replications),
+                              strategies=tuple(names) or ("pas", "paper", "as"))
+    table = summarise_cfd(runs, facts)
+    if args.json:
+        print(json.dumps(json.loads(table.to_json(orient="records")), indent=1))
+    else:
+        print(format_cfd(table))
+    if args.out:
+        import os
+
+        os.makedirs(args.out, exist_ok=True)
+        runs.to_csv(os.path.join(args.out, "cfd_runs.csv"), index=False)
+        table.to_csv(os.path.join(args.out, "cfd_table.csv"), index=False)
+        print(f"written: {args.out}/cfd_runs.csv, {args.out}/cfd_table.csv")
+    return 0
+
+
+def parse_strategy_names(text):
+    """``pas,as,paper`` as a list of names (``pas`` also brings the paper's preset)."""
+    names = [s.strip().lower() for s in text.split(",") if s.strip()]
+    return names + (["paper"] if "pas" in names and "paper" not in names else [])
 
 
 def _run_long_term(args, cases) -> int:
