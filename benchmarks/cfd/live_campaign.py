@@ -29,12 +29,12 @@ from pas.validation.case_cfd import CFD_CASE, cfd_lf_record, cfd_table
 from pas.validation.cfd_compare import EPS1
 
 
-def command(out, oracle, events, n_waves, p_exp, cut, seed):
+def command(out, oracle, events, n_waves, p_exp, cut, seed, max_hf):
     return [sys.executable, "-m", "pas", "run", str(events), "--oracle", oracle,
             "--meta-columns", "seed,t_peak", "--target", CFD_CASE.load, "--n-waves",
             str(n_waves), "--p-exp", repr(p_exp), "--eps1", repr(EPS1), "--threshold",
-            repr(cut), "--seed", str(seed), "--batch-size", "2", "--workers", "2", "--unit",
-            "N/m", "--lf-unit", "m", "--json", "--out", str(out)]
+            repr(cut), "--seed", str(seed), "--max-hf", str(max_hf), "--batch-size", "2",
+            "--workers", "2", "--unit", "N/m", "--lf-unit", "m", "--json", "--out", str(out)]
 
 
 def finished(out):
@@ -47,22 +47,21 @@ def main(argv=None):
     p.add_argument("--dir", default="cfd-live")
     p.add_argument("--kill-after", type=int, default=12)
     p.add_argument("--seed", type=int, default=0)
+    p.add_argument("--top", type=int, default=150, help="events above the cut (the table's)")
+    p.add_argument("--max-hf", type=int, default=40, help="the campaign's HF budget")
     a = p.parse_args(argv)
     work = Path(a.dir).resolve()
     work.mkdir(parents=True, exist_ok=True)
     events, n_waves, p_exp = cfd_lf_record()
-    table = cfd_table()
-    ok = table[table["status"] == "ok"]
     ranked = events.sort_values("lf", ascending=False)
-    above = ranked["id"].isin(set(ok["id"])).cumprod().astype(bool)
-    cut = float(ranked[above]["lf"].min()) - 1e-9
+    cut = float(ranked["lf"].iloc[a.top - 1]) - 1e-9
     ev = ranked[ranked["lf"] > cut][["id", "lf", "seed", "t_peak"]]
     ev.to_csv(work / "events.csv", index=False)
     sea = CFD_CASE.write_recipe(work / "sea.json")
-    ok.to_csv(work / "cfd_table.csv", index=False)
     live = ("command:" + sys.executable + " -m pas.cfd.event --sea " + sea +
             " --seed {seed} --t-peak {t_peak} --out {result}")
-    cmd = command(work / "live", live, work / "events.csv", n_waves, p_exp, cut, a.seed)
+    cmd = command(work / "live", live, work / "events.csv", n_waves, p_exp, cut, a.seed,
+                  a.max_hf)
     t0 = time.time()
     proc = subprocess.Popen(cmd, cwd=work, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL,
                             start_new_session=True)
@@ -81,9 +80,11 @@ def main(argv=None):
     starts = {d.name: len((d / "starts.log").read_text().splitlines())
               for d in (work / "live" / "hf-runs").iterdir() if (d / "starts.log").exists()}
     repeated = sum(n - 1 for n in starts.values())
+    cfd_table().query("status == 'ok'").to_csv(work / "cfd_table.csv", index=False)
     tab = subprocess.run(command(work / "table", f"table:{work / 'cfd_table.csv'}:id:"
                                  f"{CFD_CASE.load}", work / "events.csv", n_waves, p_exp, cut,
-                                 a.seed), cwd=work, capture_output=True, text=True, check=True)
+                                 a.seed, a.max_hf), cwd=work, capture_output=True, text=True,
+                         check=True)
     table_summary = json.loads(tab.stdout)
     hist = {k: pd.read_csv(work / k / "history.csv") for k in ("live", "table")}
     same_events = hist["live"]["event_id"].astype(str).tolist() == \

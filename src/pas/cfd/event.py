@@ -31,8 +31,9 @@ __all__ = ["main", "sea_from_recipe", "run_event"]
 DEFAULT_LEAD = 15.0
 DEFAULT_AFTER = 3.5
 DEFAULT_UPWAVE = 50.0
-MIN_TIME_STEP = 1e-7
-"""A run whose adaptive time step fell below this (s) has diverged: its loads are not kept."""
+MIN_TIME_STEP = 1e-6
+"""A run whose adaptive time step falls below this (s) has diverged: it is stopped and its
+event fails."""
 
 
 def sea_from_recipe(recipe, seed):
@@ -69,15 +70,43 @@ def _foam_env():
     return env
 
 
-def _run(cmd, log, env, cwd):
-    with open(os.path.join(cwd, log), "w") as out:
-        rc = subprocess.run(cmd, cwd=cwd, env=env, stdout=out, stderr=subprocess.STDOUT).returncode
-    with open(os.path.join(cwd, log), errors="replace") as f:
+def _run(cmd, log, env, cwd, *, watch=False):
+    """Run ``cmd`` in ``cwd`` with its output in ``log``; with ``watch``, stop it once its
+    time step falls below :data:`MIN_TIME_STEP` (a diverging run can grind for hours)."""
+    path = os.path.join(cwd, log)
+    with open(path, "w") as out:
+        proc = subprocess.Popen(cmd, cwd=cwd, env=env, stdout=out, stderr=subprocess.STDOUT)
+        diverged = None
+        while proc.poll() is None:
+            time.sleep(1.0)
+            if watch and diverged is None:
+                step = _last_time_step(path)
+                if step is not None and step < MIN_TIME_STEP:
+                    diverged = step
+                    proc.terminate()
+        rc = proc.wait()
+    with open(path, errors="replace") as f:
         text = f.read()
+    if diverged is not None:
+        raise RuntimeError(f"{cmd[0]} diverged: its time step fell to {diverged:.2g} s (see "
+                           f"{log}); try a smaller Courant limit or a finer mesh")
     if rc != 0 or "FOAM FATAL" in text:
         tail = [ln for ln in text.splitlines() if ln.strip()][-3:]
         raise RuntimeError(f"{cmd[0]} failed (exit {rc}, see {log}): " + " | ".join(tail)[-300:])
     return text
+
+
+def _last_time_step(path):
+    """The last ``deltaT`` a solver log holds (read from its end), or None."""
+    with open(path, "rb") as f:
+        f.seek(0, os.SEEK_END)
+        f.seek(max(0, f.tell() - 4096))
+        tail = f.read().decode(errors="replace")
+    found = re.findall(r"^deltaT = (\S+)", tail, flags=re.M)
+    try:
+        return float(found[-1]) if found else None
+    except ValueError:
+        return None
 
 
 def _version(text):
@@ -118,16 +147,12 @@ def run_event(wave, *, case="case", template=None, tank=None, after=DEFAULT_AFTE
     if procs > 1:
         _run(["decomposePar", "-force"], "log.decomposePar", env, case)
         text = _run(["mpirun", "--allow-run-as-root", "--oversubscribe", "-np", str(procs),
-                     "interFoam", "-parallel"], "log.interFoam", env, case)
+                     "interFoam", "-parallel"], "log.interFoam", env, case, watch=True)
     else:
-        text = _run(["interFoam"], "log.interFoam", env, case)
+        text = _run(["interFoam"], "log.interFoam", env, case, watch=True)
     wall = time.perf_counter() - t0
     if "\nEnd" not in text:
         raise RuntimeError("interFoam did not reach its end time (see log.interFoam)")
-    steps = [float(v) for v in re.findall(r"^deltaT = (\S+)", text, flags=re.M)]
-    if steps and min(steps) < MIN_TIME_STEP:
-        raise RuntimeError(f"interFoam diverged: its time step fell to {min(steps):.2g} s "
-                           "(see log.interFoam); try a smaller max_courant or a finer mesh")
     crest, t_crest = wave.crest()
     info = {"t_start": wave.t_start, "t_peak": wave.t_peak, "t_event": wave.t_event,
             "end_time": end, "window": list(window), "n_components": wave.n_components,

@@ -1,0 +1,91 @@
+"""Numbers of docs/results/cfd.md from the CFD tables: the truth and its check below the cut,
+event equivalence, mesh sensitivity, and the strategies' comparison over seeds.
+
+    python benchmarks/cfd/report.py --replications 10
+"""
+
+import argparse
+from pathlib import Path
+
+import pandas as pd
+
+from pas.validation.case_cfd import cfd_lf_record, cfd_table, cfd_truth
+from pas.validation.cfd_compare import compare_cfd, format_cfd, summarise_cfd
+
+DATA = Path(__file__).resolve().parents[2] / "src" / "pas" / "validation" / "data"
+
+
+def truth_check():
+    events, n_waves, p_exp = cfd_lf_record()
+    t = cfd_table()
+    ok = t[t["status"] == "ok"]
+    truth = cfd_truth(events, ok, n_waves, p_exp)
+    ranked = events.sort_values("lf", ascending=False)["id"].tolist()
+    have = set(ok["id"])
+    n_top = next(i for i, e in enumerate(ranked) if e not in have)
+    top, below = ok[ok["id"].isin(ranked[:n_top])], ok[~ok["id"].isin(ranked[:n_top])]
+    k = p_exp * n_waves
+    print(f"events {len(events)}, p_exp {p_exp:.4g}, exceedances of the MPM {k:.1f}")
+    print(f"CFD runs {len(t)} ({(t['status'] != 'ok').sum()} failed), above the cut {n_top} "
+          f"(LF >= {events.set_index('id').loc[ranked[n_top - 1], 'lf']:.3f} m), "
+          f"sample below {len(below)}")
+    print(f"truth MPM {truth:.0f} N/m; loads above it: {(ok['wall_peak_filtered'] > truth).sum()}")
+    print(f"below the cut: largest load {below['wall_peak_filtered'].max():.0f} N/m "
+          f"({below['wall_peak_filtered'].max() / truth:.2f} of the truth), "
+          f"{(below['wall_peak_filtered'] > 0.5 * truth).sum()} above half the truth")
+    print(f"wall seconds per event: median {ok['wall_seconds'].median():.1f}, "
+          f"cells {int(ok['n_cells'].median())}, retried at a lower Courant limit "
+          f"{int((ok.get('failed_tries', 0) > 0).sum())}")
+    lf_rank = ok["lf"].rank()
+    print(f"Kendall tau (LF, HF) above the cut: "
+          f"{top[['lf', 'wall_peak_filtered']].corr('kendall').iloc[0, 1]:.2f}")
+    return truth, lf_rank
+
+
+def equivalence():
+    path = DATA / "cfd_green_water_equivalence.csv"
+    if not path.exists():
+        return
+    e = pd.read_csv(path)
+    e = e[e["status"] == "ok"]
+    ratio = e["bow_crest"] / e["linear_crest"]
+    shift = e["bow_crest_time"] - e["linear_crest_time"]
+    print(f"equivalence, {len(e)} events without the structure: CFD/linear crest median "
+          f"{ratio.median():.3f} (range {ratio.min():.3f}-{ratio.max():.3f}), time shift "
+          f"median {shift.median():+.2f} s (range {shift.min():+.2f} to {shift.max():+.2f})")
+
+
+def mesh():
+    path = DATA / "cfd_green_water_mesh.csv"
+    if not path.exists():
+        return
+    m = pd.read_csv(path)
+    m = m[m["status"] == "ok"]
+    base = cfd_table().set_index("id")
+    rows = pd.concat([m, base.loc[m["id"].unique()].reset_index().assign(cell=0.5)])
+    for load in ("wall_peak_filtered", "wall_peak"):
+        piv = rows.pivot_table(index="id", columns="cell", values=load)
+        rel = piv.div(piv[0.5], axis=0)
+        print(f"mesh, {load} relative to 0.5 m cells:")
+        print(rel.round(3).to_string())
+        spread = (piv.max(axis=1) / piv.min(axis=1))
+        print(f"  max/min over meshes: median {spread.median():.2f}, worst {spread.max():.2f}")
+    cost = rows.groupby("cell")["wall_seconds"].median()
+    print("wall seconds per event by cell size:", cost.round(1).to_dict())
+
+
+def main(argv=None):
+    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    p.add_argument("--replications", type=int, default=10)
+    a = p.parse_args(argv)
+    truth_check()
+    equivalence()
+    mesh()
+    runs, facts = compare_cfd(seeds=range(a.replications))
+    print(format_cfd(summarise_cfd(runs, facts)))
+    with pd.option_context("display.width", 200):
+        print(runs.round(4).to_string())
+
+
+if __name__ == "__main__":
+    main()
