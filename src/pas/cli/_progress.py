@@ -155,14 +155,15 @@ def stopped(command: str, exc: BaseException, study, *, oracle=None, **where) ->
 
 def hf_programs_line(oracle) -> str | None:
     """End the HF programs ``oracle`` started that still run (``on_interrupt="end"``, the
-    default) or list them (``"leave"``): what the stop message says of them, None for
-    an oracle that starts no program or when none ran."""
+    default) or list them (``"leave"``): what the stop message says of them, None when
+    none ran.  Without a command oracle (None, or a command that has no stop of its own)
+    it says the programs ended in this process (:data:`pas.study.hf_programs.ENDED`)."""
     from ..study import hf_programs
 
     root = getattr(oracle, "root", None)
     if root is None or not hasattr(oracle, "on_interrupt"):
-        return None
-    if oracle.on_interrupt == "leave":
+        root = None  # no oracle known: only the programs ended in this process are said
+    elif oracle.on_interrupt == "leave":
         mine = [r for r in hf_programs.running(root)
                 if os.getpid() in (r.get("run_pid"), r.get("parent_pid"))]
         if not mine:

@@ -114,6 +114,7 @@ def running(root: str) -> list[dict]:
         dirs.sort()
         if LOCK not in files:
             continue
+        dirs[:] = []  # an event's folder: its program's case files hold no other lock
         held, record = held_by(os.path.join(folder, LOCK))
         if held:
             out.append({**(record or {}), "workdir": folder})
