@@ -235,3 +235,13 @@ def test_a_missing_relative_script_is_reported_where_it_was_looked_for(tmp_path)
         oracle(EV)
     assert f"looked for {tmp_path / 'hf' / 'cfd_gww.py'}" in str(err.value)
     assert f"against {start}, the folder the study was started from" in str(err.value)
+
+
+def test_on_interrupt_takes_end_or_leave(tmp_path):
+    from pas.study.oracle_spec import oracle_from_spec
+
+    spec = {"command": ["prog", "{result}"], "root": "runs", "cwd": str(tmp_path)}
+    assert oracle_from_spec(spec).on_interrupt == "end"
+    assert oracle_from_spec({**spec, "on_interrupt": "leave"}).on_interrupt == "leave"
+    with pytest.raises(ValueError, match="on_interrupt must be 'end' or 'leave', got 'keep'"):
+        oracle_from_spec({**spec, "on_interrupt": "keep"})
