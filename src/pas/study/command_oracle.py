@@ -338,6 +338,7 @@ class CommandOracle:
             except subprocess.TimeoutExpired:
                 kill_group(proc)
                 proc.wait()
+                clear_holder(lock)
                 raise OracleError(f"{cmd[0]} timed out after {self.timeout:g} s") from None
             except BaseException:  # Ctrl-C or a termination signal: end it, say so
                 if self.on_interrupt == "end" and end_group(record) is None:

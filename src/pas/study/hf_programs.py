@@ -192,7 +192,7 @@ def end_programs(root: str | None, *, grace: float = GRACE) -> list[dict]:
 
 
 def describe(record: dict, *, now: float | None = None) -> str:
-    """``event E: PID P on HOST, started at T (S s ago), time-out X s, by pas run PID R``."""
+    """``event E: PID P, on host H, started T (S s ago), time-out X s, run by pas PID R``."""
     now = time.time() if now is None else now
     parts = [f"event {record.get('event', '?')}: "
              + (f"PID {record['pid']}" if record.get("pid") else "starting")]
@@ -203,5 +203,5 @@ def describe(record: dict, *, now: float | None = None) -> str:
     timeout = record.get("timeout")
     parts.append(f"time-out {timeout:g} s" if timeout else "no time-out")
     if record.get("run_pid"):
-        parts.append(f"by pas PID {record['run_pid']}")
+        parts.append(f"run by pas PID {record['run_pid']}")
     return ", ".join(parts)
