@@ -92,6 +92,9 @@ def test_ctrl_c_exits_quickly_writes_the_partial_result_and_resume_loses_nothing
     # program (SLEEP s) still ran (0.5 s measured here; 2.1-2.7 s before, 33 s with the bootstrap)
     assert _finished(folder) == N_BEFORE, f"pas waited for the HF program ({took:.1f} s)"
     assert f"interrupted after {N_BEFORE} HF result(s); partial result written to out/" in err
+    interrupted = (folder / "calls.log").read_text().split()[-1]
+    # the interrupted event's program is ended, not left holding its cores until its end
+    assert f"ended the HF program(s) still running: event {interrupted}: PID" in err
     summary = json.loads((folder / "out" / "summary.json").read_text())
     assert summary["inputs"]["stopped_early"] is True
     partial = pd.read_csv(folder / "out" / "history.csv")
@@ -105,7 +108,9 @@ def test_ctrl_c_exits_quickly_writes_the_partial_result_and_resume_loses_nothing
     pd.testing.assert_frame_equal(final.iloc[:N_BEFORE][["event_id", "hf"]],
                                   partial[["event_id", "hf"]])
     calls = (folder / "calls.log").read_text().split()
-    assert len(calls) == len(set(calls)) == MAX_HF  # the interrupted event's program was reused
+    # every event ran once, the interrupted one (ended) once more
+    assert len(set(calls)) == MAX_HF and len(calls) == MAX_HF + 1
+    assert calls.count(interrupted) == 2
 
     fresh_folder = _folder(tmp_path / "fresh", sleep=0)
     fresh = _pas_run(fresh_folder)

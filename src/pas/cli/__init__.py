@@ -129,7 +129,10 @@ def _main(argv) -> int:
             _say(str(exc))
             return exc.code
         except KeyboardInterrupt:
-            _say(f"{name}: interrupted")
+            from ._progress import hf_programs_line
+
+            programs = hf_programs_line(None)
+            _say(f"{name}: interrupted" + (f"; {programs}" if programs else ""))
             return EXIT_INTERRUPTED
         except BrokenPipeError:
             _mute_closed_streams()

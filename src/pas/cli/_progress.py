@@ -8,6 +8,7 @@ printed when Ctrl-C or a closed pipe ends a run early.
 from __future__ import annotations
 
 import math
+import os
 import sys
 
 __all__ = ["Progress", "RunStopped", "failure_line", "precision_text", "stopped", "stopped_message",
@@ -136,24 +137,55 @@ def precision_text(row, target: float) -> str:
     return text
 
 
-def stopped(command: str, exc: BaseException, study, **where) -> RunStopped:
-    """The :class:`RunStopped` for a run that ``exc`` (Ctrl-C or a closed pipe) ended early.
+def stopped(command: str, exc: BaseException, study, *, oracle=None, **where) -> RunStopped:
+    """The :class:`RunStopped` for a run that ``exc`` (Ctrl-C, a closed pipe, or a
+    termination signal raised as one of these) ended early.
 
-    ``where`` is passed to :func:`stopped_message` (``store``, ``out``, ``resume``).
+    The HF programs ``oracle`` (a command oracle) started and that still run are
+    ended first, or left running with ``on_interrupt="leave"``
+    (:func:`hf_programs_line`).  ``where`` is passed to :func:`stopped_message`
+    (``store``, ``out``, ``resume``).
     """
     pipe = isinstance(exc, BrokenPipeError)
     why = "output pipe closed" if pipe else "interrupted"
-    return RunStopped(stopped_message(command, why, n_results=len(study.rows), **where),
+    return RunStopped(stopped_message(command, why, n_results=len(study.rows),
+                                      programs=hf_programs_line(oracle), **where),
                       EXIT_BROKEN_PIPE if pipe else EXIT_INTERRUPTED)
 
 
-def stopped_message(command: str, why: str, *, n_results: int, store=None, out=None,
-                    resume: str | None = None) -> str:
-    """The one line printed when a run stops early (Ctrl-C, closed pipe).
+def hf_programs_line(oracle) -> str | None:
+    """End the HF programs ``oracle`` started that still run (``on_interrupt="end"``, the
+    default) or list them (``"leave"``): what the stop message says of them, None when
+    none ran.  Without a command oracle (None, or a command that has no stop of its own)
+    it says the programs ended in this process (:data:`pas.study.hf_programs.ENDED`)."""
+    from ..study import hf_programs
 
-    Says what was kept, how to resume and that HF programs started by a
-    command oracle may still be running: they run in their own session, so
-    Ctrl-C does not reach them.
+    root = getattr(oracle, "root", None)
+    if root is None or not hasattr(oracle, "on_interrupt"):
+        root = None  # no oracle known: only the programs ended in this process are said
+    elif oracle.on_interrupt == "leave":
+        mine = [r for r in hf_programs.running(root)
+                if os.getpid() in (r.get("run_pid"), r.get("parent_pid"))]
+        if not mine:
+            return None
+        return ("left running (on_interrupt = leave): "
+                + "; ".join(hf_programs.describe(r) for r in mine)
+                + "; a resumed run waits for each until its time-out and reuses its result "
+                  "('pas study hf-stop' ends them)")
+    ended = hf_programs.end_programs(root)
+    if not ended:
+        return None
+    return ("ended the HF program(s) still running: "
+            + "; ".join(hf_programs.describe(r) for r in ended)
+            + "; their events run again on resume")
+
+
+def stopped_message(command: str, why: str, *, n_results: int, store=None, out=None,
+                    resume: str | None = None, programs: str | None = None) -> str:
+    """The line printed when a run stops early (Ctrl-C, closed pipe).
+
+    Says what was kept, how to resume and what became of the HF programs a
+    command oracle had running (``programs``, from :func:`hf_programs_line`).
     """
     parts = [f"{command}: {why} after {n_results} HF result(s)"]
     if out is not None:
@@ -163,8 +195,8 @@ def stopped_message(command: str, why: str, *, n_results: int, store=None, out=N
                      f"{resume or 'the same command'} again to resume")
     else:
         parts.append("nothing was stored to resume from (--no-store)")
-    parts.append("HF programs a command oracle started may still be running (a resumed run "
-                 "waits for them and reuses their results)")
+    if programs:
+        parts.append(programs)
     return "; ".join(parts)
 
 

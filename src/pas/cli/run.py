@@ -270,8 +270,8 @@ def run(args) -> int:
                 print(f"pas run: {ch['key']} changed from {ch['old']} to {ch['new']} on resuming "
                       f"(recorded in {store})", file=sys.stderr)
             oracle, note = keep_start_dir(oracle, study.store)
-            if note is not None:
-                print(f"pas run: {note}", file=sys.stderr)
+            for line in (note or "").splitlines():
+                print(f"pas run: {line}", file=sys.stderr)
             if args.retry_failed:
                 print(_retried_line(study.retry_failed()), file=sys.stderr)
             if stored:
@@ -282,7 +282,7 @@ def run(args) -> int:
         except (KeyboardInterrupt, BrokenPipeError) as exc:
             written = _save_partial(study, out, inputs, args)
             raise stopped("pas run", exc, study, store=store, out=written,
-                          resume="the same 'pas run' command") from None
+                          resume="the same 'pas run' command", oracle=oracle) from None
     except StoreError as exc:
         raise ValueError(f"{exc} (to start a new study use another --out or --no-store)") from None
     except OracleFailureLimit as exc:

@@ -12,6 +12,8 @@
     pas study refit STUDY.db --target NAME [--out DIR]   (pas.cli.study_loads)
     pas study run STUDY.db [-q Q] [--workers N] [--pending resubmit|wait]
     pas study retry STUDY.db [EVENT ...]
+    pas study hf-programs STUDY [--json]        (pas.cli.study_programs)
+    pas study hf-stop STUDY [EVENT ...]
 
 The study file is a :mod:`pas.study.store` (SQLite): ``tell`` only records the
 result (any number of processes at once), ``ask`` replays the study, uses the
@@ -53,6 +55,8 @@ from ._parsers import command_parser
 from ._stopping_options import precision_option
 from .study_config import check_oracle_command, load_config, load_peaks, study_objects
 from .study_loads import add_parsers as add_load_parsers
+from .study_programs import add_parsers as add_program_parsers
+from .study_programs import list_programs, stop_programs
 from .study_loads import refit_command, tell_loads
 
 __all__ = ["add_parser", "run", "load_config", "load_peaks"]
@@ -71,6 +75,8 @@ examples:
   pas study tell campaign.db 1532 120.5 --replace    # correct a typo (old value kept)
   pas study tell campaign.db 1532 --load panel_p3=40.1 --load deck=812.5 --replace
   pas study retry campaign.db                        # failed events run again
+  pas study hf-programs run1                         # HF programs of 'pas run --out run1' running
+  pas study hf-stop run1 w00382                      # end one (it runs again on resume)
 """
 
 
@@ -133,6 +139,7 @@ def add_parser(sub) -> None:
     y = _action(cmds, "retry", "run failed events again (after fixing their cause)")
     y.add_argument("study", metavar="STUDY.db")
     y.add_argument("events", nargs="*", metavar="EVENT", help="event ids (default: every failed one)")
+    add_program_parsers(cmds)
     p.set_defaults(func=run)
 
 
@@ -140,7 +147,8 @@ def run(args) -> int:
     from .study_status import status
 
     return {"create": _create, "ask": _ask, "tell": _tell, "status": status, "run": _drive,
-            "set": _set, "retry": _retry, "refit": refit_command}[args.study_command](args)
+            "set": _set, "retry": _retry, "refit": refit_command, "hf-programs": list_programs,
+            "hf-stop": stop_programs}[args.study_command](args)
 
 
 # -- actions ----------------------------------------------------------------
@@ -328,14 +336,15 @@ def _drive(args) -> int:
         raise ValueError(f"--workers must be at least 1, got {args.workers}")
     study = open_study(store, consume=False)
     progress = Progress(sys.stdout, quiet=args.quiet, command="pas study run")
+    oracle = oracle_from_spec(spec)
     try:
-        res = study.optimize(oracle_from_spec(spec), batch_size=q, n_workers=args.workers,
+        res = study.optimize(oracle, batch_size=q, n_workers=args.workers,
                              pending=args.pending, callback=progress)
     except (KeyboardInterrupt, BrokenPipeError) as exc:
         from ._progress import stopped
 
         raise stopped("pas study run", exc, study, store=args.study,
-                      resume=f"'pas study run {args.study}'") from None
+                      resume=f"'pas study run {args.study}'", oracle=oracle) from None
     except OracleFailureLimit as exc:
         print(exc.result.summary())
         print(f"pas study run: error: {getattr(exc, 'reason', exc)}; fix the oracle, then "

@@ -21,7 +21,7 @@ _TOP = {"n_waves": int, "n_waves_convention": str, "p_exp": float, "eps1": float
 _LF = {"file": str, "column": str, "id_column": str, "meta_columns": list}
 _REQUIRED = ("n_waves", "p_exp", "lf")
 _ORACLE = {"command": list, "root": str, "timeout": float, "result_name": str, "table": str,
-           "id_column": str, "value_column": (str, list)}
+           "id_column": str, "value_column": (str, list), "on_interrupt": str}
 
 
 def _typed(value, kind, field, where):

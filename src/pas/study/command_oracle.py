@@ -21,6 +21,17 @@ import warnings
 import numpy as np
 
 from ._processes import OWN_SESSION, kill_group, try_lock
+from .hf_programs import (
+    ENDED,
+    LOCK,
+    clear_holder,
+    deadline,
+    describe,
+    end_group,
+    holder,
+    read_holder,
+    write_holder,
+)
 from .oracles import OracleError
 from .workdirs import command_record, event_dir, read_record, write_record
 
@@ -133,22 +144,35 @@ class CommandOracle:
         another command — a second study run into the same ``root``, or a
         command changed since — is an :class:`OracleError` naming the folder,
         never taken, whatever ``reuse`` says.
+    on_interrupt : {"end", "leave"}, default "end"
+        What Ctrl-C (or a termination signal turned into the same stop) does
+        to a program waited for: ``"end"`` ends its process group
+        (``SIGTERM``, then ``SIGKILL``; :mod:`pas.study.hf_programs`) and the
+        event runs again on resume; ``"leave"`` leaves it running, and a
+        resumed run waits for it and reuses its result.
 
     Notes
     -----
     A non-zero exit status, a time-out, a missing or unreadable result file
-    raise :class:`OracleError` (recorded as a failed event, never as 0).
+    raise :class:`OracleError` (recorded as a failed event, never as 0), and
+    so does a relative script argument (``cfd.py``, ``../hf/run.sh``) missing
+    from ``cwd``, naming the path it was looked for.
     While the program runs it holds an ``flock`` on ``root/<id>/.lock``
-    (inherited by the program), so a resumed driver waits for a program
-    orphaned by a killed driver and reuses its result instead of starting a
-    second copy.  The program runs in a session (POSIX) or process group
-    (Windows) of its own, so Ctrl-C in the driver does not stop it.  Where
-    ``fcntl`` is missing (Windows) the lock is an ``msvcrt`` lock held by
-    the driver only, so it does not cover an orphaned program.
+    (inherited by the program), which records the program's PID, the ``pas``
+    process, host, start and time-out (:mod:`pas.study.hf_programs`).  A
+    resumed driver that finds the lock held waits for that program until its
+    own time-out counted from its start (and reuses its result), then ends
+    it and runs the event again; a lock no process holds is taken over.  The
+    program runs in a session (POSIX) or process group (Windows) of its own,
+    so the terminal's Ctrl-C reaches only the driver, which then decides
+    (``on_interrupt``).  Where ``fcntl`` is missing (Windows) the lock is an
+    ``msvcrt`` lock held by the driver only, so it does not cover an
+    orphaned program.
     """
 
     def __init__(self, args, *, root, cwd=None, timeout: float | None = None,
-                 result_name: str = "result.txt", env: dict | None = None, reuse: bool = True):
+                 result_name: str = "result.txt", env: dict | None = None, reuse: bool = True,
+                 on_interrupt: str = "end"):
         if isinstance(args, (str, bytes)) or not all(isinstance(a, str) for a in args) or not args:
             raise ValueError("args must be a non-empty list of strings (an argument list, "
                              "not a shell command line)")
@@ -167,6 +191,9 @@ class CommandOracle:
         self.result_name = result_name
         self.env = dict(env or {})
         self.reuse = bool(reuse)
+        if on_interrupt not in ("end", "leave"):
+            raise ValueError(f"on_interrupt must be 'end' or 'leave', got {on_interrupt!r}")
+        self.on_interrupt = on_interrupt
 
     def __repr__(self) -> str:
         return f"CommandOracle({self.args!r}, root={self.root!r}, cwd={self.cwd!r})"
@@ -174,7 +201,8 @@ class CommandOracle:
     def with_cwd(self, cwd) -> CommandOracle:
         """The same oracle with its relative paths resolved against ``cwd`` (``root`` kept)."""
         return CommandOracle(self.template, root=self.root, cwd=cwd, timeout=self.timeout,
-                             result_name=self.result_name, env=self.env, reuse=self.reuse)
+                             result_name=self.result_name, env=self.env, reuse=self.reuse,
+                             on_interrupt=self.on_interrupt)
 
     def command(self, event, workdir: str, files: dict | None = None) -> list[str]:
         """The argument list for ``event`` (``files``: extra placeholders, e.g. an episode's)."""
@@ -191,13 +219,14 @@ class CommandOracle:
                        result="{result}")
 
     def __call__(self, event) -> float:
+        self._check_scripts()
         workdir = os.path.join(self.root, event_dir(event))
         os.makedirs(workdir, exist_ok=True)
         result = os.path.join(workdir, self.result_name)
-        lock = os.open(os.path.join(workdir, ".lock"), os.O_RDWR | os.O_CREAT, 0o644)
+        lock = os.open(os.path.join(workdir, LOCK), os.O_RDWR | os.O_CREAT, 0o644)
         staging = None
         try:
-            inherited = self._lock(lock, event)
+            inherited = self._lock(lock, event, workdir)
             staging, staged, files = _staged_inputs(event, workdir)
             record = command_record(self.recorded_command(event, files), staged)
             kept = self._read(result, missing_ok=True)
@@ -209,8 +238,8 @@ class CommandOracle:
                 os.replace(path, files[name])
             write_record(workdir, record)
             try:
-                self._run(self.command(event, workdir, files), workdir,
-                          (lock,) if inherited else ())
+                self._run(self.command(event, workdir, files), workdir, lock, inherited,
+                          event)
                 return self._read(result)
             except OracleError:  # what a failed run wrote is no result to reuse
                 write_record(workdir, {**record, "failed": True})
@@ -238,32 +267,86 @@ class CommandOracle:
                       "(delete it to run the event again)", RuntimeWarning, stacklevel=3)
         return True
 
-    def _lock(self, fd, event) -> bool:
-        """Wait for the event's lock; True when the program can inherit it (``flock``)."""
-        deadline = None if self.timeout is None else time.monotonic() + self.timeout
+    def _check_scripts(self) -> None:
+        """A relative script in the command that is not in :attr:`cwd` is an error naming
+        the path it was looked for (else the program would be handed a path relative to
+        the event's folder, and fail there)."""
+        for a in self.args[1:]:
+            if ("{" not in a and not os.path.isabs(a) and not a.startswith("-")
+                    and not any(c.isspace() for c in a)
+                    and os.path.splitext(a)[1] in _SCRIPT_SUFFIXES):
+                raise OracleError(
+                    f"command: {a} not found: looked for "
+                    f"{os.path.normpath(os.path.join(self.cwd, a))} (relative paths resolve "
+                    f"against {self.cwd}, the folder the study was started from)")
+
+    def _lock(self, fd, event, workdir) -> bool:
+        """Wait for the event's lock; True when the program can inherit it (``flock``).
+
+        A program an earlier run left running holds it: wait until that program's own
+        time-out counted from its start (this oracle's, counted from now, when the lock
+        records none), then end it and run the event again
+        (:mod:`pas.study.hf_programs`).
+        """
+        path = os.path.join(workdir, LOCK)
+        since, said, ended = time.time(), False, None
         while (taken := try_lock(fd)) is False:
-            if deadline is not None and time.monotonic() > deadline:
-                raise OracleError(f"event {event.id}: another run of it still holds "
-                                  f"{self.root}/.../.lock after {self.timeout:g} s")
+            now = time.time()
+            record = read_holder(path)
+            if ended is not None:
+                if now > ended + 10:
+                    raise OracleError(f"event {event.id}: {path} is still held {now - ended:.0f}"
+                                      " s after its program was ended")
+            elif not said and now > since + 1:
+                due = deadline(record)
+                warnings.warn(f"event {event.id}: waiting for its HF program an earlier run "
+                              f"left running ({describe(record or {})}) "
+                              + (f"until its time-out, {due - now:.0f} s from now"
+                                 if due else "with no time-out")
+                              + "; 'pas study hf-stop' ends it", RuntimeWarning, stacklevel=3)
+                said = True
+            due = deadline(record) or (None if self.timeout is None else since + self.timeout)
+            if ended is None and due is not None and now > due:
+                why = end_group(record) if record else "its lock names no program"
+                if why is not None:
+                    raise OracleError(f"event {event.id}: {path} is still held past its "
+                                      f"time-out ({describe(record or {})}): {why}")
+                warnings.warn(f"event {event.id}: ended its HF program that ran past its "
+                              f"time-out ({describe(record)}); the event runs again",
+                              RuntimeWarning, stacklevel=3)
+                write_record(workdir, {**(read_record(workdir) or {}), "failed": True})
+                ended = now
             time.sleep(0.05)
         return taken == "flock"
 
-    def _run(self, cmd, workdir, pass_fds) -> None:
+    def _run(self, cmd, workdir, lock, inherited, event) -> None:
         env = {**os.environ, **{str(k): str(v) for k, v in self.env.items()}}
+        write_holder(lock, holder(None, event=event.id, timeout=self.timeout, program=cmd[0]))
         with open(os.path.join(workdir, "stdout.log"), "wb") as out, \
                 open(os.path.join(workdir, "stderr.log"), "wb") as err:
             try:
                 proc = subprocess.Popen(cmd, cwd=workdir, env=env, stdin=subprocess.DEVNULL,
-                                        stdout=out, stderr=err, pass_fds=pass_fds,
-                                        **OWN_SESSION)
+                                        stdout=out, stderr=err,
+                                        pass_fds=(lock,) if inherited else (), **OWN_SESSION)
             except OSError as exc:
+                clear_holder(lock)
                 raise OracleError(f"cannot start {cmd[0]!r}: {exc}") from None
+            record = holder(proc.pid, event=event.id, timeout=self.timeout, program=cmd[0])
+            write_holder(lock, record)
             try:
                 code = proc.wait(timeout=self.timeout)
             except subprocess.TimeoutExpired:
                 kill_group(proc)
                 proc.wait()
+                clear_holder(lock)
                 raise OracleError(f"{cmd[0]} timed out after {self.timeout:g} s") from None
+            except BaseException:  # Ctrl-C or a termination signal: end it, say so
+                if self.on_interrupt == "end" and end_group(record) is None:
+                    ENDED.append(record)
+                    proc.wait()
+                    write_record(workdir, {**(read_record(workdir) or {}), "failed": True})
+                raise
+            clear_holder(lock)
         if code != 0:
             tail = _last_line(os.path.join(workdir, "stderr.log"))
             raise OracleError(f"{os.path.basename(cmd[0])} exited with code {code}"
@@ -282,6 +365,10 @@ class CommandOracle:
             if missing_ok:
                 return None
             raise OracleError(f"{path}: {exc}") from None
+
+
+_SCRIPT_SUFFIXES = (".py", ".sh", ".bash", ".jl", ".R", ".r", ".m", ".pl", ".rb", ".tcl", ".lua",
+                    ".js")
 
 
 def _filled(args, event, files, **folders) -> list[str]:

@@ -20,10 +20,18 @@ from pathlib import Path
 from .command_oracle import CommandOracle
 from .oracles import TableOracle
 
-__all__ = ["oracle_from_spec", "parse_oracle_spec", "keep_start_dir", "START_DIR_KEY"]
+__all__ = ["oracle_from_spec", "parse_oracle_spec", "keep_start_dir", "START_DIR_KEY",
+           "COMMAND_KEY", "COMMAND_CHANGES_KEY", "ROOT_KEY"]
 
 START_DIR_KEY = "oracle_cwd"
 """Meta key of a study store holding the directory its command oracle was first started from."""
+
+COMMAND_KEY, COMMAND_CHANGES_KEY = "oracle_command", "oracle_command_changes"
+"""Meta keys of a study store: the command oracle's argument list as last run, and the list
+of its changes on resuming, ``{"old", "new", "at"}`` each."""
+
+ROOT_KEY = "oracle_root"
+"""Meta key of a study store: the folder of its command oracle's event folders."""
 
 
 def parse_oracle_spec(spec: str) -> dict:
@@ -103,7 +111,8 @@ def oracle_from_spec(spec, *, root=None, timeout=None, cwd=None):
     if "command" in o:
         return CommandOracle(o["command"], root=o.get("root", root or "hf-runs"),
                              cwd=o.get("cwd", cwd), timeout=o.get("timeout", timeout),
-                             result_name=o.get("result_name", "result.txt"))
+                             result_name=o.get("result_name", "result.txt"),
+                             on_interrupt=o.get("on_interrupt", "end"))
     if "table" in o:
         return TableOracle(o["table"], id_column=o.get("id_column", "id"),
                            value_column=o.get("value_column", "hf"))
@@ -119,28 +128,52 @@ def keep_start_dir(oracle, store):
     A :class:`CommandOracle` bound to a new study store records its ``cwd``
     there (under :data:`START_DIR_KEY`); on a store holding another one it is
     rebuilt with that one (its ``root`` kept), so relative script paths keep
-    meaning the files of the first run.  Other oracles are returned as they are.
+    meaning the files of the first run.  Its argument list is recorded too
+    (:data:`COMMAND_KEY`): one that differs from the stored one is a change,
+    appended to :data:`COMMAND_CHANGES_KEY` and said once.  Other oracles are
+    returned as they are.
 
     Returns
     -------
     (oracle, note)
-        ``note`` is None, or one line saying the recorded directory is used.
+        ``note`` is None, or the lines (one per fact) saying which directory
+        is used and how the command changed.
     """
     if not isinstance(oracle, CommandOracle) or store is None:
         return oracle, None
+    notes = [_command_change(oracle, store)]
+    store.put(ROOT_KEY, oracle.root)
     recorded = store.get(START_DIR_KEY)
     if recorded is None:
         store.put(START_DIR_KEY, oracle.cwd)
-        return oracle, None
-    if recorded == oracle.cwd:
-        return oracle, None
-    try:
-        moved = oracle.with_cwd(recorded)
-    except ValueError:  # the first run's folder is gone: use this one, and say so
-        return oracle, (f"the study was started in {recorded}, which no longer exists; the "
-                        f"command's relative paths resolve against {oracle.cwd}")
-    return moved, (f"the command's relative paths resolve against {recorded}, where the study "
-                   "was started")
+    elif recorded != oracle.cwd:
+        try:
+            oracle = oracle.with_cwd(recorded)
+        except ValueError:  # the first run's folder is gone: use this one, and say so
+            notes.insert(0, f"the study was started in {recorded}, which no longer exists; "
+                            f"the command's relative paths resolve against {oracle.cwd}")
+        else:
+            notes.insert(0, f"the command's relative paths resolve against {recorded}, where "
+                            "the study was started")
+    notes = [n for n in notes if n]
+    return oracle, "\n".join(notes) if notes else None
+
+
+def _command_change(oracle, store) -> str | None:
+    """Record ``oracle``'s argument list in ``store``; the line saying how it changed."""
+    from datetime import datetime, timezone
+
+    old, new = store.get(COMMAND_KEY), list(oracle.template)
+    if old == new:
+        return None
+    store.put(COMMAND_KEY, new)
+    if old is None:
+        return None
+    at = datetime.now(timezone.utc).isoformat(timespec="seconds")
+    store.put(COMMAND_CHANGES_KEY,
+              store.get(COMMAND_CHANGES_KEY, []) + [{"old": old, "new": new, "at": at}])
+    return (f"the HF command changed on resuming: it was {old}, now {new} (recorded in the "
+            "study store; events already run keep their results)")
 
 
 def _python_function(target: str, func: str):

@@ -24,6 +24,11 @@ rows under the key ``""``, so it opens and replays as before.
     ``seq`` (the last sequence number handed out) and ``op_seq`` (the last
     ask or tell consumed by a study); ``oracle`` and ``batch_size`` when the
     study was created by ``pas study create`` with an ``[oracle]`` table;
+    ``oracle_cwd``, ``oracle_root`` and ``oracle_command`` (the folder a
+    ``pas run`` command oracle's relative paths resolve against, the folder
+    of its event folders, its argument list as last run) and
+    ``oracle_command_changes``, a list of ``{"old", "new", "at"}``, one per
+    change of that command on a resumed run (free keys: no schema version);
     ``settings_changes``, a list of ``{"key", "old", "new", "n_told", "at"}``,
     one per change of a :data:`RESUMABLE` setting on a resumed study
     (``n_told``: results the study had consumed then).
