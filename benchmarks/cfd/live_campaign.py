@@ -39,7 +39,7 @@ def command(out, oracle, events, n_waves, p_exp, cut, seed, max_hf):
 
 def finished(out):
     runs = Path(out) / "hf-runs"
-    return sum(1 for d in runs.glob("*/result.json")) if runs.is_dir() else 0
+    return sum(1 for d in runs.glob("*/result.txt")) if runs.is_dir() else 0
 
 
 def main(argv=None):
@@ -68,6 +68,9 @@ def main(argv=None):
     while finished(work / "live") < a.kill_after and proc.poll() is None:
         time.sleep(1.0)
     killed_at = finished(work / "live")
+    if proc.poll() is not None:
+        raise SystemExit(f"pas run ended (exit {proc.returncode}) before {a.kill_after} "
+                         "events had finished: nothing to kill")
     os.kill(proc.pid, signal.SIGKILL)         # the driver only: its CFD programs run on
     proc.wait()
     print(f"killed pas run (-9) after {killed_at} finished CFD events", flush=True)
