@@ -36,7 +36,7 @@ import warnings
 
 from ._progress import EXIT_BROKEN_PIPE, EXIT_INTERRUPTED, RunStopped
 
-COMMANDS = ("reproduce", "run", "long_term", "study", "plot", "impacts")
+COMMANDS = ("reproduce", "run", "long_term", "study", "plot", "impacts", "events")
 
 EXIT_STOPPED = 1
 EXIT_BAD_INPUT = 2
