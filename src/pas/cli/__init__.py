@@ -143,7 +143,7 @@ def _main(argv) -> int:
             return EXIT_BAD_INPUT
 
 
-_POSITIONAL_NAMES = {"run": {"lf_peaks": "LF_FILE"}}
+_POSITIONAL_NAMES = {"run": {"lf_peaks": "LF_FILE"}, "events": {"series": "SERIES"}}
 """Python argument names a command's errors should call by its positional argument."""
 
 

@@ -106,7 +106,13 @@ def run(args) -> int:
     exposure = None if args.exposure_hours is None else args.exposure_hours * 3600.0
     if exposure is not None and not exposure > 0:
         raise ValueError(f"--exposure-hours must be > 0, got {args.exposure_hours}")
-    ev = lf_events(records, dt=args.dt, threshold=args.threshold, exposure=exposure)
+    try:
+        ev = lf_events(records, dt=args.dt, threshold=args.threshold, exposure=exposure)
+    except ValueError as exc:  # series['seed1']: ... -> SERIES seed1.csv: ...
+        message = str(exc)
+        for name, path in zip(names, paths):
+            message = message.replace(f"series[{name!r}]", f"SERIES {path}")
+        raise ValueError(message) from None
     ev.table.to_csv(args.out, index=False)
     print(ev.summary())
     print(f"n_waves {ev.n_waves}  (counted zero-up-crossing waves, all records)")
