@@ -27,7 +27,7 @@ from .._support.checks import check_finite, check_positive
 from ..stats.exceedance import p_exp_from_duration
 from ..stats.peaks import upcrossing_times, wave_crests, zero_upcrossings
 
-__all__ = ["LFEvents", "lf_events", "EVENT_COLUMNS"]
+__all__ = ["LFEvents", "lf_events", "wave_events", "EVENT_COLUMNS"]
 
 #: Columns of :attr:`LFEvents.table`: ``id`` and ``lf`` for :func:`pas.run_pas`,
 #: the rest the event's ``meta`` (``{record}``, ``{t_start}`` ... in a
@@ -124,7 +124,7 @@ def lf_events(series, *, dt=None, threshold=None, exposure=None) -> LFEvents:
     for name, rec in records:
         label = f"series[{name!r}]" if len(records) > 1 else "series"
         t, x = _time_and_signal(label, rec, dt)
-        peaks, t_start, t_end, t_peak = _waves(t, x)
+        peaks, t_start, t_end, t_peak = wave_events(t, x)
         if peaks.size == 0:
             raise ValueError(f"{label}: no complete zero-up-crossing wave in "
                              f"{t[-1] - t[0]:g} s; give a longer record or one about zero mean")
@@ -194,8 +194,9 @@ def _samples(values, label):
     return x
 
 
-def _waves(t, x):
-    """Crest, up-crossing, next up-crossing and crest time of every complete wave."""
+def wave_events(t, x):
+    """Crest, up-crossing time, next up-crossing time and crest time of every complete
+    zero-up-crossing wave of ``x`` sampled at times ``t`` (one event per wave)."""
     up = zero_upcrossings(x)
     peaks, idx = wave_crests(x, up)
     if peaks.size == 0:
