@@ -23,9 +23,8 @@ peak above it; give the same ``--threshold`` to ``pas run``.
 
 from __future__ import annotations
 
+import argparse
 from pathlib import Path
-
-from ._parsers import command_parser
 
 __all__ = ["add_parser", "run"]
 
@@ -40,8 +39,11 @@ examples:
 
 def add_parser(sub) -> None:
     """Register ``pas events`` on the sub-command parser ``sub``."""
-    p = command_parser(sub, "events", "the events table (one per wave), n_waves and p_exp of "
-                       "an LF time series", __doc__, EPILOG)
+    from . import plain_text
+
+    p = sub.add_parser("events", help="the events table (one per wave), n_waves and p_exp of "
+                       "an LF time series", description=plain_text(__doc__), epilog=EPILOG,
+                       formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("series", metavar="SERIES", nargs="+",
                    help="LF records: .npy (1-D samples, needs --dt) or .csv (header row)")
     p.add_argument("--dt", type=float, metavar="S",
