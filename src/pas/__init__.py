@@ -34,6 +34,7 @@ _EXPORTS = {
     "CommandOracle": "study.command_oracle", "OracleFailureLimit": "study.oracles",
     "TableOracle": "study.oracles", "ScreeningResult": "study.result", "Study": "study.study",
     "StudyStore": "study.store", "refit": "study.refit",
+    "lf_events": "waves.lf_events", "LFEvents": "waves.lf_events",
     "run_long_term": "longterm.runner", "LongTermResult": "longterm.result",
 }
 
@@ -42,7 +43,7 @@ __all__ = [
     "PAS", "m1", "m2", "m3", "metrics", "p_exp_from_duration", "n_waves_from_duration",
     "mean_period_from_peak_period", "encounter_period", "quantile_exceedance", "__version__",
     "run_as", "AS", "StudyStore", "TableOracle", "CommandOracle", "run_rcw", "refit",
-    "run_long_term", "LongTermResult",
+    "run_long_term", "LongTermResult", "lf_events", "LFEvents",
     "ConditionalLikelihood", "SelectedSample", "ModelBand", "Stopping", "Budget",
 ]
 

@@ -21,7 +21,7 @@ PAGES = sorted(p.relative_to(ROOT).as_posix()
 PAGES.append("README.md")
 # Pages whose code runs a whole study (tens of seconds on two shared cores).
 SLOW_PAGES = {"README.md", "docs/guide/quickstart.md", "docs/guide/hf-tool.md",
-              "docs/guide/long-term-lf.md",
+              "docs/guide/long-term-lf.md", "docs/guide/lf-events.md",
               "docs/guide/long-term.md"}
 
 

@@ -36,7 +36,7 @@ import warnings
 
 from ._progress import EXIT_BROKEN_PIPE, EXIT_INTERRUPTED, RunStopped
 
-COMMANDS = ("reproduce", "run", "long_term", "study", "plot", "impacts")
+COMMANDS = ("reproduce", "run", "long_term", "study", "plot", "impacts", "events")
 
 EXIT_STOPPED = 1
 EXIT_BAD_INPUT = 2
@@ -146,7 +146,7 @@ def _main(argv) -> int:
             return EXIT_BAD_INPUT
 
 
-_POSITIONAL_NAMES = {"run": {"lf_peaks": "LF_FILE"}}
+_POSITIONAL_NAMES = {"run": {"lf_peaks": "LF_FILE"}, "events": {"series": "SERIES"}}
 """Python argument names a command's errors should call by its positional argument."""
 
 

@@ -6,6 +6,7 @@ from .design import FormResult, form_rcw, mler, mler_amplitudes, rayleigh_target
 from .encounter import encounter_frequency, mean_encounter_period, wave_frequency_from_encounter
 from .episode import Episode, design_episode
 from .event_wave import EventWave, event_wave
+from .lf_events import LFEvents, lf_events
 from .lf_records import LFRecord, events_frame, lf_record, lf_records, sea_state_seed
 from .linear_longterm import (
     HOURS_PER_YEAR,
@@ -54,5 +55,6 @@ __all__ = [
     "iform_contour", "design_sea_state", "linear_design_sea_state", "HOURS_PER_YEAR",
     "short_term_linear", "LinearLongTerm", "linear_long_term", "rayleigh_extreme",
     "response_spectrum",
+    "LFEvents", "lf_events",
     "LFRecord", "lf_record", "lf_records", "sea_state_seed", "events_frame",
 ]

@@ -5,7 +5,7 @@ Each sea state's LF record is the realisation standard of
 phases from one seed, the encounter-frequency grid under way) multiplied by
 the transfer function of the indicator response and synthesised by FFT. The
 indicator peaks are the crests of the zero-up-crossing waves of that signal
-(:func:`pas.stats.peaks.wave_crests`), one per wave event. Every event
+(:func:`pas.waves.lf_events.wave_events`), one per wave event. Every event
 carries what an HF run needs to start on the same waves: the sea state, the
 seed and record duration of its realisation (the sea is redrawn exactly with
 ``linear_sea(spectrum, duration, seed=seed, speed=speed, heading=heading)``),
@@ -21,7 +21,7 @@ from dataclasses import dataclass
 import numpy as np
 import pandas as pd
 
-from ..stats.peaks import upcrossing_times, wave_crests, zero_upcrossings
+from .lf_events import wave_events
 from .linear_longterm import _check_table, sea_state_spectrum
 from .realisation import linear_sea
 
@@ -87,12 +87,10 @@ def lf_record(transfer, response, sea_state, duration, *, seed, dt=0.25, warm_up
                      speed=transfer.speed, heading=heading)
     h = transfer.response(response, sea.omega, heading)
     t, x = sea.synthesise(h * sea.amplitude, dt)
-    up = zero_upcrossings(x)
-    peaks, idx = wave_crests(x, up)
-    crossing = upcrossing_times(t, x, up) if up.size else np.empty(0)
+    peaks, t_start, t_end, t_peak = wave_events(t, x)
     meta = [{"sea_state": str(sea_state["name"]), "seed": int(seed), "duration": float(duration),
-             "t_init": float(max(crossing[k] - warm_up, 0.0)), "t_start": float(crossing[k]),
-             "t_peak": float(t[idx[k]]), "t_end": float(crossing[k + 1])}
+             "t_init": float(max(t_start[k] - warm_up, 0.0)), "t_start": float(t_start[k]),
+             "t_peak": float(t_peak[k]), "t_end": float(t_end[k])}
             for k in range(peaks.size)]
     return LFRecord(t=t, signal=x, peaks=peaks, meta=meta)
 
