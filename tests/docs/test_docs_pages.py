@@ -133,9 +133,13 @@ def test_known_truth_table_needs_the_markers(tmp_path):
                                                        "known_truth_table.py")
 
 
-def test_the_site_shows_sphinx_roles_as_plain_code():
-    hook = load_script("docs/hooks/sphinx_roles.py")
-    html = ("see :func:<code>pas.run_pas</code> and :class:<code>~pas.strategies.screening.Event</code>, "
-            "not :notarole:<code>x</code>")
-    assert hook.on_page_content(html) == ("see <code>pas.run_pas</code> and <code>Event</code>, "
-                                          "not :notarole:<code>x</code>")
+def test_the_site_turns_sphinx_roles_into_cross_references():
+    hook = load_script("docs/hooks/crossrefs.py")
+    html = (":func:<code>pas.run_pas</code>, :class:<code>~pas.strategies.screening.Event</code>, "
+            ":class:<code>Stopping</code>, not :notarole:<code>x</code>")
+    assert hook.on_page_content(html) == (
+        '<autoref identifier="pas.run_pas" optional><code>pas.run_pas</code></autoref>, '
+        '<autoref identifier="pas.strategies.screening.Event" optional>'
+        '<code>Event</code></autoref>, '
+        '<autoref identifier="pas.Stopping" optional><code>Stopping</code></autoref>, '
+        "not :notarole:<code>x</code>")
