@@ -1,4 +1,4 @@
-"""The tables of ``docs/explanation/known-truth.md`` from the ``runs.csv`` files of :mod:`known_truth`.
+"""The tables of ``docs/explanation/known-truth.md`` from the ``runs.csv`` of :mod:`known_truth`.
 
 Run: python benchmarks/studies/known_truth_table.py DEFAULTS.csv[,MORE.csv] PAPER.csv[,MORE.csv]
      [--write docs/explanation/known-truth.md]

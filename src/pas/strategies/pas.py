@@ -165,7 +165,7 @@ class PAS(Strategy):
 
     @classmethod
     def paper(cls) -> PAS:
-        """The paper's method as van Essen & Seyffert (2026) ran it (``docs/explanation/departures.md``).
+        """The paper's method as van Essen & Seyffert (2026) ran it (docs: *Departures*).
 
         τ inversion for the Archimedean copulas and the selected-sample space
         (:meth:`SelectedSample.paper <pas.strategies.estimators.SelectedSample.paper>`),
@@ -209,8 +209,9 @@ class PAS(Strategy):
                          skip_unsplittable=self.skip_unsplittable)
 
     def impact_of(self, pairs: Pairs):
-        """``P(impact | LF)`` of ``pairs`` (:func:`~pas.strategies.selection.impact_probability`),
-        None without the impact model or before a false positive."""
+        """Step 6's impact model: ``P(impact | LF)`` of ``pairs``
+        (:func:`~pas.strategies.selection.impact_probability`), None without the impact
+        model or before a false positive."""
         if not self.impact_model:
             return None
         return impact_probability(pairs.lf, pairs.fp_lf,
