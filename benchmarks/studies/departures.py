@@ -5,7 +5,7 @@ For every setting in which the package's defaults differ from
 tuning problems (:mod:`pas.validation.known_truth`) with the defaults except that one setting at
 its paper value, and print the median and worst |MPM error|, the U95
 coverage and the median HF count beside the defaults and the full paper
-preset.  This is the "measured effect" column of ``docs/departures.md``.
+preset.  This is the "measured effect" column of ``docs/explanation/departures.md``.
 
 Run: python benchmarks/studies/departures.py [N] [--types core,miss,...] [--out DIR]
 """

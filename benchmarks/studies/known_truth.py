@@ -1,7 +1,7 @@
 """PAS per known-truth problem type: median and worst |error|, U95 coverage, HF count.
 
 The problems, their exact truths and the split into tuning and held-out types
-are :mod:`pas.validation.known_truth` (docs/known-truth.md).
+are :mod:`pas.validation.known_truth` (docs/explanation/known-truth.md).
 
 Run: ``python benchmarks/studies/known_truth.py [N] [--types core,miss] [--held-out] [--preset paper]``
 prints, per problem type, median |error|, worst |error|, U95 coverage,

@@ -1,7 +1,7 @@
-"""The tables of ``docs/known-truth.md`` from the ``runs.csv`` files of :mod:`known_truth`.
+"""The tables of ``docs/explanation/known-truth.md`` from the ``runs.csv`` of :mod:`known_truth`.
 
 Run: python benchmarks/studies/known_truth_table.py DEFAULTS.csv[,MORE.csv] PAPER.csv[,MORE.csv]
-     [--write docs/known-truth.md]
+     [--write docs/explanation/known-truth.md]
      python benchmarks/studies/known_truth_table.py --held-out HELD_OUT.csv[,MORE.csv] [--write …]
 (comma-separated lists are concatenated: a run split over several processes).
 The first form makes the tables of the tuning types (defaults beside the paper

@@ -4,8 +4,8 @@ Settings are objects kept with what they configure: the strategy
 (:class:`~pas.strategies.pas.PAS` with its estimator and
 :class:`~pas.strategies.band.ModelBand`, or :class:`~pas.strategies.as_.AS`),
 :class:`~pas.study.settings.Stopping` and :class:`~pas.study.settings.Budget`.
-A keyword of pas 0.1 raises a ``TypeError`` naming its new place
-(``docs/reference/settings.md``).
+A keyword of pas 0.1 raises a ``TypeError`` naming its new place and the
+docs page *Settings (old name → new place)*.
 """
 
 from __future__ import annotations
@@ -42,8 +42,49 @@ def make_study(strategy, lf_peaks, *, n_waves, p_exp, threshold=None, eps1=None,
         ``"pas"``, ``"as"``, ``"paper"`` (``PAS.paper()``), a strategy class
         (its defaults) or an instance such as ``PAS(z=20)``, of which the
         study takes a copy (so one instance may configure several studies).
-    lf_peaks, n_waves, p_exp, threshold, eps1, eps2, precision, seed, max_hf, stopping, budget
-        As for :func:`run_pas`.
+    lf_peaks : array-like or pandas.DataFrame
+        LF indicator peak of every wave event in the LF Monte-Carlo run; or a
+        table, one row per event: the column ``lf`` (or its only column) the
+        peaks, the column ``id`` (or else the index, unless it is the default
+        ``0 … n-1``) the event ids, every other column the event's ``meta``
+        (:func:`pas.study.inputs.split_lf_table`).
+    n_waves : int
+        Number of wave encounters ``n_w`` in the LF Monte-Carlo duration
+        (counted: at least the LF peaks over the threshold; for ``n_w = T_MCS
+        / T_p,e`` on purpose use ``n_waves_convention="spectral"``).
+    p_exp : float
+        Target exceedance probability (:func:`pas.p_exp_from_duration`).
+    threshold : float, optional
+        LF threshold ``l0_input`` (Eq. 2).
+    eps1 : float, optional
+        Stopping limit on the mean change of the predicted distribution, in
+        load units (the paper: about 1–2 % of the expected maximum); fills
+        :class:`~pas.study.settings.Stopping`.  None: no limit of this kind.
+        Not together with ``stopping``.
+    eps2 : float, optional
+        Stopping limit on the COV of the last ``k2`` MPMs (with ``eps1``);
+        None: :class:`~pas.study.settings.Stopping`'s 0.1.  Not together with
+        ``stopping``.
+    precision : float, optional
+        A precision target (e.g. 0.10): stop once the U95 of the MPM lies
+        within ``±precision × MPM`` and holds the last ``k2`` MPMs, and the
+        fitted model passes its fit check (``Stopping.fit_check``).  With
+        ``eps1`` both must hold.  The result's ``forecast_hf`` says how many
+        more HF evaluations the target is expected to need.  Not together
+        with ``stopping``.
+    seed : int, optional
+        Seed for reproducible draws (reported on the result when None).
+    max_hf : int or None, default 160
+        The study stops after this many HF evaluations, converged or not
+        (fills :class:`~pas.study.settings.Budget`; 160 is the most the paper
+        needed).  Not given with ``strategy="paper"``: no budget, as the
+        paper ran.  None: no budget.  Not together with ``budget``.
+    stopping : Stopping, optional
+        The whole stopping rule (``k1``, ``k2``, ``measure`` too); default
+        ``Stopping()``, ``Stopping.paper()`` with ``strategy="paper"``.
+    budget : Budget, optional
+        ``Budget(max_hf=160, max_failures=10)``: more than ``max_failures``
+        failed oracle calls raise :class:`~pas.study.oracles.OracleFailureLimit`.
     store : str, os.PathLike or StudyStore, optional
         Makes the study crash-safe and resumable (:mod:`pas.study.store`);
         with ``seed=None`` an existing store's seed is used, and a stopping or
@@ -59,8 +100,20 @@ def make_study(strategy, lf_peaks, *, n_waves, p_exp, threshold=None, eps1=None,
     target : str, optional
         With an oracle answering several named loads ``{name: load}``: the one
         to screen on (the store keeps all; :func:`pas.refit` analyses another).
-    stop_on_convergence, adaptive_threshold, threshold_step, fp_run, legacy_md : optional
-        Study settings of :class:`~pas.study.study.Study` (its defaults when None).
+    stop_on_convergence : bool, optional
+        None: True.  False keeps sampling until the budget is spent or the
+        pool is empty.
+    adaptive_threshold : bool, optional
+        None: True.  Raise the acquisition threshold by ``threshold_step`` ×
+        the largest LF peak after ``fp_run`` false positives in a row (§2.4).
+    threshold_step : float, optional
+        The step of ``adaptive_threshold``, a share of the largest LF peak;
+        None: 0.02.
+    fp_run : int, optional
+        False positives in a row that raise the threshold; None: 5.
+    legacy_md : bool, optional
+        None: False.  True replays study stores written by pas 0.1 as they
+        ran (MD gaps between true positives only).
 
     Returns
     -------
@@ -123,18 +176,29 @@ def run_pas(lf_peaks, oracle, *, n_waves, p_exp, threshold=None, eps1=None, eps2
         Target exceedance probability (:func:`pas.p_exp_from_duration`).
     threshold : float, optional
         LF threshold ``l0_input`` (Eq. 2).
-    eps1, eps2, precision : float, optional
-        Fill :class:`~pas.study.settings.Stopping` (``eps1``: limit on the
-        mean change of the predicted distribution, in load units, paper ≈ 1–2 %
-        of the expected maximum; ``eps2``: limit on the COV of the last K2
-        MPMs, default 0.1).  Not together with ``stopping``.
+    eps1 : float, optional
+        Stopping limit on the mean change of the predicted distribution, in
+        load units (the paper: about 1–2 % of the expected maximum); fills
+        :class:`~pas.study.settings.Stopping`.  None: no limit of this kind.
+        Not together with ``stopping``.
+    eps2 : float, optional
+        Stopping limit on the COV of the last ``k2`` MPMs (with ``eps1``);
+        None: :class:`~pas.study.settings.Stopping`'s 0.1.  Not together with
+        ``stopping``.
+    precision : float, optional
+        A precision target (e.g. 0.10): stop once the U95 of the MPM lies
+        within ``±precision × MPM`` and holds the last ``k2`` MPMs, and the
+        fitted model passes its fit check (``Stopping.fit_check``).  With
+        ``eps1`` both must hold.  The result's ``forecast_hf`` says how many
+        more HF evaluations the target is expected to need.  Not together
+        with ``stopping``.
     seed : int, optional
         Seed for reproducible draws (reported on the result when None).
-    max_hf : int or None
-        Fills :class:`~pas.study.settings.Budget`: the study stops after this
-        many HF evaluations, converged or not; default 160 (the most the
-        paper needed), none with ``strategy=PAS.paper()``; None: no budget.
-        Not together with ``budget``.
+    max_hf : int or None, default 160
+        The study stops after this many HF evaluations, converged or not
+        (fills :class:`~pas.study.settings.Budget`; 160 is the most the paper
+        needed).  Not given with ``strategy=PAS.paper()``: no budget, as the
+        paper ran.  None: no budget.  Not together with ``budget``.
     stopping : Stopping, optional
         The whole stopping rule (``k1``, ``k2``, ``measure`` too); default
         ``Stopping()``, ``Stopping.paper()`` with ``strategy=PAS.paper()``.
@@ -170,7 +234,8 @@ def run_pas(lf_peaks, oracle, *, n_waves, p_exp, threshold=None, eps1=None, eps2
         The PAS settings (:class:`~pas.strategies.pas.PAS`): default
         ``PAS()``; ``PAS.paper()`` reproduces the paper's scripts (τ inversion
         for the Archimedean copulas, selected-sample space, redrawn uniforms,
-        the sampling band, the step measure and no budget; ``docs/departures.md``).
+        the sampling band, the step measure and no budget; the departures from
+        the paper are listed on the docs page *Departures from the paper*).
 
     Returns
     -------
@@ -182,7 +247,7 @@ def run_pas(lf_peaks, oracle, *, n_waves, p_exp, threshold=None, eps1=None, eps2
         More than ``budget.max_failures`` oracle calls failed; ``.result``
         holds the result so far.
     TypeError
-        A keyword of pas 0.1, naming its new place (``docs/reference/settings.md``).
+        A keyword of pas 0.1, naming its new place.
 
     Examples
     --------
@@ -214,10 +279,80 @@ def run_as(lf_peaks, oracle, *, n_waves, p_exp, threshold=None, eps1=None, eps2=
 
     Parameters
     ----------
-    lf_peaks, oracle, n_waves, p_exp, threshold, eps1, eps2, precision, seed, max_hf
-        As for :func:`run_pas`.
-    stopping, budget, study, batch_size, executor, callback, retry_failed
-        As for :func:`run_pas`.
+    lf_peaks : array-like or pandas.DataFrame
+        LF indicator peak of every wave event in the LF Monte-Carlo run; or a
+        table, one row per event: the column ``lf`` (or its only column) the
+        peaks, the column ``id`` (or else the index, unless it is the default
+        ``0 … n-1``) the event ids, every other column the event's ``meta``
+        (:func:`pas.study.inputs.split_lf_table`).
+    oracle : callable
+        ``oracle(event) -> float``: the HF peak of ``event`` (an
+        :class:`~pas.strategies.screening.Event` with ``index``, ``id``, ``lf``, ``d``,
+        ``meta``); 0.0 means no impact (a false positive).  An exception, NaN,
+        inf or a negative value is recorded as a failure, never taken as 0.
+        Or ``-> {name: float}``, several loads of one HF run
+        (``pas.make_study(..., target=name)``).
+    n_waves : int
+        Number of wave encounters ``n_w`` in the LF Monte-Carlo duration
+        (counted: at least the LF peaks over the threshold; for ``n_w = T_MCS
+        / T_p,e`` on purpose use ``pas.make_study(..., n_waves_convention="spectral")``).
+    p_exp : float
+        Target exceedance probability (:func:`pas.p_exp_from_duration`).
+    threshold : float, optional
+        LF threshold ``l0_input`` (Eq. 2).
+    eps1 : float, optional
+        Stopping limit on the mean change of the predicted distribution, in
+        load units (the paper: about 1–2 % of the expected maximum); fills
+        :class:`~pas.study.settings.Stopping`.  None: no limit of this kind.
+        Not together with ``stopping``.
+    eps2 : float, optional
+        Stopping limit on the COV of the last ``k2`` MPMs (with ``eps1``);
+        None: :class:`~pas.study.settings.Stopping`'s 0.1.  Not together with
+        ``stopping``.
+    precision : float, optional
+        A precision target (e.g. 0.10): stop once the U95 of the MPM lies
+        within ``±precision × MPM`` and holds the last ``k2`` MPMs, and the
+        fitted model passes its fit check (``Stopping.fit_check``).  With
+        ``eps1`` both must hold.  The result's ``forecast_hf`` says how many
+        more HF evaluations the target is expected to need.  Not together
+        with ``stopping``.
+    seed : int, optional
+        Seed for reproducible draws (reported on the result when None).
+    max_hf : int or None, default 160
+        The study stops after this many HF evaluations, converged or not
+        (fills :class:`~pas.study.settings.Budget`; 160 is the most the paper
+        needed).  None: no budget.  Not together with ``budget``.
+    stopping : Stopping, optional
+        The whole stopping rule (``k1``, ``k2``, ``measure`` too); default
+        ``Stopping()``.
+    budget : Budget, optional
+        ``Budget(max_hf=160, max_failures=10)``: more than ``max_failures``
+        failed oracle calls raise :class:`~pas.study.oracles.OracleFailureLimit`.
+    study : str or os.PathLike, optional
+        SQLite study store (:mod:`pas.study.store`): created when missing,
+        otherwise checked against this call and continued — no stored HF
+        result is lost or re-run, and the run makes the decisions an
+        uninterrupted one would have made (same ``batch_size``).  The
+        stopping rule and the budget may change on a resumed study: no
+        decision taken so far depends on them, so the continued run asks for
+        the events an uninterrupted run with the new values would have asked
+        for (a looser limit cannot undo evaluations already made).  Events a
+        killed run left without a result run again
+        (``pas.make_study(...).optimize(oracle, pending="wait")`` leaves them
+        for ``pas study tell``).
+    batch_size : int, default 1
+        Events proposed per iteration.
+    executor : concurrent.futures.Executor or int, optional
+        Runs the oracle calls of a batch concurrently (e.g.
+        ``distributed.Client(...).get_executor()``); results are stored as
+        they arrive.  An int ``N``: a local pool of ``N`` processes (the oracle
+        must be picklable).
+    callback : callable, optional
+        ``callback(study, row)`` after every HF result.
+    retry_failed : bool, default False
+        With ``study``: run the failed events of the stored study again (after
+        fixing their cause), so it continues as if they had not failed
+        (:meth:`Study.retry_failed <pas.study.study.Study.retry_failed>`).
     strategy : AS, optional
         The AS settings (:class:`~pas.strategies.as_.AS`: ``fidelity``
         ``"multi"``/``"single"``, ``range_factor``, ``n_grid``, ``n_lf_bins``,
@@ -226,7 +361,14 @@ def run_as(lf_peaks, oracle, *, n_waves, p_exp, threshold=None, eps1=None, eps2=
     Returns
     -------
     ScreeningResult
-        As for :func:`run_pas` (which also lists what it raises).
+
+    Raises
+    ------
+    OracleFailureLimit
+        More than ``budget.max_failures`` oracle calls failed; ``.result``
+        holds the result so far.
+    TypeError
+        A keyword of pas 0.1, naming its new place.
 
     Examples
     --------

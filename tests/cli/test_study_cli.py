@@ -300,10 +300,11 @@ def test_set_tightens_eps1_and_grows_the_budget_of_a_converged_study(tmp_path, c
 
 
 def test_the_documented_study_file_creates_a_study(tmp_path, capsys):
-    """The complete example of docs/study-file.md is a valid study file."""
+    """The complete example of docs/guide/study-file.md is a valid study file."""
     from pathlib import Path
 
-    doc = (Path(__file__).parents[2] / "docs" / "study-file.md").read_text(encoding="utf-8")
+    page = Path(__file__).parents[2] / "docs" / "guide" / "study-file.md"
+    doc = page.read_text(encoding="utf-8")
     toml = doc.split("```toml\n", 1)[1].split("```", 1)[0]
     rng = np.random.default_rng(0)
     n = 16000

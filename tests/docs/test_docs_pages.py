@@ -107,14 +107,14 @@ def load_known_truth_table():
 
 
 def test_known_truth_table_writes_the_page_between_its_markers(tmp_path):
-    """The script fills both tables of a copy of docs/known-truth.md from runs.csv files
+    """The script fills both tables of a copy of docs/explanation/known-truth.md from its runs
     and leaves every line outside its markers as it was."""
     runs = pd.DataFrame({"type": ["a", "a", "b"], "type_tau": [0.7, 0.7, 0.3],
                          "error": [0.1, -0.2, 0.3], "covered": [True, False, True],
                          "n_hf": [20, 40, 60], "converged": [True, True, False]})
     runs.to_csv(tmp_path / "defaults.csv", index=False)
     runs.assign(error=[0.5, 0.5, -1.0]).to_csv(tmp_path / "paper.csv", index=False)
-    original = (ROOT / "docs" / "known-truth.md").read_text(encoding="utf-8")
+    original = (ROOT / "docs" / "explanation" / "known-truth.md").read_text(encoding="utf-8")
     page = tmp_path / "known-truth.md"
     page.write_text(original, encoding="utf-8")
     load_known_truth_table().main([str(tmp_path / "defaults.csv"), str(tmp_path / "paper.csv"),
@@ -133,9 +133,13 @@ def test_known_truth_table_needs_the_markers(tmp_path):
                                                        "known_truth_table.py")
 
 
-def test_the_site_shows_sphinx_roles_as_plain_code():
-    hook = load_script("docs/hooks/sphinx_roles.py")
-    html = ("see :func:<code>pas.run_pas</code> and :class:<code>~pas.strategies.screening.Event</code>, "
-            "not :notarole:<code>x</code>")
-    assert hook.on_page_content(html) == ("see <code>pas.run_pas</code> and <code>Event</code>, "
-                                          "not :notarole:<code>x</code>")
+def test_the_site_turns_sphinx_roles_into_cross_references():
+    hook = load_script("docs/hooks/crossrefs.py")
+    html = (":func:<code>pas.run_pas</code>, :class:<code>~pas.strategies.screening.Event</code>, "
+            ":class:<code>Stopping</code>, not :notarole:<code>x</code>")
+    assert hook.on_page_content(html) == (
+        '<autoref identifier="pas.run_pas" optional><code>pas.run_pas</code></autoref>, '
+        '<autoref identifier="pas.strategies.screening.Event" optional>'
+        '<code>Event</code></autoref>, '
+        '<autoref identifier="pas.Stopping" optional><code>Stopping</code></autoref>, '
+        "not :notarole:<code>x</code>")

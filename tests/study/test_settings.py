@@ -54,7 +54,7 @@ def test_every_old_keyword_is_an_argument_or_names_its_new_place_in_one_line(nam
     message = str(info.value)
     assert "\n" not in message
     assert message == (f"run_pas: {name} is now {MOVED[name]}; "
-                       "see docs/reference/settings.md")
+                       "see https://pas.readthedocs.io/reference/settings/")
 
 
 def test_the_docs_table_is_the_mapping_the_errors_use():

@@ -61,6 +61,7 @@ import math
 import sys
 from pathlib import Path
 
+from .._support import docs_page
 from ..study.schema import DEFAULT_MAX_HF, RESUMABLE
 from ._parsers import command_parser
 from ._stopping_options import optional_number, precision_option
@@ -142,6 +143,7 @@ def _positive_int(text):
 
 
 STRATEGY_NAMES = ("pas", "as")
+DEPARTURES_PAGE = docs_page("explanation/departures.md")
 """The names of :data:`pas.study.factory.STRATEGIES`, kept here so ``pas --help`` imports
 no strategy (a test checks that the two agree)."""
 
@@ -186,7 +188,7 @@ def add_parser(sub) -> None:
                         "oracle): the study continues as if they had not failed")
     p.add_argument("--preset", choices=("default", "paper"), default="default",
                    help="PAS settings: the package's defaults, or 'paper' to run the method as "
-                        "van Essen & Seyffert (2026) wrote it (docs/departures.md)")
+                        f"van Essen & Seyffert (2026) wrote it ({DEPARTURES_PAGE})")
     p.add_argument("--strategy", choices=STRATEGY_NAMES, default="pas",
                    help="PAS (copula, default) or AS (GPR on order statistics)")
     p.add_argument("--target", metavar="NAME",

@@ -19,7 +19,7 @@ The study file is a :mod:`pas.study.store` (SQLite): ``tell`` only records the
 result (any number of processes at once), ``ask`` replays the study, uses the
 results told since the last ask and marks the next events pending.
 
-The TOML file (paths relative to it; every key in ``docs/study-file.md``)::
+The TOML file (paths relative to it; every key in ``docs/guide/study-file.md``)::
 
     n_waves = 16364          # required: wave encounters in the LF run
     p_exp = 2.55e-3          # required: target exceedance probability

@@ -1,6 +1,6 @@
 """The TOML file of ``pas study create``: reading and checking it, its oracle and LF peaks.
 
-The keys are described in :mod:`pas.cli.study` and ``docs/study-file.md``;
+The keys are described in :mod:`pas.cli.study` and ``docs/guide/study-file.md``;
 every error is one line naming the key to fix (``lf.column``,
 ``oracle.timeout`` ...).
 """

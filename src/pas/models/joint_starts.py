@@ -55,7 +55,7 @@ def student_restart(x, location: bool, nu_start: float = 0.0) -> np.ndarray:
     A fit's ν at its bound of 50 (the logistic map flat there) or a log-normal location
     at the smallest load (log gap −8 … −10) barely moves from a warm start: there a start
     from the data found optima better by up to 160 in log-likelihood (the model band's
-    replicates, ``docs/explanation/model-band.md``).
+    replicates, ``docs/results/model-band.md``).
     """
     x = np.array(x, dtype=float)
     x[-1] = nu_start

@@ -30,7 +30,7 @@ def plot_metrics(table, *, ax=None, axes=None, percent=True):
     table : pandas.DataFrame
         Columns ``case``, ``M1``, ``M2``, ``M3`` and optionally ``strategy``
         (one bar per strategy within each case).  Metrics are fractions
-        (``pas.metrics``); missing values are left blank.
+        (:func:`pas.metrics`); missing values are left blank.
     ax : matplotlib.axes.Axes, optional
         Draw all three metrics on one panel, grouped per case (bars per
         metric × strategy).

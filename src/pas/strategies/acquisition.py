@@ -21,7 +21,7 @@ __all__ = ["initial_targets", "nearest_available", "md_select"]
 
 
 def initial_targets(ln_d: np.ndarray, m: int) -> np.ndarray:
-    """``m`` targets uniformly spaced over ``ln d`` from the largest to the smallest peak (§2.5)."""
+    """Step 5: ``m`` targets spaced uniformly over ``ln d``, largest to smallest peak (§2.5)."""
     return np.linspace(ln_d[0], ln_d[-1], m)
 
 

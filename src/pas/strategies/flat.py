@@ -13,6 +13,7 @@ from __future__ import annotations
 
 from dataclasses import asdict, fields
 
+from .._support import docs_page
 from .._support.checks import check_option
 from .band import ModelBand
 from .estimators import ESTIMATORS
@@ -34,7 +35,7 @@ FLAT_NAMES = (*OWN_NAMES, "estimator", *(f for names in _ESTIMATOR_FIELDS.values
               *BAND_NAMES.values())
 """Every flat PAS setting name."""
 
-SETTINGS_PAGE = "docs/reference/settings.md"
+SETTINGS_PAGE = docs_page("reference/settings.md")
 
 MOVED = {
     **{name: f"PAS(estimator={cls.__name__}({name}=...))"

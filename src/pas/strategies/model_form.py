@@ -3,7 +3,7 @@
 The bootstrap of :mod:`pas.strategies.band` resamples the evaluated events and
 refits the same family of models, so it carries the sampling uncertainty of
 the fit but not a bias that every refit shares: a conditional law the
-candidates do not contain (``docs/known-truth.md``, held-out types).  Where
+candidates do not contain (``docs/explanation/known-truth.md``, held-out types).  Where
 HF values were measured the model is not needed.  The *semi-empirical*
 distribution of a fitted model puts every evaluated event at its observed HF
 value (0 for a false positive) in each of the ``z`` realisations and lets the

@@ -6,7 +6,7 @@ hysteresis of §2.2 compares against it), the previous joint fits (warm
 starts) and the study's common random numbers.  ``PAS.paper()`` runs the
 paper's method as written; the defaults depart from it where a measurement
 said so — every departure, its reason and its measured effect are listed in
-``docs/departures.md``.  In short:
+``docs/explanation/departures.md``.  In short:
 
 Estimator (``estimator``, :mod:`pas.strategies.estimators`)
     :class:`~pas.strategies.estimators.ConditionalLikelihood` (default): the
@@ -81,7 +81,7 @@ class PAS(Strategy):
     """The PAS copula model (Steps 7–12) with MD acquisition.
 
     Defaults are the package's (module docs; each departure from the paper is
-    listed in ``docs/departures.md``); :meth:`paper` gives the paper's
+    listed in ``docs/explanation/departures.md``); :meth:`paper` gives the paper's
     scripts.  An option of one estimator lives on that estimator's object
     (:mod:`pas.strategies.estimators`), the band's on
     :class:`~pas.strategies.band.ModelBand`; ``docs/reference/settings.md``
@@ -165,7 +165,7 @@ class PAS(Strategy):
 
     @classmethod
     def paper(cls) -> PAS:
-        """The paper's method as van Essen & Seyffert (2026) ran it (``docs/departures.md``).
+        """The paper's method as van Essen & Seyffert (2026) ran it (docs: *Departures*).
 
         τ inversion for the Archimedean copulas and the selected-sample space
         (:meth:`SelectedSample.paper <pas.strategies.estimators.SelectedSample.paper>`),
@@ -209,8 +209,9 @@ class PAS(Strategy):
                          skip_unsplittable=self.skip_unsplittable)
 
     def impact_of(self, pairs: Pairs):
-        """``P(impact | LF)`` of ``pairs`` (:func:`~pas.strategies.selection.impact_probability`),
-        None without the impact model or before a false positive."""
+        """Step 6's impact model: ``P(impact | LF)`` of ``pairs``
+        (:func:`~pas.strategies.selection.impact_probability`), None without the impact
+        model or before a false positive."""
         if not self.impact_model:
             return None
         return impact_probability(pairs.lf, pairs.fp_lf,

@@ -5,7 +5,7 @@ each iteration, so two predictions of the same fitted model differ by draw
 noise, which App. C's stopping measure then reads as learning.  With common
 random numbers each LF peak (pool position) keeps its ``z`` uniforms for the
 whole study, and a change of the predicted distribution is a change of the
-model (``docs/departures.md``, ``common_random_numbers``).
+model (``docs/explanation/departures.md``, ``common_random_numbers``).
 """
 
 from __future__ import annotations

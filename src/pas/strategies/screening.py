@@ -62,7 +62,7 @@ class Event:
 
 
 def peaks_over_threshold(lf, threshold=None) -> np.ndarray:
-    """Boolean mask of LF peaks strictly above ``threshold`` (Eq. 2); all if None."""
+    """Steps 1–4: mask of the LF peaks strictly above ``threshold`` (Eq. 2); all if None."""
     lf = np.asarray(lf, dtype=float)
     if threshold is None:
         return np.ones(lf.shape, dtype=bool)

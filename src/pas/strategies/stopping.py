@@ -16,7 +16,7 @@ was tuned for conditional draws redrawn every iteration, whose noise kept it
 high until the model settled; with common random numbers (each LF peak keeps
 its uniforms) a step changes the distribution only by what one more pair
 teaches, so a model still drifting by several per cent over twenty
-iterations passed ``Ē < ε1`` (measured in ``docs/departures.md``).  The
+iterations passed ``Ē < ε1`` (measured in ``docs/explanation/departures.md``).  The
 window change asks that the distribution has moved less than ``ε1`` over the
 whole window.  For a steady drift it is ``K1`` times stricter than Eq. 28 with
 the same ``ε1``.  App. C's Eq. 30 prints the windows as 50 while its text says 20;

@@ -8,7 +8,7 @@ It asks the study for a batch of ``batch_size`` events (MD batch by
 sequential fill) and hands them to the oracle — in this process one at a
 time, in a local :class:`~concurrent.futures.ProcessPoolExecutor`
 (``n_workers``) or on a cluster (a Dask ``distributed.Client(...).get_executor()``,
-see ``docs/cluster.md``).  With a study store each result is written the
+see ``docs/guide/cluster.md``).  With a study store each result is written the
 moment it arrives (``as_completed``).  The study is *told* the results in ask
 order, each as soon as all earlier events of its batch are in, so the
 decisions do not depend on which worker finished first and a resumed run

@@ -1,7 +1,7 @@
 """Laws of the second round of held-out known-truth types (``ho2-…``), never used for any choice.
 
 The first round of held-out types (:mod:`pas.validation.known_truth_held_out`)
-informed the diagnosis of the band's misses (``docs/known-truth.md``), so a
+informed the diagnosis of the band's misses (``docs/explanation/known-truth.md``), so a
 mend chosen after it could have learned from them.  The second round adds
 forms that neither the tuning types nor the first round have, written before
 any mend was measured on them:
