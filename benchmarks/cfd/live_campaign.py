@@ -49,6 +49,8 @@ def main(argv=None):
     p.add_argument("--seed", type=int, default=0)
     p.add_argument("--top", type=int, default=150, help="events above the cut (the table's)")
     p.add_argument("--max-hf", type=int, default=40, help="the campaign's HF budget")
+    p.add_argument("--compare-only", action="store_true",
+                   help="the live run is done: count its runs and run the table-driven one")
     a = p.parse_args(argv)
     work = Path(a.dir).resolve()
     work.mkdir(parents=True, exist_ok=True)
@@ -62,6 +64,9 @@ def main(argv=None):
             " --seed {seed} --t-peak {t_peak} --out {result}")
     cmd = command(work / "live", live, work / "events.csv", n_waves, p_exp, cut, a.seed,
                   a.max_hf)
+    if a.compare_only:
+        previous = json.loads((work / "live_run.json").read_text())
+        return compare(work, a, n_waves, p_exp, cut, **previous)
     t0 = time.time()
     proc = subprocess.Popen(cmd, cwd=work, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL,
                             start_new_session=True)
@@ -80,6 +85,12 @@ def main(argv=None):
         raise SystemExit(f"resumed run failed with exit {res.returncode}")
     live_summary = json.loads(res.stdout)
     wall = time.time() - t0
+    (work / "live_run.json").write_text(json.dumps({"killed_at": killed_at, "wall": wall,
+                                                    "live_summary": live_summary}))
+    return compare(work, a, n_waves, p_exp, cut, killed_at, wall, live_summary)
+
+
+def compare(work, a, n_waves, p_exp, cut, killed_at, wall, live_summary):
     starts = {d.name: len((d / "starts.log").read_text().splitlines())
               for d in (work / "live" / "hf-runs").iterdir() if (d / "starts.log").exists()}
     repeated = sum(n - 1 for n in starts.values())
