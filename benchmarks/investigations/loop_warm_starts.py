@@ -20,6 +20,7 @@ Run: python benchmarks/investigations/loop_warm_starts.py [N] [--types all] [--h
 from __future__ import annotations
 
 import argparse
+import sys
 import warnings
 from pathlib import Path
 
@@ -27,14 +28,16 @@ import pandas as pd
 
 from pas.models.copulas import select_family
 from pas.strategies import estimators
-from pas.validation.known_truth import make_problem
-from pas.validation.known_truth_runs import (
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # benchmarks/: the harness
+from harness.known_truth import make_problem  # noqa: E402
+from harness.known_truth_runs import (  # noqa: E402
     TYPES,
     add_study_arguments,
     known_truth_study,
     select_types,
 )
-from pas.validation.result_tables import rewrite_page
+from harness.result_tables import rewrite_page  # noqa: E402
 
 BINS = [0, 10, 20, 40, 80, 10_000]
 BIN_LABELS = ["≤ 10", "11–20", "21–40", "41–80", "> 80"]

@@ -170,7 +170,7 @@ def test_replayed_uniforms_are_the_drawn_ones_common_or_not():
 
 
 def _problem(n, seed=1, fp=False):
-    from pas.validation.timing_problem import scenario
+    from harness.timing_problem import scenario
 
     lf, hf = scenario(n, seed=seed)
     lfset = LFSet(lf, n_waves=int(round(n * 16364 / 15000)), p_exp=2.55e-3)
