@@ -65,7 +65,7 @@ def compare_cfd(*, seeds=range(5), max_hf=160, strategies=("pas", "paper", "as")
         ``truth``, ``n_waves``, ``p_exp``, ``cut`` (the LF threshold),
         ``n_cfd`` (events in the table), ``truth_hours``.
     """
-    from .. import run_as, run_pas
+    from ..api import run_as, run_pas
     from ..strategies.pas import PAS
     from ..study.oracles import TableOracle
 
