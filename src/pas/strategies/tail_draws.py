@@ -1,4 +1,4 @@
-"""Long LF records: the top of every realisation without drawing the rest (issue 27).
+"""Long LF records: the top of every realisation without drawing the rest.
 
 Step 9 draws ``z`` realisations of ``n0`` conditional HF values (Eq. 7), and an
 iteration reads only the top of each: the MPM at ``P_exp`` and the stopping
