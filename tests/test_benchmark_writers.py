@@ -155,7 +155,7 @@ def test_validation_summary_from_the_spread_fixture():
     """Worked by hand from tests/data/spread_runs.csv: 1a has two PAS runs (|M2| 0.004,
     0.032: median 1.8 %, one covered), 1b and 2b one each, 2a none; 4a two (|M2| 0.128,
     0.226); of the eight PAS runs six hold the truth."""
-    from pas.validation.result_tables import validation_summary
+    from harness.result_tables import validation_summary
 
     runs = pd.read_csv(ROOT / "tests" / "data" / "spread_runs.csv")
     summary = load_script("benchmarks/studies/validation_spread.py").summarise(runs)

@@ -19,7 +19,8 @@ from _snippets import load_script
 
 ROOT = Path(__file__).resolve().parents[1]
 BENCHMARKS = ROOT / "benchmarks"
-SCRIPTS = sorted(BENCHMARKS.rglob("*.py"))
+HARNESS = BENCHMARKS / "harness"  # what the scripts share (a package, not a script)
+SCRIPTS = sorted(p for p in BENCHMARKS.rglob("*.py") if HARNESS not in p.parents)
 NAMES = sorted(str(p.relative_to(BENCHMARKS)) for p in SCRIPTS)
 
 
@@ -49,18 +50,27 @@ def test_every_script_is_listed_in_the_readme(name):
 
 @pytest.mark.parametrize("name", NAMES)
 def test_no_script_imports_another(name):
-    own = {p.stem for p in SCRIPTS} | {p.name for p in BENCHMARKS.iterdir() if p.is_dir()}
+    own = ({p.stem for p in SCRIPTS} | {p.name for p in BENCHMARKS.iterdir() if p.is_dir()}) - {
+        HARNESS.name}
     imported = list(_imported_modules(BENCHMARKS / name))
     wrong = [m for m, level in imported if level or m.split(".")[0] in own]
-    assert not wrong, f"{name} imports {wrong}: shared code belongs in the package"
+    assert not wrong, f"{name} imports {wrong}: shared code belongs in the package or harness"
+
+
+def test_the_harness_imports_no_script():
+    scripts = {p.stem for p in SCRIPTS} | {p.name for p in BENCHMARKS.iterdir() if p.is_dir()}
+    for path in HARNESS.glob("*.py"):
+        imported = [m for m, level in _imported_modules(path) if not level]
+        assert not [m for m in imported if m.split(".")[0] in scripts - {HARNESS.name}], path
 
 
 @pytest.mark.parametrize("name", NAMES)
 def test_every_name_a_script_takes_from_pas_exists(name):
-    """Also the imports inside functions, which --help does not reach."""
+    """Also the imports inside functions, which --help does not reach (and the harness's)."""
     tree = ast.parse((BENCHMARKS / name).read_text(encoding="utf-8"))
     for node in ast.walk(tree):
-        if isinstance(node, ast.ImportFrom) and (node.module or "").split(".")[0] == "pas":
+        if isinstance(node, ast.ImportFrom) and (node.module or "").split(".")[0] in (
+                "pas", "harness"):
             module = importlib.import_module(node.module)
             for alias in node.names:
                 assert hasattr(module, alias.name) or importlib.util.find_spec(

@@ -11,7 +11,7 @@ own bias).  ``--only NAME,NAME`` keeps the listed settings.
 ``--to-budget`` instead runs each study to 160 HF (ε1 = 1e-12) and prints the
 error along the way: whether a miss is an early stop or stays.
 ``--md-weighted`` fits every event again, each repeated as often as MD's
-design would include it (:func:`pas.validation.refits.md_design_positions`): the fit PAS's samples
+design would include it (:func:`harness.refits.md_design_positions`): the fit PAS's samples
 scatter about, without their sampling noise.
 
 ``--csv FILE`` saves every error (case, mode, setting, data seed; the
@@ -30,6 +30,7 @@ from __future__ import annotations
 import argparse
 import dataclasses
 import functools
+import sys
 import warnings
 from pathlib import Path
 
@@ -37,20 +38,22 @@ import numpy as np
 import pandas as pd
 
 from pas.validation import generate_case
-from pas.validation.error_tables import (
+from pas.validation.reproduce import run_case
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # benchmarks/: the harness
+from harness.error_tables import (  # noqa: E402
     add_write_options,
     grid_table,
     median_worst,
     saved_results,
     write_tables,
 )
-from pas.validation.refits import (
+from harness.refits import (  # noqa: E402
     error_at,
     evaluated_positions,
     md_design_positions,
     pool_of,
 )
-from pas.validation.reproduce import run_case
 
 # name: (PAS settings, keyword of the joint fit)
 VARIANTS = {

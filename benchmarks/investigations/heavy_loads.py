@@ -34,14 +34,18 @@ from __future__ import annotations
 
 import argparse
 import functools
+import sys
 import warnings
+from pathlib import Path
 
 import numpy as np
 
 from pas.stats.weibull import Weibull3
 from pas.validation import generate_case
-from pas.validation.refits import error_at, evaluated_positions, pool_of
 from pas.validation.reproduce import run_case
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # benchmarks/: the harness
+from harness.refits import error_at, evaluated_positions, pool_of  # noqa: E402
 
 
 def _error_sorted(data, lfset, hf_pool, seed, positions):

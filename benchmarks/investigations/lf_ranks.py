@@ -1,7 +1,7 @@
 """Where the error at strong dependence comes from: the LF ranks or the HF loads.
 
 PAS's conditional estimator puts the copula on the LF sample's mid-ranks; the
-known-truth generator (:mod:`pas.validation.known_truth`), like nature, puts it on the LF
+known-truth generator (:mod:`harness.known_truth`), like nature, puts it on the LF
 population's CDF (the Rayleigh CDF).  This script runs PAS at a fixed number of
 HF samples without stopping (``stop_on_convergence=False``) in three ways:
 
@@ -14,7 +14,7 @@ and prints per run the error of the MPM, the model band (both relative to
 the truth), whether the reported U95 holds the truth and the selected family,
 then the summary: standard deviation and mean of the error, the median
 standard deviation the model band implies (its width / 3.92), coverage.  Settings as in
-:mod:`pas.validation.known_truth` (``--set NAME=VALUE``).
+:mod:`harness.known_truth` (``--set NAME=VALUE``).
 
 Run: ``python benchmarks/investigations/lf_ranks.py population core-gumbel-t0.9 --hf 30 --runs 20``
 """
@@ -22,16 +22,20 @@ Run: ``python benchmarks/investigations/lf_ranks.py population core-gumbel-t0.9 
 from __future__ import annotations
 
 import argparse
+import sys
 import warnings
 from dataclasses import replace
+from pathlib import Path
 
 import numpy as np
 import pandas as pd
 
 import pas
 from pas.study.flat import from_flat
-from pas.validation import known_truth as kt
-from pas.validation.known_truth_runs import settings_from_args
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # benchmarks/: the harness
+from harness import known_truth as kt  # noqa: E402
+from harness.known_truth_runs import settings_from_args  # noqa: E402
 
 
 def _loads(problem, u, rng):

@@ -4,7 +4,7 @@ move when every event is weighted as MD includes events?
 On known-truth problems whose law the fitted model contains (the bore + impulse mixtures with
 ``hf_marginal="weibull_mixture"``, single-Weibull HF with the default), every event of a data
 set is fitted once as told and once repeated as MD's design includes it
-(:func:`pas.validation.refits.md_design_positions`), and scored against the exact truth.  A
+(:func:`harness.refits.md_design_positions`), and scored against the exact truth.  A
 model that is right should stay centred under the weighting; one that shifts on every data
 set (as the mixture does on the green-water analogues) is misspecified there.
 
@@ -14,14 +14,18 @@ Run: python benchmarks/investigations/md_weighting_control.py [N]
 from __future__ import annotations
 
 import argparse
+import sys
 import types
 import warnings
+from pathlib import Path
 
 import numpy as np
 
 from pas.strategies.screening import LFSet
-from pas.validation import known_truth as kt
-from pas.validation.refits import error_at, md_design_positions
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # benchmarks/: the harness
+from harness import known_truth as kt  # noqa: E402
+from harness.refits import error_at, md_design_positions  # noqa: E402
 
 CONTROLS = (("tail-gaussian-mix", {"hf_marginal": "weibull_mixture"}),
             ("tail-clayton-mix", {"hf_marginal": "weibull_mixture"}),

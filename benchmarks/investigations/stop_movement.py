@@ -43,6 +43,7 @@ Run: python benchmarks/investigations/stop_movement.py [N] [--cases 4a,4b,3b] [-
 from __future__ import annotations
 
 import argparse
+import sys
 import warnings
 from pathlib import Path
 
@@ -51,14 +52,16 @@ import pandas as pd
 from scipy import optimize, stats
 
 from pas.validation import generate_case
-from pas.validation.error_tables import add_write_options, saved_results, write_tables
-from pas.validation.references import (
+from pas.validation.reproduce import run_case
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # benchmarks/: the harness
+from harness.error_tables import add_write_options, saved_results, write_tables  # noqa: E402
+from harness.references import (  # noqa: E402
     copula_at_tau,
     lf_reference_nll,
     lf_reference_pool,
     truth_law,
 )
-from pas.validation.reproduce import run_case
 
 WINDOW = 20
 PAGE, TAG = Path("docs/results/investigations.md"), "stop_movement.py"

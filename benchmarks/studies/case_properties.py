@@ -15,6 +15,7 @@ Run: python benchmarks/studies/case_properties.py [N] [--cases 3a,3a-hard] [--ou
 from __future__ import annotations
 
 import argparse
+import sys
 import time
 from pathlib import Path
 
@@ -22,7 +23,9 @@ import pandas as pd
 
 from pas.validation import CASE_IDS, generate_case
 from pas.validation.properties import data_properties
-from pas.validation.result_tables import (
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # benchmarks/: the harness
+from harness.result_tables import (  # noqa: E402
     properties_seed_table,
     properties_spread_table,
     write_between_markers,

@@ -2,7 +2,7 @@
 
 For every setting in which the package's defaults differ from
 ``PAS.paper()`` (with ``Stopping.paper()`` and ``Budget.paper()``), run the known-truth
-tuning problems (:mod:`pas.validation.known_truth`) with the defaults except that one setting at
+tuning problems (:mod:`harness.known_truth`) with the defaults except that one setting at
 its paper value, and print the median and worst |MPM error|, the U95
 coverage and the median HF count beside the defaults and the full paper
 preset.  This is the "measured effect" column of ``docs/explanation/departures.md``.
@@ -13,6 +13,7 @@ Run: python benchmarks/studies/departures.py [N] [--types core,miss,...] [--out 
 from __future__ import annotations
 
 import argparse
+import sys
 from pathlib import Path
 
 import pandas as pd
@@ -20,8 +21,10 @@ import pandas as pd
 from pas.strategies.estimators import SelectedSample
 from pas.strategies.pas import PAS
 from pas.study.settings import Budget, Stopping
-from pas.validation.known_truth import make_problem
-from pas.validation.known_truth_runs import TYPES, run_one, select_types
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # benchmarks/: the harness
+from harness.known_truth import make_problem  # noqa: E402
+from harness.known_truth_runs import TYPES, run_one, select_types  # noqa: E402
 
 PAPER = {**PAS.paper().settings(), **Stopping.paper().flat(), **Budget.paper().flat()}
 DEFAULT = {**PAS().settings(), **Stopping().flat(), **Budget().flat()}

@@ -1,7 +1,7 @@
 """PAS per known-truth problem type: median and worst |error|, U95 coverage, HF count.
 
 The problems, their exact truths and the split into tuning and held-out types
-are :mod:`pas.validation.known_truth` (docs/explanation/known-truth.md).
+are :mod:`harness.known_truth` (docs/explanation/known-truth.md).
 
 Run: ``python benchmarks/studies/known_truth.py [N] [--types core,miss] [--held-out] [--preset paper]``
 prints, per problem type, median |error|, worst |error|, U95 coverage,
@@ -12,12 +12,14 @@ per type; ``--held-out`` runs the held-out types instead of the tuning ones.
 from __future__ import annotations
 
 import argparse
+import sys
 from pathlib import Path
 
 import pandas as pd
 
-from pas.validation.known_truth import make_problem
-from pas.validation.known_truth_runs import (
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # benchmarks/: the harness
+from harness.known_truth import make_problem  # noqa: E402
+from harness.known_truth_runs import (  # noqa: E402
     TYPES,
     add_study_arguments,
     run_one,

@@ -19,6 +19,7 @@ Run: python benchmarks/studies/known_truth_band_forms.py N [--types ho2] [--held
 from __future__ import annotations
 
 import argparse
+import sys
 import time
 import warnings
 from pathlib import Path
@@ -29,8 +30,10 @@ import pandas as pd
 from pas.api import make_study
 from pas.strategies import model_form
 from pas.study.flat import from_flat
-from pas.validation.known_truth import make_problem
-from pas.validation.known_truth_runs import TYPES, add_study_arguments, select_types
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # benchmarks/: the harness
+from harness.known_truth import make_problem  # noqa: E402
+from harness.known_truth_runs import TYPES, add_study_arguments, select_types  # noqa: E402
 
 
 def run_forms(problem, max_hf: int = 160) -> dict:

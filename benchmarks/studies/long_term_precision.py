@@ -20,13 +20,15 @@ and its END marker of the page (default ``docs/results/long-term.md``).
 from __future__ import annotations
 
 import argparse
+import sys
 import time
 from pathlib import Path
 
 import numpy as np
 import pandas as pd
 
-from pas.validation.result_tables import write_between_markers
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # benchmarks/: the harness
+from harness.result_tables import write_between_markers  # noqa: E402
 
 LEVEL = {"2": (2e-6, 1.0), "3": (5e-6, 2.0)}   # analogue -> (p_exceed, scale of 100 h per kept cell)
 FACTOR = 1.5

@@ -20,12 +20,12 @@ each (problem, data set, target) is run once, to the largest budget, and the
 smaller budgets are read off it (``--max-budget-for`` lowers the largest for
 a target, to keep the measurement modest).
 
-Problems: known-truth types of :mod:`pas.validation.known_truth` (``--types``)
+Problems: known-truth types of :mod:`harness.known_truth` (``--types``)
 and validation analogues (``--cases``, :func:`pas.validation.generate_case`
 with the data redrawn per set, ``--scale`` of the paper's duration).
 
 ``--cost HF``: instead, the CPU time per HF of the loop on the problem of
-``pas.validation.timing_problem`` (that of ``benchmarks/timing/study_parts.py``) (stopping off, ``HF`` evaluations) with ``eps1``
+``harness.timing_problem`` (that of ``benchmarks/timing/study_parts.py``) (stopping off, ``HF`` evaluations) with ``eps1``
 (no model band in the loop), with a target it never reaches (the growth
 schedule alone) and with one it reaches early (the schedule and the gated
 bands), and the model bands each computed.
@@ -46,6 +46,7 @@ Run: ``python benchmarks/studies/precision_stop.py [N] [--types a,b] [--cases 1a
 from __future__ import annotations
 
 import argparse
+import sys
 import time
 import warnings
 from pathlib import Path
@@ -54,10 +55,12 @@ import numpy as np
 import pandas as pd
 
 import pas
-from pas.validation import timing_problem
-from pas.validation.known_truth import make_problem
-from pas.validation.known_truth_runs import TYPES as KNOWN_TRUTH
-from pas.validation.result_tables import rewrite_page
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # benchmarks/: the harness
+from harness import timing_problem  # noqa: E402
+from harness.known_truth import make_problem  # noqa: E402
+from harness.known_truth_runs import TYPES as KNOWN_TRUTH  # noqa: E402
+from harness.result_tables import rewrite_page  # noqa: E402
 
 TYPES = ("core-gumbel-t0.6", "core-gaussian-t0.75", "tail-gaussian-mix", "miss-low-gaussian-t0.7")
 CASES = ("1a", "3a")

@@ -27,15 +27,18 @@ table of ``README.md``).
 from __future__ import annotations
 
 import argparse
+import sys
 import time
 from pathlib import Path
 
 import pandas as pd
 
 from pas.validation import CASE_IDS, generate_case
-from pas.validation.known_truth_runs import settings_from_args
 from pas.validation.reproduce import _strategies, parse_strategies, run_case
-from pas.validation.result_tables import (
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # benchmarks/: the harness
+from harness.known_truth_runs import settings_from_args  # noqa: E402
+from harness.result_tables import (  # noqa: E402
     readme_summary,
     rewrite_page,
     validation_summary,

@@ -1,31 +1,42 @@
-"""Benchmark: long LF records, the old path beside the new, in one run (issue 27).
+"""Benchmark: long LF records, this tree beside a baseline commit, in one run.
 
 The problem of ``benchmarks/timing/study_parts.py`` (a Gumbel copula to a
 Weibull HF load, 80 pairs) at longer records, each figure in a fresh process
 (peak RSS is a process's high-water mark):
 
 * one iteration at n = 15 k / 150 k / 1.5 M (default families, Gaussian,
-  Student-t) drawing all ``z × n`` values and sorting them (old,
-  ``tail_draws.TOP_DRAWS = False``) against drawing only the uniforms that can
-  reach the top of a realisation (new), CPU ms, peak RSS and the MPM change;
+  Student-t) with ``pas`` of ``--baseline`` (old: a commit, unpacked with ``git
+  archive``; the default 9224ca2 drew all ``z × n`` values and sorted them)
+  against this tree's (new: only the uniforms that can reach the top of a
+  realisation, :mod:`pas.strategies.tail_draws`), CPU ms, peak RSS and the MPM
+  change;
 * one ``run_pas`` at 1.5 M to 8 HF, old and new, peak RSS;
 * a band replicate's full sort against the partial one.
 
-Run: python benchmarks/timing/long_records.py [--json out.json]
+Run: python benchmarks/timing/long_records.py [--baseline 9224ca2] [--json out.json]
 """
 
 from __future__ import annotations
 
 import argparse
 import json
+import os
+import subprocess
+import sys
+import tarfile
+import tempfile
 import time
+from pathlib import Path
 
-import numpy as np
+HERE = Path(__file__).resolve()
+ROOT = HERE.parents[2]
+sys.path.insert(0, str(HERE.parents[1]))  # benchmarks/: the harness
 
-import pas
-import pas.models.copulas
-import pas.stats.exceedance
-from pas.validation.timing_problem import N_W, P_EXP, N, scenario
+import numpy as np  # noqa: E402
+from harness.timing_problem import N_W, P_EXP, N, scenario  # noqa: E402
+
+BASELINE = "9224ca2"
+"""The last commit whose iterations drew every value and sorted it."""
 
 
 def long_iterations(n, families, repeats):
@@ -54,6 +65,8 @@ def long_iterations(n, families, repeats):
 
 def long_run(n, max_hf=8):
     """``(wall s, MPM)`` of one ``run_pas`` at ``n`` LF peaks to ``max_hf`` HF, band off."""
+    import pas
+
     lf, hf = scenario(n)
     t = time.perf_counter()
     res = pas.run_pas(lf, lambda e: float(hf[e.index]), n_waves=int(round(n * N_W / N)),
@@ -68,10 +81,7 @@ def long_child(args):
     prints ``[ms or s, MB peak RSS, MPM]`` as JSON."""
     import resource
 
-    from pas.strategies import tail_draws
-
-    what, n, path = args[0], int(args[1]), args[2]
-    tail_draws.TOP_DRAWS = path == "new"
+    what, n = args[0], int(args[1])
     if what == "iteration":
         value, mpm = long_iterations(n, tuple(args[3].split(",")), int(args[4]))
     else:
@@ -79,32 +89,43 @@ def long_child(args):
     print(json.dumps([value, resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024, mpm]))
 
 
-def in_child(*args):
-    """:func:`long_child` of ``args`` in a fresh interpreter."""
-    import subprocess
-    import sys
-
-    out = subprocess.run([sys.executable, __file__, "--long-child", *map(str, args)],
-                         capture_output=True, text=True, check=True)
+def in_child(src, *args):
+    """:func:`long_child` of ``args`` in a fresh interpreter with ``pas`` from ``src``."""
+    env = dict(os.environ, PYTHONPATH=str(src), MPLBACKEND="Agg")
+    out = subprocess.run([sys.executable, str(HERE), "--long-child", *map(str, args)],
+                         capture_output=True, text=True, check=True, env=env)
     return json.loads(out.stdout.strip().splitlines()[-1])
 
 
-def part_long():
+def _baseline_tree(commit, into):
+    archive = Path(into) / "src.tar"
+    with open(archive, "wb") as f:
+        subprocess.run(["git", "-C", str(ROOT), "archive", commit, "src"], stdout=f, check=True)
+    with tarfile.open(archive) as tar:
+        tar.extractall(into, filter="data")
+    return Path(into) / "src"
+
+
+def part_long(old_src):
     """Per-iteration CPU time, peak RSS and MPM at n = 15 k / 150 k / 1.5 M, and one
-    ``run_pas`` at 1.5 M: old = every draw and a full sort (``tail_draws.TOP_DRAWS`` False),
-    new = only the uniforms that can reach the top (:mod:`pas.strategies.tail_draws`)."""
-    print("-- long records, one iteration at 80 pairs: old = all z x n draws and a full sort, "
-          "new = only the draws that can reach the top; each in a fresh process (peak RSS)")
+    ``run_pas`` at 1.5 M: old = ``pas`` of ``old_src``, new = this tree's."""
+    import pas.models.copulas
+    import pas.stats.exceedance
+
+    print("-- long records, one iteration at 80 pairs: old = the baseline's pas, new = this "
+          "tree's; each in a fresh process (peak RSS)")
+    srcs = {"old": old_src, "new": ROOT / "src"}
     out = {}
     for n, repeats in ((15000, 7), (150000, 5), (1500000, 3)):
         for label, families in (("default", ",".join(pas.models.copulas.PAPER_FAMILIES)),
                                 ("gaussian", "gaussian"), ("student", "student")):
-            row = {path: in_child("iteration", n, path, families, repeats) for path in ("old", "new")}
+            row = {path: in_child(srcs[path], "iteration", n, families, repeats)
+                   for path in ("old", "new")}
             (t0, m0, v0), (t1, m1, v1) = row["old"], row["new"]
             print(f"  n = {n:>9,}, {label:>8}: old {t0:7.1f} ms {m0:5.0f} MB, new {t1:7.1f} ms "
                   f"{m1:5.0f} MB, time ratio {t1 / t0:.3f}; MPM change {abs(v1 / v0 - 1):.1e}")
             out[f"{n}_{label}"] = row
-    row = {path: in_child("run", 1500000, path) for path in ("old", "new")}
+    row = {path: in_child(srcs[path], "run", 1500000) for path in ("old", "new")}
     (t0, m0, v0), (t1, m1, v1) = row["old"], row["new"]
     print(f"  run_pas at n = 1,500,000 to 8 HF, band off, whole distribution read: old "
           f"{t0:5.1f} s {m0:5.0f} MB, new {t1:5.1f} s {m1:5.0f} MB peak RSS; MPM change "
@@ -125,12 +146,15 @@ def part_long():
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--baseline", default=BASELINE,
+                        help=f"the commit the old figures are measured with (default {BASELINE})")
     parser.add_argument("--json", help="write the figures here")
     parser.add_argument("--long-child", nargs="+", help=argparse.SUPPRESS)
     args = parser.parse_args()
     if args.long_child:
         return long_child(args.long_child)
-    out = part_long()
+    with tempfile.TemporaryDirectory() as tmp:
+        out = part_long(_baseline_tree(args.baseline, tmp))
     if args.json:
         with open(args.json, "w") as fh:
             json.dump(out, fh)

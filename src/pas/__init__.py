@@ -10,8 +10,6 @@ the command line (``pas --help``, ``pas study tell``) do not pay for scipy,
 scikit-learn, pyvinecopulib or matplotlib before they need them.
 """
 
-from __future__ import annotations
-
 from ._support.lazy import lazy_exports
 from ._version import __version__
 from .stats.metrics import (  # light (numpy); eager so pas.metrics is the function
@@ -33,13 +31,14 @@ _EXPORTS = {
     "ModelBand": "strategies.band", "Stopping": "study.settings", "Budget": "study.settings",
     "CommandOracle": "study.command_oracle", "OracleFailureLimit": "study.oracles",
     "TableOracle": "study.oracles", "ScreeningResult": "study.result", "Study": "study.study",
-    "StudyStore": "study.store", "refit": "study.refit",
+    "StudyStore": "study.store", "open_study": "study.resume", "refit": "study.refit",
     "lf_events": "waves.lf_events", "LFEvents": "waves.lf_events",
     "run_long_term": "longterm.runner", "LongTermResult": "longterm.result",
 }
 
 __all__ = [
-    "run_pas", "make_study", "Study", "ScreeningResult", "OracleFailureLimit", "Event", "LFSet",
+    "run_pas", "make_study", "open_study", "Study", "ScreeningResult", "OracleFailureLimit",
+    "Event", "LFSet",
     "PAS", "m1", "m2", "m3", "metrics", "p_exp_from_duration", "n_waves_from_duration",
     "mean_period_from_peak_period", "encounter_period", "quantile_exceedance", "__version__",
     "run_as", "AS", "StudyStore", "TableOracle", "CommandOracle", "run_rcw", "refit",
@@ -49,3 +48,4 @@ __all__ = [
 
 
 __getattr__, __dir__ = lazy_exports(__name__, _EXPORTS)
+del lazy_exports

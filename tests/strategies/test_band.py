@@ -6,7 +6,6 @@ import numpy as np
 import pytest
 from test_estimator import _problem
 
-from pas.models import joint_batch
 from pas.strategies import band
 from pas.strategies.band import ModelBand
 from pas.strategies.base import Pairs
@@ -16,6 +15,33 @@ from pas.strategies.pas import PAS
 
 def _band(strategy, pairs, s, n_jobs):
     return strategy.model_band(pairs, s, np.random.default_rng(1), n_jobs=n_jobs)
+
+
+def _plan(pairs, n, marginals, seed=1):
+    """A band's plan and LF-rank stream as :func:`band.bootstrap_band` draws them."""
+    rng = np.random.default_rng(seed)
+    lf_rng = rng.spawn(1)[0]
+    return band.replicate_plan(pairs, rng, n, marginals), lf_rng
+
+
+def _one_after_another(strategy, pairs, s, starts, plan, lf_rng):
+    """The reference: each replicate fitted on its own by the strategy's fit (one joint fit
+    per candidate, :func:`pas.models.joint.fit_joint`), in plan order, reading ``lf_rng``
+    in turn; None where the replicate cannot be fitted."""
+    out = []
+    for tp, fp, marginal, draw_rng in plan:
+        b = band._resampled(pairs, tp, fp)
+        try:
+            if b is None:
+                raise ValueError("too few or all alike")
+            own = None if starts is None else band.replicate_starts(strategy, b, s, starts,
+                                                                    marginal)
+            model = strategy.fit(b, s, update=False, hf_marginal=marginal,
+                                 lf_ranks_rng=lf_rng, starts=own)
+            out.append(strategy._replicate_mpm(model, s, draw_rng))
+        except (ValueError, np.linalg.LinAlgError):
+            out.append(None)
+    return out
 
 
 @pytest.mark.slow
@@ -37,17 +63,19 @@ def test_the_band_is_the_same_on_one_and_on_two_processes(lf_ranks):
         _band(strategy, pairs, s, 0)
 
 
-def test_warm_replicates_reach_the_cold_optima(monkeypatch):
-    # the warm-started band (Student-t also cold) against every replicate started from the
-    # study's fits and from the data, as before
+def test_warm_replicates_reach_the_cold_optima():
+    # the band's replicates, started from the final fits (Student-t also from the data),
+    # against the same replicates started from the study's last fits and from the data
     s, pairs, _ = _problem(1, tau=0.6, m=30)
     strategy = PAS(band=ModelBand(n_bootstrap=12, marginals="fitted"))
     strategy.reset(0)
     strategy.predict(pairs, s, np.random.default_rng(0))
-    warm = _band(strategy, pairs, s, 1)
-    monkeypatch.setattr(band, "WARM_BAND", False)
-    cold = _band(strategy, pairs, s, 1)
-    np.testing.assert_allclose(warm[2], cold[2], rtol=1e-4)
+    plan, lf_rng = _plan(pairs, 12, (None,))
+    warm = band.replicate_mpms(strategy, pairs, s, strategy.final_joint_fits(pairs, s, "both"),
+                               plan, copy.deepcopy(lf_rng), n_jobs=1)
+    cold = _one_after_another(strategy, pairs, s, None, plan, copy.deepcopy(lf_rng))
+    assert None not in warm and None not in cold
+    np.testing.assert_allclose(np.ravel(warm), np.ravel(cold), rtol=1e-4)
 
 
 @pytest.mark.parametrize("family, params", [("gaussian", [[0.7]]), ("student", [[0.6], [4.0]])])
@@ -88,34 +116,28 @@ def test_kept_lf_ranks_are_those_of_the_lf_set_fitted():
 
 
 @pytest.mark.slow
-def test_pruned_replicates_fit_fewer_candidates_and_give_the_same_band(monkeypatch):
-    # a Gumbel problem with strong dependence: Clayton and Frank are far behind on every
-    # resample, so their replicate fits are dropped, and the replicates' MPMs do not move
-    import pas.models.joint as joint
+def test_pruned_replicates_fit_only_the_families_that_can_win_them(monkeypatch):
+    # a Gumbel problem with strong dependence: Clayton is far behind on every resample,
+    # Gaussian and Frank on some, so their replicate fits are dropped there
     import pas.strategies.band_batch as band_batch
 
     s, pairs, _ = _problem(3, tau=0.7, gumbel=True, m=60)
     strategy = PAS(band=ModelBand(n_bootstrap=12))
     strategy.reset(0)
     strategy.predict(pairs, s, np.random.default_rng(0))
-    original, batched, fitted = joint.fit_joint, band_batch.fit_joint_batch, []
+    final = strategy.final_joint_fits(pairs, s, "both")
+    assert {f for f, _ in final} == set(strategy.families)
+    batched, fitted = band_batch.fit_joint_batch, []
 
-    def counted(name, *args, **kwargs):
-        fitted.append((name, kwargs.get("marginal", "weibull")))
-        return original(name, *args, **kwargs)
-
-    def counted_batch(name, samples, *args, **kwargs):  # a fit per replicate
-        fitted.extend([(name, kwargs.get("marginal", "weibull"))] * len(samples))
+    def counted_batch(name, samples, *args, **kwargs):  # a spy: a fit per replicate
+        fitted.extend([name] * len(samples))
         return batched(name, samples, *args, **kwargs)
 
-    monkeypatch.setattr(joint, "fit_joint", counted)
     monkeypatch.setattr(band_batch, "fit_joint_batch", counted_batch)
-    pruned = _band(strategy, pairs, s, 1)
-    n_pruned, fitted[:] = len(fitted), []
-    monkeypatch.setattr(band, "PRUNE_AIC", None)
-    every = _band(strategy, pairs, s, 1)
-    assert n_pruned < 0.7 * len(fitted)
-    np.testing.assert_allclose(pruned[2], every[2], rtol=1e-12)
+    low, high, replicates = _band(strategy, pairs, s, 1)
+    assert len(replicates) == 12 and low <= high
+    assert "clayton" not in fitted and fitted.count("gumbel") == 2 * 12
+    assert len(fitted) < 0.8 * 12 * len(final)
 
 
 def test_replicate_starts_keep_the_families_within_the_margin_of_the_best():
@@ -165,37 +187,34 @@ def test_the_default_forks_only_a_process_without_other_threads(monkeypatch):
 
 @pytest.mark.slow
 @pytest.mark.parametrize("marginals", ["reselected", "alternate"])
-def test_replicates_fitted_together_give_the_band_of_one_after_another(monkeypatch, marginals):
+def test_replicates_fitted_together_give_the_band_of_one_after_another(marginals):
     # false positives and redrawn LF ranks: each replicate's draw must read the stream where
     # it would one after another; every replicate's fits are the ones it reaches alone
-    # (impact_trend="rising": with "tested" one replicate of the 12 differs by 1.4e-5
-    # between the two paths, a difference not traced yet; the last check bounds it)
+    # (Student-t's ν derivative, from the t quantiles' here and by a difference in the
+    # fit alone, moves the optima within the optimiser's tolerance)
     s, pairs, _ = _problem(2, tau=0.6, p_impact=0.7, m=24)
+    choices = {"reselected": ("both",), "alternate": ("weibull", "lognormal")}[marginals]
     bands = {}
     for trend in ("rising", "tested"):
         strategy = PAS(band=ModelBand(n_bootstrap=12, marginals=marginals), impact_trend=trend)
         strategy.reset(0)
         strategy.predict(pairs, s, np.random.default_rng(0))
-        assert band._can_batch(strategy, strategy.final_joint_fits(pairs, s, "both"),
-                               [(None, None, "both", None)])
-        with monkeypatch.context() as m:
-            implicit = _band(strategy, pairs, s, 1)
-            # the same numerics (Student-t's nu derivative by difference, as the loop's
-            # fit): the same optima; the implicit derivative moves them within the
-            # optimiser's tolerance
-            m.setattr(joint_batch, "IMPLICIT_NU", False)
-            together = _band(strategy, pairs, s, 1)
-            m.setattr(band, "BATCHED", False)
-            alone = _band(strategy, pairs, s, 1)
-        assert together[2].size == alone[2].size == implicit[2].size >= 10
-        bands[trend] = together[2], alone[2], implicit[2]
-    together, alone, implicit = bands["rising"]
-    np.testing.assert_allclose(together, alone, rtol=1e-6)
-    np.testing.assert_allclose(implicit, alone, rtol=1e-4)
-    together, alone, implicit = bands["tested"]
+        starts = strategy.final_joint_fits(pairs, s, "both")
+        plan, lf_rng = _plan(pairs, 12, choices)
+        assert band._can_batch(strategy, starts, plan)
+        together = band.replicate_mpms(strategy, pairs, s, starts, plan, copy.deepcopy(lf_rng),
+                                       n_jobs=1)
+        alone = _one_after_another(strategy, pairs, s, starts, plan, copy.deepcopy(lf_rng))
+        assert [m is None for m in together] == [m is None for m in alone]
+        kept = [i for i, m in enumerate(together) if m is not None]
+        assert len(kept) >= 10
+        bands[trend] = (np.array([together[i][0] for i in kept]),
+                        np.array([alone[i][0] for i in kept]))
+    together, alone = bands["rising"]
+    np.testing.assert_allclose(together, alone, rtol=1e-4)
+    together, alone = bands["tested"]
     if marginals == "reselected":
         np.testing.assert_allclose(together, alone, rtol=1e-4)
-        np.testing.assert_allclose(implicit, alone, rtol=1e-4)
     else:
         # A known weakness, traced (scipy 1.17.1, numpy 2.4.6): with a falling impact
         # model, replicate 7's Gaussian/log-normal fit is chaotic.  The two paths'
@@ -205,11 +224,9 @@ def test_replicates_fitted_together_give_the_band_of_one_after_another(monkeypat
         # sigma, the other goes on to 125.64.  That replicate selects Frank instead and its
         # MPM is 49 % higher; the other families agree to 1e-11.  The band ends still
         # agree; no other replicate may differ.
-        for path in (together, implicit):
-            assert np.sum(~np.isclose(path, alone, rtol=1e-4, atol=0)) <= 1
-    for path in (together, implicit):
-        lo, hi = np.quantile(path, [0.025, 0.975])
-        np.testing.assert_allclose((lo, hi), np.quantile(alone, [0.025, 0.975]), rtol=1e-4)
+        assert np.sum(~np.isclose(together, alone, rtol=1e-4, atol=0)) <= 1
+    lo, hi = np.quantile(together, [0.025, 0.975])
+    np.testing.assert_allclose((lo, hi), np.quantile(alone, [0.025, 0.975]), rtol=1e-4)
 
 
 def test_a_mixture_band_is_fitted_one_replicate_after_another():
@@ -224,7 +241,7 @@ def test_a_mixture_band_is_fitted_one_replicate_after_another():
 
 
 @pytest.mark.slow
-def test_replicates_too_alike_to_fit_draw_no_lf_ranks_either_way(monkeypatch):
+def test_replicates_too_alike_to_fit_draw_no_lf_ranks_either_way():
     # three HF levels, two of them rare: about a quarter of the resamples hold two and
     # cannot be fitted; neither path may read the LF-rank stream for them, so the
     # replicates after them find it where they would one after another
@@ -242,41 +259,13 @@ def test_replicates_too_alike_to_fit_draw_no_lf_ranks_either_way(monkeypatch):
     plan = band.replicate_plan(pairs, rng, 12, ("both",))
     alike = [np.unique(pairs.hf[tp]).size < 3 for tp, _, _, _ in plan]
     assert 0 < sum(alike) < 12
-    out = {}
-    for batched in (True, False):
-        monkeypatch.setattr(band, "BATCHED", batched)
-        out[batched] = band.replicate_mpms(strategy, pairs, s, starts, plan,
-                                           copy.deepcopy(lf_rng), n_jobs=1)
-    assert [m is None for m in out[True]] == [m is None for m in out[False]]
-    assert all(m is None for m, a in zip(out[True], alike) if a)
-    kept = [i for i, m in enumerate(out[True]) if m is not None]
+    together = band.replicate_mpms(strategy, pairs, s, starts, plan, copy.deepcopy(lf_rng),
+                                   n_jobs=1)
+    alone = _one_after_another(strategy, pairs, s, starts, plan, copy.deepcopy(lf_rng))
+    assert [m is None for m in together] == [m is None for m in alone]
+    assert all(m is None for m, a in zip(together, alike) if a)
+    kept = [i for i, m in enumerate(together) if m is not None]
     # the optimiser's tolerance: the two paths sum the objectives in another order, and
     # with scipy 1.17.1 / numpy 2.4.6 one replicate ends 5.4e-6 apart
-    np.testing.assert_allclose([out[True][i] for i in kept], [out[False][i] for i in kept],
+    np.testing.assert_allclose([together[i] for i in kept], [alone[i] for i in kept],
                                rtol=1e-4)
-
-
-def test_a_restarted_student_fits_from_its_moved_start_only(monkeypatch):
-    assert band.cold_families() == ("student",)  # the default: warm and from the data
-    monkeypatch.setattr(band, "STUDENT_RESTART", True)
-    assert band.cold_families() == ()
-
-
-def test_a_restarted_student_start_moves_only_nu_and_a_trapped_location(monkeypatch):
-    monkeypatch.setattr(band, "STUDENT_RESTART", True)
-    s, pairs, _ = _problem(1, tau=0.6, m=30)
-    strategy = PAS(band=ModelBand(n_bootstrap=3))
-    strategy.reset(0)
-    strategy.predict(pairs, s, np.random.default_rng(0))
-    final = strategy.final_joint_fits(pairs, s, "both")
-    starts = band.replicate_starts(strategy, pairs, s, final, "both")
-    assert set(starts) <= set(final) and ("student", "weibull") in starts
-    for key, start in starts.items():
-        if key[0] != "student":
-            assert start is final[key]
-            continue
-        x, old = start.x, final[key].x
-        assert x[-1] == band.RESTART_NU
-        np.testing.assert_array_equal(x[1:-1], old[1:-1])
-        assert x[0] == max(old[0], -4.0)
-        assert start.copula is final[key].copula  # what the pruning read

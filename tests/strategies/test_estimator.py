@@ -195,7 +195,7 @@ def test_band_marginals_let_the_bootstrap_choose_or_alternate_the_hf_marginal(mo
             kinds.append(type(model.hf_marginal).__name__)
             return model
 
-        def spy_together(*args, **kwargs):  # the replicates fitted together (band.BATCHED)
+        def spy_together(*args, **kwargs):  # the replicates fitted together (band_batch)
             model = assemble(*args, **kwargs)
             kinds.append(type(model.hf_marginal).__name__)
             return model

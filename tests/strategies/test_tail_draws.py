@@ -170,7 +170,7 @@ def test_replayed_uniforms_are_the_drawn_ones_common_or_not():
 
 
 def _problem(n, seed=1, fp=False):
-    from pas.validation.timing_problem import scenario
+    from harness.timing_problem import scenario
 
     lf, hf = scenario(n, seed=seed)
     lfset = LFSet(lf, n_waves=int(round(n * 16364 / 15000)), p_exp=2.55e-3)
@@ -181,10 +181,20 @@ def _problem(n, seed=1, fp=False):
                         lfset.lf[fp_pos], fp_pos)
 
 
-def _predictions(strategy, lfset, pairs, monkeypatch, top):
-    monkeypatch.setattr(tail_draws, "TOP_DRAWS", top)
+def _predictions(strategy, lfset, pairs):
+    """Two iterations' predictions from the top of each realisation, and the same read
+    from every draw of the iteration's model and uniforms (the reference)."""
+    from pas.strategies.base import Prediction
+    from pas.strategies.steps import hf_distribution
+
     strategy.reset(0)
-    return [strategy.predict(pairs, lfset, np.random.default_rng(k)) for k in range(2)]
+    out = []
+    for k in range(2):
+        top = strategy.predict(pairs, lfset, np.random.default_rng(k))
+        every = tail_draws.whole_draws(strategy.model_, strategy._uniforms,
+                                       np.random.default_rng(k))
+        out.append((top, Prediction.read_at(lfset.p_exp, *hf_distribution(every, lfset.n_waves))))
+    return out
 
 
 @pytest.mark.parametrize("strategy, n, fp", [
@@ -196,12 +206,10 @@ def _predictions(strategy, lfset, pairs, monkeypatch, top):
     pytest.param(lambda: PAS(band=ModelBand(n_bootstrap=0)), 400000, True,
                  marks=pytest.mark.slow),
 ])
-def test_predictions_from_the_top_are_the_full_draws(strategy, n, fp, monkeypatch):
+def test_predictions_from_the_top_are_the_full_draws(strategy, n, fp):
     lfset, pairs = _problem(n, fp=fp)
-    new = _predictions(strategy(), lfset, pairs, monkeypatch, True)
-    old = _predictions(strategy(), lfset, pairs, monkeypatch, False)
     grid = range_grid(lfset.p_exp)
-    for a, b in zip(new, old):
+    for a, b in _predictions(strategy(), lfset, pairs):
         assert isinstance(a, tail_draws.TailPrediction)
         np.testing.assert_allclose([a.mpm, *a.mpm_band], [b.mpm, *b.mpm_band], rtol=1e-12)
         np.testing.assert_allclose(a.at(grid), b.at(grid), rtol=1e-12)

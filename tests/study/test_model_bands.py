@@ -10,7 +10,7 @@ import pytest
 import pas
 import pas.strategies.band as band_module
 from pas.study import precision
-from pas.validation.timing_problem import scenario
+from harness.timing_problem import scenario
 
 
 def _studies(sizes=(600, 2500, 1200), max_hf=14):

@@ -2,7 +2,7 @@
 
 import pandas as pd
 
-from pas.validation.error_tables import grid_table, has_results, median_worst
+from harness.error_tables import grid_table, has_results, median_worst
 
 
 def test_median_worst_of_the_absolute_errors():

@@ -1,4 +1,4 @@
-"""The known-truth generator (pas.validation.known_truth): same problems, exact truths."""
+"""The known-truth generator (harness.known_truth): same problems, exact truths."""
 
 
 
@@ -8,9 +8,9 @@ import pytest
 from _snippets import load_script
 from scipy import integrate, stats
 
-from pas.validation import known_truth as kt
-from pas.validation import known_truth_held_out as ho
-from pas.validation.known_truth_runs import TYPES, select_types, settings_from_args
+from harness import known_truth as kt
+from harness import known_truth_held_out as ho
+from harness.known_truth_runs import TYPES, select_types, settings_from_args
 
 # (type, data set, pool size, truth MPM, first two LF peaks, first three HF loads, sum of
 # the HF loads), computed once from the benchmark generator before it moved into the

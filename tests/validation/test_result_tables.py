@@ -9,7 +9,7 @@ from pathlib import Path
 import pandas as pd
 import pytest
 
-from pas.validation.result_tables import (
+from harness.result_tables import (
     VALIDATION_HEADER,
     properties_seed_table,
     properties_spread_table,

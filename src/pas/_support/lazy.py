@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import importlib
 import sys
+import types
 
 
 def lazy_exports(package: str, exports: dict[str, str], hint: str = ""):
@@ -32,6 +33,14 @@ def lazy_exports(package: str, exports: dict[str, str], hint: str = ""):
         raise AttributeError(f"module {package!r} has no attribute {name!r}{hint}")
 
     def dir_():
-        return sorted(set(vars(sys.modules[package])) | set(exports))
+        # what a user may take: the public names, the dunders and the public sub-packages
+        # imported so far; not the module's own imports or private helpers
+        module = sys.modules[package]
+        public = set(getattr(module, "__all__", ())) | set(exports)
+        return sorted(public | {
+            name for name, value in vars(module).items()
+            if name.startswith("__") and name.endswith("__")
+            or isinstance(value, types.ModuleType) and not name.startswith("_")
+            and value.__name__ == f"{package}.{name}"})
 
     return getattr_, dir_

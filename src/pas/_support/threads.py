@@ -2,8 +2,8 @@
 
 Small matrices (a GP over 160 points, an L-BFGS-B step in five parameters) gain
 nothing from BLAS threads and, on a loaded machine, lose a lot: OpenBLAS's
-spinning threads made a 157-point GP fit take 5 s instead of 60 ms, and a
-joint copula fit 0.5 s instead of 50 ms, on 2 busy cores.  Code that does such
+spinning threads can make such a fit ten to a hundred times slower when the
+cores are busy.  Code that does such
 work runs under :func:`one_blas_thread` (:mod:`threadpoolctl`, restored
 afterwards).
 """
@@ -18,7 +18,7 @@ __all__ = ["one_blas_thread"]
 
 @functools.cache
 def _blas_controller():
-    """The loaded BLAS libraries, inspected once (≈ 4 ms a time, 0.03 ms to limit them)."""
+    """The loaded BLAS libraries, inspected once (inspecting costs far more than limiting)."""
     from threadpoolctl import ThreadpoolController
 
     return ThreadpoolController()

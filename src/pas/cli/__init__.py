@@ -105,8 +105,8 @@ def console() -> int:
 
     Everything is written when :func:`main` returns; the interpreter's
     collections at exit, over every object numpy, scipy and pandas made,
-    took 1.5–2.5 s on a loaded 2-core machine, longer than the run's own
-    Ctrl-C handling, so the objects are frozen out of them.
+    can take seconds on a loaded machine, longer than the run's own Ctrl-C
+    handling, so the objects are frozen out of them.
     """
     code = main()
     gc.freeze()

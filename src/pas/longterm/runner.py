@@ -34,7 +34,8 @@ __all__ = ["run_long_term", "LONG_TERM_KEY", "DEFAULT_LONG_TERM_MAX_HF"]
 
 LONG_TERM_KEY = "longterm"
 DEFAULT_LONG_TERM_MAX_HF = 400
-"""Default HF budget of the whole analysis (the goal issue 29 sets for a green-water load)."""
+"""Default HF budget of the whole analysis (enough for a green-water load over a scatter
+diagram, ``docs/guide/long-term.md``)."""
 
 
 def run_long_term(sea_states, lf_peaks, oracle, *, p_exceed=None, return_period=None,

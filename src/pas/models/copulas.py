@@ -8,7 +8,7 @@ one- or two-parameter families are fitted by maximum likelihood
 
 Conditional inverses are closed forms where they exist (Gaussian, Student-t,
 Clayton, Frank, Gumbel, and their rotations) because pyvinecopulib inverts
-several of them numerically, which costs 0.03–0.8 s per 150 000 draws; Joe,
+several of them numerically, far slower for the draws of an iteration; Joe,
 BB1 and TLL use pyvinecopulib's ``hinv1``.  The closed forms are tested
 against ``hinv1`` and against the ``copulas`` package.  The Student-t one
 needs the t quantile and CDF; :func:`t_quantile` and :func:`t_cdf` give them
@@ -288,10 +288,10 @@ def _hinv1(fam, p, bicop, u, r, r_scores=None):
 
 
 # -- Student-t quantile and CDF for the conditional draws --------------------
-# scipy's stdtrit/stdtr cost ~0.35 µs per value (~100 ms for the 2 × 150 000 values of
-# one iteration).  Both are monotone maps that become smooth after a change of
-# variable, so a cubic Hermite interpolant with exact derivatives on a fixed grid,
-# built once per ν (~0.5 ms) and looked up by index arithmetic, reproduces them to
+# scipy's stdtrit/stdtr are the costly part of an iteration's Student-t draws.  Both
+# are monotone maps that become smooth after a change of variable, so a cubic Hermite
+# interpolant with exact derivatives on a fixed grid, built once per ν (cheap) and
+# looked up by index arithmetic, reproduces them to
 # ~1e-9 relative (tests/models/test_copulas.py); values beyond the grid go to scipy.
 _T_Z = 5.4
 """Half-width of the normal-score grid: Φ(−5.4) ≈ 3e-8, below the ε = 1e-6 draws."""

@@ -59,7 +59,7 @@ from .lbfgsb import minimise_one
 
 __all__ = ["JOINT_FAMILIES", "HF_MARGINALS", "JointFit", "censoring_level", "fit_joint",
            "fit_joint_all", "best_per_family", "starts_cold", "location_bounds", "minimise_bounded",
-           "joint_fit_result", "unrefitted"]
+           "joint_fit_result"]
 
 HF_MARGINALS = ("weibull", "lognormal")
 """HF marginals the joint fit knows (module docs)."""
@@ -264,30 +264,6 @@ def _result(name: str, res, unpack, n_marg: int, marginal: str) -> JointFit:
     theta, a, b, c = unpack(res.x)
     hf = (LogNormal3 if marginal == "lognormal" else Weibull3)(float(theta), float(a), float(b))
     return joint_fit_result(name, res, c, n_marg, hf, marginal)
-
-
-def unrefitted(fit: JointFit, u, h, *, location: bool = True,
-               censor: float = 0.0) -> JointFit | None:
-    """``fit``'s optimiser values on the pairs ``u``, ``h``, not optimised again.
-
-    Its likelihood and AIC are those of these pairs at the old values, so the
-    AIC is at least the refitted one's.  None when the values are outside
-    these pairs' location bound or give no finite likelihood.
-    """
-    if fit.marginal not in HF_MARGINALS:
-        return None
-    u = np.clip(np.asarray(u, float), _TINY, 1 - _TINY)
-    h = np.asarray(h, float)
-    bound = location_bounds(h, censor, location)
-    if bound and not bound[0][0] <= fit.x[0] <= bound[0][1]:
-        return None
-    negloglik, _, unpack = joint_objective(fit.copula.name, u, h, location=location,
-                                           censor=censor, marginal=fit.marginal)
-    value = negloglik(fit.x)
-    if value >= 1e299:
-        return None
-    res = optimize.OptimizeResult(x=fit.x, fun=value, message="not refitted")
-    return _result(fit.copula.name, res, unpack, 3 if location else 2, fit.marginal)
 
 
 def location_bounds(h, censor: float, location: bool) -> list:

@@ -12,9 +12,10 @@ likelihood is written as its distinct pairs weighted by how often they
 were drawn (:func:`weighted_pairs`): fewer t quantiles for Student-t, whose
 ``special.stdtrit`` is most of a band's time.  The value and gradient are
 those of :func:`pas.models.joint.joint_objective` (Weibull and log-normal
-marginal, unrotated families with a gradient), summed in another order — but for Student-t's derivative in ν, which here
-follows from the t quantiles' (:func:`_student_parts`) instead of a
-difference of the whole likelihood (:data:`IMPLICIT_NU`).
+marginal, unrotated families with a gradient), summed in another order — but for
+Student-t's derivative in ν, which here follows from the t quantiles'
+(:func:`_student_parts`: two t quantiles and two t CDFs a pair) instead of a
+forward difference of the whole likelihood (four t quantiles a pair).
 """
 
 from __future__ import annotations
@@ -30,23 +31,16 @@ from .copula_densities import (
     _log_t_pdf,
     _student_logc,
     _student_logh,
-    copula_loghfunc,
-    copula_logpdf,
     logc_grad,
     logh_grad,
 )
 from .copulas import kendall_tau
 from .joint import _TINY, _prepare, joint_fit_result, location_bounds
-from .joint_likelihood import NU_STEP, copula_parameters, parameter_slope
+from .joint_likelihood import copula_parameters, parameter_slope
 from .joint_starts import _lognormal_start, _weibull_start, copula_start
 from .lbfgsb import minimise_together
 
-__all__ = ["batchable", "weighted_pairs", "minimise_together", "fit_joint_batch", "IMPLICIT_NU"]
-
-IMPLICIT_NU = True
-"""Student-t's derivative in ν from the t quantiles' (:func:`_student_parts`: two t
-quantiles and two t CDFs a pair); False: a forward difference of the copula terms, as
-:mod:`pas.models.joint_likelihood` (four t quantiles; ``benchmarks/timing/study_parts.py``)."""
+__all__ = ["batchable", "weighted_pairs", "minimise_together", "fit_joint_batch"]
 
 _T_STEP = 1e-6
 """Step in ν of the forward difference of the t CDF ``∂T_ν(x)/∂ν`` (:func:`_student_parts`)."""
@@ -98,18 +92,6 @@ def _copula_parts(base, c, u, v, density):
         total, d_v, d_p = (np.where(density, a, 0.0) for a in (total, d_v, d_p))
         total[censored], d_v[censored], d_p[censored] = lh, dh_v, dh_p
     return total, d_v, d_p
-
-
-def _copula_values(base, c, u, v, density):
-    """Per pair ``log c`` or, censored, ``log h`` (no derivatives)."""
-    p = [q[0] for q in copula_parameters(base, [ci[:, None] for ci in c])]
-    total = copula_logpdf(base, p, u, v)
-    censored = ~density
-    if censored.any():
-        pc = [np.broadcast_to(q, u.shape)[censored] for q in p]
-        total = np.where(density, total, 0.0)
-        total[censored] = copula_loghfunc(base, pc, u[censored], v[censored])
-    return total
 
 
 def _on_pairs(f, nu, a, live):
@@ -206,8 +188,8 @@ def batch_objective(name: str, data: dict, *, location: bool = True, marginal: s
             zb = np.exp(b * ln_z)
             log_f = np.log(b / a) + (b - 1.0) * ln_z - zb
             v = np.clip(-np.expm1(-zb), _TINY, 1 - _TINY)
-        implicit = base == "student" and IMPLICIT_NU
-        if implicit:
+        student = base == "student"
+        if student:
             rho, nu = (q[0] for q in copula_parameters(base, [ci[:, None] for ci in c]))
             total, d_v, d_p, d_nu = _student_parts(rho, nu, u, v, dens, wt > 0)
         else:
@@ -227,12 +209,9 @@ def batch_objective(name: str, data: dict, *, location: bool = True, marginal: s
                             axis=1)]
         grads[0] = grads[0] * -gap[:, 0] if location else None
         grads.append(np.sum(wt * d_p, axis=1) * parameter_slope(base, c))
-        if implicit:  # dν/dc of ν = 2 + 48 / (1 + e^−c)
+        if student:  # dν/dc of ν = 2 + 48 / (1 + e^−c)
             share = 1.0 / (1.0 + np.exp(-c[1]))
             grads.append(np.sum(wt * d_nu, axis=1) * 48.0 * share * (1.0 - share))
-        elif base == "student":  # ν: a forward difference of the copula terms, as joint_likelihood
-            moved = _copula_values(base, [c[0], c[1] + NU_STEP], u, v, dens)
-            grads.append((np.sum(wt * moved, axis=1) - np.sum(wt * total, axis=1)) / NU_STEP)
         g = -np.column_stack([x for x in grads if x is not None])
         bad = ~np.isfinite(val) | ~np.all(np.isfinite(g), axis=1)
         return np.where(bad, 1e300, -val), np.where(bad[:, None], 0.0, g)

@@ -14,7 +14,7 @@ import pyvinecopulib as pv
 from ..stats.weibull import fit_weibull3_ls
 from .copulas import kendall_tau
 
-__all__ = ["DataStarts", "copula_start", "student_restart"]
+__all__ = ["DataStarts", "copula_start"]
 
 _TINY = 1e-12
 
@@ -44,24 +44,6 @@ def _weibull_start(h, location: bool):
     beta, c = np.polyfit(x, y, 1)
     beta = max(beta, 0.2)
     return [np.log(np.exp(-c / beta)), np.log(beta)]
-
-
-def student_restart(x, location: bool, nu_start: float = 0.0) -> np.ndarray:
-    """A Student-t fit's optimiser values ``x`` made a start that can leave their basin:
-    ν's optimiser value ``nu_start`` (0: ν = 26, the start from the data's; 1: ν = 37)
-    and, with a location, the location's gap below the smallest load at least e⁻⁴ of the
-    loads' span.
-
-    A fit's ν at its bound of 50 (the logistic map flat there) or a log-normal location
-    at the smallest load (log gap −8 … −10) barely moves from a warm start: there a start
-    from the data found optima better by up to 160 in log-likelihood (the model band's
-    replicates, ``docs/results/model-band.md``).
-    """
-    x = np.array(x, dtype=float)
-    x[-1] = nu_start
-    if location:
-        x[0] = max(x[0], -4.0)
-    return x
 
 
 def _lognormal_start(h, location: bool, weibull=None):

@@ -26,12 +26,10 @@ therefore reports
 for N < M (NaN at N = M, which the record cannot judge) and keeps the raw RMS
 as ``rms_subsets``. Its band is a bootstrap over seeds: R(N) recomputed on
 ``n_boot`` records drawn from the M seeds with replacement (percentile band).
-A normal-theory band (chi-square, M − 1 degrees of freedom) was tried first
-and rejected: R(N) varies between records far more than that (coefficient of
-variation 15 % at N = 0.12 M, 30 % at N = 0.75 M for Rayleigh crests, against
-11 %), because near N = M the subsets differ by a few seeds only.
-``benchmarks/studies/records_bias.py`` measures R(N) against fresh campaigns and the
-band's coverage.
+A normal-theory band (chi-square, M − 1 degrees of freedom) would be too
+narrow: R(N) varies between records far more than that, because near N = M
+the subsets differ by a few seeds only ("Record statistics" in
+``docs/results/investigations.md``).
 
 Each seed is one exposure duration unless ``exposure_encounters`` says
 otherwise; the target exceedance ``P_t = 1/n_e,t`` is the same for every
@@ -245,8 +243,8 @@ def mpm_convergence(peaks, n_encounters, *, exposure_encounters=None, n_values=N
     n_subsets : int, default 500
         Subsets W per N for the pooled-peaks and seed-maxima MPMs.
     n_subsets_fit : int, default 100
-        Subsets per N for the Weibull-fit MPM (one LS fit each, ~ms per
-        thousand peaks); 0 skips the fitted variant.
+        Subsets per N for the Weibull-fit MPM (one least-squares fit each, the
+        costly part); 0 skips the fitted variant.
     top_fraction : float, default 0.3
         Fraction of the peaks in each Weibull fit.
     q : float, default 0.368

@@ -6,15 +6,11 @@ pressures), GEV (``genextreme``), Weibull (``weibull_min``), gamma,
 log-normal (``lognorm``) and exponential (``expon``); and this package's
 two-component Weibull mixture (``weibull_mixture``, a narrow quasi-static
 body and a wide impulsive tail, :func:`pas.stats.weibull_mixture.fit_weibull_mixture`;
-beyond Boon 2025 and the PAS paper).  ``python benchmarks/studies/load_fits_mixture.py 10``
-measured what adding it does to the AIC-best fit's quantile at the MPM
-level: on samples of single known laws (Fréchet, log-normal, Weibull,
-gamma; n 400 and 1700) it was picked in 3 of 80 and the median error moved
-only on gamma, n 1700 (1.3 → 2.1 %); on a bore + impulse law 8.6 → 4.8 %
-(n 400) and worst 19 → 12 % (n 1700); on every impact load of the 3a / 3b /
-4a / 4b analogues (ten data sets each) 3.7 / 5.4 / 7.3 / 6.1 → 6.0 / 4.2 /
-2.4 / 3.9 % median, worst 13 / 24 / 12 / 20 → 15 / 24 / 12 / 6.5 % (there
-the "truth" is itself a Weibull fitted to the top 30 % of the same loads). For comparison the
+beyond Boon 2025 and the PAS paper).  It is rarely picked on samples of a
+single known law and then barely moves the AIC-best fit's quantile at the
+MPM level, and it helps on loads that are a quasi-static body with an
+impulsive tail ("Record statistics" in ``docs/results/investigations.md``).
+For comparison the
 thesis's binned least squares is offered (``method="binned ls"``): the pdf
 fitted to the histogram density by ``scipy.optimize.least_squares``, started
 from the ML fit.

@@ -17,12 +17,10 @@ name            a      b      use
 For pooled impact peaks ``n`` is the number of *encounters*, not of peaks:
 the encounters without an impact are the smallest values of the sample.
 
-Measured on Rayleigh crests of Hs 10 m, 400 per seed
-(``benchmarks/studies/records_bias.py``, 20 000 replications): ``k/N`` seed maxima read
-at 0.632 estimate the MPM high (+0.39, +0.11, +0.06 m at N = 3, 10, 20),
-``k/(N + 1)`` within 0.03 m (−0.02, −0.01, −0.00 m); the 0.9 quantile of the
-hourly maximum read from 10 pooled seeds is +0.30 m high with ``k/n`` and
-−0.02 ± 0.01 m with Gringorten ranks.
+``k/N`` seed maxima read at 0.632 estimate the MPM high at few seeds,
+``k/(N + 1)`` does not; a high quantile of the hourly maximum read from
+pooled seeds is high with ``k/n`` and unbiased with Gringorten ranks
+("Record statistics" in ``docs/results/investigations.md``).
 """
 
 from __future__ import annotations

@@ -30,8 +30,8 @@ lies 0.53 % higher for the maximum of 1000 Rayleigh crests
 * **Seed maxima** — the maximum of each of the N seeds (each seed one
   exposure duration), sorted descending; the k-th largest gets exceedance
   ``k / (N + 1)`` (``positions="weibull"``, unbiased for the 0.632
-  exceedance; the paper-style ``k/N`` biases it high by 0.39 m at N = 3 on
-  Rayleigh crests of Hs 10 m, see ``benchmarks/studies/records_bias.py``). The MPM is
+  exceedance; the paper-style ``k/N`` biases it high at few seeds,
+  "Record statistics" in ``docs/results/investigations.md``). The MPM is
   the q = 0.368 quantile of the maxima, the value at exceedance ``0.632``, by
   linear interpolation in probability. A seed without any peak (no impact)
   has maximum ``empty``.

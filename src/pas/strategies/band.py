@@ -1,10 +1,12 @@
 """The model band's bootstrap replicates (:meth:`pas.strategies.pas.PAS.model_band`), in parallel.
 
 The replicates draw what they drew one after another in one process, so the
-band is the same for any ``n_jobs``; they start from the final fits
-(:data:`WARM_BAND`; Student-t also from the data, :data:`COLD_FAMILIES`),
-refit only the copula families that can win them (:data:`PRUNE_AIC`) and are
-fitted together (:data:`BATCHED`, :mod:`pas.models.joint_batch`).  Workers
+band is the same for any ``n_jobs``.  They start from the final model's joint
+fits (a replicate is a resample of the same pairs, so its optimum is near;
+Student-t also from the data, :data:`COLD_FAMILIES`), refit only the copula
+families that can win them (:data:`PRUNE_AIC`) and, where every candidate has
+a batched form, are fitted together (:mod:`pas.strategies.band_batch`,
+:mod:`pas.models.joint_batch`).  Workers
 are forked processes (POSIX); the default ``n_jobs=None`` is every core, but
 one process when this process runs other threads or where fork is unsafe.
 Why each choice, and what it was measured to change:
@@ -15,7 +17,6 @@ from __future__ import annotations
 
 import contextlib
 import copy
-import dataclasses
 import multiprocessing
 import os
 import sys
@@ -28,42 +29,18 @@ from .._support.checks import check_int, check_option
 from ..models.joint import HF_MARGINALS
 from ..models.joint_batch import batchable
 from ..models.joint_mixture import MIXTURE, pair_logliks
-from ..models.joint_starts import student_restart
 from . import model_form as model_forms
 from .band_batch import Replicate, batch_fits, replicate_model
 from .steps import conditioning_set
 
-__all__ = ["ModelBand", "WARM_BAND", "COLD_FAMILIES", "PRUNE_AIC", "BATCHED",
-           "STUDENT_RESTART", "RESTART_NU",
-           "ReplicateStarts", "bootstrap_band", "cold_families", "default_jobs", "process_count",
-           "replicate_plan",
-           "replicate_mpms", "replicate_starts"]
-
-WARM_BAND = True
-"""Replicates start their joint fits from the final model's fits only; False: from the
-study's last fits and from the data (a cold start), as before (``benchmarks/timing/study_parts.py``)."""
+__all__ = ["ModelBand", "COLD_FAMILIES", "PRUNE_AIC", "ReplicateStarts", "bootstrap_band",
+           "default_jobs", "process_count", "replicate_plan", "replicate_mpms",
+           "replicate_starts"]
 
 COLD_FAMILIES = ("student",)
-"""Families whose replicate fits also start from the data in a warm band (module docs)."""
-
-STUDENT_RESTART = False
-"""True: Student-t's replicate fits start once, from the final fit with ν's optimiser value
-at :data:`RESTART_NU` and the location's gap at least e⁻⁴ of the span
-(:func:`pas.models.joint_starts.student_restart`), the edges that trap a warm start,
-instead of from the final fit and from the data (:data:`COLD_FAMILIES`).  On the 50
-tuning types it kept every band end within 1.8e-4 at 0.81 of the band's CPU, but on the
-held-out ``ho2-mix-negative-body`` three of 50 replicate fits ended up to 97 below the
-optimum the warm start reaches (a band end 2.9 %), so it stays off
-(``benchmarks/investigations/band_student_cold.py``, ``docs/explanation/model-band.md``)."""
-
-RESTART_NU = 1.0
-"""ν's optimiser value a restarted Student-t begins at (:data:`STUDENT_RESTART`; 1: ν 37,
-between the data's start (0: ν 26, which misses optima at the bound of 50) and the bound)."""
-
-BATCHED = True
-"""A warm band's replicates are fitted together, each candidate to all of them at once
-(:mod:`pas.strategies.band_batch`); False: one replicate after another (module docs)."""
-
+"""Families whose replicate fits also start from the data, beside the final fit: a warm
+start alone leaves Student-t's replicate fits short of their optimum (its ν and location
+are trapped at the edges of the final fit), ``docs/explanation/model-band.md``."""
 
 @dataclass(frozen=True)
 class ModelBand:
@@ -109,8 +86,7 @@ class ModelBand:
 
 PRUNE_AIC = 100.0
 """A replicate refits the families with a candidate within this AIC of its best eligible
-one, judged at the final fits' parameters on its resampled pairs (module docs); None:
-every family."""
+one, judged at the final fits' parameters on its resampled pairs (module docs)."""
 
 _JOB = None  # (strategy, pairs, lfset, starts, plan, lf_rngs) while replicate_mpms runs;
 # batched: (strategy, pairs, lfset, starts, plan, replicates, width)
@@ -192,23 +168,6 @@ def _choice_marginals(strategy, choice) -> set:
                 "all": (*HF_MARGINALS, MIXTURE)}.get(choice, (choice,)))
 
 
-def cold_families() -> tuple:
-    """The families of :data:`COLD_FAMILIES` whose replicate fits also start from the data
-    (not a restarted Student-t, :data:`STUDENT_RESTART`)."""
-    return tuple(f for f in COLD_FAMILIES if not (STUDENT_RESTART and f == "student"))
-
-
-def _restarted(starts: ReplicateStarts, location: bool) -> ReplicateStarts:
-    """``starts`` with Student-t's optimiser values moved off the edges that trap a warm
-    start (:data:`STUDENT_RESTART`): a start, whose copula and marginal stay the final
-    fit's (only the pruning above reads them)."""
-    if not STUDENT_RESTART:
-        return starts
-    return ReplicateStarts(
-        (k, dataclasses.replace(f, x=student_restart(f.x, location, RESTART_NU))
-         if k[0] == "student" else f) for k, f in starts.items())
-
-
 def replicate_starts(strategy, b, lfset, starts: dict, choice) -> ReplicateStarts:
     """The :class:`ReplicateStarts` of the families that can win the replicate of pairs
     ``b``, with the HF marginals of ``choice``: a family with a candidate within
@@ -217,8 +176,6 @@ def replicate_starts(strategy, b, lfset, starts: dict, choice) -> ReplicateStart
     its LF; module docs)."""
     keys = [k for k in starts if k[1] in _choice_marginals(strategy, choice)]
     location = strategy.estimator.hf_location
-    if PRUNE_AIC is None:
-        return _restarted(ReplicateStarts((k, starts[k]) for k in keys), location)
     impact = strategy.impact_of(b)
     n0 = conditioning_set(lfset.lf, b.lf.min()).size
     u = strategy._population_ranks(lfset, n0, impact, None)[b.position]
@@ -230,7 +187,7 @@ def replicate_starts(strategy, b, lfset, starts: dict, choice) -> ReplicateStart
     kept = {f for f, _ in keys
             if min(a if np.isfinite(a) else -np.inf for (g, _), a in aic.items() if g == f)
             <= min(eligible) + PRUNE_AIC}
-    return _restarted(ReplicateStarts((k, starts[k]) for k in keys if k[0] in kept), location)
+    return ReplicateStarts((k, starts[k]) for k in keys if k[0] in kept)
 
 
 def _replicate_mpm(i: int) -> tuple | None:
@@ -268,7 +225,7 @@ def replicate_mpms(strategy, pairs, lfset, starts, plan, lf_rng=None,
     """
     global _JOB
     n_jobs = process_count(n_jobs, len(plan))
-    if BATCHED and _can_batch(strategy, starts, plan):
+    if _can_batch(strategy, starts, plan):
         return _batched_mpms(strategy, pairs, lfset, starts, plan, lf_rng, n_jobs)
     if n_jobs == 1:
         lf_rngs = [lf_rng] * len(plan)
@@ -322,7 +279,7 @@ def _chunk_mpms(indices) -> list:
             with contextlib.suppress(ValueError, np.linalg.LinAlgError):
                 chunk[i] = Replicate(*replicates[i][:4], replicate_starts(
                     strategy, replicates[i][0], lfset, starts, plan[i][2]))
-    fits = batch_fits(strategy, chunk, cold_families(), width)
+    fits = batch_fits(strategy, chunk, COLD_FAMILIES, width)
     out = []
     for i in indices:
         try:
@@ -363,9 +320,7 @@ def bootstrap_band(strategy, band: ModelBand, pairs, lfset, rng: np.random.Gener
     reselected = "all" if conditional and strategy.estimator.hf_marginal == MIXTURE else "both"
     marginals = {"fitted": (None,), "reselected": (reselected,),
                  "alternate": HF_MARGINALS}[band.marginals]
-    starts = None
-    if WARM_BAND and conditional:
-        starts = strategy.final_joint_fits(pairs, lfset, reselected)
+    starts = strategy.final_joint_fits(pairs, lfset, reselected) if conditional else None
     # a stream of its own, so the resampled pairs are those of "fixed"
     lf_rng = rng.spawn(1)[0] if band.lf_ranks == "redrawn" else None
     plan = replicate_plan(pairs, rng, band.n_bootstrap, marginals)

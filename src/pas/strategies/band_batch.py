@@ -1,4 +1,4 @@
-"""The model band's replicates fitted together (:data:`pas.strategies.band.BATCHED`).
+"""The model band's replicates fitted together (:func:`pas.strategies.band.replicate_mpms`).
 
 :mod:`pas.strategies.band` prepares every replicate as one after another
 would (the resampled pairs, their conditioning set and LF ranks, the joint

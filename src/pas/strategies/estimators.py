@@ -24,13 +24,12 @@ import numpy as np
 
 from .._support.checks import check_option
 from ..models.copulas import fit_candidates
-from ..models.joint import JOINT_FAMILIES, best_per_family, unrefitted
-from ..models.joint_mixture import HF_CHOICES, MIXTURE, fit_hf_candidates
+from ..models.joint import JOINT_FAMILIES
+from ..models.joint_mixture import HF_CHOICES, fit_hf_candidates
 from ..stats.dependence import pseudo_observations
 from . import band
 from .steps import (
     CandidateFits,
-    cold_turns,
     conditioning_set,
     fit_marginals,
     joint_candidates,
@@ -41,36 +40,6 @@ __all__ = ["ConditionalLikelihood", "SelectedSample", "ESTIMATORS", "CandidateFi
 
 COLD_EVERY = 10
 """Every this many study fits, the conditional estimator also starts from the data."""
-
-COLD_UP_TO = 0
-"""While a study has at most this many pairs, each of its fits also starts from the data.
-0 (the default): only every COLD_EVERY-th fit.  Warm starts from a fit to fewer pairs
-choose another candidate than a cold start in 15 % of the fits at 20 pairs or fewer, and in
-none above; at 20, 3 of the 50 tuning types' final MPMs changed, through the stop (median
-error the same), for x1.11 the CPU, so it stays 0 (``benchmarks/investigations/loop_warm_starts.py``,
-"Do the study's warm starts find the optimum?" in ``docs/results/investigations.md``)."""
-
-PRUNE_AIC = None
-"""In the study's own fits, a family whose last AIC was more than this behind the best
-eligible one's (and not the current family) is not refitted: its AIC is that of its last
-fit's parameters on the new pairs (:func:`pas.models.joint.unrefitted`; at least its
-optimum's), and every COLD_EVERY fits, halfway between the other families' cold starts,
-it is refitted from its last fit and from the data.  Should such a family come within
-PRUNE_AIC / 2 of the best refitted one, it is refitted at once, so it is never selected
-unrefitted.  None (the default): every family is refitted in every fit.  At 100 the loop
-was x0.91-0.95 faster (benchmarks/timing/study_parts.py), but one of 240 analogue runs
-changed (2b, data seed 5: MPM 912.4e6 -> 917.8e6, 33 -> 28 HF), so it stays off."""
-
-PRUNE_AIC_TRIED = 100.0
-"""The margin the benchmark measures pruning with."""
-
-COLD_IN_TURN = False
-"""True: each family starts cold in its own iteration of every COLD_EVERY
-(:func:`~pas.strategies.steps.cold_turns`: the worst iteration 108 -> 88 ms; after the
-shared scores and cold start of :mod:`pas.models.joint_starts`, worst x0.68-0.75 and median
-x0.97-1.14 in ``benchmarks/timing/study_parts.py --parts cold``), instead of all at once.  Off: it changes answers (3 of 17 analogue MPMs by up to 1.9e-6; a 13-pair
-study by 1 %, 30 % in between), and 0.2 keeps the results of 0.1."""
-
 
 @dataclass(frozen=True)
 class FitRequest:
@@ -145,49 +114,25 @@ class ConditionalLikelihood:
         # a band replicate fits only the candidates that can win it (band.ReplicateStarts)
         only = set(starts) if isinstance(starts, band.ReplicateStarts) else None
         if starts is not None:  # a band replicate from the final fits (model_band)
-            cold = band.cold_families() if only is not None else band.COLD_FAMILIES
+            cold = band.COLD_FAMILIES
         else:
             family = request.families[0] if request.one_family else None
             starts = pas._joint if family is None else {
                 k: v for k, v in pas._joint.items() if k[0] == family}
             # a warm start from the previous iteration converges in a few steps; every
-            # COLD_EVERY-th fit (or each family in its turn, COLD_IN_TURN), and every other
-            # fit with update=False, also starts from the data, so no fit stays trapped in
-            # the basin of another sample
-            cold = not update or len(pairs) <= COLD_UP_TO or (family is None and (
-                cold_turns(request.families, pas._n_fits, COLD_EVERY) if COLD_IN_TURN
-                else pas._n_fits % COLD_EVERY == 0))
+            # COLD_EVERY-th fit, and every fit with update=False, also starts from the
+            # data, so no fit stays trapped in the basin of another sample
+            cold = not update or (family is None and pas._n_fits % COLD_EVERY == 0)
         choice = request.hf_marginal or self.hf_marginal
-        far = _far_behind(pas, request, choice) if request.starts is None else set()
-        if far and pas._n_fits % COLD_EVERY == COLD_EVERY // 2:  # their turn, from the data too
-            cold, far = (cold if cold is True else far | set(cold or ())), set()
-        if far:
-            only = {k for k in starts if k[0] not in far}
         u_pairs = u_cond[pairs.position]
         every, joint = fit_hf_candidates(u_pairs, pairs.hf, request.families, choice,
                                          starts=starts, location=self.hf_location,
                                          cold=cold or not starts, only=only)
-        if far:
-            every, joint = self._add_unrefitted(pas, every, joint, far, u_pairs, pairs.hf, choice)
         pas._last_joint = every
         if update and not request.one_family:
             pas._joint = every
             pas._n_fits += 1
         return joint_candidates(joint, cond_lf, u_cond, keep)
-
-    def _add_unrefitted(self, pas, every, joint, far, u, h, choice):
-        """``(every, joint)`` of :meth:`fit` with the families ``far`` behind added not
-        refitted, or refitted where that cannot be (:data:`PRUNE_AIC`)."""
-        old = {k: f for k, f in pas._joint.items() if k[0] in far}
-        stale = {k: unrefitted(f, u, h, location=self.hf_location) for k, f in old.items()}
-        eligible = [f.copula.aic for f in joint.values()
-                    if not (pas.exclude_at_bound and f.copula.at_bound)]
-        if (any(f is None for f in stale.values()) or not eligible
-                or min(f.copula.aic for f in stale.values()) <= min(eligible) + PRUNE_AIC / 2):
-            stale, _ = fit_hf_candidates(u, h, sorted(far), choice, starts=old,
-                                         location=self.hf_location, cold=False, only=set(old))
-        every = every | stale
-        return every, best_per_family(every)
 
 
 @dataclass(frozen=True)
@@ -240,20 +185,6 @@ class SelectedSample:
                                             marginals_from=self.marginals_from)
         n0 = conditioning_set(lfset.lf, lf_sample.min()).size
         return CandidateFits(fits, dict.fromkeys(fits, f_h), f_l.cdf, n0, keep)
-
-
-def _far_behind(pas, request: FitRequest, choice: str) -> set:
-    """The families the study's fit (not a band's) leaves unrefitted (:data:`PRUNE_AIC`)."""
-    if (PRUNE_AIC is None or not request.update or request.one_family or not pas._joint
-            or choice in (MIXTURE, "all")):
-        return set()
-    eligible = [f.copula.aic for f in pas._joint.values()
-                if not (pas.exclude_at_bound and f.copula.at_bound)]
-    if not eligible:
-        return set()
-    limit = min(eligible) + PRUNE_AIC
-    near = {name for (name, _), f in pas._joint.items() if f.copula.aic <= limit}
-    return ({name for name, _ in pas._joint} - near - {pas.family_}) & set(request.families)
 
 
 ESTIMATORS = {e.name: e for e in (ConditionalLikelihood, SelectedSample)}

@@ -32,8 +32,8 @@ class PeakUniforms:
     ``r``) are kept only once asked for (``impacts=True``), since only the impact
     model reads them, and as float32 (60 MB instead of 120 at 1.5 M peaks and
     ``z = 10``): :meth:`q_for` gives values that decide ``q < p`` exactly as the
-    float64 stream does.  ``r`` stays float64: rounded to float32 it moves the
-    MPM by up to 1.7e-7 (measured at 150 k peaks).  ``common=False``:
+    float64 stream does.  ``r`` stays float64: rounded to float32 it would move
+    the MPM.  ``common=False``:
     new uniforms from the caller's ``rng`` on every call (the paper).
     """
 

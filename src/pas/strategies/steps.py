@@ -16,8 +16,8 @@ from ..models.copulas import CopulaFit, conditional_quantile
 from ..models.marginals import fit_marginal
 from .base import band95
 
-__all__ = ["EPS", "FittedModel", "SharedOnCopy", "remove_outliers", "conditioning_set", "draw_conditional_hf", "fit_marginals",
-           "hf_distribution", "cold_turns"]
+__all__ = ["EPS", "FittedModel", "SharedOnCopy", "remove_outliers", "conditioning_set",
+           "draw_conditional_hf", "fit_marginals", "hf_distribution"]
 
 EPS = 1e-6
 
@@ -90,23 +90,8 @@ def fit_marginals(lf, hf, keep, *, upper_tail: bool, marginals_from: str = "all"
     conditioning level ``l0``.
     """
     m_lf, m_hf = (lf, hf) if marginals_from == "all" else (lf[keep], hf[keep])
-    return fit_marginal(m_lf, upper_tail=upper_tail), fit_marginal(m_hf, upper_tail=upper_tail), m_lf
-
-
-def cold_turns(families, n_fits: int, every: int) -> tuple:
-    """The families whose fit number ``n_fits`` of a study also starts from the data.
-
-    Each family once in ``every`` fits, their turns spread evenly over the
-    ``every`` fits (family ``i`` of ``k`` when ``n_fits + ⌊i·every/k⌋`` is a
-    multiple of ``every``), so that no iteration refits every family cold.
-
-    Examples
-    --------
-    >>> [cold_turns(("a", "b"), n, 4) for n in range(4)]
-    [('a',), (), ('b',), ()]
-    """
-    k = max(len(families), 1)
-    return tuple(f for i, f in enumerate(families) if (n_fits + i * every // k) % every == 0)
+    return (fit_marginal(m_lf, upper_tail=upper_tail), fit_marginal(m_hf, upper_tail=upper_tail),
+            m_lf)
 
 
 def hf_distribution(h_draws, n_waves: int):

@@ -1,4 +1,4 @@
-"""Long LF records: the top of every realisation without drawing the rest (issue 27).
+"""Long LF records: the top of every realisation without drawing the rest.
 
 Step 9 draws ``z`` realisations of ``n0`` conditional HF values (Eq. 7), and an
 iteration reads only the top of each: the MPM at ``P_exp`` and the stopping
@@ -45,11 +45,8 @@ from .base import Prediction, band95, read_only
 from .steps import EPS, draw_conditional_hf, hf_distribution
 from .stopping import range_grid
 
-__all__ = ["TOP_DRAWS", "top_draws", "full_distribution", "TailPrediction", "predict_from_top",
+__all__ = ["top_draws", "full_distribution", "TailPrediction", "predict_from_top",
            "mpm_from_top", "whole_draws"]
-
-TOP_DRAWS = True
-"""False: every iteration draws all ``z × n0`` values (the path before issue 27)."""
 
 MARGIN = 1e-3
 """The candidates' level lies this much lower, relative in ``1 − v``, than the level checked."""
@@ -263,9 +260,6 @@ def predict_from_top(model, uniforms, lfset, rng, record=None, columns=None) -> 
     (:class:`~pas.strategies.random_numbers.PeakUniforms`): the top that the MPM and
     the stopping range read, the rest when read (:class:`TailPrediction`)."""
     r, q, r_max, again = uniforms.replayable(model.n0, rng, model.impact is not None)
-    if not TOP_DRAWS:
-        return Prediction.read_at(lfset.p_exp, *hf_distribution(
-            _every_draw(model, r, q, uniforms), lfset.n_waves), record, columns)
     k = order_statistics_read(range_grid(lfset.p_exp)[-1], lfset.n_waves, model.n0)
     top = top_draws(model, r, q, r_max, k, uniforms)
     if top is None:
@@ -280,7 +274,7 @@ def mpm_from_top(model, uniforms, lfset, rng) -> float:
     """The MPM of ``model`` (a band replicate's), from the top of each realisation."""
     r, q, r_max, _ = uniforms.replayable(model.n0, rng, model.impact is not None)
     k = order_statistics_read(lfset.p_exp, lfset.n_waves, model.n0)
-    top = top_draws(model, r, q, r_max, k, uniforms) if TOP_DRAWS else None
+    top = top_draws(model, r, q, r_max, k, uniforms)
     if top is None:
         top = _every_draw(model, r, q, uniforms)
     return mpm_of_realisations(top, lfset.n_waves, lfset.p_exp)

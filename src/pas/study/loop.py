@@ -103,8 +103,8 @@ def _exit_quickly() -> None:
     """After Ctrl-C: let the interpreter exit without its collections over the whole heap.
 
     Every result is stored when the interrupt propagates; what remains is the
-    exit, whose collections over the objects numpy, scipy and pandas made took
-    1.5–2.5 s on a loaded 2-core machine.  Freezing the heap at exit skips
+    exit, whose collections over the objects numpy, scipy and pandas made can
+    take seconds on a loaded machine.  Freezing the heap at exit skips
     them (a session that goes on, e.g. Jupyter, is not affected until it ends).
     """
     atexit.register(gc.freeze)

@@ -11,7 +11,7 @@ models, their physics, calibration and references are in
 HF model as a function of an episode
 ------------------------------------
 Both HF models can be evaluated on any short wave episode, e.g. a design
-wave (issue 12), from the non-linear relative wave elevation at the
+wave, from the non-linear relative wave elevation at the
 structure; :func:`relative_elevation_coefficients` gives it for a
 :class:`~pas.waves.LinearSea` and a second-order kernel.
 

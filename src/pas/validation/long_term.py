@@ -24,7 +24,7 @@ the HF model in every cell (:func:`cell_seed` keeps cells independent).
 The truth
 ---------
 The long-term exceedance per wave encounter (class-rule long-term
-statistics, e.g. IACS Rec. 34; the issue's ``Q``)::
+statistics, e.g. IACS Rec. 34)::
 
     Q(x) = Σ_s p_s ν_s Q_s(x) / Σ_s p_s ν_s
 

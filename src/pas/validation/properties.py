@@ -1,7 +1,7 @@
 """Data properties of a validation analogue, beside the paper's where it states them.
 
 What an analogue must share with the paper's data before any strategy is run
-on it (issue 11): the dependence on the pairs a copula sees (Kendall τ,
+on it: the dependence on the pairs a copula sees (Kendall τ,
 empirical λ_U and λ_L at q = 0.9, LF over the threshold and HF > 0), the share
 of *misses* (HF = 0 for an LF peak in the pool: over the LF threshold, or all
 peaks without one) among all pool events and among 50 events spread uniformly

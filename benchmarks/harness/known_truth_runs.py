@@ -1,4 +1,4 @@
-"""PAS run on the known-truth problems (:mod:`pas.validation.known_truth`) and scored.
+"""PAS run on the known-truth problems (:mod:`harness.known_truth`) and scored.
 
 :func:`run_one` runs one data set (the study of :func:`known_truth_study`) and scores
 its MPM error and U95 coverage,
@@ -18,8 +18,8 @@ from dataclasses import asdict
 import numpy as np
 import pandas as pd
 
-from ..api import make_study
-from ..study.flat import from_flat
+from pas.api import make_study
+from pas.study.flat import from_flat
 from .known_truth import TUNING_TYPES, Problem
 from .known_truth_held_out import FRESH_TYPES, HELD_OUT_TYPES
 

@@ -1,6 +1,6 @@
 """Held-out known-truth types: forms the tuning types lack, never used to choose settings.
 
-The tuning types (:mod:`pas.validation.known_truth`) draw HF loads from one of
+The tuning types (:mod:`harness.known_truth`) draw HF loads from one of
 the candidate copulas (or a log-normal regression), a Weibull, log-normal or
 two-Weibull HF law, misses with a probability ``p(u)`` that falls smoothly
 with the LF, and outliers that multiply a load by 3.  A setting chosen on
@@ -28,7 +28,7 @@ generalises, with (:data:`HELD_OUT_TYPES`)
   scatter grows with the LF.
 
 A second round (:data:`FRESH_TYPES`, ``ho2-…``; laws in
-:mod:`pas.validation.known_truth_fresh`) was written after the first round had
+:mod:`harness.known_truth_fresh`) was written after the first round had
 informed the diagnosis of the band, and is never used for any choice: Student-t
 noise on a power law, a threshold on a hidden variable, a saturating load,
 outliers only above the LF's 95 % level (``"gated"``), and a copula mixture

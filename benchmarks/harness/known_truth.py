@@ -26,7 +26,7 @@ load drawn from a known model.  The *tuning* types (:data:`TUNING_TYPES`,
   threshold, as the basin's 100 kN): misses that cluster where loads are
   small.  It leaves the truth unchanged while the MPM is above the floor.
 
-The *held-out* types (:mod:`pas.validation.known_truth_held_out`) have forms
+The *held-out* types (:mod:`harness.known_truth_held_out`) have forms
 the tuning types lack and are never used to choose settings.
 
 Truth, exact given the LF peaks of the data set: the MPM ``H`` solves

@@ -14,7 +14,7 @@ from pathlib import Path
 
 import pandas as pd
 
-from .registry import CASE_IDS, get_case
+from pas.validation.registry import CASE_IDS, get_case
 
 STRATEGY_LABELS = {"pas": "PAS", "pas-paper": "PAS paper preset", "as": "AS",
                    "rcw": "RCW", "mler": "MLER"}

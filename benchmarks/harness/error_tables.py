@@ -96,7 +96,7 @@ def has_results(table: str) -> bool:
 
 
 def write_tables(page, blocks: dict[str, str], tag: str) -> None:
-    """:func:`~pas.validation.result_tables.rewrite_page` with the tables that hold results;
+    """:func:`~harness.result_tables.rewrite_page` with the tables that hold results;
     those without any are left in the page as they were, and said so."""
     empty = [name for name, table in blocks.items() if not has_results(table)]
     kept = {name: table for name, table in blocks.items() if name not in empty}

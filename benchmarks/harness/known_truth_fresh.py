@@ -1,6 +1,6 @@
 """Laws of the second round of held-out known-truth types (``ho2-…``), never used for any choice.
 
-The first round of held-out types (:mod:`pas.validation.known_truth_held_out`)
+The first round of held-out types (:mod:`harness.known_truth_held_out`)
 informed the diagnosis of the band's misses (``docs/explanation/known-truth.md``), so a
 mend chosen after it could have learned from them.  The second round adds
 forms that neither the tuning types nor the first round have, written before
@@ -17,12 +17,12 @@ any mend was measured on them:
   H_max))`` of a Weibull ``X``: a load that saturates (an HF law with an upper
   end, which no candidate marginal has);
 * :class:`ScaledLaw` — a law's loads multiplied by a factor, the outliers of
-  ``"gated"`` (:func:`pas.validation.known_truth_held_out.outlier_share`): only
+  ``"gated"`` (:func:`harness.known_truth_held_out.outlier_share`): only
   events above the LF's 95 % level can carry them.
 
 The dependence with a negative part (half Clayton rotated by 90°, τ −0.4;
 half Gumbel, τ 0.75) is a copula mixture of the first round's kind, built
-in :mod:`pas.validation.known_truth_held_out`.  Every law gives ``draw`` and
+in :mod:`harness.known_truth_held_out`.  Every law gives ``draw`` and
 the conditional survival function ``sf`` in closed form.
 """
 
