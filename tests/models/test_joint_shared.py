@@ -11,7 +11,7 @@ from pas.models.copula_densities import (
     logh_grad,
     scores,
 )
-from pas.models.joint import fit_joint, fit_joint_all, joint_objective, unrefitted
+from pas.models.joint import fit_joint, fit_joint_all
 
 RNG = np.random.default_rng(5)
 U, V = RNG.uniform(0.002, 0.998, 300), RNG.uniform(0.002, 0.998, 300)
@@ -59,15 +59,3 @@ def test_fitting_the_families_together_gives_each_familys_own_fit():
         assert fit.copula.loglik == pytest.approx(alone.copula.loglik, rel=1e-12)
 
 
-def test_an_unrefitted_fit_is_its_old_values_on_the_new_pairs():
-    u, h = _pairs()
-    old = fit_joint("gumbel", u[:-5], h[:-5])
-    stale = unrefitted(old, u, h)
-    negloglik, _, _ = joint_objective("gumbel", u, h)
-    assert stale.copula.loglik == pytest.approx(-negloglik(old.x), rel=1e-12)
-    np.testing.assert_array_equal(stale.x, old.x)
-    refitted = fit_joint("gumbel", u, h, start=old.x, cold=False)
-    assert stale.copula.aic >= refitted.copula.aic - 1e-9
-    assert stale.copula.npars == refitted.copula.npars
-    # a new smallest load far below the old ones moves the location bound past the old value
-    assert unrefitted(old, np.r_[0.4, u], np.r_[0.01, h]) is None
