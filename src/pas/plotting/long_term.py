@@ -1,8 +1,9 @@
 """Figures of a long-term analysis (:func:`pas.run_long_term`): ``plot_*(..., ax=None)``.
 
 * :func:`plot_long_term_distribution` — the long-term exceedance per wave
-  encounter with its U95 band, the design value at ``p_exceed`` and, when
-  given, the truth;
+  encounter with its U95 band where the level is a PAS estimate (the part
+  read off the LF-only proxy drawn apart, with the range down to the level without it),
+  the design value at ``p_exceed`` and, when given, the truth;
 * :func:`plot_long_term_allocation` — the sea states over two descriptive
   columns of their table (Hs–Tp by default): colour the share of the
   exceedance at the value, the number the HF evaluations each was given;
@@ -26,6 +27,12 @@ __all__ = ["plot_long_term_distribution", "plot_long_term_allocation",
 def plot_long_term_distribution(result, *, truth=None, unit=None, ax=None):
     """The long-term exceedance per encounter: level against probability, U95 shaded.
 
+    The band is drawn only where the level is a PAS estimate.  Where the level
+    leans on the LF-only proxy below a sea state's PAS range (``from_proxy`` in
+    ``result.distribution``, mostly at probabilities well above ``p_exceed``),
+    the curve is dashed grey and the range down to the level without the proxy's
+    part is hatched instead: a U95 there would look tight and mean nothing.
+
     Parameters
     ----------
     result : LongTermResult
@@ -38,9 +45,21 @@ def plot_long_term_distribution(result, *, truth=None, unit=None, ax=None):
     fig, ax = _new_axes(ax)
     d = result.distribution
     q = d["exceedance_probability"].to_numpy(dtype=float)
+    mean = d["h_mean"].to_numpy(dtype=float)
+    proxy = (d["from_proxy"].to_numpy(dtype=bool) if "from_proxy" in d.columns
+             else np.zeros(len(d), dtype=bool))
+    pas_part = ~proxy
     ax.fill_between(q, d["h_low"].to_numpy(dtype=float), d["h_high"].to_numpy(dtype=float),
-                    color="C0", alpha=0.2, lw=0, label="U95 band")
-    ax.plot(q, d["h_mean"].to_numpy(dtype=float), "-", color="C0", label="PAS long-term")
+                    where=pas_part, color="C0", alpha=0.2, lw=0, label="U95 band")
+    ax.plot(q, np.where(pas_part, mean, np.nan), "-", color="C0", label="PAS long-term")
+    if proxy.any():
+        # the proxy part joins the PAS part at their common ends
+        joined = proxy | np.convolve(proxy, [1, 1, 1], mode="same").astype(bool)
+        ax.fill_between(q, d["proxy_low"].to_numpy(dtype=float), mean, where=proxy,
+                        color="0.6", alpha=0.25, lw=0, hatch="//",
+                        label="LF-proxy part: as low as without the proxy")
+        ax.plot(q, np.where(joined, mean, np.nan), "--", color="0.35",
+                label="LF-proxy part: read off the LF-only proxy (no U95)")
     lo, hi = result.band
     ax.errorbar([result.p_exceed], [result.value], yerr=[[result.value - lo], [hi - result.value]],
                 fmt="o", color="C0", mec="k", capsize=3,
