@@ -88,3 +88,22 @@ def test_distribution_draws_no_tight_band_where_the_level_is_an_lf_proxy(impact_
     # at p_exceed the band is drawn and holds the truth
     truth = problem.true_value(1e-3, problem.hf_impact)
     assert _covers(u95, 1e-3 * 0.99, truth)
+
+
+def test_convergence_scales_on_the_rounds_with_a_value(result):
+    # an impact load reads 0 until a PAS model reaches the level: those rounds must not
+    # squash the rest of the history against the top of the axis
+    from dataclasses import replace
+
+    h = result.history.copy()
+    first = h.index[:3]
+    h.loc[first, ["value", "low_sampling", "high_sampling"]] = 0.0
+    h.loc[first, ["low", "high", "halfwidth"]] = np.nan
+    fig, ax = plot_long_term_convergence(replace(result, history=h), unit="kN")
+    rest = h.iloc[3:]
+    low, high = ax.get_ylim()
+    assert low > 0.5 * rest["low_sampling"].min()
+    assert high >= rest["high_sampling"].max()
+    marks = [ln for ln in ax.get_lines() if "value 0" in ln.get_label()]
+    assert len(marks) == 1 and list(marks[0].get_xdata()) == h["n_hf"].iloc[:3].tolist()
+    assert ax.get_ylabel().endswith("[kN]")

@@ -122,7 +122,9 @@ def plot_long_term_convergence(result, *, truth=None, unit=None, ax=None):
 
     The band without the model bands is shaded every round; the full U95 is
     drawn where it was computed; with a precision target, ``value × (1 ±
-    precision)`` dotted and the forecast of the further HF it needs.
+    precision)`` dotted and the forecast of the further HF it needs.  Early
+    rounds whose value is 0 (no PAS model reaches the level yet) are marked on
+    the lower edge, and the axis is scaled on the rounds that have a value.
     """
     h = result.history
     if h is None or len(h) == 0:
@@ -149,6 +151,20 @@ def plot_long_term_convergence(result, *, truth=None, unit=None, ax=None):
     if truth is not None:
         ax.axhline(float(truth), color="C3", ls="--", lw=1.0,
                    label=f"truth {_fmt(float(truth), unit)}")
+    nothing = ~(value > 0)
+    if nothing.any() and not nothing.all():
+        # rounds before any PAS model reached the level read 0: drawn on the lower edge,
+        # the axis scaled on the rounds with a value so that these do not squash them
+        shown = ~nothing
+        ends = np.concatenate([value[shown], h["low_sampling"].to_numpy(float)[shown],
+                               h["high_sampling"].to_numpy(float)[shown]])
+        ends = ends[np.isfinite(ends)]
+        pad = 0.08 * (ends.max() - ends.min() or abs(ends.max()) or 1.0)
+        bottom = ends.min() - pad
+        ax.set_ylim(bottom, ends.max() + pad)
+        ax.plot(n[nothing], np.full(int(nothing.sum()), bottom), "v", ms=6, mfc="none",
+                color="0.4", clip_on=False, ls="none",
+                label="value 0: no PAS model reaches the level yet")
     ax.set_xlabel("HF evaluations spent (all sea states)")
     ax.set_ylabel(_with_unit(f"value at p_exceed = {result.p_exceed:.3g}", unit))
     ax.grid(True, lw=0.3, alpha=0.5)
