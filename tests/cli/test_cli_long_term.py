@@ -136,6 +136,23 @@ def test_precision_and_figures_reach_the_output(problem):
     assert names == ["long_term_convergence.png", "long_term_distribution.png"]
 
 
+def test_unit_reaches_the_figures(problem, monkeypatch):
+    from matplotlib.figure import Figure
+
+    labels, save = [], Figure.savefig
+
+    def record(fig, *args, **kwargs):
+        labels.extend(ax.get_ylabel() for ax in fig.axes if ax.get_ylabel())
+        return save(fig, *args, **kwargs)
+
+    monkeypatch.setattr(Figure, "savefig", record)
+    out = problem / "out"
+    argv = _argv(problem, "--p-exceed", "1e-4", "--max-hf", "8", "--seed", "1", "--no-store",
+                 "--precision", "10%", "--figures", "--unit", "kN", "--out", str(out))
+    assert main(argv) == 0
+    assert len(labels) == 2 and all(label.endswith("[kN]") for label in labels)
+
+
 def test_a_bad_precision_exits_2(problem, capsys):
     with pytest.raises(SystemExit) as stop:
         main(_argv(problem, "--p-exceed", "1e-4", "--precision", "150%"))

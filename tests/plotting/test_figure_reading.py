@@ -201,8 +201,8 @@ def test_aic_panel_cuts_far_worse_fits_and_says_so(converged):
 def test_distribution_says_the_samples_sit_at_their_lf_exceedance(converged):
     fig, ax = plot_distribution(converged)
     n = len(converged.pairs)
-    label = f"PAS ({converged.family}): HF loads of the {n} true-positive events, at their LF " \
-            "exceedance $d$"
+    label = f"PAS ({converged.family}): HF loads of the {n} evaluated events with a load, " \
+            "each at its LF exceedance $d$"
     assert label in _legend_texts(ax)
     marks = [ln for ln in ax.get_lines() if ln.get_label() == label][0]
     np.testing.assert_allclose(marks.get_xdata(), converged.pairs["d"], rtol=1e-12)

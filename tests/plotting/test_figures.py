@@ -116,7 +116,7 @@ def test_distribution(problem, result, tmp_path):
     assert ax.get_xscale() == "log" and ax.xaxis_inverted()
     assert ax.get_ylabel() == "HF load [kN]"
     texts = _legend_texts(ax)
-    for needle in ("mean", "U95", "LF indicator", "at their LF exceedance", "truth", "P_{exp}",
+    for needle in ("mean", "U95", "LF indicator", "at its LF exceedance", "truth", "P_{exp}",
                    "MPM"):
         assert any(needle in t for t in texts), needle
     mean_line = ax.get_lines()[0]
@@ -138,9 +138,10 @@ def test_scatter_plain_and_with_result(problem, result, tmp_path):
     lf, hf = problem
     fig, ax = plot_scatter(lf, hf, lf_unit="m", unit="m")
     _save(fig, tmp_path, "scatter_plain")
-    assert "τ = " in ax.get_title() and "λ_U" in ax.get_title()
     tau = kendall_tau(lf, hf)
-    assert f"τ = {tau:.2f}" in ax.get_title()
+    assert f"rank correlation (Kendall) {tau:.2f}" in ax.get_title()
+    assert "tail dependence beyond the 90% quantile: upper " in ax.get_title()
+    assert not any(sym in ax.get_title() for sym in ("τ", "λ", "$"))  # words, not symbols
     assert ax.get_xlabel() == "LF indicator peak [m]"
 
     fig, ax = plot_scatter(lf, hf, result=result, lf_unit="m", unit="m")
@@ -230,15 +231,31 @@ def test_metrics(tmp_path):
         plot_metrics(table.drop(columns="M3"))
 
 
-def test_distribution_draws_the_lf_curve_on_its_own_axis(problem, result):
+def _overlap(a, b):
+    """True when the drawn areas of two Axes overlap (in figure pixels)."""
+    a, b = a.get_window_extent(), b.get_window_extent()
+    return a.x0 < b.x1 and b.x0 < a.x1 and a.y0 < b.y1 and b.y0 < a.y1
+
+
+@pytest.mark.parametrize("own_figure", [True, False])
+def test_distribution_draws_the_lf_curve_in_its_own_panel(problem, result, own_figure):
+    # the LF indicator (m) and the HF load (kN) are two quantities: never one plot area with
+    # two value axes, and no LF curve drawn over the HF curve
     lf, _ = problem
     lfset = pas.LFSet(lf, n_waves=NW, p_exp=P)
-    fig, ax = plot_distribution(result, lf=lfset, unit="kN", lf_unit="m")
-    assert not any(ln.get_label() == "LF indicator" for ln in ax.get_lines())
-    twin = [a for a in fig.axes if a is not ax and a.bbox.bounds == ax.bbox.bounds]
-    assert len(twin) == 1 and twin[0].get_ylabel() == "LF indicator [m]"
-    np.testing.assert_allclose(twin[0].get_lines()[0].get_ydata(), lfset.lf)
-    assert "LF indicator" in _legend_texts(ax)  # one legend for both axes
+    ax = None if own_figure else plt.subplots(figsize=(7, 6), layout="constrained")[1]
+    fig, ax = plot_distribution(result, lf=lfset, unit="kN", lf_unit="m", ax=ax)
+    fig.canvas.draw()
+    assert not any(ln.get_label().startswith("LF indicator") for ln in ax.get_lines())
+    assert ax.get_ylabel() == "HF load [kN]"
+    others = [a for a in fig.axes if a is not ax] + list(ax.child_axes)
+    assert len(others) == 1 and others[0].get_ylabel() == "LF indicator [m]"
+    assert not _overlap(ax, others[0])
+    np.testing.assert_allclose(others[0].get_lines()[0].get_ydata(), lfset.lf)
+    assert others[0].get_xscale() == "log" and others[0].xaxis_inverted()
+    texts = _legend_texts(ax)
+    assert any(t.startswith("LF indicator") for t in texts)  # one legend for both panels
+    assert not any("Eq." in t or "true-positive" in t for t in texts)
     # the same unit shares the value axis
     fig, ax = plot_distribution(result, lf=lfset, unit="m", lf_unit="m")
     assert any(ln.get_label() == "LF indicator" for ln in ax.get_lines()) and len(fig.axes) == 1
@@ -267,10 +284,10 @@ def test_scatter_reports_tail_dependence_only_from_enough_points(problem):
     lf, hf = problem
     fig, ax = plot_scatter(lf[:26], hf[:26])
     title = ax.get_title()
-    assert "λ_U" in title and "not estimated: 2 of 26 pairs beyond q = 0.9" in title
+    assert "tail dependence not estimated: 2 of 26 pairs beyond the 90% quantile" in title
     assert "= 1.00" not in title and "= 0.00" not in title
     fig, ax = plot_scatter(lf[:100], hf[:100])
-    assert "$λ_U$ = " in ax.get_title()
+    assert "upper " in ax.get_title() and "lower " in ax.get_title()
 
 
 def test_aic_says_why_the_lowest_aic_was_not_selected(result):

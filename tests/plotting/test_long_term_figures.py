@@ -55,3 +55,55 @@ def test_save_writes_the_three_figures(result, tmp_path):
     assert [p.name for p in paths] == ["long_term_distribution.png", "long_term_allocation.png",
                                        "long_term_convergence.png"]
     assert all(p.stat().st_size > 1000 for p in paths)
+
+
+@pytest.fixture(scope="module")
+def impact_result():
+    table = problem.table(n_waves=2000).assign(hs=4 * problem.SIGMA, tp=1.3 * problem.PERIOD)
+    return pas.run_long_term(table, problem.lf_peaks(1, n_waves=2000),
+                             problem.Oracle(problem.hf_impact), p_exceed=1e-3, max_hf=12, seed=4,
+                             precision=0.05, model_band=False,
+                             strategy=pas.PAS(band=pas.ModelBand(n_bootstrap=0)))
+
+
+def _covers(collection, q, level):
+    """True when one of the polygons of a fill_between holds the point (q, level)."""
+    from matplotlib.path import Path
+
+    return any(Path(p.vertices).contains_point((q, level), radius=1e-9)
+               for p in collection.get_paths())
+
+
+def test_distribution_draws_no_tight_band_where_the_level_is_an_lf_proxy(impact_result):
+    # far above p_exceed the impact load's true level is 0 (no LF peak reaches the impact
+    # level that often): a U95 band there must not claim a tight range above it
+    q_far = 0.1
+    assert problem.true_lf_level(q_far) < problem.IMPACT_LF  # so the true level there is 0
+    fig, ax = plot_long_term_distribution(impact_result, unit="kN")
+    fills = {c.get_label(): c for c in ax.collections}
+    u95 = fills["U95 band"]
+    assert not any(_covers(u95, q_far, y) for y in np.linspace(0.5, 30.0, 60))
+    proxy = [c for label, c in fills.items() if "LF-proxy" in label]
+    assert proxy and _covers(proxy[0], q_far, 0.0)
+    # at p_exceed the band is drawn and holds the truth
+    truth = problem.true_value(1e-3, problem.hf_impact)
+    assert _covers(u95, 1e-3 * 0.99, truth)
+
+
+def test_convergence_scales_on_the_rounds_with_a_value(result):
+    # an impact load reads 0 until a PAS model reaches the level: those rounds must not
+    # squash the rest of the history against the top of the axis
+    from dataclasses import replace
+
+    h = result.history.copy()
+    first = h.index[:3]
+    h.loc[first, ["value", "low_sampling", "high_sampling"]] = 0.0
+    h.loc[first, ["low", "high", "halfwidth"]] = np.nan
+    fig, ax = plot_long_term_convergence(replace(result, history=h), unit="kN")
+    rest = h.iloc[3:]
+    low, high = ax.get_ylim()
+    assert low > 0.5 * rest["low_sampling"].min()
+    assert high >= rest["high_sampling"].max()
+    marks = [ln for ln in ax.get_lines() if "value 0" in ln.get_label()]
+    assert len(marks) == 1 and list(marks[0].get_xdata()) == h["n_hf"].iloc[:3].tolist()
+    assert ax.get_ylabel().endswith("[kN]")

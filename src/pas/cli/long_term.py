@@ -81,6 +81,7 @@ def add_parser(sub) -> None:
     p.add_argument("--figures", action="store_true",
                    help="draw the long-term figures into OUT/figures/ (distribution, "
                         "allocation over the first two descriptive columns, convergence)")
+    p.add_argument("--unit", help="unit of the HF load, for the figures (e.g. kN)")
     p.add_argument("--seed", type=int, help="random seed (default: drawn and reported)")
     p.add_argument("--study", metavar="FILE",
                    help="the analysis' store (default OUT/long-term.sqlite)")
@@ -196,7 +197,7 @@ def run(args) -> int:
     if args.figures:
         from ..plotting.long_term import save_long_term_figures
 
-        save_long_term_figures(result, out / "figures")
+        save_long_term_figures(result, out / "figures", unit=args.unit)
     if args.json:
         print(text)
     else:

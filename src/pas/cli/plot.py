@@ -63,6 +63,7 @@ def load_result(path):
 
 def _draw(kind, result, summary, lf_curve, args):
     from ..plotting import figures
+    from ..plotting._common import current_rows
 
     inputs = summary.get("inputs") or {}
     unit = args.unit if args.unit is not None else inputs.get("unit")
@@ -72,7 +73,7 @@ def _draw(kind, result, summary, lf_curve, args):
     if kind == "distribution":
         return figures.plot_distribution(result, lf=lf_curve, unit=unit, lf_unit=lf_unit)[0]
     if kind == "scatter":
-        h = result.history
+        h = current_rows(result.history)  # a replaced result is no evaluated event
         ok = h["status"].isin(["true_positive", "false_positive"]).to_numpy()
         lf = h["lf"].to_numpy(dtype=float)[ok]
         hf = h["hf"].to_numpy(dtype=float)[ok]

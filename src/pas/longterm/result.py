@@ -25,7 +25,7 @@ import pandas as pd
 from ..strategies.forecast import relative_half_width
 from ..study import precision, stop_text
 from .allocation import curves_of, proxy_ratios, shares
-from .combination import extension_bounds, value_and_band
+from .combination import extension_bounds, level_at, value_and_band
 from .inputs import REQUIRED_COLUMNS
 
 __all__ = ["LongTermResult", "CONTRIBUTION_COLUMNS"]
@@ -47,7 +47,11 @@ class LongTermResult:
         HF evaluations of all sea states (false positives included, failures not).
     distribution : pandas.DataFrame
         The long-term exceedance: ``exceedance_probability``, ``h_mean``,
-        ``h_low``, ``h_high`` (the value at each probability and its band).
+        ``h_low``, ``h_high`` (the value at each probability and its band),
+        ``proxy_share`` (the share of the exceedance at the level read off the
+        LF-only proxy), ``from_proxy`` (that share above 5 %: the level leans
+        on the proxy there and the band says nothing about that part) and
+        ``proxy_low`` (the level with the proxy's part taken out).
     contributions : pandas.DataFrame
         One row per sea state: ``sea_state``, ``probability``, ``weight``
         (``p_s ν_s / Σ p ν``), ``share`` of the exceedance at the value,
@@ -132,6 +136,7 @@ class LongTermResult:
         value, low, high = value_and_band(triples, weights, p, start)
         distribution = pd.DataFrame(levels, columns=["h_mean", "h_low", "h_high"])
         distribution.insert(0, "exceedance_probability", _probabilities(p))
+        _mark_proxy(distribution, [t[1] for t in triples], weights, start)
         share = shares([t[1] for t in triples], weights, value) if np.isfinite(value) else \
             np.zeros(len(states))
         rows = []
@@ -232,6 +237,40 @@ def _described(contributions, table):
 
 def _model(result):
     return None if result is None else result.mpm_band_model
+
+
+PROXY_SHARE_LIMIT = 0.05
+"""Share of the exceedance at a level read off the LF-only proxy above which the level is
+marked ``from_proxy``: the U95 band there covers the PAS part only."""
+
+
+class _NoExceedance:
+    def exceedance(self, x):
+        return np.zeros_like(np.atleast_1d(np.asarray(x, dtype=float)))
+
+
+def _mark_proxy(distribution, curves, weights, start) -> None:
+    """Add ``proxy_share`` (the share of the exceedance at each level read off the LF-only
+    proxy: a sea state without a PAS model, or below its PAS range), ``from_proxy`` (that
+    share above :data:`PROXY_SHARE_LIMIT`) and ``proxy_low`` (the level with the proxy's part
+    taken out: what the PAS parts alone bound it to, 0 when they never reach the
+    probability)."""
+    w = np.asarray(weights, dtype=float)
+    share = []
+    for h in distribution["h_mean"].to_numpy(dtype=float):
+        if not np.isfinite(h):
+            share.append(np.nan)
+            continue
+        parts = np.array([wi * float(c.exceedance(h)[0]) for c, wi in zip(curves, w)])
+        proxy = np.array([_read_off(c, h) in ("proxy", "lf", "lf tail") for c in curves])
+        total = parts.sum()
+        share.append(float(parts[proxy].sum() / total) if total > 0 else 0.0)
+    without = [_NoExceedance() if c.is_proxy else c.with_below("low") for c in curves]
+    low = np.array([level_at(without, w, q, start)
+                    for q in distribution["exceedance_probability"]], dtype=float)
+    distribution["proxy_share"] = share
+    distribution["from_proxy"] = distribution["proxy_share"].to_numpy(float) > PROXY_SHARE_LIMIT
+    distribution["proxy_low"] = np.where(np.isnan(low), 0.0, low)
 
 
 def _probabilities(p) -> np.ndarray:

@@ -43,8 +43,21 @@ def _history(result) -> pd.DataFrame:
     return hist
 
 
+def current_rows(hist: pd.DataFrame) -> pd.DataFrame:
+    """The rows that still count: a result replaced later (``tell --replace``, a later row of
+    the same event) is left out, so each evaluated event appears once, with its last value."""
+    key = next((c for c in ("position", "event_id", "event_index") if c in hist.columns), None)
+    if key is None or "replaced_hf" not in hist.columns:
+        return hist
+    ids = hist[key]
+    return hist[~(ids.notna() & ids.duplicated(keep="last")).to_numpy()]
+
+
 def _fitted(hist: pd.DataFrame) -> pd.DataFrame:
-    return hist[pd.to_numeric(hist["mpm"], errors="coerce").notna()]
+    """The fitted rows, one per HF count: a replacement's refit stands for the fit it redid."""
+    hist = current_rows(hist)
+    fitted = hist[pd.to_numeric(hist["mpm"], errors="coerce").notna()]
+    return fitted[~fitted["n_hf"].duplicated(keep="last").to_numpy()]
 
 
 def _is_design(result) -> bool:

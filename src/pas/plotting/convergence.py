@@ -55,7 +55,8 @@ def plot_mpm_convergence(result, *, truth=None, ax=None, label=None, unit=None,
         Axes to draw on; a new figure when omitted.
     label : str, optional
         Legend name of this result (default: strategy and final copula, e.g.
-        ``"PAS (gumbel)"``); use it when composing several results.
+        ``"PAS (gumbel)"``, or the strategy alone when the copula family changed
+        during the study); use it when composing several results.
     unit : str, optional
         Unit of the HF load for the axis label (e.g. ``"m"``, ``"kN"``).
     quantity : str, default "MPM"
@@ -73,7 +74,9 @@ def plot_mpm_convergence(result, *, truth=None, ax=None, label=None, unit=None,
     The x axis counts HF evaluations ``n_c`` (false positives included,
     failed calls not).  The shaded band is ``mpm_low``–``mpm_high`` of each
     fitted iteration: the sampling part of the U95 (the paper's z-draw band,
-    Eq. 10); the error bar at the last iteration is the reported U95
+    Eq. 10); when the copula family changed during the study, each family has
+    its own marker shape along the line, named in the legend with the HF
+    counts it was used at; the error bar at the last iteration is the reported U95
     (:attr:`ScreeningResult.mpm_band <pas.study.result.ScreeningResult.mpm_band>`,
     sampling and model parts together).  False positives (HF = 0)
     are marked at the MPM of the iteration they interrupted; the
@@ -111,9 +114,15 @@ def plot_mpm_convergence(result, *, truth=None, ax=None, label=None, unit=None,
         return _finish_convergence_axes(ax, quantity, unit, truth, own_figure)
     n = fitted["n_hf"].to_numpy(dtype=float)
     banded = _has_band(fitted, "mpm_low", "mpm_high")
-    c = _plot_with_band(ax, n, fitted, "mpm", "mpm_low", "mpm_high", "-o", name=name,
-                        label="MPM, shaded: sampling band (Eq. 10)" if banded else "MPM",
-                        color=color, ms=2.5, lw=1.3, band_label=None)
+    families = _families(fitted)
+    if len(families) > 1 and not label:
+        name = _strategy_name(result, str(getattr(result, "strategy", "") or "").upper())
+    c = _plot_with_band(ax, n, fitted, "mpm", "mpm_low", "mpm_high",
+                        "-" if len(families) > 1 else "-o", name=name,
+                        label="MPM, shaded: its sampling band (from the HF events drawn)"
+                        if banded else "MPM", color=color, ms=2.5, lw=1.3, band_label=None)
+    if len(families) > 1:
+        _family_marks(ax, fitted, families, c)
     lo, hi = (float(x) for x in getattr(result, "mpm_band", (np.nan, np.nan)))
     mpm = float(getattr(result, "mpm", np.nan))
     if np.isfinite(mpm) and np.isfinite(lo) and np.isfinite(hi):
@@ -147,6 +156,40 @@ def plot_mpm_convergence(result, *, truth=None, ax=None, label=None, unit=None,
         if own_figure:
             ax.set_title(stop, color=_FP_COLOR, fontsize=10)
     return _finish_convergence_axes(ax, quantity, unit, truth, own_figure)
+
+
+_FAMILY_MARKERS = ("o", "s", "D", "^", "v", "P", "X")
+
+
+def _families(fitted) -> list:
+    """The copula families of the fitted rows, in the order they were first selected."""
+    if "family" not in fitted.columns:
+        return []
+    return list(dict.fromkeys(f for f in fitted["family"] if isinstance(f, str) and f))
+
+
+def _family_marks(ax, fitted, families, color):
+    """A marker shape per copula family at the MPM of each iteration that used it, with the
+    iterations it spans in the legend: where the model changed family shows on the line."""
+    n = fitted["n_hf"].to_numpy(dtype=float)
+    mpm = fitted["mpm"].to_numpy(dtype=float)
+    fam = fitted["family"].to_numpy(dtype=object)
+    for k, f in enumerate(families):
+        sel = fam == f
+        ax.plot(n[sel], mpm[sel], _FAMILY_MARKERS[k % len(_FAMILY_MARKERS)], ms=5, mfc="white",
+                mec=color, mew=1.1, ls="none",
+                label=f"{f} copula ({_spans(n[sel])} HF)")
+
+
+def _spans(n) -> str:
+    """``4–7, 9`` for HF counts 4, 5, 6, 7, 9 (consecutive fitted counts joined)."""
+    n = [int(v) for v in n]
+    runs, start = [], n[0]
+    for a, b in zip(n, n[1:] + [None]):
+        if b is None or b != a + 1:
+            runs.append(f"{start}" if start == a else f"{start}–{a}")
+            start = b
+    return ", ".join(runs)
 
 
 def _precision_marks(ax, result, fitted, target, color, name):

@@ -70,9 +70,9 @@ def plot_distribution(result, *, lf=None, truth=None, ax=None, label=None, unit=
         ``h_low``, ``h_high``), ``result.pairs``, ``result.p_exp`` and
         ``result.mpm``/``mpm_band``.
     lf : (d, l) tuple of arrays or LFSet, optional
-        The LF indicator distribution to draw for reference, on a second
-        value axis on the right (it is another quantity in another unit)
-        unless ``lf_unit`` equals ``unit``.
+        The LF indicator distribution to draw for reference, in its own
+        panel above the HF one (same exceedance axis; it is another quantity
+        in another unit) unless ``lf_unit`` equals ``unit``.
     truth : (d, h) tuple of arrays, optional
         The true HF exceedance distribution (e.g. from a brute-force HF
         Monte-Carlo run).
@@ -106,7 +106,7 @@ def plot_distribution(result, *, lf=None, truth=None, ax=None, label=None, unit=
     The exceedance axis is logarithmic and reversed, so rarer events lie to
     the right; ``P_exp`` is a vertical line.  The shaded band is the sampling
     band of the mean distribution (``h* ± 1.96 σ`` over the z conditional
-    draws, Eq. 10).  The MPM marker carries the one reported U95
+    draws, Eq. 10; the legend says "sampling band").  The MPM marker carries the one reported U95
     (:attr:`ScreeningResult.mpm_band <pas.study.result.ScreeningResult.mpm_band>`)
     as a thin error bar, with its sampling part as a thick bar inside it.
     Where the mean distribution is exactly 0 although no evaluated event
@@ -137,7 +137,15 @@ def plot_distribution(result, *, lf=None, truth=None, ax=None, label=None, unit=
         return plot_design_points(result, ax=ax, label=label, unit=unit, quantity=quantity,
                                   color=color)
     own_figure = ax is None
-    fig, ax = _new_axes(ax)
+    lf_apart = lf is not None and not (lf_unit is not None and lf_unit == unit)
+    if own_figure and lf_apart:
+        import matplotlib.pyplot as plt
+
+        fig, (lf_panel, ax) = plt.subplots(2, 1, sharex=True, figsize=(7.0, 6.0),
+                                           height_ratios=(1.0, 2.6), layout="constrained")
+        ax._pas_lf_axes = lf_panel
+    else:
+        fig, ax = _new_axes(ax)
     name = _strategy_name(result, label)
     d = dist["exceedance_probability"].to_numpy(dtype=float)
     h = dist["h_mean"].to_numpy(dtype=float)
@@ -145,24 +153,27 @@ def plot_distribution(result, *, lf=None, truth=None, ax=None, label=None, unit=
     shown = dist.mask(pd.Series(clipped, index=dist.index), np.nan) if clipped.any() else dist
     banded = _has_band(shown, "h_low", "h_high")
     c = _plot_with_band(ax, d, shown, "h_mean", "h_low", "h_high", "-", name=name,
-                        label="mean $h^*(d)$" + (", shaded: sampling band (Eq. 10)" if banded
-                                                 else ""), color=color, lw=1.6, band_label=None)
+                        label="predicted mean" + (", shaded: its sampling band" if banded
+                                                  else ""), color=color, lw=1.6, band_label=None)
     if clipped.any():
         ax.plot([], [], " ", label=f"{name}: not drawn for d ≥ {d[clipped].min():.2g}: "
                                    "draws clipped at 0 (below the HF marginal)")
     if lf is not None:
         d_l, l_v = _lf_curve(lf)
-        lf_ax = ax if (lf_unit is not None and lf_unit == unit) else _lf_axes(ax)
-        lf_ax.plot(d_l, l_v, "-", color="0.5", lw=1.0, label=lf_label)
+        lf_ax = _lf_axes(ax) if lf_apart else ax
+        lf_ax.plot(d_l, l_v, "-", color="0.5", lw=1.0,
+                   label=lf_label + (" (upper panel)" if lf_apart else ""))
         if lf_ax is not ax:
-            lf_ax.set_ylabel(_with_unit(lf_label, lf_unit), color="0.4")
+            lf_ax.set_ylabel(_with_unit(lf_label, lf_unit))
+            lf_ax.grid(True, which="both", lw=0.3, alpha=0.5)
+            lf_ax.tick_params(axis="x", labelbottom=False)
     pairs = getattr(result, "pairs", None)
     if show_samples and isinstance(pairs, pd.DataFrame) and {"d", "hf"} <= set(pairs.columns) \
             and not pairs.empty:
         ax.plot(pairs["d"].to_numpy(dtype=float), pairs["hf"].to_numpy(dtype=float), "o", ms=4,
                 mfc="none", mew=1.0, color=c,
-                label=f"{name}: HF loads of the {len(pairs)} true-positive events, "
-                      "at their LF exceedance $d$")
+                label=f"{name}: HF loads of the {len(pairs)} evaluated events with a load, "
+                      "each at its LF exceedance $d$")
     if truth is not None:
         d_t, h_t = _truth_curve(truth)
         ax.plot(d_t, h_t, "k--", lw=1.2, label="truth (HF Monte-Carlo)")
@@ -200,13 +211,21 @@ def _clipped(result, h) -> np.ndarray:
 
 
 def _lf_axes(ax):
-    """The right-hand value axis for the LF curve, made once per Axes."""
-    twin = getattr(ax, "_pas_lf_axes", None)
-    if twin is None:
-        twin = ax.twinx()
-        twin.tick_params(axis="y", colors="0.4")
-        ax._pas_lf_axes = twin
-    return twin
+    """The LF curve's own panel above ``ax`` (same exceedance axis, its own value axis), made
+    once per Axes: the LF indicator is another quantity, so it never shares a value axis."""
+    panel = getattr(ax, "_pas_lf_axes", None)
+    if panel is None:
+        spec = ax.get_subplotspec()
+        if spec is not None:  # a grid cell: split it, the LF panel on top
+            from matplotlib.gridspec import GridSpecFromSubplotSpec
+
+            cells = GridSpecFromSubplotSpec(2, 1, subplot_spec=spec, height_ratios=(1.0, 2.6))
+            ax.set_subplotspec(cells[1])
+            panel = ax.figure.add_subplot(cells[0], sharex=ax)
+        else:
+            panel = ax.inset_axes([0.0, 1.06, 1.0, 0.38], sharex=ax)
+        ax._pas_lf_axes = panel
+    return panel
 
 
 def _mpm_marker(ax, result, p_exp, mpm, c, name, unit):
@@ -300,8 +319,9 @@ def plot_scatter(lf, hf, *, result=None, ax=None, lf_unit=None, unit=None,
 
     Notes
     -----
-    τ, λU and λL are computed on all the given pairs and shown in the
-    title; the legend sits under the x axis label.  λU and λL are fractions of the pairs beyond ``q_tail``;
+    τ (Kendall's rank correlation), λU and λL (upper and lower tail
+    dependence) are computed on all the given pairs and shown in the title
+    in words; the legend sits under the x axis label.  λU and λL are fractions of the pairs beyond ``q_tail``;
     with fewer than 10 such pairs (fewer than 100 pairs at q = 0.9) they
     would be 0, 0.5 or 1 from a handful of points and are not shown.  Large
     samples are rasterised in vector output.
@@ -321,10 +341,12 @@ def plot_scatter(lf, hf, *, result=None, ax=None, lf_unit=None, unit=None,
     n_tail = int(np.sum(np.arange(1, x.size + 1) / (x.size + 1) > q_tail))  # pairs with u > q
     if n_tail >= _MIN_TAIL_POINTS:
         lam_u, lam_l = empirical_tail_dependence(x, y, q=q_tail)
-        stats_txt = f"τ = {tau:.2f}, $λ_U$ = {lam_u:.2f}, $λ_L$ = {lam_l:.2f} (q = {q_tail:g})"
+        stats_txt = (f"rank correlation (Kendall) {tau:.2f}; tail dependence beyond the "
+                     f"{q_tail:.0%} quantile: upper {lam_u:.2f}, lower {lam_l:.2f}")
     else:
-        stats_txt = (f"τ = {tau:.2f}; $λ_U$, $λ_L$ not estimated: {n_tail} of {x.size} pairs "
-                     f"beyond q = {q_tail:g} (needs {_MIN_TAIL_POINTS})")
+        stats_txt = (f"rank correlation (Kendall) {tau:.2f}; tail dependence not estimated: "
+                     f"{n_tail} of {x.size} pairs beyond the {q_tail:.0%} quantile "
+                     f"(needs {_MIN_TAIL_POINTS})")
     many = x.size > 2000
     ax.scatter(x, y, s=4 if many else 14, color="0.6" if many else "0.45", alpha=0.5 if many else 0.8,
                lw=0, rasterized=many,

@@ -1,8 +1,9 @@
 """Figures of a long-term analysis (:func:`pas.run_long_term`): ``plot_*(..., ax=None)``.
 
 * :func:`plot_long_term_distribution` — the long-term exceedance per wave
-  encounter with its U95 band, the design value at ``p_exceed`` and, when
-  given, the truth;
+  encounter with its U95 band where the level is a PAS estimate (the part
+  read off the LF-only proxy drawn apart, with the range down to the level without it),
+  the design value at ``p_exceed`` and, when given, the truth;
 * :func:`plot_long_term_allocation` — the sea states over two descriptive
   columns of their table (Hs–Tp by default): colour the share of the
   exceedance at the value, the number the HF evaluations each was given;
@@ -26,6 +27,12 @@ __all__ = ["plot_long_term_distribution", "plot_long_term_allocation",
 def plot_long_term_distribution(result, *, truth=None, unit=None, ax=None):
     """The long-term exceedance per encounter: level against probability, U95 shaded.
 
+    The band is drawn only where the level is a PAS estimate.  Where the level
+    leans on the LF-only proxy below a sea state's PAS range (``from_proxy`` in
+    ``result.distribution``, mostly at probabilities well above ``p_exceed``),
+    the curve is dashed grey and the range down to the level without the proxy's
+    part is hatched instead: a U95 there would look tight and mean nothing.
+
     Parameters
     ----------
     result : LongTermResult
@@ -38,9 +45,21 @@ def plot_long_term_distribution(result, *, truth=None, unit=None, ax=None):
     fig, ax = _new_axes(ax)
     d = result.distribution
     q = d["exceedance_probability"].to_numpy(dtype=float)
+    mean = d["h_mean"].to_numpy(dtype=float)
+    proxy = (d["from_proxy"].to_numpy(dtype=bool) if "from_proxy" in d.columns
+             else np.zeros(len(d), dtype=bool))
+    pas_part = ~proxy
     ax.fill_between(q, d["h_low"].to_numpy(dtype=float), d["h_high"].to_numpy(dtype=float),
-                    color="C0", alpha=0.2, lw=0, label="U95 band")
-    ax.plot(q, d["h_mean"].to_numpy(dtype=float), "-", color="C0", label="PAS long-term")
+                    where=pas_part, color="C0", alpha=0.2, lw=0, label="U95 band")
+    ax.plot(q, np.where(pas_part, mean, np.nan), "-", color="C0", label="PAS long-term")
+    if proxy.any():
+        # the proxy part joins the PAS part at their common ends
+        joined = proxy | np.convolve(proxy, [1, 1, 1], mode="same").astype(bool)
+        ax.fill_between(q, d["proxy_low"].to_numpy(dtype=float), mean, where=proxy,
+                        color="0.6", alpha=0.25, lw=0, hatch="//",
+                        label="LF-proxy part: as low as without the proxy")
+        ax.plot(q, np.where(joined, mean, np.nan), "--", color="0.35",
+                label="LF-proxy part: read off the LF-only proxy (no U95)")
     lo, hi = result.band
     ax.errorbar([result.p_exceed], [result.value], yerr=[[result.value - lo], [hi - result.value]],
                 fmt="o", color="C0", mec="k", capsize=3,
@@ -103,7 +122,9 @@ def plot_long_term_convergence(result, *, truth=None, unit=None, ax=None):
 
     The band without the model bands is shaded every round; the full U95 is
     drawn where it was computed; with a precision target, ``value × (1 ±
-    precision)`` dotted and the forecast of the further HF it needs.
+    precision)`` dotted and the forecast of the further HF it needs.  Early
+    rounds whose value is 0 (no PAS model reaches the level yet) are marked on
+    the lower edge, and the axis is scaled on the rounds that have a value.
     """
     h = result.history
     if h is None or len(h) == 0:
@@ -130,6 +151,20 @@ def plot_long_term_convergence(result, *, truth=None, unit=None, ax=None):
     if truth is not None:
         ax.axhline(float(truth), color="C3", ls="--", lw=1.0,
                    label=f"truth {_fmt(float(truth), unit)}")
+    nothing = ~(value > 0)
+    if nothing.any() and not nothing.all():
+        # rounds before any PAS model reached the level read 0: drawn on the lower edge,
+        # the axis scaled on the rounds with a value so that these do not squash them
+        shown = ~nothing
+        ends = np.concatenate([value[shown], h["low_sampling"].to_numpy(float)[shown],
+                               h["high_sampling"].to_numpy(float)[shown]])
+        ends = ends[np.isfinite(ends)]
+        pad = 0.08 * (ends.max() - ends.min() or abs(ends.max()) or 1.0)
+        bottom = ends.min() - pad
+        ax.set_ylim(bottom, ends.max() + pad)
+        ax.plot(n[nothing], np.full(int(nothing.sum()), bottom), "v", ms=6, mfc="none",
+                color="0.4", clip_on=False, ls="none",
+                label="value 0: no PAS model reaches the level yet")
     ax.set_xlabel("HF evaluations spent (all sea states)")
     ax.set_ylabel(_with_unit(f"value at p_exceed = {result.p_exceed:.3g}", unit))
     ax.grid(True, lw=0.3, alpha=0.5)
