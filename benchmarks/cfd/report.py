@@ -10,7 +10,7 @@ from pathlib import Path
 import pandas as pd
 
 from pas.validation.case_cfd import cfd_lf_record, cfd_table, cfd_truth
-from pas.validation.cfd_compare import compare_cfd, format_cfd, summarise_cfd
+from pas.validation.cfd_compare import compare_cfd, format_cfd, summarise_cfd, top_n_errors
 
 DATA = Path(__file__).resolve().parents[2] / "src" / "pas" / "validation" / "data"
 
@@ -81,6 +81,8 @@ def main(argv=None):
     truth_check()
     equivalence()
     mesh()
+    print("top-N habit, error against the truth:",
+          top_n_errors().round(3).to_string(index=False))
     runs, facts = compare_cfd(seeds=range(a.replications))
     print(format_cfd(summarise_cfd(runs, facts)))
     with pd.option_context("display.width", 200):

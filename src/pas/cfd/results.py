@@ -93,7 +93,7 @@ def event_loads(case, t_event, *, window=(-1.0, 3.5), wall="wallForce", deck="de
     window : (float, float), default (-1, 3.5)
         The event's window relative to ``t_event`` (s): a green-water load of
         an earlier wave falls before it, and the event's own load (0-4 s after
-        its crest reaches the bow, 1.3-2.8 s in the example case) inside it.
+        its crest reaches the bow, 1.0-2.4 s for 90 % of the example case's events) inside it.
     wall, deck : str
         Names of the ``forces`` function objects on the deckhouse wall and the deck.
 
