@@ -162,7 +162,8 @@ def mesh(out):
         g = g.sort_values("cell")
         ax.plot(g["cell"], g["wall_peak_filtered"] / 1e3, "o-", label=key)
         ax.plot(g["cell"], g["wall_peak"] / 1e3, "x:", color=ax.lines[-1].get_color())
-    ax.set(xlabel="cell size (m)", ylabel="wall force (kN/m)",
+    ax.set_yscale("log")
+    ax.set(xlabel="cell size (m)", ylabel="wall force (kN/m, log scale)",
            title="Mesh: filtered peak (o) and raw peak (x)")
     ax.legend(frameon=False, fontsize=8)
     fig.tight_layout()
