@@ -137,14 +137,19 @@ def precision_text(row, target: float) -> str:
 
 
 def stopped(command: str, exc: BaseException, study, **where) -> RunStopped:
-    """The :class:`RunStopped` for a run that ``exc`` (Ctrl-C or a closed pipe) ended early.
+    """The :class:`RunStopped` for a run that ``exc`` (Ctrl-C, SIGTERM, a closed pipe) ended early.
 
     ``where`` is passed to :func:`stopped_message` (``store``, ``out``, ``resume``).
     """
-    pipe = isinstance(exc, BrokenPipeError)
-    why = "output pipe closed" if pipe else "interrupted"
-    return RunStopped(stopped_message(command, why, n_results=len(study.rows), **where),
-                      EXIT_BROKEN_PIPE if pipe else EXIT_INTERRUPTED)
+    from ..study.signals import EXIT_TERMINATED, Terminated
+
+    if isinstance(exc, BrokenPipeError):
+        why, code = "output pipe closed", EXIT_BROKEN_PIPE
+    elif isinstance(exc, Terminated):
+        why, code = "terminated (SIGTERM)", EXIT_TERMINATED
+    else:
+        why, code = "interrupted", EXIT_INTERRUPTED
+    return RunStopped(stopped_message(command, why, n_results=len(study.rows), **where), code)
 
 
 def stopped_message(command: str, why: str, *, n_results: int, store=None, out=None,

@@ -12,6 +12,7 @@
     pas study refit STUDY.db --target NAME [--out DIR]   (pas.cli.study_loads)
     pas study run STUDY.db [-q Q] [--workers N] [--pending resubmit|wait]
     pas study retry STUDY.db [EVENT ...]
+    pas study backup STUDY.db COPY.db
 
 The study file is a :mod:`pas.study.store` (SQLite): ``tell`` only records the
 result (any number of processes at once), ``ask`` replays the study, uses the
@@ -35,7 +36,10 @@ batch size of the first run is the default).  ``pas study set`` changes the
 stopping limits or the budget of a study, converged or not (recorded in the
 store; no decision taken so far depends on them).  ``pas study retry`` runs
 failed events again once their cause is fixed: the study continues as if they
-had not failed (:mod:`pas.study.amend`; no told result is lost).  ``tell
+had not failed (:mod:`pas.study.amend`; no told result is lost).  ``pas study
+backup`` writes a consistent one-file copy of the study, also while it runs
+(copying the file itself may miss the newest results, which SQLite keeps in
+``STUDY.db-wal`` until the run ends).  ``tell
 --replace`` corrects a told value, a failure or named loads (``--load
 NAME=VALUE``); the old ones stay in the store's audit trail (``pas study
 status --events``).
@@ -71,6 +75,7 @@ examples:
   pas study tell campaign.db 1532 120.5 --replace    # correct a typo (old value kept)
   pas study tell campaign.db 1532 --load panel_p3=40.1 --load deck=812.5 --replace
   pas study retry campaign.db                        # failed events run again
+  pas study backup campaign.db copy.db               # one-file copy, also while it runs
 """
 
 
@@ -133,6 +138,10 @@ def add_parser(sub) -> None:
     y = _action(cmds, "retry", "run failed events again (after fixing their cause)")
     y.add_argument("study", metavar="STUDY.db")
     y.add_argument("events", nargs="*", metavar="EVENT", help="event ids (default: every failed one)")
+    b = _action(cmds, "backup", "write a consistent one-file copy of the study (also while it "
+                "runs)")
+    b.add_argument("study", metavar="STUDY.db")
+    b.add_argument("copy", metavar="COPY.db", help="the new file")
     p.set_defaults(func=run)
 
 
@@ -140,7 +149,8 @@ def run(args) -> int:
     from .study_status import status
 
     return {"create": _create, "ask": _ask, "tell": _tell, "status": status, "run": _drive,
-            "set": _set, "retry": _retry, "refit": refit_command}[args.study_command](args)
+            "set": _set, "retry": _retry, "refit": refit_command,
+            "backup": _backup}[args.study_command](args)
 
 
 # -- actions ----------------------------------------------------------------
@@ -347,6 +357,18 @@ def _drive(args) -> int:
     print(res.summary())
     from . import EXIT_FAILED_LEFT_OUT
     return EXIT_FAILED_LEFT_OUT if res.n_failed else 0
+
+
+def _backup(args) -> int:
+    from ..study.store import StudyStore
+
+    with StudyStore(args.study, create=False) as store:
+        if store.is_new and not store.get("longterm"):
+            raise ValueError(f"{args.study} holds no study (a copy of a study's file made while "
+                             "its -wal file held the results?)")
+        store.backup(args.copy)
+    print(f"copied {args.study} to {args.copy} (one file, every result stored so far)")
+    return 0
 
 
 def _retry(args) -> int:
