@@ -222,6 +222,10 @@ def _ask(args) -> int:
     if not events and not reused:
         print(f"{args.study}: nothing to ask ({_why_finished(study)})", file=sys.stderr)
         return 0
+    if len(events) > args.n:
+        print(f"{args.study}: the study's first ask gives all {len(events)} events of its initial "
+              f"design, more than -n {args.n}: the first model needs all of them; -n counts "
+              "from the next ask on", file=sys.stderr)
     if events:
         _emit([_event_row(ev) for ev in events], args.format or _format_of(args.output),
               args.output)
