@@ -39,3 +39,23 @@ def test_a_long_term_resume_with_another_seed_says_to_use_another_out(problem, c
                       "--out", str(out))) == 2
     err = capsys.readouterr().err.strip()
     assert "seed differs" in err and "use another --out or --no-store" in err
+
+
+def test_a_study_past_its_out_of_reach_forecast_says_what_further_hf_are_for():
+    import math
+
+    from pas.cli._progress import precision_text
+    from pas.study.stop_text import HFForecast, forecast_text
+
+    inf = math.inf
+    line = precision_text({"halfwidth": 0.3, "forecast_hf": inf, "forecast_hf_low": inf,
+                           "forecast_hf_high": inf}, 0.15)
+    assert "not expected to reach ±15 %" in line
+    assert line.endswith("the run goes on to its budget: further HF still correct the MPM and "
+                         "its band, and the forecast is revised with each band")
+    status = forecast_text(HFForecast(inf, inf, inf), 0.1, 17)
+    assert "the budget allows 17: further HF still correct the MPM and its band" in status
+    assert "further HF" not in forecast_text(HFForecast(inf, inf, inf), 0.1, 0)
+    assert "further HF" not in precision_text({"halfwidth": 0.3, "forecast_hf": 40.0,
+                                               "forecast_hf_low": 30.0,
+                                               "forecast_hf_high": 60.0}, 0.15)
