@@ -29,9 +29,10 @@ from pathlib import Path
 
 import numpy as np
 import pandas as pd
-from precision_stop import problems
 
 import pas
+from pas.validation.known_truth import make_problem
+from pas.validation.known_truth_runs import TYPES as KNOWN_TRUTH
 from pas.validation.result_tables import rewrite_page
 
 TYPES = ("core-gumbel-t0.6", "core-gaussian-t0.75", "core-clayton-t0.6", "core-frank-t0.6",
@@ -126,10 +127,12 @@ def main(argv=None):
         runs = pd.read_csv(args.from_csv)
     else:
         rows = []
-        for name, rep, lf, oracle, kw, truth in problems(
-                [t for t in args.types.split(",") if t], [], args.n, 0.5):
+        for name, rep in ((t, r) for t in args.types.split(",") if t
+                          for r in range(1, args.n + 1)):
+            p = make_problem(KNOWN_TRUTH[name], rep)  # the data sets of precision_stop.py
+            kw = {"n_waves": p.n_waves, "p_exp": p.p_exp, "threshold": p.threshold}
             for target in map(float, args.targets.split(",")):
-                rows.append(run_one(name, rep, lf, oracle, kw, truth, target=target,
+                rows.append(run_one(name, rep, p.lf, p.oracle(), kw, p.truth_mpm, target=target,
                                     budget=args.budget))
             print(rows[-1], flush=True)
             runs = pd.DataFrame(rows)
