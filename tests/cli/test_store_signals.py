@@ -156,3 +156,25 @@ def test_sigterm_writes_the_partial_result_and_the_resume_matches(inputs, tmp_pa
     assert "stopped_early" not in resumed["inputs"]
     assert pd.read_csv(out / "history.csv")["event_id"].tolist() == \
         pd.read_csv(tmp_path / "straight" / "history.csv")["event_id"].tolist()
+
+
+def test_sigterm_stops_a_python_run_like_ctrl_c_with_every_result_in_the_file(inputs, tmp_path):
+    import pas
+    from pas.study.signals import Terminated
+
+    lf = pd.read_csv(inputs / "lf.csv")["rwe"].to_numpy()
+    calls = []
+
+    def oracle(event):
+        calls.append(event.index)
+        if len(calls) == 6:
+            os.kill(os.getpid(), signal.SIGTERM)  # the scheduler's time limit, mid-call
+        return 1.2 * event.lf ** 1.1
+
+    db = tmp_path / "api.sqlite"
+    with pytest.raises(Terminated):
+        pas.run_pas(lf, oracle, n_waves=NW, p_exp=P, eps1=0.2, seed=1, max_hf=16, study=db)
+    assert signal.getsignal(signal.SIGTERM) == signal.SIG_DFL  # restored
+    alone = tmp_path / "alone.sqlite"
+    shutil.copy(db, alone)
+    assert len(_told(alone)) >= 5
