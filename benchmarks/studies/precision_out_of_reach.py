@@ -101,7 +101,8 @@ def table(runs: pd.DataFrame) -> str:
                 f"{int(g['reached_after'].astype(bool).sum())}/{len(g)} | "
                 f"{int(g['out_of_reach_at_end'].astype(bool).sum())}/{len(g)} | "
                 f"{pct(g['error_gave_up'])} → {pct(g['error_end'])} | "
-                f"{share(g['covered_gave_up'].astype(str).eq('True'))} → {share(g['covered_end'])} | "
+                f"{share(g['covered_gave_up'].astype(str).eq('True'))} → "
+                f"{share(g['covered_end'])} | "
                 f"±{100 * np.nanmedian(g['halfwidth_gave_up']):.0f} % → "
                 f"±{100 * np.nanmedian(g['halfwidth_end']):.0f} % |")
 
