@@ -372,7 +372,7 @@ def test_ask_output_takes_its_format_from_the_file_name(tmp_path, capsys):
 
 
 @pytest.mark.parametrize("action", ["create", "ask", "tell", "run", "status", "set", "retry",
-                                    "refit"])
+                                    "refit", "backup"])
 def test_every_study_action_help_says_what_it_does(action, capsys):
     with pytest.raises(SystemExit):
         main(["study", action, "--help"])

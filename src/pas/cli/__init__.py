@@ -4,7 +4,8 @@ Each sub-command lives in its own module with two functions,
 ``add_parser(subparsers)`` and ``run(args) -> int``; :data:`COMMANDS` lists
 the modules.  Errors the user can fix print one line and exit with code 2;
 warnings print one line (``pas <command>: warning: ...``).  Ctrl-C exits with
-code 130 and a closed output pipe (``pas ... | head``) with 141 (128 + SIGPIPE,
+code 130, SIGTERM (a batch scheduler's time limit, ``kill``) with 143 and a
+closed output pipe (``pas ... | head``) with 141 (128 + SIGPIPE,
 what a shell reports for a process killed by that signal), each after one
 line on stderr; commands that run a study first write what they have and say
 how to resume (:class:`pas.cli._progress.RunStopped`).
@@ -17,6 +18,7 @@ Exit codes (:data:`EXIT_CODES`, also printed by ``pas --help``)::
     2    bad input: a one-line error names the argument and the fix
     3    done, but failed HF evaluations were left out of the final fit
     130  interrupted (Ctrl-C); the result so far is written
+    143  terminated (SIGTERM, e.g. a batch job's time limit); the result so far is written
     141  the output pipe was closed
 
 Only the standard library is imported here and by ``add_parser``: the
@@ -34,6 +36,7 @@ import re
 import sys
 import warnings
 
+from ..study.signals import EXIT_TERMINATED, Terminated, terminate_as_interrupt
 from ._progress import EXIT_BROKEN_PIPE, EXIT_INTERRUPTED, RunStopped
 
 COMMANDS = ("reproduce", "run", "long_term", "study", "plot", "impacts", "events")
@@ -47,6 +50,8 @@ EXIT_CODES = {0: "done",
               EXIT_BAD_INPUT: "bad input (a one-line error names the argument)",
               EXIT_FAILED_LEFT_OUT: "done, but failed HF evaluations were left out of the fit",
               EXIT_INTERRUPTED: "interrupted (Ctrl-C); the result so far is written",
+              EXIT_TERMINATED: "terminated (SIGTERM, e.g. a batch job's time limit); the result "
+                               "so far is written",
               EXIT_BROKEN_PIPE: "the output pipe was closed"}
 """What each exit code of ``pas`` means."""
 
@@ -91,10 +96,10 @@ def build_parser() -> argparse.ArgumentParser:
 
 def main(argv=None) -> int:
     try:
-        return _main(argv)
-    except KeyboardInterrupt:  # while parsing or importing
-        _say("pas: interrupted")
-        return EXIT_INTERRUPTED
+        with terminate_as_interrupt():
+            return _main(argv)
+    except KeyboardInterrupt as exc:  # while parsing or importing
+        return _interrupted("pas", exc)
     except BrokenPipeError:
         _mute_closed_streams()
         return EXIT_BROKEN_PIPE
@@ -128,12 +133,8 @@ def _main(argv) -> int:
             _mute_closed_streams()
             _say(str(exc))
             return exc.code
-        except KeyboardInterrupt:
-            from ._progress import hf_programs_line
-
-            programs = hf_programs_line(None)
-            _say(f"{name}: interrupted" + (f"; {programs}" if programs else ""))
-            return EXIT_INTERRUPTED
+        except KeyboardInterrupt as exc:
+            return _interrupted(name, exc)
         except BrokenPipeError:
             _mute_closed_streams()
             _say(f"{name}: output pipe closed")
@@ -198,6 +199,19 @@ def plain_text(doc: str) -> str:
     text = "\n\n".join(paragraphs)
     text = re.sub(r":[a-z]+:`~?([^`]+)`", r"\1", text)
     return text.replace("``", "")
+
+
+def _interrupted(name: str, exc: KeyboardInterrupt) -> int:
+    """Say that Ctrl-C or SIGTERM (:class:`~pas.study.signals.Terminated`) ended ``name``."""
+    from ._progress import hf_programs_line
+
+    programs = hf_programs_line(None)
+    tail = f"; {programs}" if programs else ""
+    if isinstance(exc, Terminated):
+        _say(f"{name}: terminated (SIGTERM){tail}")
+        return EXIT_TERMINATED
+    _say(f"{name}: interrupted{tail}")
+    return EXIT_INTERRUPTED
 
 
 def _one_line_warning(name):

@@ -120,8 +120,13 @@ def precision_text(row, target: float) -> str:
     >>> precision_text({"halfwidth_sampling": 0.031, "fit_check_p": 0.004,
     ...                 "fit_misfit": "the transforms' shape (KS)"}, 0.1)
     'sampling part ±3.1 % (target ±10 %), the model fails the fit check (p 0.004)'
+    >>> precision_text({"halfwidth": 0.3, "forecast_hf": math.inf, "forecast_hf_low": math.inf,
+    ...                 "forecast_hf_high": math.inf}, 0.15)  # doctest: +NORMALIZE_WHITESPACE
+    'U95 ±30 % (target ±15 %), more HF are not expected to reach ±15 %: the band has not
+    narrowed with the pairs; the run goes on to its budget: further HF still correct the MPM
+    and its band, and the forecast is revised with each band'
     """
-    from ..study.stop_text import HFForecast, forecast_text, percent
+    from ..study.stop_text import FURTHER_HF, HFForecast, forecast_text, percent
 
     if _finite(row.get("halfwidth")):
         text = f"U95 {percent(row['halfwidth'])} (target {percent(target)})"
@@ -132,25 +137,31 @@ def precision_text(row, target: float) -> str:
     if expected is not None and not math.isnan(expected):
         ahead = HFForecast(expected, row["forecast_hf_low"], row["forecast_hf_high"])
         text += ", " + forecast_text(ahead, target).replace(f" for {percent(target)}", "")
+        if math.isinf(expected):
+            text += f"; the run goes on to its budget: {FURTHER_HF}"
     if isinstance(row.get("fit_misfit"), str):
         text += f", the model fails the fit check (p {row['fit_check_p']:.2g})"
     return text
 
 
 def stopped(command: str, exc: BaseException, study, *, oracle=None, **where) -> RunStopped:
-    """The :class:`RunStopped` for a run that ``exc`` (Ctrl-C, a closed pipe, or a
-    termination signal raised as one of these) ended early.
+    """The :class:`RunStopped` for a run that ``exc`` (Ctrl-C, SIGTERM, a closed pipe) ended early.
 
     The HF programs ``oracle`` (a command oracle) started and that still run are
     ended first, or left running with ``on_interrupt="leave"``
     (:func:`hf_programs_line`).  ``where`` is passed to :func:`stopped_message`
     (``store``, ``out``, ``resume``).
     """
-    pipe = isinstance(exc, BrokenPipeError)
-    why = "output pipe closed" if pipe else "interrupted"
+    from ..study.signals import EXIT_TERMINATED, Terminated
+
+    if isinstance(exc, BrokenPipeError):
+        why, code = "output pipe closed", EXIT_BROKEN_PIPE
+    elif isinstance(exc, Terminated):
+        why, code = "terminated (SIGTERM)", EXIT_TERMINATED
+    else:
+        why, code = "interrupted", EXIT_INTERRUPTED
     return RunStopped(stopped_message(command, why, n_results=len(study.rows),
-                                      programs=hf_programs_line(oracle), **where),
-                      EXIT_BROKEN_PIPE if pipe else EXIT_INTERRUPTED)
+                                      programs=hf_programs_line(oracle), **where), code)
 
 
 def hf_programs_line(oracle) -> str | None:

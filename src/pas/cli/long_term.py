@@ -176,13 +176,20 @@ def run(args) -> int:
     table, peaks = read_inputs(args)
     out, oracle = output_and_oracle(args)
     from ..longterm import run_long_term
+    from ..study.schema import StoreError
 
     study = None if args.no_store else Path(args.study or out / "long-term.sqlite")
     out.mkdir(parents=True, exist_ok=True)
-    result = run_long_term(table, peaks, oracle, p_exceed=args.p_exceed,
-                           return_period=args.return_period, hours_per_year=args.hours_per_year,
-                           max_hf=args.max_hf, seed=args.seed, study=study, eps1=args.eps1,
-                           precision=args.precision)
+    try:
+        result = run_long_term(table, peaks, oracle, p_exceed=args.p_exceed,
+                               return_period=args.return_period,
+                               hours_per_year=args.hours_per_year, max_hf=args.max_hf,
+                               seed=args.seed, study=study, eps1=args.eps1,
+                               precision=args.precision)
+    except StoreError as exc:
+        other = "--study" if args.study else "--out"
+        raise ValueError(f"{exc} (to start a new analysis use another {other} or "
+                         "--no-store)") from None
     summary = {"value": float(result.value), "band": [float(b) for b in result.band],
                "p_exceed": float(result.p_exceed), "n_hf": int(result.n_hf),
                "precision": result.precision, "converged": result.converged,

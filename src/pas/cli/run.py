@@ -37,7 +37,8 @@ summary to stdout (``--json`` for machine-readable), with the MPM's U95 and
 its two labelled parts.  ``--n-waves`` below the number of LF peaks over the
 threshold is an error (exceedance probabilities would exceed 1) unless
 ``--n-waves-convention spectral`` says that n_w = T_MCS/T_p,e on purpose.
-Ctrl-C or a closed pipe writes the partial result and says how to resume.
+Ctrl-C, SIGTERM (a batch job's time limit) or a closed pipe writes the
+partial result and says how to resume.
 A run that ends with failed HF evaluations left out of its fit exits with
 code 3, one stopped at the failure limit with 1 (:data:`pas.cli.EXIT_CODES`).
 The output folder receives ``history.csv``, ``distribution.csv``,
@@ -95,7 +96,9 @@ examples:
   pas plot run1 --kind all
 
 exit codes: 0 done; 1 stopped at the failure limit (partial result written); 2 bad input;
-3 done, but failed HF evaluations were left out of the fit; 130 interrupted (see 'pas --help')
+3 done, but failed HF evaluations were left out of the fit; 130 interrupted (Ctrl-C);
+143 terminated (SIGTERM, e.g. a batch job's time limit); both write the partial result
+(see 'pas --help')
 """
 
 
@@ -291,6 +294,8 @@ def run(args) -> int:
         result, failed = exc.result, getattr(exc, "reason", str(exc))
     summary = result.save(out, inputs={**inputs, "lf_file": str(args.lf_file), "seed": result.seed},
                           lfset=study.lfset)
+    if store is not None:
+        study.store.close()  # the .sqlite file alone holds the study
     if args.json:
         print(json.dumps(summary, indent=2))
     else:

@@ -14,6 +14,7 @@
     pas study retry STUDY.db [EVENT ...]
     pas study hf-programs STUDY [--json]        (pas.cli.study_programs)
     pas study hf-stop STUDY [EVENT ...]
+    pas study backup STUDY.db COPY.db
 
 The study file is a :mod:`pas.study.store` (SQLite): ``tell`` only records the
 result (any number of processes at once), ``ask`` replays the study, uses the
@@ -37,7 +38,10 @@ batch size of the first run is the default).  ``pas study set`` changes the
 stopping limits or the budget of a study, converged or not (recorded in the
 store; no decision taken so far depends on them).  ``pas study retry`` runs
 failed events again once their cause is fixed: the study continues as if they
-had not failed (:mod:`pas.study.amend`; no told result is lost).  ``tell
+had not failed (:mod:`pas.study.amend`; no told result is lost).  ``pas study
+backup`` writes a consistent one-file copy of the study, also while it runs
+(copying the file itself may miss the newest results, which SQLite keeps in
+``STUDY.db-wal`` until the run ends).  ``tell
 --replace`` corrects a told value, a failure or named loads (``--load
 NAME=VALUE``); the old ones stay in the store's audit trail (``pas study
 status --events``).
@@ -55,9 +59,9 @@ from ._parsers import command_parser
 from ._stopping_options import precision_option
 from .study_config import check_oracle_command, load_config, load_peaks, study_objects
 from .study_loads import add_parsers as add_load_parsers
+from .study_loads import refit_command, tell_loads
 from .study_programs import add_parsers as add_program_parsers
 from .study_programs import list_programs, stop_programs
-from .study_loads import refit_command, tell_loads
 
 __all__ = ["add_parser", "run", "load_config", "load_peaks"]
 
@@ -77,6 +81,7 @@ examples:
   pas study retry campaign.db                        # failed events run again
   pas study hf-programs run1                         # HF programs of 'pas run --out run1' running
   pas study hf-stop run1 w00382                      # end one (it runs again on resume)
+  pas study backup campaign.db copy.db               # one-file copy, also while it runs
 """
 
 
@@ -140,6 +145,10 @@ def add_parser(sub) -> None:
     y.add_argument("study", metavar="STUDY.db")
     y.add_argument("events", nargs="*", metavar="EVENT", help="event ids (default: every failed one)")
     add_program_parsers(cmds)
+    b = _action(cmds, "backup", "write a consistent one-file copy of the study (also while it "
+                "runs)")
+    b.add_argument("study", metavar="STUDY.db")
+    b.add_argument("copy", metavar="COPY.db", help="the new file")
     p.set_defaults(func=run)
 
 
@@ -148,7 +157,7 @@ def run(args) -> int:
 
     return {"create": _create, "ask": _ask, "tell": _tell, "status": status, "run": _drive,
             "set": _set, "retry": _retry, "refit": refit_command, "hf-programs": list_programs,
-            "hf-stop": stop_programs}[args.study_command](args)
+            "hf-stop": stop_programs, "backup": _backup}[args.study_command](args)
 
 
 # -- actions ----------------------------------------------------------------
@@ -220,6 +229,10 @@ def _ask(args) -> int:
     if not events and not reused:
         print(f"{args.study}: nothing to ask ({_why_finished(study)})", file=sys.stderr)
         return 0
+    if len(events) > args.n:
+        print(f"{args.study}: the study's first ask gives all {len(events)} events of its initial "
+              f"design, more than -n {args.n}: the first model needs all of them; -n counts "
+              "from the next ask on", file=sys.stderr)
     if events:
         _emit([_event_row(ev) for ev in events], args.format or _format_of(args.output),
               args.output)
@@ -356,6 +369,18 @@ def _drive(args) -> int:
     print(res.summary())
     from . import EXIT_FAILED_LEFT_OUT
     return EXIT_FAILED_LEFT_OUT if res.n_failed else 0
+
+
+def _backup(args) -> int:
+    from ..study.store import StudyStore
+
+    with StudyStore(args.study, create=False) as store:
+        if store.is_new and not store.get("longterm"):
+            raise ValueError(f"{args.study} holds no study (a copy of a study's file made while "
+                             "its -wal file held the results?)")
+        store.backup(args.copy)
+    print(f"copied {args.study} to {args.copy} (one file, every result stored so far)")
+    return 0
 
 
 def _retry(args) -> int:

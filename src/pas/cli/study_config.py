@@ -116,8 +116,17 @@ def _check_settings(cfg: dict, where: str) -> None:
     for key in sorted(settings.keys() & set(STUDY_SETTINGS)):
         _in_file(lambda: check_setting(key, settings[key]), where, "settings", settings)
     own = {k: v for k, v in settings.items() if k not in STUDY_SETTINGS}
-    _in_file(lambda: from_flat(own, strategy=cfg["strategy"], preset=cfg.get("preset")), where,
-             "settings", settings)
+
+    def strategy_settings():
+        try:
+            from_flat(own, strategy=cfg["strategy"], preset=cfg.get("preset"))
+        except ValueError as exc:
+            if not str(exc).startswith("unknown setting"):
+                raise
+            study = ", ".join(k for k in STUDY_SETTINGS if k not in _TOP)
+            raise ValueError(f"{exc}; and the study's: {study}") from None
+
+    _in_file(strategy_settings, where, "settings", settings)
 
 
 _FLAT_TOP = ("eps1", "precision", "eps2", "max_hf", "max_failures", "target")

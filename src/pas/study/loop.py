@@ -19,6 +19,12 @@ told result it raises :class:`~pas.study.oracles.OracleFailureLimit` once more
 calls failed.  In this process no further oracle call is made; calls already
 running on an executor are waited for and their results stored first.
 
+SIGTERM (what a batch scheduler sends at a job's time limit) stops a run
+in the main thread like Ctrl-C: :class:`~pas.study.signals.Terminated`, a
+:class:`KeyboardInterrupt`, is raised with every result stored.  When the
+loop ends, however it ends, the store is checkpointed so that its
+``.sqlite`` file alone holds the study.
+
 Resume: events a killed run left pending are the first batch of the next
 run.  Those whose result reached the store are told without calling the
 oracle; the others are resubmitted (``pending="resubmit"``, the default) or
@@ -37,6 +43,7 @@ from .._support.checks import check_option, check_positive_int
 from .answers import lacks_target
 from .loads import answers_from_loads, record_loads
 from .oracles import OracleFailureLimit, call_oracle_loads, check_oracle
+from .signals import terminate_as_interrupt
 from .state import EventState
 
 __all__ = ["optimize", "execute", "failure_limit", "PENDING_POLICIES"]
@@ -85,18 +92,32 @@ def optimize(study, oracle, *, batch_size: int = 1, executor: Executor | None = 
     if executor is None and n_workers is not None:
         own = executor = ProcessPoolExecutor(check_positive_int(n_workers, "n_workers"))
     try:
-        if isinstance(executor, ProcessPoolExecutor):
-            _check_picklable(oracle)
-        result = _Loop(study, oracle, executor, callback).run(batch_size, pending)
+        with terminate_as_interrupt():
+            if isinstance(executor, ProcessPoolExecutor):
+                _check_picklable(oracle)
+            result = _Loop(study, oracle, executor, callback).run(batch_size, pending)
     except BaseException as exc:
         if own is not None:
             _abandon(own)
+        _checkpoint(study)
         if isinstance(exc, KeyboardInterrupt):
             _exit_quickly()
         raise
     if own is not None:
         own.shutdown()
+    _checkpoint(study)
     return result
+
+
+def _checkpoint(study) -> None:
+    """Move the run's writes into the study's ``.sqlite`` file (:meth:`StudyStore.checkpoint
+    <pas.study.store.StudyStore.checkpoint>`), so that file alone holds the study."""
+    if getattr(study, "store", None) is None:
+        return
+    try:
+        study.store.checkpoint()
+    except Exception:  # a busy or closed store: the results are stored all the same
+        pass
 
 
 def _exit_quickly() -> None:

@@ -56,7 +56,13 @@ def attach(study, store) -> list[dict]:
     if not isinstance(store, StudyStore):
         store = StudyStore(store)
     settings = study_settings(study)
-    with store.transaction():
+    with store.transaction() as c:
+        if store.is_new and store.existed and not c.execute(
+                "SELECT 1 FROM meta WHERE key = 'settings'").fetchone():
+            warnings.warn(f"{store.path} exists but holds no study: a new study starts in it (a "
+                          "copy of a study's .sqlite file made while its -wal file still held "
+                          "the results is empty; copy a study with 'pas study backup')",
+                          stacklevel=3)
         adopted = None if store.is_new else adopt_target(store, settings)
         changes = store.bind(settings, study.lfset) + ([adopted] if adopted else [])
     study._replaying = True

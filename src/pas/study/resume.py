@@ -27,7 +27,9 @@ def open_study(store, *, consume: bool = True, changes: dict | None = None) -> S
         store = StudyStore(store, create=False)
     s = store.settings()
     if not s:
-        what = " but a long-term analysis (pas.run_long_term)" if store.get("longterm") else ""
+        what = (" but a long-term analysis (pas.run_long_term)" if store.get("longterm") else
+                " (a copy of a study's file made while its -wal file held the results? copy a "
+                "study with 'pas study backup')" if store.existed else "")
         raise StoreError(f"study store {store.path} holds no single study{what}")
     s = with_legacy_settings(s)
     for key in changes or {}:

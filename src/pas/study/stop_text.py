@@ -47,6 +47,13 @@ HIGHEST_SHOWN = 100_000
 stays in the result's ``forecast``): no campaign plans by a larger number."""
 
 
+FURTHER_HF = ("further HF still correct the MPM and its band, and the forecast is revised with "
+              "each band")
+"""What a study that goes on after its forecast said "out of reach" spends its budget on: on
+known-truth problems the MPM's error and the U95's coverage improved after that point, and
+some studies reached their target after all (``docs/results/precision.md``)."""
+
+
 FLOOR_NAME = "the sampling part alone (the z-draw band)"
 """What :func:`forecast_text` calls the part of the band more HF events do not narrow."""
 
@@ -83,6 +90,8 @@ def forecast_text(forecast: HFForecast | None, target: float, budget_left=None,
                 f"({forecast.low:.0f}–{high})")
     if budget_left is not None:
         text += f"; the budget allows {max(int(budget_left), 0)}"
+        if forecast is not None and not math.isfinite(forecast.expected) and budget_left > 0:
+            text += f": {FURTHER_HF}"
     return text
 
 

@@ -8,6 +8,13 @@ busy time-out, so a driver process and any number of ``pas study tell``
 processes can write at the same time without losing a result.  Everything is
 stored as JSON or plain columns; nothing is pickled.
 
+While a study runs, SQLite keeps the newest writes in a ``-wal`` file beside
+the store; :meth:`StudyStore.checkpoint` (called when a run ends, also at
+Ctrl-C or SIGTERM) moves them into the main file, so the ``.sqlite`` file
+alone then holds the whole study.  :meth:`StudyStore.backup` (``pas study
+backup``) writes a consistent one-file copy at any time, also of a study
+that is running.
+
 The tables are described in :mod:`pas.study.schema`; rebuilding a study from
 them is :mod:`pas.study.replay` (:func:`~pas.study.replay.attach`) and
 :func:`~pas.study.resume.open_study`.
@@ -83,6 +90,8 @@ class StudyStore(StoreViews):
         if not create and not os.path.exists(self.path):
             raise FileNotFoundError(f"study store {self.path} does not exist "
                                     "(create it with 'pas study create')")
+        #: whether the file was there (not empty) before this store opened it
+        self.existed = os.path.exists(self.path) and os.path.getsize(self.path) > 0
         with named_errors(self.path):
             self._conn = sqlite3.connect(self.path, timeout=timeout, isolation_level=None)
             self._conn.execute("PRAGMA journal_mode=WAL")
@@ -105,7 +114,50 @@ class StudyStore(StoreViews):
 
     # -- plumbing ----------------------------------------------------------
     def close(self) -> None:
+        """Checkpoint (:meth:`checkpoint`) and close the connection; closing twice is harmless."""
+        try:
+            self.checkpoint()
+        except StoreError:
+            pass  # another process still reads: its connection's close checkpoints
         self._conn.close()
+
+    def checkpoint(self) -> bool:
+        """Move the writes waiting in the ``-wal`` file into the ``.sqlite`` file.
+
+        Afterwards the ``.sqlite`` file alone holds the whole study (a copy of
+        it is complete).  Returns False when another process was reading or
+        writing and part of the log stayed in the ``-wal`` file (their next
+        checkpoint moves it); the study is complete either way.
+        """
+        try:
+            self._conn.execute("SELECT 1")
+        except sqlite3.ProgrammingError:  # closed
+            return True
+        if self._depth:
+            return False
+        with named_errors(self.path):
+            busy, _log, _moved = self._conn.execute("PRAGMA wal_checkpoint(TRUNCATE)").fetchone()
+        return not busy
+
+    def backup(self, target) -> str:
+        """Write a consistent one-file copy of the store to ``target`` (a new file); its path.
+
+        Safe while another process runs or tells the study (SQLite's online
+        backup, :meth:`sqlite3.Connection.backup`): the copy is the study as
+        of one moment, every result up to then included, and opens as a study
+        on its own (no ``-wal`` file needed).
+        """
+        target = os.fspath(target)
+        if os.path.exists(target):
+            raise FileExistsError(f"{target} exists; give a new file for the copy")
+        with named_errors(self.path):
+            dest = sqlite3.connect(target)
+            try:
+                self._conn.backup(dest)
+                dest.execute("PRAGMA journal_mode=DELETE")  # one file, no -wal beside it
+            finally:
+                dest.close()
+        return target
 
     def __enter__(self):
         return self
