@@ -20,6 +20,7 @@ import pandas as pd
 
 from pas.api import make_study
 from pas.study.flat import from_flat
+
 from .known_truth import TUNING_TYPES, Problem
 from .known_truth_held_out import FRESH_TYPES, HELD_OUT_TYPES
 

@@ -29,11 +29,11 @@ from pathlib import Path
 
 import numpy as np
 import pandas as pd
-
-import pas
 from pas.validation.known_truth import make_problem
 from pas.validation.known_truth_runs import TYPES as KNOWN_TRUTH
 from pas.validation.result_tables import rewrite_page
+
+import pas
 
 TYPES = ("core-gumbel-t0.6", "core-gaussian-t0.75", "core-clayton-t0.6", "core-frank-t0.6",
          "core-gaussian-t0.45", "core-gumbel-t0.3", "tail-gaussian-mix", "tail-gumbel-b3",

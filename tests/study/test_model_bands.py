@@ -6,11 +6,11 @@ import os
 import _longterm_problem as problem
 import numpy as np
 import pytest
+from harness.timing_problem import scenario
 
 import pas
 import pas.strategies.band as band_module
 from pas.study import precision
-from harness.timing_problem import scenario
 
 
 def _studies(sizes=(600, 2500, 1200), max_hf=14):

@@ -1,7 +1,6 @@
 """Error tables of the investigations page, on hand-worked fixtures."""
 
 import pandas as pd
-
 from harness.error_tables import grid_table, has_results, median_worst
 
 

@@ -6,11 +6,10 @@ import numpy as np
 import pandas as pd
 import pytest
 from _snippets import load_script
-from scipy import integrate, stats
-
 from harness import known_truth as kt
 from harness import known_truth_held_out as ho
 from harness.known_truth_runs import TYPES, select_types, settings_from_args
+from scipy import integrate, stats
 
 # (type, data set, pool size, truth MPM, first two LF peaks, first three HF loads, sum of
 # the HF loads), computed once from the benchmark generator before it moved into the

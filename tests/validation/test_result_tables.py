@@ -8,7 +8,6 @@ from pathlib import Path
 
 import pandas as pd
 import pytest
-
 from harness.result_tables import (
     VALIDATION_HEADER,
     properties_seed_table,
