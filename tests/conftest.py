@@ -49,7 +49,13 @@ def gumbel_problem(n=8000, n_waves=9000, p_exp=2.5e-3, theta=3.0, seed=0):
     hf_m = stats.weibull_min(1.5, scale=100.0)
     cop = pv.Bicop(family=pv.BicopFamily.gumbel, parameters=np.array([[theta]]))
     uv = cop.sample(n, seeds=[seed + 7])
-    return lf_m.ppf(uv[:, 0]), hf_m.ppf(uv[:, 1]), n_waves, p_exp, float(hf_m.isf(p_exp * n_waves / n))
+    return (
+        lf_m.ppf(uv[:, 0]),
+        hf_m.ppf(uv[:, 1]),
+        n_waves,
+        p_exp,
+        float(hf_m.isf(p_exp * n_waves / n)),
+    )
 
 
 def threshold_problem(n=6000, n_waves=20000, p_exp=1e-3, seed=0):

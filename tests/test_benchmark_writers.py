@@ -80,9 +80,16 @@ def _refits(rows):
 
 
 def test_final_sample_refits_write_fills_the_three_tables(tmp_path, capsys):
-    final = _refits([("3a", "final", "study", 0, 0.10), ("3a", "final", "study", 1, -0.50),
-                     ("3a", "final", "default", 0, 0.04), ("3a", "final", "default", 1, 0.06),
-                     ("4a", "final", "censor 0.2", 0, 0.123), ("4a", "final", "censor 0.2", 1, 0.2)])
+    final = _refits(
+        [
+            ("3a", "final", "study", 0, 0.10),
+            ("3a", "final", "study", 1, -0.50),
+            ("3a", "final", "default", 0, 0.04),
+            ("3a", "final", "default", 1, 0.06),
+            ("4a", "final", "censor 0.2", 0, 0.123),
+            ("4a", "final", "censor 0.2", 1, 0.2),
+        ]
+    )
     every = _refits([("4a", "every", "default", 0, -0.3), ("4a", "every", "default", 1, -0.2)])
     final.to_csv(tmp_path / "final.csv", index=False)
     every.to_csv(tmp_path / "every.csv", index=False)

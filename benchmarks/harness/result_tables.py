@@ -360,9 +360,13 @@ def validation_summary(summary: pd.DataFrame) -> str:
     def pct(key):
         return lambda r: f"{100 * r[key]:.1f}"
 
-    lines = [("| cases | PAS median \\|M2\\| | PAS worst \\|M2\\| | PAS HF (median) | PAS converged | "
-              "PAS U95 holds the truth | paper preset median \\|M2\\| | AS median \\|M2\\| |"),
-             "|---" * 8 + "|"]
+    lines = [
+        (
+            "| cases | PAS median \\|M2\\| | PAS worst \\|M2\\| | PAS HF (median) | PAS converged | "
+            "PAS U95 holds the truth | paper preset median \\|M2\\| | AS median \\|M2\\| |"
+        ),
+        "|---" * 8 + "|",
+    ]
     for label, cases in SUMMARY_GROUPS:
         lines.append(f"| {label} | {cells('pas', cases, pct('absM2_median'))} | "
                      f"{cells('pas', cases, pct('absM2_max'))} | "

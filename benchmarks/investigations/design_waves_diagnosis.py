@@ -96,8 +96,10 @@ def main(argv=None):
               f"{data.truth_mpm:<9.4g}  {share:.2f} of {int(high.sum())}", flush=True)
         if spec.family == "3":
             r, m = _bow_rwe_peaks(case, target)
-            print(f"      non-linear bow RWE peak R'' in the episode: RCW {r:.3f} m, MLER {m:.3f} m "
-                  f"(target {target:.3f} m: {r / target - 1:+.1%}, {m / target - 1:+.1%})")
+            print(
+                f"      non-linear bow RWE peak R'' in the episode: RCW {r:.3f} m, MLER {m:.3f} m "
+                f"(target {target:.3f} m: {r / target - 1:+.1%}, {m / target - 1:+.1%})"
+            )
 
 
 if __name__ == "__main__":

@@ -93,7 +93,9 @@ def main(case="3a", seeds="2,5", k=4, n_random=8):
                   "the record, load / truth MPM, error without it): " + ", ".join(
                       f"({p + 1}, {hf_rank[p]}, {hf_pool[p] / data.truth_mpm:.2f}, {e:+.2f})"
                       for p, e in zip(heavy, loo[order])))
-            print(f"  PAS's sample without them: {error(evaluated[~np.isin(evaluated, heavy)]):+.2f}")
+            print(
+                f"  PAS's sample without them: {error(evaluated[~np.isin(evaluated, heavy)]):+.2f}"
+            )
             rng = np.random.default_rng(100 + seed)
             ln_d = np.log(lfset.d)
             plain, without, with_ = [], [], []
@@ -108,8 +110,10 @@ def main(case="3a", seeds="2,5", k=4, n_random=8):
             removable = np.setdiff1d(np.arange(2, 30), heavy)  # LF ranks 3-30, not the k pairs
             thinned = [error(evaluated[~np.isin(evaluated, rng.permutation(removable)[:10])])
                        for _ in range(int(n_random))]
-        print(f"  PAS's sample, 10 of LF ranks 3-30 (not the pairs above) removed: median {np.median(thinned):+.2f} "
-              f"({' '.join(f'{x:+.2f}' for x in thinned)})")
+        print(
+            f"  PAS's sample, 10 of LF ranks 3-30 (not the pairs above) removed: median {np.median(thinned):+.2f} "
+            f"({' '.join(f'{x:+.2f}' for x in thinned)})"
+        )
         print(f"  {n_random} random ln-d samples as drawn:        median {np.median(plain):+.2f} "
               f"({' '.join(f'{x:+.2f}' for x in plain)})")
         print(f"  the same without them:                 median {np.median(without):+.2f} "

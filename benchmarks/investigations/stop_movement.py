@@ -166,8 +166,13 @@ def _pct(value: float) -> str:
 
 def markdown(cases: pd.DataFrame) -> str:
     """The page's ``move20`` table, one row per case of ``--csv``."""
-    lines = [("| case | ε1 / truth | PAS (default) at its end | known law | known law + LF (Gumbel) "
-              "| references within ε1 | their median \\|error\\| at k |"), "|---" * 7 + "|"]
+    lines = [
+        (
+            "| case | ε1 / truth | PAS (default) at its end | known law | known law + LF (Gumbel) "
+            "| references within ε1 | their median \\|error\\| at k |"
+        ),
+        "|---" * 7 + "|",
+    ]
     for _, r in cases.iterrows():
         end = "at 160 HF" if r["pas_stopped"] == 0 else "at its stop or 160 HF"
         lines.append(

@@ -37,10 +37,18 @@ def main(argv=None):
     for s in "ab":
         runs[f"abs_{s}"] = runs[f"error_{s}"].abs()
     per_type = runs.groupby("type", sort=False).agg(
-        **{f"{what}_{s}": (f"{col}_{s}", how) for s in "ab"
-           for what, col, how in (("median_abs", "abs", "median"), ("median_err", "error", "median"),
-                                  ("coverage", "covered", "mean"), ("hf", "n_hf", "median"),
-                                  ("converged", "converged", "mean"))})
+        **{
+            f"{what}_{s}": (f"{col}_{s}", how)
+            for s in "ab"
+            for what, col, how in (
+                ("median_abs", "abs", "median"),
+                ("median_err", "error", "median"),
+                ("coverage", "covered", "mean"),
+                ("hf", "n_hf", "median"),
+                ("converged", "converged", "mean"),
+            )
+        }
+    )
     with pd.option_context("display.width", 250, "display.max_columns", 20):
         print(per_type.round(3).to_string())
     a, b = runs["abs_a"], runs["abs_b"]

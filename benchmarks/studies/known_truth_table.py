@@ -68,10 +68,12 @@ HELD_OUT_GROUPS = {"miss": "threshold + misses", "outlier": "outliers", "mix": "
 def _held_out_row(label, runs):
     a = runs["error"].abs()
     width = (runs["band_high"] - runs["band_low"]) / runs["truth"]
-    return (f"| {label} | {len(runs)} | {100 * runs['covered'].mean():.0f} % | {_pct(a.median())} | "
-            f"{_pct(a.quantile(0.9))} | {_pct(a.max())} | {_pct(runs['error'].median(), True)} | "
-            f"{_pct(width.median())} | {runs['n_hf'].median():g} | "
-            f"{100 * runs['converged'].mean():.0f} % |")
+    return (
+        f"| {label} | {len(runs)} | {100 * runs['covered'].mean():.0f} % | {_pct(a.median())} | "
+        f"{_pct(a.quantile(0.9))} | {_pct(a.max())} | {_pct(runs['error'].median(), True)} | "
+        f"{_pct(width.median())} | {runs['n_hf'].median():g} | "
+        f"{100 * runs['converged'].mean():.0f} % |"
+    )
 
 
 def held_out_tables(runs) -> dict[str, str]:

@@ -94,9 +94,12 @@ def run(analogue, seeds, out, precisions, max_hf, first=1):
             row = one_run(data, p, precision, max_hf)
             old = [pd.read_csv(path)] if path.exists() else []
             pd.concat([*old, pd.DataFrame([row])], ignore_index=True).to_csv(path, index=False)
-            print(f"{analogue} seed {seed} ±{100 * precision:g} %: reached {row['reached']} at "
-                  f"{row['n_hf']} HF, error {row['error']:+.1%}, U95 ±{100 * row['halfwidth']:.1f} % "
-                  f"covered {row['covered']}, {row['seconds']:.0f} s", flush=True)
+            print(
+                f"{analogue} seed {seed} ±{100 * precision:g} %: reached {row['reached']} at "
+                f"{row['n_hf']} HF, error {row['error']:+.1%}, U95 ±{100 * row['halfwidth']:.1f} % "
+                f"covered {row['covered']}, {row['seconds']:.0f} s",
+                flush=True,
+            )
 
 
 NAMES = {"2": "hogging VBM", "3": "green water"}

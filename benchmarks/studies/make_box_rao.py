@@ -35,7 +35,9 @@ RHO, G = 1025.0, 9.81
 OMEGA = np.concatenate([[0.05, 0.1, 0.15], np.arange(0.2, 1.61, 0.1)])
 HEADINGS_DEG = (180.0, 135.0, 90.0)
 PANEL = 3.0  # target panel size (m)
-OUT = Path(__file__).resolve().parents[2] / "src" / "pas" / "waves" / "data" / "box_hull_capytaine.nc"
+OUT = (
+    Path(__file__).resolve().parents[2] / "src" / "pas" / "waves" / "data" / "box_hull_capytaine.nc"
+)
 
 
 def build_body(length, beam, draught):
@@ -81,23 +83,38 @@ def main(argv=None):
     ds["inertia_matrix"] = body.inertia_matrix
     ds["hydrostatic_stiffness"] = body.hydrostatic_stiffness
     ds["rao"] = rao(ds)
-    ds.attrs.update({
-        "title": "Capytaine radiation/diffraction of a box hull (pas benchmarks/studies/make_box_rao.py)",
-        "length": args.length, "beam": args.beam, "draught": args.draught,
-        "rotation_center_x": 0.0, "rotation_center_y": 0.0, "rotation_center_z": -args.draught / 2,
-        "capytaine_version": cpt.__version__,
-        "time_convention": "Capytaine: Re[X exp(-i omega t)], incident eta = Re[exp(i k (x cos b + y sin b) - i omega t)]",
-        "n_panels": int(body.mesh.nb_faces), "n_lid_panels": int(body.lid_mesh.nb_faces),
-    })
+    ds.attrs.update(
+        {
+            "title": "Capytaine radiation/diffraction of a box hull (pas benchmarks/studies/make_box_rao.py)",
+            "length": args.length,
+            "beam": args.beam,
+            "draught": args.draught,
+            "rotation_center_x": 0.0,
+            "rotation_center_y": 0.0,
+            "rotation_center_z": -args.draught / 2,
+            "capytaine_version": cpt.__version__,
+            "time_convention": "Capytaine: Re[X exp(-i omega t)], incident eta = Re[exp(i k (x cos b + y sin b) - i omega t)]",
+            "n_panels": int(body.mesh.nb_faces),
+            "n_lid_panels": int(body.lid_mesh.nb_faces),
+        }
+    )
     for name in ("body_name", "rho", "g", "water_depth", "forward_speed", "free_surface"):
         if name in ds.coords and ds.coords[name].size == 1:
-            ds.attrs[name] = ds.coords[name].values.item() if name != "body_name" else str(ds.coords[name].values)
-    drop = [c for c in ds.coords if c not in ds.dims and c not in ("radiating_dof", "influenced_dof")]
+            ds.attrs[name] = (
+                ds.coords[name].values.item()
+                if name != "body_name"
+                else str(ds.coords[name].values)
+            )
+    drop = [
+        c for c in ds.coords if c not in ds.dims and c not in ("radiating_dof", "influenced_dof")
+    ]
     ds = ds.drop_vars(drop)
     args.out.parent.mkdir(parents=True, exist_ok=True)
     save_dataset_as_netcdf(args.out, ds)
-    print(f"{args.out}: {args.out.stat().st_size / 1e3:.0f} kB, {len(problems)} problems, "
-          f"{body.mesh.nb_faces} + {body.lid_mesh.nb_faces} panels, {time.perf_counter() - t0:.0f} s")
+    print(
+        f"{args.out}: {args.out.stat().st_size / 1e3:.0f} kB, {len(problems)} problems, "
+        f"{body.mesh.nb_faces} + {body.lid_mesh.nb_faces} panels, {time.perf_counter() - t0:.0f} s"
+    )
 
 
 if __name__ == "__main__":

@@ -45,7 +45,9 @@ def jonswap_hz(f, hs, tp, gamma):
         pos = ff > 0
         x = ff[pos] * tp
         sig = np.where(x <= 1, 0.07, 0.09)
-        out[pos] = ff[pos] ** -5 * np.exp(-1.25 * x**-4) * gamma ** np.exp(-((x - 1) ** 2) / (2 * sig**2))
+        out[pos] = (
+            ff[pos] ** -5 * np.exp(-1.25 * x**-4) * gamma ** np.exp(-((x - 1) ** 2) / (2 * sig**2))
+        )
         return out
 
     return hs**2 / 16 * shape(f) / np.trapezoid(shape(fine), fine)
@@ -58,11 +60,18 @@ def oscillator_rao(w, wn, zeta, lag):
 
 
 CASES = {
-    "pm_oscillator": dict(f=np.linspace(0.0, 1.0, 257), spectrum=lambda f: pierson_moskowitz_hz(f, 8.0, 10.0),
-                          rao=lambda w: oscillator_rao(w, 0.7, 0.15, 1.3), target=3.0),
-    "jonswap_lagged": dict(f=np.linspace(0.0, 1.0, 401), spectrum=lambda f: jonswap_hz(f, 13.2, 10.0, 3.0),
-                           rao=lambda w: 2.5 * np.exp(-0.4 * w) * oscillator_rao(w, 0.9, 0.3, -4.0),
-                           target=12.5),
+    "pm_oscillator": dict(
+        f=np.linspace(0.0, 1.0, 257),
+        spectrum=lambda f: pierson_moskowitz_hz(f, 8.0, 10.0),
+        rao=lambda w: oscillator_rao(w, 0.7, 0.15, 1.3),
+        target=3.0,
+    ),
+    "jonswap_lagged": dict(
+        f=np.linspace(0.0, 1.0, 401),
+        spectrum=lambda f: jonswap_hz(f, 13.2, 10.0, 3.0),
+        rao=lambda w: 2.5 * np.exp(-0.4 * w) * oscillator_rao(w, 0.9, 0.3, -4.0),
+        target=12.5,
+    ),
 }
 
 

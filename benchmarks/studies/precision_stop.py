@@ -195,8 +195,16 @@ def loop_cost(max_hf: int) -> pd.DataFrame:
     for name, stop in (("eps1 (no band in the loop)", {"eps1": 1e-9}),
                        ("precision 0.01 (never reached)", {"precision": 0.01}),
                        ("precision 0.5 (reached early)", {"precision": 0.5})):
-        study = pas.make_study("pas", lf, n_waves=timing_problem.N_W, p_exp=timing_problem.P_EXP, seed=1,
-                               max_hf=max_hf, stop_on_convergence=False, **stop)
+        study = pas.make_study(
+            "pas",
+            lf,
+            n_waves=timing_problem.N_W,
+            p_exp=timing_problem.P_EXP,
+            seed=1,
+            max_hf=max_hf,
+            stop_on_convergence=False,
+            **stop,
+        )
         t0 = timing_problem.cpu_seconds()
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")

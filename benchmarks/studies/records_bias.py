@@ -42,8 +42,10 @@ def seed_maxima_bias(rng, reps=20000):
         m = -np.sort(-maxima(rng, (reps, n)), axis=1)
         for pos in ("weibull", "k/n"):
             e = read_at_exceedance(m, n, 1 - 0.368, positions=pos, scale="linear")
-            print(f"   N = {n:2d}  {pos:8s} bias {e.mean() - exact:+.3f} m "
-                  f"(s.e. {e.std() / np.sqrt(reps):.3f}, RMS {np.sqrt(np.mean((e - exact)**2)):.3f})")
+            print(
+                f"   N = {n:2d}  {pos:8s} bias {e.mean() - exact:+.3f} m "
+                f"(s.e. {e.std() / np.sqrt(reps):.3f}, RMS {np.sqrt(np.mean((e - exact) ** 2)):.3f})"
+            )
 
 
 def pooled_q90_bias(rng, reps=2000, m=10):

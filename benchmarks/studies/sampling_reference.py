@@ -268,8 +268,10 @@ def main(argv=None):
                                for s, d in enumerate(data_sets[c]) if s in g.index])
         pas_m2 = g.M2.abs()
         save(c, int(np.median(g.n_hf)), "pas-random-events", errs)
-        print(f"| {c} | {_row(errs)} | {100 * pas_m2.median():.1f} % / {100 * pas_m2.max():.1f} % |",
-              flush=True)
+        print(
+            f"| {c} | {_row(errs)} | {100 * pas_m2.median():.1f} % / {100 * pas_m2.max():.1f} % |",
+            flush=True,
+        )
 
 
 if __name__ == "__main__":

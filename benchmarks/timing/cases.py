@@ -42,8 +42,12 @@ def main():
                     first.setdefault((cid, strat), res)
             t_run[cid] = time.perf_counter() - t0
             d = data[cid]
-            per = ", ".join(f"{r['strategy'].upper()} {r['n_hf']} HF M2 {100 * r['M2']:+.1f}% "
-                            f"{r['seconds']:.1f} s" for r in rows if r["case"] == cid and r["seed"] == 0)
+            per = ", ".join(
+                f"{r['strategy'].upper()} {r['n_hf']} HF M2 {100 * r['M2']:+.1f}% "
+                f"{r['seconds']:.1f} s"
+                for r in rows
+                if r["case"] == cid and r["seed"] == 0
+            )
             print(f"{cid}: {d.n_events} events, generate {t_gen[cid]:5.1f} s, "
                   f"strategies {t_run[cid]:5.1f} s ({per})", flush=True)
         t0 = time.perf_counter()

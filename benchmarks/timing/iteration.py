@@ -84,7 +84,10 @@ def student_draws(u, n_total, rho=0.6, nu=4.3):
     from pas.models.copulas import conditional_quantile
 
     b = pv.Bicop(family=pv.BicopFamily.student, parameters=np.array([[rho], [nu]]))
-    uu, rr = np.tile(u, n_total // u.size), np.random.default_rng(0).uniform(1e-6, 1 - 1e-6, n_total)
+    uu, rr = (
+        np.tile(u, n_total // u.size),
+        np.random.default_rng(0).uniform(1e-6, 1 - 1e-6, n_total),
+    )
 
     def scipy_inverse():
         x1 = special.stdtrit(nu, uu)

@@ -66,9 +66,17 @@ def worker(analogue, scale, max_hf, model_band):
 
     result_module.LongTermResult.build = classmethod(timed_build)
     t0, c0 = time.perf_counter(), time.process_time()
-    res = run_long_term(table, peaks, data.oracle(), p_exceed=2e-6, seed=0, max_hf=max_hf,
-                        eps1=eps1, model_band=model_band,
-                        callback=lambda name, st, row: asked.append([name, int(row["event_index"])]))
+    res = run_long_term(
+        table,
+        peaks,
+        data.oracle(),
+        p_exceed=2e-6,
+        seed=0,
+        max_hf=max_hf,
+        eps1=eps1,
+        model_band=model_band,
+        callback=lambda name, st, row: asked.append([name, int(row["event_index"])]),
+    )
     wall, cpu = time.perf_counter() - t0, time.process_time() - c0
     print(json.dumps({"wall": wall, "cpu": cpu, "result_wall": build["wall"],
                       "result_cpu": build["cpu"], "value": res.value,

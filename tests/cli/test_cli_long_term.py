@@ -95,7 +95,9 @@ def test_end_to_end_writes_summary(problem, capsys):
                  "--out", str(out), "--json")
     assert main(argv) == 0
     summary = json.loads((out / "summary.json").read_text())
-    assert summary["study"] == str(out / "long-term.sqlite") and (out / "long-term.sqlite").is_file()
+    assert (
+        summary["study"] == str(out / "long-term.sqlite") and (out / "long-term.sqlite").is_file()
+    )
     assert main(argv) == 0   # the same command again: resumed from the store, nothing re-run
     again = json.loads((out / "summary.json").read_text())
     assert again["n_hf"] == summary["n_hf"]

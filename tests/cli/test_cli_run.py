@@ -31,7 +31,9 @@ def files(tmp_path_factory):
     lf = rng.rayleigh(2.0, N)
     hf = np.where(lf < 1.0, 0.0, 1.2 * lf**1.1 * rng.lognormal(0, 0.08, N))
     ids = [f"ev{i:05d}" for i in range(N)]
-    pd.DataFrame({"id": ids, "rwe": lf, "seed": np.arange(N) % 97}).to_csv(d / "lf.csv", index=False)
+    pd.DataFrame({"id": ids, "rwe": lf, "seed": np.arange(N) % 97}).to_csv(
+        d / "lf.csv", index=False
+    )
     pd.DataFrame({"event": ids, "force": hf}).to_csv(d / "hf.csv", index=False)
     np.save(d / "lf.npy", lf)
     (d / "my_oracle.py").write_text(textwrap.dedent("""\
@@ -131,8 +133,10 @@ def test_python_oracle_by_module_name(files, tmp_path, capsys, monkeypatch):
 def test_command_oracle(files, tmp_path, capsys):
     d, *_ = files
     script = tmp_path / "cfd.py"
-    script.write_text("import sys\nlf, seed, out = float(sys.argv[1]), int(sys.argv[2]), sys.argv[3]\n"
-                      "open(out, 'w').write(str(1.2 * lf ** 1.1))\n")
+    script.write_text(
+        "import sys\nlf, seed, out = float(sys.argv[1]), int(sys.argv[2]), sys.argv[3]\n"
+        "open(out, 'w').write(str(1.2 * lf ** 1.1))\n"
+    )
     out = tmp_path / "r4"
     cmd = f"command:{sys.executable} {script} {{lf}} {{seed}} {{result}}"
     code, stdout, stderr = _run(capsys, "run", d / "lf.csv", "--lf-column", "rwe",

@@ -55,7 +55,10 @@ def test_campaign_through_the_cli(tmp_path, capsys):
     db = str(tmp_path / "s.db")
     assert cli("study", "create", db, "--config", cfg) == 0
     for _ in range(4):
-        assert cli("study", "ask", db, "-n", "3", "--format", "csv", "-o", str(tmp_path / "a.csv")) == 0
+        assert (
+            cli("study", "ask", db, "-n", "3", "--format", "csv", "-o", str(tmp_path / "a.csv"))
+            == 0
+        )
         asked = pd.read_csv(tmp_path / "a.csv")
         assert list(asked.columns) == ["id", "index", "lf", "d", "seed", "t_start"]
         np.testing.assert_array_equal(asked["t_start"], asked["index"] * 20.0)
@@ -94,7 +97,9 @@ def test_eight_processes_tell_200_results(tmp_path, capsys):
     cfg = write_case(tmp_path, extra="max_hf = 400")  # above the default budget of 160
     db = str(tmp_path / "s.db")
     assert cli("study", "create", db, "--config", cfg) == 0
-    assert cli("study", "ask", db, "-n", "200", "--format", "csv", "-o", str(tmp_path / "a.csv")) == 0
+    assert (
+        cli("study", "ask", db, "-n", "200", "--format", "csv", "-o", str(tmp_path / "a.csv")) == 0
+    )
     asked = pd.read_csv(tmp_path / "a.csv")
     assert len(asked) == 200
     items = list(zip(asked["id"], hf_of(asked["lf"]).tolist()))
@@ -123,7 +128,10 @@ BAD_TOML = [
     ("colour", TOML.format(extra='colour = "red"')),
     ("lf.file", TOML.format(extra="").replace('file = "peaks.csv"', "")),
     ("lf.meta_columns", TOML.format(extra="").replace('["seed", "t_start"]', '"seed"')),
-    ("lf.column: column 'height'", TOML.format(extra="").replace('column = "lf"', 'column = "height"')),
+    (
+        "lf.column: column 'height'",
+        TOML.format(extra="").replace('column = "lf"', 'column = "height"'),
+    ),
     ("z", TOML.format(extra="").replace("n_bootstrap = 0", "z = 1")),
     ("'lf'", "NAN_IN_LF"),
     ("oracle.timeout", TOML.format(extra="") + '[oracle]\ncommand = ["x"]\ntimeout = "long"\n'),
@@ -241,7 +249,9 @@ def test_status_does_not_claim_convergence_beside_results_it_has_not_used(tmp_pa
         "eps1 = 0.01", "eps1 = 0.05"))
     db = str(tmp_path / "s.db")
     assert cli("study", "create", db, "--config", cfg) == 0
-    assert cli("study", "ask", db, "-n", "30", "--format", "csv", "-o", str(tmp_path / "a.csv")) == 0
+    assert (
+        cli("study", "ask", db, "-n", "30", "--format", "csv", "-o", str(tmp_path / "a.csv")) == 0
+    )
     asked = pd.read_csv(tmp_path / "a.csv")
     asked.assign(hf=hf_of(asked["lf"]))[["id", "hf"]].to_csv(tmp_path / "r.csv", index=False)
     assert cli("study", "tell", db, "--csv", str(tmp_path / "r.csv")) == 0
@@ -319,7 +329,12 @@ def test_the_documented_study_file_creates_a_study(tmp_path, capsys):
         s = store.settings()
         assert store.get("oracle")["command"][:2] == ["python", "cfd_event.py"]
         assert store.get("batch_size") == 2
-    assert (s["eps1"], s["threshold"], s["max_hf"], s["strategy_settings"]["z"]) == (20.0, 12.0, 60, 10)
+    assert (s["eps1"], s["threshold"], s["max_hf"], s["strategy_settings"]["z"]) == (
+        20.0,
+        12.0,
+        60,
+        10,
+    )
 
 
 def test_status_names_failed_events_and_ask_prints_what_it_asks_after_a_retry(tmp_path, capsys):

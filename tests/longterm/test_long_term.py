@@ -17,7 +17,9 @@ from pas.study.store import StoreError
 
 P = 1e-3
 N_CACHE = 2000
-FAST = dict(p_exceed=P, seed=4, strategy=pas.PAS(band=pas.ModelBand(n_bootstrap=0)), model_band=False)
+FAST = dict(
+    p_exceed=P, seed=4, strategy=pas.PAS(band=pas.ModelBand(n_bootstrap=0)), model_band=False
+)
 
 
 def _small(seed=1):
@@ -99,7 +101,9 @@ def test_resumed_analysis_asks_nothing_twice_and_ends_as_an_uninterrupted_one(tm
     assert one.lfset.event(0).sea_state == "H4"
     one.store.close()
     single = tmp_path / "single.sqlite"
-    pas.make_study(pas.PAS, lf["H4"], n_waves=2000, p_exp=0.01, eps1=0.1, store=single).store.close()
+    pas.make_study(
+        pas.PAS, lf["H4"], n_waves=2000, p_exp=0.01, eps1=0.1, store=single
+    ).store.close()
     with pytest.raises(StoreError, match="holds a single study, not a long-term analysis"):
         pas.run_long_term(table, lf, again, max_hf=12, study=single, **FAST)
 

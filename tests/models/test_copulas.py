@@ -173,7 +173,9 @@ def test_weighted_ranks_drawn_are_uniform_order_statistics():
     for k in (1, 10):
         exceed = 1.0 - draws[:, x == m - k][:, 0]
         assert exceed.mean() == pytest.approx((k - 0.5) / m, rel=0.06)
-        assert exceed.std() / exceed.mean() == pytest.approx(np.sqrt(k - 0.75) / (k - 0.5), rel=0.08)
+        assert exceed.std() / exceed.mean() == pytest.approx(
+            np.sqrt(k - 0.75) / (k - 0.5), rel=0.08
+        )
     np.testing.assert_array_equal(weighted_ranks(x, np.ones(m)), hazen)
 
 

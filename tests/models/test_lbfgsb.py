@@ -17,7 +17,9 @@ def test_one_problem_takes_scipys_iterates(name, marginal):
     u = rng.uniform(0.02, 0.98, 60)
     h = 2.0 + rng.weibull(1.6, 60) * (1.0 + 2.5 * u)
     _, grad, _ = joint_objective(name, u, h, marginal=marginal)
-    shape = (np.log(0.02), np.log(10.0)) if marginal == "lognormal" else (np.log(0.05), np.log(50.0))
+    shape = (
+        (np.log(0.02), np.log(10.0)) if marginal == "lognormal" else (np.log(0.05), np.log(50.0))
+    )
     bounds = location_bounds(h, 0.0, True) + [(None, None), shape] + [(None, None)] * (
         2 if name == "student" else 1)
     x0 = np.r_[-1.0, 0.5 if marginal == "lognormal" else 1.0, 0.3, 0.5, [1.0] * (name == "student")]

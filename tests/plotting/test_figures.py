@@ -183,7 +183,9 @@ def test_aic_two_panels_and_single(result, tmp_path):
     # selected family per iteration: one marker per fitted iteration
     n_marks = sum(len(ln.get_xdata()) for ln in bottom.get_lines())
     assert n_marks == len(result.fitted)
-    assert [t.get_text() for t in bottom.get_yticklabels()] == list(pas.models.copulas.PAPER_FAMILIES)
+    assert [t.get_text() for t in bottom.get_yticklabels()] == list(
+        pas.models.copulas.PAPER_FAMILIES
+    )
 
     fig, ax = plt.subplots()
     fig2, ax2 = plot_aic(result, ax=ax)
@@ -298,7 +300,9 @@ def test_aic_says_why_the_lowest_aic_was_not_selected(result):
     # rows 2-3: the lowest AIC is a family at its bound; rows 4-5: within the hysteresis
     for k, r in enumerate(rows):
         other = "student" if hist.at[r, "family"] != "student" else "gaussian"
-        hist.at[r, f"aic_{other}"] = hist.loc[r, [c for c in hist if c.startswith("aic_")]].min() - 1
+        hist.at[r, f"aic_{other}"] = (
+            hist.loc[r, [c for c in hist if c.startswith("aic_")]].min() - 1
+        )
         hist.at[r, "ineligible"] = other if k < 2 else ""
     fig, (top, bottom) = plot_aic(dataclasses.replace(result, history=hist))
     texts = _legend_texts(bottom)  # one legend, under the lower panel

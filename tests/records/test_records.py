@@ -144,7 +144,9 @@ def test_rms_difference_decreases_with_seeds():
     # R(N) (finite-population corrected) is not defined there (changed on purpose)
     assert cv.rms_subsets["pooled"][-1] == 0.0 and np.isnan(r[-1])
     assert cv.reference == pytest.approx(mpm_pooled(peaks, 12000))
-    assert np.all(cv.rms_low["pooled"][:-1] < r[:-1]) and np.all(r[:-1] < cv.rms_high["pooled"][:-1])
+    assert np.all(cv.rms_low["pooled"][:-1] < r[:-1]) and np.all(
+        r[:-1] < cv.rms_high["pooled"][:-1]
+    )
     assert np.isnan(cv.rms["seed maxima"][0]) and cv.rms["seed maxima"][-2] < r[0]
     assert cv.rms["fit"][0] > cv.rms["fit"][15]
     assert cv.seeds_needed(r[9] + 1e-9) <= 10

@@ -54,7 +54,9 @@ def test_mler_matches_mhkit(name):
     s_rad = np.asarray(ref["spectrum_m2_per_hz"]) / (2 * np.pi)
     rao = np.asarray(ref["rao_real"]) + 1j * np.asarray(ref["rao_imag"])
     ours = mler_amplitudes(np.sqrt(s_rad * d_w), rao, ref["target"], omega_e=w)
-    theirs = np.sqrt(2 * np.asarray(ref["wave_spectrum"]) * d_w) * np.exp(1j * np.asarray(ref["phase"]))
+    theirs = np.sqrt(2 * np.asarray(ref["wave_spectrum"]) * d_w) * np.exp(
+        1j * np.asarray(ref["phase"])
+    )
     big = np.abs(theirs) > 1e-6 * np.abs(theirs).max()
     assert big.sum() > 50
     assert np.max(np.abs(ours - theirs)) <= 1e-6 * np.abs(theirs).max()
@@ -240,7 +242,9 @@ def test_run_rcw_ladder_targets_and_result(crest, tmp_path):
     # M2 and M3 of pas.metrics work on it (levels cover [P/2, 2P])
     truth_d = np.geomspace(1e-4, 1e-1, 50)
     truth_h = 1.2 * np.sqrt(2 * lin.m0 * np.log(1 / truth_d))
-    met = pas.metrics(res, truth_d, truth_h, float(np.interp(np.log(1e-3), np.log(truth_d), truth_h)))
+    met = pas.metrics(
+        res, truth_d, truth_h, float(np.interp(np.log(1e-3), np.log(truth_d), truth_h))
+    )
     assert abs(met["M2"]) < 3e-3 and abs(met["M3"]) < 0.02 and met["M1"] == 4 / 20_000
     res.save(tmp_path / "rcw")                               # same files as PAS and AS
     back = pas.ScreeningResult.load(tmp_path / "rcw")

@@ -70,7 +70,9 @@ def test_selected_space_fit_is_off_where_the_conditional_fit_is_not(strong):
     paper = np.array([_error(PAPER, *p) for p in strong])
     conditional = np.array([_error({}, *p) for p in strong])
     assert np.max(np.abs(conditional)) < 0.05
-    assert np.max(np.abs(paper)) > 0.09 and np.mean(np.abs(paper)) > 2 * np.mean(np.abs(conditional))
+    assert np.max(np.abs(paper)) > 0.09 and np.mean(np.abs(paper)) > 2 * np.mean(
+        np.abs(conditional)
+    )
 
 
 def test_impact_model_removes_the_bias_of_a_positive_draw_for_every_peak():

@@ -165,7 +165,9 @@ def test_cli_failure_limit_then_retry_failed_matches_an_uninterrupted_run(case, 
     (folder / "broken.flag").touch()
     code, _, err = _run(capsys, *argv, "--max-failures", "1", "--out", bad)
     assert code == 1 and _calls(folder) == 2
-    assert "fix the oracle and rerun with --retry-failed (same --out), or raise --max-failures" in err
+    assert (
+        "fix the oracle and rerun with --retry-failed (same --out), or raise --max-failures" in err
+    )
     # reproduction: rerunning the same command stops at once, and now says how to go on
     code, _, err = _run(capsys, *argv, "--out", bad)
     assert code == 1 and _calls(folder) == 0 and "--retry-failed" in err

@@ -43,7 +43,9 @@ def _n_results(db):
         return 0
     try:
         with sqlite3.connect(db, timeout=10) as c:
-            return c.execute("SELECT COUNT(*) FROM events WHERE result_seq IS NOT NULL").fetchone()[0]
+            return c.execute("SELECT COUNT(*) FROM events WHERE result_seq IS NOT NULL").fetchone()[
+                0
+            ]
     except sqlite3.OperationalError:
         return 0
 
@@ -177,7 +179,9 @@ def test_sigkill_resume_loses_nothing_and_reruns_nothing(tmp_path):
     res = _campaign.campaign(db, root, log, script)
 
     completed = Counter(open(log).read().split())
-    assert max(completed.values()) == 1, f"re-run events: {[k for k, v in completed.items() if v > 1]}"
+    assert max(completed.values()) == 1, (
+        f"re-run events: {[k for k, v in completed.items() if v > 1]}"
+    )
     with StudyStore(db, create=False) as store:
         ev = store.events()
     assert len(ev) == 25 and set(ev["state"]) == {"done"}

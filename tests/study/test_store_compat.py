@@ -92,5 +92,7 @@ def test_store_written_with_flat_settings_before_0_2_replays(tmp_path):
         study.store.close()
     # the stored flat settings are read, not rewritten: the file still opens in 0.1
     with sqlite3.connect(path) as c:
-        stored = json.loads(c.execute("SELECT value FROM meta WHERE key = 'settings'").fetchone()[0])
+        stored = json.loads(
+            c.execute("SELECT value FROM meta WHERE key = 'settings'").fetchone()[0]
+        )
     assert stored["strategy_settings"]["copula_fit"] == "mle"

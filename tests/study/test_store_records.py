@@ -25,8 +25,13 @@ def hf_of(ev) -> float:
 
 
 def new_study(path) -> pas.Study:
-    return pas.Study(pas.LFSet(LF, n_waves=N, p_exp=1e-2), pas.PAS(band=pas.ModelBand(n_bootstrap=0)),
-                     eps1=1e-3, seed=2, store=StudyStore(path))
+    return pas.Study(
+        pas.LFSet(LF, n_waves=N, p_exp=1e-2),
+        pas.PAS(band=pas.ModelBand(n_bootstrap=0)),
+        eps1=1e-3,
+        seed=2,
+        store=StudyStore(path),
+    )
 
 
 def told_study(path):

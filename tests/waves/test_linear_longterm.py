@@ -53,7 +53,9 @@ def test_unit_transfer_gives_the_wave_moments():
     np.testing.assert_allclose(st["m0"], ss["hs"] ** 2 / 16, rtol=5e-3)
     for row, nu in zip(ss.itertuples(), st["nu"]):
         def moment(n, r=row):
-            return integrate.quad(lambda x: x**n * W.jonswap(x, r.hs, r.tp), 0.02, 4.0, limit=200)[0]
+            return integrate.quad(lambda x: x**n * W.jonswap(x, r.hs, r.tp), 0.02, 4.0, limit=200)[
+                0
+            ]
         assert nu == pytest.approx(np.sqrt(moment(2) / moment(0)) / (2 * np.pi), rel=2e-3)
     assert (st["coverage"] > 0.99).all()
 
@@ -78,7 +80,9 @@ def test_speed_must_match_the_transfer_function():
 def test_rayleigh_extreme_mpm_and_fractile():
     m0, nu, duration = 2.0, 0.1, 10800.0
     n = nu * duration
-    assert W.rayleigh_extreme(m0, nu, duration) == pytest.approx(np.sqrt(2 * m0 * np.log(n)), rel=1e-12)
+    assert W.rayleigh_extreme(m0, nu, duration) == pytest.approx(
+        np.sqrt(2 * m0 * np.log(n)), rel=1e-12
+    )
     x90 = W.rayleigh_extreme(m0, nu, duration, fractile=0.9)
     assert (1 - np.exp(-x90**2 / (2 * m0))) ** n == pytest.approx(0.9, rel=1e-9)
 
@@ -108,8 +112,9 @@ def test_linear_long_term_agrees_with_snoopy(peer, case):
     # N years of 365.24 days; ours Q = 1 / N cycles: the same to ~1e-4 here.
     table = pd.DataFrame(peer["sea_states"])
     ours = W.north_atlantic().sea_states()
-    np.testing.assert_allclose(table[["probability", "hs", "tp"]], ours[["probability", "hs", "tp"]],
-                               rtol=1e-9)
+    np.testing.assert_allclose(
+        table[["probability", "hs", "tp"]], ours[["probability", "hs", "tp"]], rtol=1e-9
+    )
     tf, response = _pas_case(case, np.asarray(peer["omega"]))
     lt = W.linear_long_term(tf, response, table.assign(speed=tf.speed))
     ref = peer["cases"][case]

@@ -55,7 +55,16 @@ def test_wide_and_long_tables_give_the_same_diagram():
 
 def test_sea_states_table(rec34):
     ss = rec34.sea_states(speed=5.0)
-    assert list(ss.columns) == ["name", "probability", "hs", "tp", "tz", "gamma", "heading", "speed"]
+    assert list(ss.columns) == [
+        "name",
+        "probability",
+        "hs",
+        "tp",
+        "tz",
+        "gamma",
+        "heading",
+        "speed",
+    ]
     assert ss["probability"].sum() == pytest.approx(1.0, rel=1e-12)
     assert ss["name"].is_unique
     np.testing.assert_allclose(ss["tz"] / ss["tp"], W.tz_over_tp(3.3), rtol=1e-12)
@@ -91,7 +100,9 @@ def test_iform_contour_hs_maximum_is_the_marginal_quantile(fitted):
 
 
 def test_design_sea_state_is_the_contour_maximum():
-    contour = pd.DataFrame({"name": ["a", "b", "c"], "hs": [4.0, 9.0, 6.0], "tp": [8.0, 12.0, 15.0]})
+    contour = pd.DataFrame(
+        {"name": ["a", "b", "c"], "hs": [4.0, 9.0, 6.0], "tp": [8.0, 12.0, 15.0]}
+    )
     design, table = W.design_sea_state(contour, lambda r: r["hs"] * 10 - r["tp"])
     assert design["name"] == "b"
     np.testing.assert_allclose(table["value"], [32.0, 78.0, 45.0])

@@ -64,7 +64,9 @@ def test_encounter_grid_maps_back_and_keeps_energy():
     spec = lambda w: W.jonswap(w, 13.2, 10.0, gamma=3.0)  # noqa: E731
     still = W.linear_sea(spec, 1800.0, seed=1, depth=1000.0)
     sea = W.linear_sea(spec, 1800.0, seed=1, depth=1000.0, speed=5.1, heading=180.0)
-    np.testing.assert_allclose(W.encounter_frequency(sea.omega, 5.1, 180.0), sea.omega_e, rtol=1e-12)
+    np.testing.assert_allclose(
+        W.encounter_frequency(sea.omega, 5.1, 180.0), sea.omega_e, rtol=1e-12
+    )
     assert np.all(np.diff(sea.omega) > 0)
     assert sea.m0 == pytest.approx(still.m0, rel=2e-3)  # S_e d(w_e) = S dw
     # Counted up-crossing period vs Tz,e = 2 pi sqrt(m0 / m2e) with

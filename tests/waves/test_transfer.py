@@ -151,16 +151,21 @@ def test_rrv_is_the_time_derivative_of_rwe():
 
 def test_rao_table_round_trip(tmp_path):
     tf = TransferFunction.from_ship(W.FERRY_190M, OMEGA, heading=[135.0, 180.0])
-    rows = [{"omega": w, "heading": mu, "dof": dof, "amplitude": abs(v), "phase": np.angle(v, deg=True)}
-            for dof, arr in tf.values.items() for i, mu in enumerate(tf.heading)
-            for w, v in zip(tf.omega, arr[i])]
+    rows = [
+        {"omega": w, "heading": mu, "dof": dof, "amplitude": abs(v), "phase": np.angle(v, deg=True)}
+        for dof, arr in tf.values.items()
+        for i, mu in enumerate(tf.heading)
+        for w, v in zip(tf.omega, arr[i])
+    ]
     path = tmp_path / "rao.csv"
     pd.DataFrame(rows).sample(frac=1.0, random_state=0).to_csv(path, index=False)
     back = TransferFunction.from_table(path)
     for dof in tf.values:
         np.testing.assert_allclose(back.values[dof], tf.values[dof], rtol=1e-9, atol=1e-12)
     nc = tmp_path / "rao.nc"
-    tf.to_table().set_index(["omega", "heading", "dof"]).to_xarray().to_netcdf(nc, engine="h5netcdf")
+    tf.to_table().set_index(["omega", "heading", "dof"]).to_xarray().to_netcdf(
+        nc, engine="h5netcdf"
+    )
     from_nc = TransferFunction.from_table(nc)
     for dof in tf.values:
         np.testing.assert_allclose(from_nc.values[dof], tf.values[dof], rtol=1e-9, atol=1e-12)

@@ -29,8 +29,12 @@ def test_periods_match_dnv_rp_c205_relations():
     s = W.jonswap(OMEGA, 10.0, 11.0, gamma=g)
     t1 = W.mean_period_t1(OMEGA, s)
     tz = W.zero_crossing_period_tz(OMEGA, s)
-    assert t1 == pytest.approx(11.0 * (0.7303 + 0.04936 * g - 0.006556 * g**2 + 0.0003610 * g**3), rel=3e-3)
-    assert tz == pytest.approx(11.0 * (0.6673 + 0.05037 * g - 0.006230 * g**2 + 0.0003341 * g**3), rel=3e-3)
+    assert t1 == pytest.approx(
+        11.0 * (0.7303 + 0.04936 * g - 0.006556 * g**2 + 0.0003610 * g**3), rel=3e-3
+    )
+    assert tz == pytest.approx(
+        11.0 * (0.6673 + 0.05037 * g - 0.006230 * g**2 + 0.0003341 * g**3), rel=3e-3
+    )
     assert t1 == pytest.approx(9.18, abs=0.02)
 
 

@@ -150,13 +150,24 @@ def _stop_measure(value, name):
 
 
 SETTING_CHECKS = {
-    "n_waves": check_positive_int, "p_exp": check_open_unit, "threshold": _optional(check_finite),
-    "eps1": _optional(check_positive), "precision": _optional(check_precision),
-    "fit_check": _optional(check_open_unit), "eps2": check_positive, "k1": _int_from(1), "k2": _int_from(1),
-    "stop_measure": _stop_measure, "seed": _optional(_int_from(0)),
-    "max_hf": _optional(check_positive_int), "max_failures": _int_from(0),
-    "stop_on_convergence": check_bool, "adaptive_threshold": check_bool,
-    "threshold_step": check_positive, "fp_run": check_positive_int, "legacy_md": check_bool,
+    "n_waves": check_positive_int,
+    "p_exp": check_open_unit,
+    "threshold": _optional(check_finite),
+    "eps1": _optional(check_positive),
+    "precision": _optional(check_precision),
+    "fit_check": _optional(check_open_unit),
+    "eps2": check_positive,
+    "k1": _int_from(1),
+    "k2": _int_from(1),
+    "stop_measure": _stop_measure,
+    "seed": _optional(_int_from(0)),
+    "max_hf": _optional(check_positive_int),
+    "max_failures": _int_from(0),
+    "stop_on_convergence": check_bool,
+    "adaptive_threshold": check_bool,
+    "threshold_step": check_positive,
+    "fp_run": check_positive_int,
+    "legacy_md": check_bool,
 }
 """The rule of each LF and study setting (:data:`pas.study.factory.LF_SETTINGS` and
 ``STUDY_SETTINGS``), by name: the Python API, the study TOML file and ``pas study set``

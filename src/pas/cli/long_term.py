@@ -54,7 +54,13 @@ _LF_SUFFIXES = (".csv", ".parquet", ".npy", ".txt")
 
 def add_parser(sub) -> None:
     """Register ``pas long-term`` on the sub-command parser ``sub``."""
-    p = command_parser(sub, "long-term", "long-term design value over a scatter diagram (one HF budget)", __doc__, EPILOG)
+    p = command_parser(
+        sub,
+        "long-term",
+        "long-term design value over a scatter diagram (one HF budget)",
+        __doc__,
+        EPILOG,
+    )
     p.add_argument("sea_states", metavar="SEA_STATES", help="sea-state table (.csv or .parquet)")
     p.add_argument("--lf", required=True, metavar="DIR_OR_PATTERN",
                    help="folder of <name>.csv/.parquet/.npy files, or a pattern with {name}")

@@ -86,7 +86,9 @@ def _draw(kind, result, summary, lf_curve, args):
 
 def add_parser(sub) -> None:
     """Register ``pas plot`` on the sub-command parser ``sub``."""
-    p = command_parser(sub, "plot", "draw the figures of a 'pas run' output folder", __doc__, EPILOG)
+    p = command_parser(
+        sub, "plot", "draw the figures of a 'pas run' output folder", __doc__, EPILOG
+    )
     p.add_argument("result_dir", metavar="RESULT_DIR", help="the --out folder of 'pas run'")
     p.add_argument("--kind", choices=KINDS + ("all",), default="mpm",
                    help="which figure (default: mpm); 'all' draws every figure that applies")

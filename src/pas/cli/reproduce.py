@@ -47,8 +47,12 @@ cases: cfd (green water computed by OpenFOAM, from the package's CFD table);
 
 def add_parser(sub) -> None:
     """Register ``pas reproduce`` on the sub-command parser ``sub``."""
-    p = command_parser(sub, "reproduce", "reproduce the paper's validation on synthetic analogues", __doc__, EPILOG)
-    p.add_argument("cases", nargs="*", metavar="CASE", help="case ids (1a ... 4b, 3a-hard ... 4b-hard)")
+    p = command_parser(
+        sub, "reproduce", "reproduce the paper's validation on synthetic analogues", __doc__, EPILOG
+    )
+    p.add_argument(
+        "cases", nargs="*", metavar="CASE", help="case ids (1a ... 4b, 3a-hard ... 4b-hard)"
+    )
     p.add_argument("--all", action="store_true",
                    help="all twelve cases (eight paper-like, four -hard)")
     p.add_argument("--replications", type=int, default=1, metavar="N",
@@ -60,7 +64,9 @@ def add_parser(sub) -> None:
                    help="comma-separated strategies from pas, as, rcw, mler (default pas,as,rcw)")
     p.add_argument("--out", metavar="DIR", help="write table.csv, runs.csv and figures here")
     p.add_argument("--no-figures", action="store_true", help="skip the figures")
-    p.add_argument("--no-cache", action="store_true", help="regenerate, do not read/write the cache")
+    p.add_argument(
+        "--no-cache", action="store_true", help="regenerate, do not read/write the cache"
+    )
     p.add_argument("--quiet", action="store_true", help="no progress lines on stderr")
     p.add_argument("--json", action="store_true", help="print the table as JSON records")
     p.add_argument("--properties", action="store_true",

@@ -102,9 +102,26 @@ exit codes: 0 done; 1 stopped at the failure limit (partial result written); 2 b
 """
 
 
-_INPUTS = ("lf_file", "lf_column", "id_column", "oracle", "n_waves", "n_waves_convention", "p_exp",
-           "eps1", "precision", "eps2", "threshold", "strategy", "preset", "max_hf", "batch_size", "unit",
-           "lf_unit", "target")
+_INPUTS = (
+    "lf_file",
+    "lf_column",
+    "id_column",
+    "oracle",
+    "n_waves",
+    "n_waves_convention",
+    "p_exp",
+    "eps1",
+    "precision",
+    "eps2",
+    "threshold",
+    "strategy",
+    "preset",
+    "max_hf",
+    "batch_size",
+    "unit",
+    "lf_unit",
+    "target",
+)
 """The options written to ``summary.json`` as the run's ``inputs``."""
 
 _LF_FILE_NAMES = {"file": "LF_FILE", "column": "--lf-column", "id_column": "--id-column",
@@ -153,8 +170,12 @@ no strategy (a test checks that the two agree)."""
 
 def add_parser(sub) -> None:
     """Register ``pas run`` on the sub-command parser ``sub``."""
-    p = command_parser(sub, "run", "run PAS (or AS) on an LF peak file with an HF oracle", __doc__, EPILOG)
-    p.add_argument("lf_file", metavar="LF_FILE", help="LF peaks: .csv (header row), .parquet or .npy")
+    p = command_parser(
+        sub, "run", "run PAS (or AS) on an LF peak file with an HF oracle", __doc__, EPILOG
+    )
+    p.add_argument(
+        "lf_file", metavar="LF_FILE", help="LF peaks: .csv (header row), .parquet or .npy"
+    )
     p.add_argument("--lf-column", metavar="COL",
                    help="column with the LF peaks (default: 'lf', or the only column)")
     p.add_argument("--id-column", metavar="COL",

@@ -91,7 +91,9 @@ def _action(cmds, name: str, help: str):
 
 
 def add_parser(sub) -> None:
-    p = command_parser(sub, "study", "ask/tell HF campaigns kept in a crash-safe study file", __doc__, EPILOG)
+    p = command_parser(
+        sub, "study", "ask/tell HF campaigns kept in a crash-safe study file", __doc__, EPILOG
+    )
     cmds = p.add_subparsers(dest="study_command", metavar="<action>", required=True)
     c = _action(cmds, "create", "create STUDY.db from a TOML configuration")
     c.add_argument("study", metavar="STUDY.db")
@@ -123,8 +125,11 @@ def add_parser(sub) -> None:
     r.add_argument("--pending", choices=("resubmit", "wait"), default="resubmit",
                    help="events a killed run left without a result (default resubmit)")
     r.add_argument("--quiet", action="store_true", help="no line per HF result")
-    s = _action(cmds, "status", "print the MPM so far, whether it has converged, the counts and the "
-                "pending events")
+    s = _action(
+        cmds,
+        "status",
+        "print the MPM so far, whether it has converged, the counts and the pending events",
+    )
     s.add_argument("study", metavar="STUDY.db")
     s.add_argument("--json", action="store_true")
     s.add_argument("--events", action="store_true",
@@ -143,7 +148,9 @@ def add_parser(sub) -> None:
     c.add_argument("--max-failures", type=int, metavar="N", help="failed calls tolerated")
     y = _action(cmds, "retry", "run failed events again (after fixing their cause)")
     y.add_argument("study", metavar="STUDY.db")
-    y.add_argument("events", nargs="*", metavar="EVENT", help="event ids (default: every failed one)")
+    y.add_argument(
+        "events", nargs="*", metavar="EVENT", help="event ids (default: every failed one)"
+    )
     add_program_parsers(cmds)
     b = _action(cmds, "backup", "write a consistent one-file copy of the study (also while it "
                 "runs)")
@@ -275,8 +282,10 @@ def _check_value(text, field, where):
         raise ValueError(f"{where}{field} must be a number (the HF peak, 0 = no impact), "
                          f"got {text!r}") from None
     if not math.isfinite(v) or v < 0:
-        raise ValueError(f"{where}{field} must be a finite load >= 0 (0 = no impact), got {text!r}; "
-                         "record a failed evaluation with --error/an 'error' column")
+        raise ValueError(
+            f"{where}{field} must be a finite load >= 0 (0 = no impact), got {text!r}; "
+            "record a failed evaluation with --error/an 'error' column"
+        )
     return v
 
 
@@ -405,8 +414,15 @@ def _set(args) -> int:
     from ..study.resume import open_study
     from ..study.store import StudyStore
 
-    names = {"precision": "--precision", "eps1": "--eps1", "eps2": "--eps2", "k1": "--k1", "k2": "--k2",
-             "max_hf": "--max-hf", "max_failures": "--max-failures"}
+    names = {
+        "precision": "--precision",
+        "eps1": "--eps1",
+        "eps2": "--eps2",
+        "k1": "--k1",
+        "k2": "--k2",
+        "max_hf": "--max-hf",
+        "max_failures": "--max-failures",
+    }
     changes = {k: getattr(args, k) for k in names if getattr(args, k) is not None}
     if not changes:
         raise ValueError(f"give at least one of {', '.join(names.values())}")

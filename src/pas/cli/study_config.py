@@ -91,7 +91,9 @@ def load_config(path) -> dict:
     if cfg.get("batch_size", 1) < 1:
         raise ValueError(f"{where}: batch_size must be at least 1, got {cfg['batch_size']}")
     if cfg.get("max_failures", 0) < 0:
-        raise ValueError(f"{where}: max_failures must be an integer >= 0, got {cfg['max_failures']}")
+        raise ValueError(
+            f"{where}: max_failures must be an integer >= 0, got {cfg['max_failures']}"
+        )
     return cfg
 
 

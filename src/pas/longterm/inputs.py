@@ -89,8 +89,10 @@ def read_sea_states(sea_states, lf_peaks) -> list[SeaState]:
                          f"{', '.join(REQUIRED_COLUMNS)}, got {type(sea_states).__name__}")
     missing = [c for c in REQUIRED_COLUMNS if c not in sea_states.columns]
     if missing:
-        raise ValueError(f"sea_states: column(s) {', '.join(missing)} missing (it needs "
-                         f"{', '.join(REQUIRED_COLUMNS)}; has {', '.join(map(str, sea_states.columns))})")
+        raise ValueError(
+            f"sea_states: column(s) {', '.join(missing)} missing (it needs "
+            f"{', '.join(REQUIRED_COLUMNS)}; has {', '.join(map(str, sea_states.columns))})"
+        )
     if len(sea_states) == 0:
         raise ValueError("sea_states is empty: give one row per sea state")
     names = [str(n) for n in sea_states["name"]]

@@ -149,8 +149,11 @@ def fit_joint_mixture(name: str, u, h, weibull: JointFit, *, start=None, locatio
     negloglik, negloglik_grad, unpack = mixture_objective(name, u, h, location=location,
                                                           censor=censor)
     n_cop = 2 if name.partition("_")[0] == "student" else 1
-    bounds = location_bounds(h, censor, location) + [
-        (-8.0, 8.0), (None, None), LN_SHAPE_BOUNDS, (None, None), LN_SHAPE_BOUNDS] + [(None, None)] * n_cop
+    bounds = (
+        location_bounds(h, censor, location)
+        + [(-8.0, 8.0), (None, None), LN_SHAPE_BOUNDS, (None, None), LN_SHAPE_BOUNDS]
+        + [(None, None)] * n_cop
+    )
     def minimise(x0):
         return minimise_bounded(negloglik, negloglik_grad, x0, bounds)
 

@@ -34,7 +34,14 @@ except ImportError:  # their text only names why an optimiser stopped
 
 __all__ = ["driver_works", "minimise_one", "minimise_together"]
 
-_MAXCOR, _FTOL, _GTOL, _MAXLS, _MAXFUN, _MAXITER = 10, 2.2204460492503131e-09, 1e-5, 20, 15000, 15000
+_MAXCOR, _FTOL, _GTOL, _MAXLS, _MAXFUN, _MAXITER = (
+    10,
+    2.2204460492503131e-09,
+    1e-5,
+    20,
+    15000,
+    15000,
+)
 """scipy.optimize.minimize's L-BFGS-B defaults."""
 
 

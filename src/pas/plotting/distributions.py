@@ -348,9 +348,16 @@ def plot_scatter(lf, hf, *, result=None, ax=None, lf_unit=None, unit=None,
                      f"{n_tail} of {x.size} pairs beyond the {q_tail:.0%} quantile "
                      f"(needs {_MIN_TAIL_POINTS})")
     many = x.size > 2000
-    ax.scatter(x, y, s=4 if many else 14, color="0.6" if many else "0.45", alpha=0.5 if many else 0.8,
-               lw=0, rasterized=many,
-               label=f"{label} (n = {x.size})")
+    ax.scatter(
+        x,
+        y,
+        s=4 if many else 14,
+        color="0.6" if many else "0.45",
+        alpha=0.5 if many else 0.8,
+        lw=0,
+        rasterized=many,
+        label=f"{label} (n = {x.size})",
+    )
     if result is not None:
         pairs = result.pairs
         ax.plot(pairs["lf"], pairs["hf"], "o", ms=5, mfc="none", mew=1.2, color="tab:red",
@@ -363,8 +370,14 @@ def plot_scatter(lf, hf, *, result=None, ax=None, lf_unit=None, unit=None,
             curves = conditional_quantile_curves(result, grid, (lo_q, mid_q, hi_q))
             ax.fill_between(grid, curves[lo_q], curves[hi_q], color="tab:blue", alpha=0.2, lw=0,
                             label=f"{family} copula: {lo_q:.0%}–{hi_q:.0%} of HF given LF")
-            ax.plot(grid, curves[mid_q], "-", color="tab:blue", lw=1.5,
-                    label=f"{family} copula: conditional {'median' if mid_q == 0.5 else f'{mid_q:.0%}'}")
+            ax.plot(
+                grid,
+                curves[mid_q],
+                "-",
+                color="tab:blue",
+                lw=1.5,
+                label=f"{family} copula: conditional {'median' if mid_q == 0.5 else f'{mid_q:.0%}'}",
+            )
     ax.set_xlabel(_with_unit(lf_label, lf_unit))
     ax.set_ylabel(_with_unit(hf_label, unit))
     ax.set_title(stats_txt, fontsize=9)

@@ -71,7 +71,11 @@ def plot_metrics(table, *, ax=None, axes=None, percent=True):
 
     def value(case, strat, metric):
         rows = tab[(tab["case"] == case) & (tab["strategy"] == strat)]
-        return float(pd.to_numeric(rows[metric], errors="coerce").mean()) * scale if len(rows) else np.nan
+        return (
+            float(pd.to_numeric(rows[metric], errors="coerce").mean()) * scale
+            if len(rows)
+            else np.nan
+        )
 
     def label_of(strat, metric=None):
         parts = [p for p in (metric, strat.upper() if strat else "") if p]

@@ -120,7 +120,14 @@ def plot_convergence(n, rms, *, criterion=None, bias=None, band=None, units="m",
         r = np.asarray(r, dtype=float)
         if r.shape != n.shape:
             raise ValueError(f"rms[{label!r}] has shape {r.shape}, n has {n.shape}")
-        ax.plot(n, r, "-o", ms=3, color=f"C{i}", label=f"R(N) {label}" if isinstance(rms, dict) else label)
+        ax.plot(
+            n,
+            r,
+            "-o",
+            ms=3,
+            color=f"C{i}",
+            label=f"R(N) {label}" if isinstance(rms, dict) else label,
+        )
         if band is not None and label in band[0]:
             ax.fill_between(n, np.asarray(band[0][label], dtype=float),
                             np.asarray(band[1][label], dtype=float), color=f"C{i}", alpha=0.15,

@@ -36,7 +36,9 @@ def _constants(positions):
     try:
         return POSITIONS[positions]
     except (KeyError, TypeError):
-        raise ValueError(f"positions must be one of {sorted(POSITIONS)}, got {positions!r}") from None
+        raise ValueError(
+            f"positions must be one of {sorted(POSITIONS)}, got {positions!r}"
+        ) from None
 
 
 def plotting_positions(n_values, n_total, positions="gringorten"):

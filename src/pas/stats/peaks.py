@@ -81,7 +81,11 @@ def upcrossing_times(t, x, upcross=None, *, level=0.0):
     tt = _signal(t, "t")
     if tt.shape != a.shape:
         raise ValueError("t and x must have the same length")
-    u = zero_upcrossings(a, level=level) if upcross is None else _indices(upcross, a.size - 1, "upcross")
+    u = (
+        zero_upcrossings(a, level=level)
+        if upcross is None
+        else _indices(upcross, a.size - 1, "upcross")
+    )
     if u.size and u[0] < 1:
         raise ValueError("an up-crossing index must be >= 1")
     x0, x1 = a[u - 1], a[u]

@@ -74,7 +74,9 @@ def md_select(ln_d: np.ndarray, available: np.ndarray, ln_d_selected, q: int = 1
         width = hi - lo
         if skip_unsplittable:
             cum = np.concatenate([[0], np.cumsum(available)])
-            inside = cum[np.searchsorted(ln_d, hi, "left")] - cum[np.searchsorted(ln_d, lo, "right")]
+            inside = (
+                cum[np.searchsorted(ln_d, hi, "left")] - cum[np.searchsorted(ln_d, lo, "right")]
+            )
             if (inside > 0).any():
                 width = np.where(inside > 0, width, -np.inf)
         k = int(np.argmax(width))

@@ -166,11 +166,27 @@ def replace_result(store, c, idx: int, value, error, source) -> bool:
     if (hf, err) == (value, error):
         return False
     used = tell_seq is not None
-    c.execute("INSERT INTO replacements (study, idx, key, old_hf, old_error, old_source, "
-              "old_result_at, new_hf, new_error, source, seq, consumed_seq, replaced_at, note) "
-              "VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)",
-              (store.scope, idx, key, hf, err, old_source, result_at, value, error, source, store._next_seq(c),
-               None if used else 0, _now(), REPLACED_AFTER_USE if used else REPLACED_BEFORE_USE))
+    c.execute(
+        "INSERT INTO replacements (study, idx, key, old_hf, old_error, old_source, "
+        "old_result_at, new_hf, new_error, source, seq, consumed_seq, replaced_at, note) "
+        "VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)",
+        (
+            store.scope,
+            idx,
+            key,
+            hf,
+            err,
+            old_source,
+            result_at,
+            value,
+            error,
+            source,
+            store._next_seq(c),
+            None if used else 0,
+            _now(),
+            REPLACED_AFTER_USE if used else REPLACED_BEFORE_USE,
+        ),
+    )
     c.execute("UPDATE events SET state = ?, hf = ?, error = ?, source = ?, result_at = ? "
               "WHERE study = ? AND idx = ?",
               (STORED[EventState.of_result(value, error)], value, error, source, _now(),
@@ -205,4 +221,6 @@ def apply_replacement(store, c, idx: int, value, error) -> None:
         raise StoreError(f"no replacement of event index {idx} by hf={value}, error={error!r} "
                          f"waits in {store.path}; store it first (record_result with "
                          "replace=True)")
-    c.execute("UPDATE replacements SET consumed_seq = ? WHERE id = ?", (store._claim_op(c), waiting))
+    c.execute(
+        "UPDATE replacements SET consumed_seq = ? WHERE id = ?", (store._claim_op(c), waiting)
+    )

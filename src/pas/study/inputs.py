@@ -88,7 +88,9 @@ def read_lf_peaks(path, *, column=None, id_column=None, meta_columns=(), guess_c
         try:
             arr = np.load(path, allow_pickle=False)
         except ValueError as exc:
-            raise ValueError(f"{names['file']} {path.name}: not a plain .npy array ({exc})") from None
+            raise ValueError(
+                f"{names['file']} {path.name}: not a plain .npy array ({exc})"
+            ) from None
         if arr.dtype.names is None:
             if arr.ndim != 1:
                 raise ValueError(f"{names['file']} {path.name}: expected a 1-D array, "
@@ -107,7 +109,9 @@ def read_lf_peaks(path, *, column=None, id_column=None, meta_columns=(), guess_c
             df = read_table(path)
         except (pd.errors.ParserError, pd.errors.EmptyDataError, UnicodeDecodeError) as exc:
             what = "Parquet" if suffix == ".parquet" else "CSV"
-            raise ValueError(f"{names['file']} {path.name}: cannot read it as {what} ({exc})") from None
+            raise ValueError(
+                f"{names['file']} {path.name}: cannot read it as {what} ({exc})"
+            ) from None
     else:
         raise ValueError(f"{names['file']} {path.name}: unsupported format {suffix!r} "
                          "(use .csv, .parquet or .npy)")

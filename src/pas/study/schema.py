@@ -86,9 +86,20 @@ from .._support.strict_json import dumps
 from .settings import DEFAULT_MAX_HF, RESUMABLE
 from .state import EventState
 
-__all__ = ["SCHEMA_VERSION", "UPGRADES", "STATES", "STORED", "RESUMABLE", "LEGACY_SETTINGS", "DEFAULT_MAX_HF",
-           "with_legacy_settings", "StoreError", "StoreConflict", "named_errors",
-           "dumps"]
+__all__ = [
+    "SCHEMA_VERSION",
+    "UPGRADES",
+    "STATES",
+    "STORED",
+    "RESUMABLE",
+    "LEGACY_SETTINGS",
+    "DEFAULT_MAX_HF",
+    "with_legacy_settings",
+    "StoreError",
+    "StoreConflict",
+    "named_errors",
+    "dumps",
+]
 
 SCHEMA_VERSION = 3
 #: How each :class:`~pas.study.state.EventState` is written in ``events.state`` (schema 1).

@@ -312,9 +312,22 @@ class StudyStore(StoreViews):
             c.executemany(
                 "INSERT INTO events (study, idx, key, event_id, lf, d, state, batch, batch_pos, "
                 "asked_at) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?)",
-                [(self.scope, ev.index, str(ev.id), dumps(ev.id), ev.lf, ev.d, STORED[EventState.PENDING],
-                  seq, i, now)
-                 for i, ev in enumerate(events)])
+                [
+                    (
+                        self.scope,
+                        ev.index,
+                        str(ev.id),
+                        dumps(ev.id),
+                        ev.lf,
+                        ev.d,
+                        STORED[EventState.PENDING],
+                        seq,
+                        i,
+                        now,
+                    )
+                    for i, ev in enumerate(events)
+                ],
+            )
             for ev in events:
                 amend.reuse_dropped(self, c, ev.index, seq)
         return seq

@@ -132,8 +132,11 @@ class StoreViews:
         a replacement of a result the study used is then applied as one.
         """
         with self._read() as c:
-            rows = c.execute("SELECT result_seq, idx, hf, error FROM events WHERE study = ? AND "
-                             "result_seq IS NOT NULL AND tell_seq IS NULL", (self.scope,)).fetchall()
+            rows = c.execute(
+                "SELECT result_seq, idx, hf, error FROM events WHERE study = ? AND "
+                "result_seq IS NOT NULL AND tell_seq IS NULL",
+                (self.scope,),
+            ).fetchall()
             rows += c.execute("SELECT seq, idx, new_hf, new_error FROM replacements "
                               "WHERE study = ? AND consumed_seq IS NULL", (self.scope,)).fetchall()
         return [StoredResult(idx, hf, error) for _seq, idx, hf, error in sorted(rows)]

@@ -163,7 +163,9 @@ class Study(Corrections):
 
     def _told(self, *states) -> list[int]:
         """Positions now in one of ``states``, in the order they were first told."""
-        return [p for p in dict.fromkeys(r["position"] for r in self.rows) if self.state[p] in states]
+        return [
+            p for p in dict.fromkeys(r["position"] for r in self.rows) if self.state[p] in states
+        ]
 
     @property
     def _n_pending(self) -> int:

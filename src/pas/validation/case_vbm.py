@@ -113,5 +113,7 @@ def generate_case2(spec, seed, n_seeds, duration, *, mode, coeffs=None):
         out["t_end"].append(t1)
         out["seed_no"].append(np.full(lf.size, k))
     events = {k: np.concatenate(v) for k, v in out.items()}
-    return events, {"coefficients": c, "model": "linear VBM + bow-flare and midbody-flare quadratic "
-                                                 "Froude-Krylov"}
+    return events, {
+        "coefficients": c,
+        "model": "linear VBM + bow-flare and midbody-flare quadratic Froude-Krylov",
+    }

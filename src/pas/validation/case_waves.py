@@ -101,11 +101,15 @@ def _physics(spec, lin, hf, hs_real, m0, n_waves, noise):
     ur = cond.hs / (float(wave_number(2 * np.pi / t1, cond.depth)) ** 2 * cond.depth**3)
     a, b = 0.3536 + 0.2892 * s1 + 0.1060 * ur, 2 - 2.1597 * s1 + 0.0968 * ur**2
     hs = np.asarray(hs_real)
-    return {"hs_realised": [round(h, 4) for h in hs_real],
-            "hs_max_rel_error": float(np.max(np.abs(hs / cond.hs - 1))),
-            "m0": m0, "n_crests_linear": int(lin.size),
-            "linear_crest_mpm": emp_lin, "rayleigh_mpm": rayleigh,
-            "linear_vs_rayleigh": emp_lin / rayleigh - 1,
-            "forristall_mpm": float(a * cond.hs * ln_n ** (1 / b)),
-            "hf_empirical_mpm": float(value_at_exceedance(*exceedance_probabilities(hf, n_waves), p)),
-            "noise": NOISE if noise else None}
+    return {
+        "hs_realised": [round(h, 4) for h in hs_real],
+        "hs_max_rel_error": float(np.max(np.abs(hs / cond.hs - 1))),
+        "m0": m0,
+        "n_crests_linear": int(lin.size),
+        "linear_crest_mpm": emp_lin,
+        "rayleigh_mpm": rayleigh,
+        "linear_vs_rayleigh": emp_lin / rayleigh - 1,
+        "forristall_mpm": float(a * cond.hs * ln_n ** (1 / b)),
+        "hf_empirical_mpm": float(value_at_exceedance(*exceedance_probabilities(hf, n_waves), p)),
+        "noise": NOISE if noise else None,
+    }

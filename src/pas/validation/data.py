@@ -168,9 +168,12 @@ def ground_truth(hf, n_waves, p_exp, method):
     h = w.isf(d / frac)
     d_emp, h_emp = exceedance_probabilities(pos, n_waves)
     q = p_exp / frac
-    extra = {"weibull": {"theta": w.theta, "alpha": w.alpha, "beta": w.beta}, "n_pos": int(pos.size),
-             "empirical_mpm": float(value_at_exceedance(d_emp, h_emp, p_exp)),
-             "mpm_inside_fit": bool(q <= 0.3)}
+    extra = {
+        "weibull": {"theta": w.theta, "alpha": w.alpha, "beta": w.beta},
+        "n_pos": int(pos.size),
+        "empirical_mpm": float(value_at_exceedance(d_emp, h_emp, p_exp)),
+        "mpm_inside_fit": bool(q <= 0.3),
+    }
     return float(w.isf(q)), d, h, extra
 
 

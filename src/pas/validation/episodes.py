@@ -62,7 +62,14 @@ from ._impact_signals import OMEGA_MAX_2 as IMPACT_OMEGA_MAX_2
 from ._impact_signals import crossing_values, rwe_coefficients, time_derivative
 from .registry import get_case
 
-__all__ = ["case_surrogate", "episode_oracle", "EpisodeOracle", "run_rcw_case", "RCW_LADDER", "EPISODE_DURATION"]
+__all__ = [
+    "case_surrogate",
+    "episode_oracle",
+    "EpisodeOracle",
+    "run_rcw_case",
+    "RCW_LADDER",
+    "EPISODE_DURATION",
+]
 
 RCW_LADDER = (10.0, 5.0, 2.0, 1.0, 0.5)
 """Exceedance levels of :func:`run_rcw_case`, in multiples of ``P_exp``."""
@@ -229,7 +236,10 @@ def _target(spec, surrogate, data):
     if spec.family != "4":
         return {"linear_target": "lf", "lf_peaks": data.lf}
     tz = 2.0 * np.pi * np.sqrt(surrogate.m0 / surrogate.m2)
-    return {"linear_target": "rayleigh", "peaks_per_wave": data.scale * spec.t_mcs / tz / data.n_waves}
+    return {
+        "linear_target": "rayleigh",
+        "peaks_per_wave": data.scale * spec.t_mcs / tz / data.n_waves,
+    }
 
 
 def run_rcw_case(data, *, method="form", ladder=RCW_LADDER, study=None):

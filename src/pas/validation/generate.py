@@ -51,7 +51,10 @@ def _model_key(case_id):
 def cache_path(case_id, seed=0, scale=1.0, path=None) -> Path:
     """Where :func:`generate_case` caches ``case_id`` for this seed and scale."""
     spec = get_case(case_id)
-    return cache_dir(path) / f"{spec.id}_seed{int(seed)}_scale{float(scale):g}_{_model_key(spec.id)}.npz"
+    return (
+        cache_dir(path)
+        / f"{spec.id}_seed{int(seed)}_scale{float(scale):g}_{_model_key(spec.id)}.npz"
+    )
 
 
 def _events(spec, seed, n_seeds, duration, n_waves, model_seed=None):
@@ -85,8 +88,10 @@ def build_case(case_id, *, seed=0, scale=1.0, model_seed=None) -> CaseData:
     n_waves = max(1, int(round(spec.n_waves * scale)))
     ev, info = _events(spec, seed, n_seeds, duration, n_waves, model_seed)
     if 1.0 / n_waves > spec.p_exp:
-        raise ValueError(f"scale={scale:g} leaves n_w={n_waves}, too few waves to reach "
-                         f"P_exp={spec.p_exp:g}; use scale >= {1.5 / (spec.n_waves * spec.p_exp):.2g}")
+        raise ValueError(
+            f"scale={scale:g} leaves n_w={n_waves}, too few waves to reach "
+            f"P_exp={spec.p_exp:g}; use scale >= {1.5 / (spec.n_waves * spec.p_exp):.2g}"
+        )
     mpm, d, h, extra = ground_truth(ev["hf"], n_waves, spec.p_exp, spec.truth_method)
     tau, lu, ll = dependence(ev["lf"], ev["hf"], spec.threshold)
     hf = ev["hf"]
@@ -114,7 +119,9 @@ def _wave_numbers(seed_no):
 
 
 def _jsonable(obj):
-    return json.loads(json.dumps(obj, default=lambda o: o.tolist() if hasattr(o, "tolist") else str(o)))
+    return json.loads(
+        json.dumps(obj, default=lambda o: o.tolist() if hasattr(o, "tolist") else str(o))
+    )
 
 
 def generate_case(case_id, *, seed=0, scale=1.0, cache=True, path=None) -> CaseData:

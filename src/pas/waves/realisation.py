@@ -344,5 +344,10 @@ def period_domain_sea(spectrum, tz, *, seed, n=100, period_range=(0.2, 2.5),
     energy = np.trapezoid(s, w, axis=1)
     rng = np.random.default_rng(seed)
     phase = rng.uniform(0.0, 2.0 * np.pi, n)
-    return ComponentSea(omega=2.0 * np.pi / centre, amplitude=np.sqrt(2.0 * energy) * np.exp(1j * phase),
-                        depth=depth, speed=speed, heading=heading)
+    return ComponentSea(
+        omega=2.0 * np.pi / centre,
+        amplitude=np.sqrt(2.0 * energy) * np.exp(1j * phase),
+        depth=depth,
+        speed=speed,
+        heading=heading,
+    )

@@ -117,7 +117,9 @@ class ScatterDiagram:
         if np.any(~np.isfinite(hs)) or np.any(hs <= 0) or np.any(~np.isfinite(per)) or np.any(per <= 0):
             raise ValueError("hs and period bin centres must be positive and finite")
         if np.any(~np.isfinite(p)) or np.any(p < 0) or not p.sum() > 0:
-            raise ValueError("probabilities (or counts) must be finite, non-negative and not all zero")
+            raise ValueError(
+                "probabilities (or counts) must be finite, non-negative and not all zero"
+            )
         if not self.gamma >= 1.0:
             raise ValueError(f"gamma must be >= 1, got {self.gamma!r}")
         for name, v in (("hs", hs), ("period", per), ("probability", p / p.sum())):

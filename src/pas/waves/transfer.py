@@ -95,11 +95,16 @@ class TransferFunction:
             raise ValueError("heading must be increasing (deg)")
         vals = {}
         for name, v in self.values.items():
-            a = np.asarray(v, dtype=complex).reshape(h.size, w.size) if np.size(v) == h.size * w.size \
+            a = (
+                np.asarray(v, dtype=complex).reshape(h.size, w.size)
+                if np.size(v) == h.size * w.size
                 else None
+            )
             if a is None or not np.all(np.isfinite(a)):
-                raise ValueError(f"values[{name!r}] must be finite with shape (n_heading, n_omega) = "
-                                 f"({h.size}, {w.size})")
+                raise ValueError(
+                    f"values[{name!r}] must be finite with shape (n_heading, n_omega) = "
+                    f"({h.size}, {w.size})"
+                )
             a.setflags(write=False)
             vals[str(name)] = a
         for name, v in (("omega", w), ("heading", h)):
@@ -199,7 +204,12 @@ class TransferFunction:
         sel = dict(influenced_dof=dofs, radiating_dof=dofs)
         m = ds["inertia_matrix"].sel(**sel).to_numpy()
         c = ds["hydrostatic_stiffness"].sel(**sel).to_numpy()
-        a = ds["added_mass"].sel(**sel).transpose("omega", "influenced_dof", "radiating_dof").to_numpy()
+        a = (
+            ds["added_mass"]
+            .sel(**sel)
+            .transpose("omega", "influenced_dof", "radiating_dof")
+            .to_numpy()
+        )
         b = ds["radiation_damping"].sel(**sel).transpose("omega", "influenced_dof",
                                                          "radiating_dof").to_numpy()
         f = ds["excitation_force"].sel(influenced_dof=dofs).transpose(
