@@ -47,7 +47,8 @@ def select_types(spec: str = "all", *, held_out: bool = False) -> list[str]:
     """The type names a comma-separated ``spec`` of names or groups picks.
 
     ``"all"`` is every tuning type, or with ``held_out=True`` every held-out
-    type of the first round (the second: ``"ho2"``); a group (``core``, ``miss``, …) is the types whose name starts
+    type of the first round (the second: ``"ho2"``); a group (``core``, ``miss``, …) is the types
+    whose name starts
     with it and a dash.  A name that picks nothing is a ValueError.
     """
     if spec == "all":

@@ -126,7 +126,8 @@ def lf_reference_pool(cop, n: int, alpha: float, beta: float, k: int, rng, overs
 
 
 def top_association(lf, hf) -> float:
-    """P(HF among its top 30 % | LF among its top 10 %): how well the top LF points at the top HF."""
+    """P(HF among its top 30 % | LF among its top 10 %): how well the top LF points at the top
+    HF."""
     lf, hf = np.asarray(lf, float), np.asarray(hf, float)
     top_lf = lf >= np.quantile(lf, 0.9)
     return float(np.mean(hf[top_lf] >= np.quantile(hf, 0.7)))

@@ -238,7 +238,8 @@ def _as_stated(fraction: float) -> str:
 
 
 def properties_seed_table(table: pd.DataFrame) -> str:
-    """The data properties of one data seed, one row per case (``docs/results/analogue-properties.md``).
+    """The data properties of one data seed, one row per case
+    (``docs/results/analogue-properties.md``).
 
     Parameters
     ----------
@@ -362,8 +363,9 @@ def validation_summary(summary: pd.DataFrame) -> str:
 
     lines = [
         (
-            "| cases | PAS median \\|M2\\| | PAS worst \\|M2\\| | PAS HF (median) | PAS converged | "
-            "PAS U95 holds the truth | paper preset median \\|M2\\| | AS median \\|M2\\| |"
+            "| cases | PAS median \\|M2\\| | PAS worst \\|M2\\| | PAS HF (median) | "
+            "PAS converged | PAS U95 holds the truth | paper preset median \\|M2\\| | "
+            "AS median \\|M2\\| |"
         ),
         "|---" * 8 + "|",
     ]

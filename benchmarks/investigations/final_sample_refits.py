@@ -4,7 +4,8 @@ the same studies run to the HF budget without stopping.
 For each of ``N`` data sets PAS runs with its defaults; its final sample
 (true and false positives) is then refitted with each setting below and the
 MPM error printed ("censor c": the smallest fraction c of the loads enter the
-joint likelihood left-censored, :func:`pas.models.joint.fit_joint`), with the median and worst |error| over the data sets.
+joint likelihood left-censored, :func:`pas.models.joint.fit_joint`), with the median and worst
+|error| over the data sets.
 ``--every-event`` refits the default, the censored settings, the log-normal and the Weibull
 mixture to every event of each data set instead (no sampling: the model's
 own bias).  ``--only NAME,NAME`` keeps the listed settings.

@@ -111,7 +111,8 @@ def main(case="3a", seeds="2,5", k=4, n_random=8):
             thinned = [error(evaluated[~np.isin(evaluated, rng.permutation(removable)[:10])])
                        for _ in range(int(n_random))]
         print(
-            f"  PAS's sample, 10 of LF ranks 3-30 (not the pairs above) removed: median {np.median(thinned):+.2f} "
+            f"  PAS's sample, 10 of LF ranks 3-30 (not the pairs above) removed: "
+            f"median {np.median(thinned):+.2f} "
             f"({' '.join(f'{x:+.2f}' for x in thinned)})"
         )
         print(f"  {n_random} random ln-d samples as drawn:        median {np.median(plain):+.2f} "

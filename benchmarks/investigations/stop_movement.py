@@ -35,8 +35,8 @@ A,B,…`` runs nothing and writes the ``move20`` table of
 ``docs/results/investigations.md`` from such files, between its
 ``stop_movement.py`` markers.
 
-Run: python benchmarks/investigations/stop_movement.py [N] [--cases 4a,4b,3b] [--draws 100] [--max-hf B]
-     [--csv FILE]
+Run: python benchmarks/investigations/stop_movement.py [N] [--cases 4a,4b,3b] [--draws 100]
+     [--max-hf B] [--csv FILE]
      python benchmarks/investigations/stop_movement.py --write --from-csv A.csv,B.csv
 """
 

@@ -3,7 +3,8 @@
 The problems, their exact truths and the split into tuning and held-out types
 are :mod:`harness.known_truth` (docs/explanation/known-truth.md).
 
-Run: ``python benchmarks/studies/known_truth.py [N] [--types core,miss] [--held-out] [--preset paper]``
+Run: ``python benchmarks/studies/known_truth.py [N] [--types core,miss] [--held-out]
+[--preset paper]``
 prints, per problem type, median |error|, worst |error|, U95 coverage,
 median HF count and convergence, and writes ``runs.csv``.  ``N`` data sets
 per type; ``--held-out`` runs the held-out types instead of the tuning ones.

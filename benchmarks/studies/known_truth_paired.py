@@ -53,7 +53,8 @@ def main(argv=None):
         print(per_type.round(3).to_string())
     a, b = runs["abs_a"], runs["abs_b"]
     print(f"\n{len(runs)} paired runs (a = {argv[0]}, b = {argv[1]})")
-    for label, fn in (("median |error|", "median"), ("mean |error|", "mean"), ("worst |error|", "max")):
+    for label, fn in (("median |error|", "median"), ("mean |error|", "mean"),
+                      ("worst |error|", "max")):
         print(f"{label}: {getattr(a, fn)():.3f} → {getattr(b, fn)():.3f}")
     print(f"U95 coverage: {runs['covered_a'].mean():.3f} → {runs['covered_b'].mean():.3f}")
     print(f"converged: {runs['converged_a'].mean():.3f} → {runs['converged_b'].mean():.3f}")

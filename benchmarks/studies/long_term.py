@@ -1,6 +1,6 @@
 """The long-term validation table: four methods on the same redrawn data sets (issue 29).
 
-Run: python benchmarks/studies/long_term.py run ANALOGUE --seeds N --out DIR   (one analogue: 3 or 2)
+Run: python benchmarks/studies/long_term.py run ANALOGUE --seeds N --out DIR  (one analogue: 3 or 2)
          [--p-exceed P] [--scale S] [--first F]   (the level, default 2e-6; S × 100 h per
          kept cell; data sets F … N, default 1 … N)
      python benchmarks/studies/long_term.py pool ANALOGUE --seeds N --out DIR [--scale S]

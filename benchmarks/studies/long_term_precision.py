@@ -30,7 +30,8 @@ import pandas as pd
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # benchmarks/: the harness
 from harness.result_tables import write_between_markers  # noqa: E402
 
-LEVEL = {"2": (2e-6, 1.0), "3": (5e-6, 2.0)}   # analogue -> (p_exceed, scale of 100 h per kept cell)
+# analogue -> (p_exceed, scale of 100 h per kept cell)
+LEVEL = {"2": (2e-6, 1.0), "3": (5e-6, 2.0)}
 FACTOR = 1.5
 PAGE, TAG = Path("docs/results/long-term.md"), "long_term_precision.py"
 

@@ -85,7 +85,10 @@ def main(argv=None):
     ds["rao"] = rao(ds)
     ds.attrs.update(
         {
-            "title": "Capytaine radiation/diffraction of a box hull (pas benchmarks/studies/make_box_rao.py)",
+            "title": (
+                "Capytaine radiation/diffraction of a box hull "
+                "(pas benchmarks/studies/make_box_rao.py)"
+            ),
             "length": args.length,
             "beam": args.beam,
             "draught": args.draught,
@@ -93,7 +96,10 @@ def main(argv=None):
             "rotation_center_y": 0.0,
             "rotation_center_z": -args.draught / 2,
             "capytaine_version": cpt.__version__,
-            "time_convention": "Capytaine: Re[X exp(-i omega t)], incident eta = Re[exp(i k (x cos b + y sin b) - i omega t)]",
+            "time_convention": (
+                "Capytaine: Re[X exp(-i omega t)], "
+                "incident eta = Re[exp(i k (x cos b + y sin b) - i omega t)]"
+            ),
             "n_panels": int(body.mesh.nb_faces),
             "n_lid_panels": int(body.lid_mesh.nb_faces),
         }

@@ -25,7 +25,8 @@ and validation analogues (``--cases``, :func:`pas.validation.generate_case`
 with the data redrawn per set, ``--scale`` of the paper's duration).
 
 ``--cost HF``: instead, the CPU time per HF of the loop on the problem of
-``harness.timing_problem`` (that of ``benchmarks/timing/study_parts.py``) (stopping off, ``HF`` evaluations) with ``eps1``
+``harness.timing_problem`` (that of ``benchmarks/timing/study_parts.py``) (stopping off, ``HF``
+evaluations) with ``eps1``
 (no model band in the loop), with a target it never reaches (the growth
 schedule alone) and with one it reaches early (the schedule and the gated
 bands), and the model bands each computed.

@@ -44,7 +44,8 @@ def seed_maxima_bias(rng, reps=20000):
             e = read_at_exceedance(m, n, 1 - 0.368, positions=pos, scale="linear")
             print(
                 f"   N = {n:2d}  {pos:8s} bias {e.mean() - exact:+.3f} m "
-                f"(s.e. {e.std() / np.sqrt(reps):.3f}, RMS {np.sqrt(np.mean((e - exact) ** 2)):.3f})"
+                f"(s.e. {e.std() / np.sqrt(reps):.3f}, "
+                f"RMS {np.sqrt(np.mean((e - exact) ** 2)):.3f})"
             )
 
 

@@ -58,7 +58,8 @@ def main():
     rayleigh = np.sqrt(2.0 * m0 * np.log(n_per_hour))
     q = np.quantile(crests, 1.0 - 1.0 / n_per_hour)
     print(
-        f"components interacting (0-5 rad/s): {kernel.size}, pairs: {kernel.size * (kernel.size + 1) // 2}"
+        f"components interacting (0-5 rad/s): {kernel.size}, "
+        f"pairs: {kernel.size * (kernel.size + 1) // 2}"
     )
     print(f"FFT route, 50 h linear + 2nd order: {t_fft:.2f} s (kernel {t_kernel:.2f} s, "
           f"{(t_fft - t_kernel) / N_SEEDS * 1e3:.0f} ms/seed)")

@@ -1,4 +1,5 @@
-"""Bad long-term inputs give one line naming the argument and the fix; the level from a return period."""
+"""Bad long-term inputs give one line naming the argument and the fix; the level from a return
+period."""
 
 import numpy as np
 import pandas as pd

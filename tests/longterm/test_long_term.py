@@ -134,7 +134,8 @@ class SlowAfter(problem.Oracle):
         return value
 
 pas.run_long_term(problem.table(n_waves=2000), problem.lf_peaks(1, n_waves=2000), SlowAfter(),
-                  p_exceed={p}, seed=4, strategy=pas.PAS(band=pas.ModelBand(n_bootstrap=0)), model_band=False,
+                  p_exceed={p}, seed=4, strategy=pas.PAS(band=pas.ModelBand(n_bootstrap=0)),
+                  model_band=False,
                   max_hf=12, study={db!r})
 """
 

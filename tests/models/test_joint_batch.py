@@ -27,7 +27,8 @@ def _resamples(u, h, k, seed):
 
 @pytest.mark.parametrize("name", ["gaussian", "student", "clayton", "gumbel", "frank"])
 @pytest.mark.parametrize("marginal, location, censor",
-                         [("weibull", True, 0.0), ("lognormal", True, 0.2), ("weibull", False, 0.0)])
+                         [("weibull", True, 0.0), ("lognormal", True, 0.2),
+                          ("weibull", False, 0.0)])
 def test_the_weighted_objective_is_the_resamples_own(name, marginal, location, censor):
     # a resample with repeats against its distinct pairs weighted by their counts, at points
     # away from the optimum, value and gradient (Student-t's ν by the same difference)
@@ -104,7 +105,8 @@ def test_a_resample_that_cannot_be_fitted_gives_its_error_and_leaves_the_others(
 
 
 @pytest.mark.parametrize("marginal, location, censor",
-                         [("weibull", True, 0.0), ("lognormal", True, 0.2), ("weibull", False, 0.0)])
+                         [("weibull", True, 0.0), ("lognormal", True, 0.2),
+                          ("weibull", False, 0.0)])
 def test_student_nu_derivative_is_the_objectives_own(marginal, location, censor):
     # the ν derivative from the t quantiles' (implicit function theorem) against a central
     # difference of the objective's value; at these points the second resample has a pair

@@ -50,7 +50,8 @@ def test_matched_peaks_use_lf_windows():
 def test_rise_time_and_velocity():
     t = np.arange(9.0) * 0.5
     rise, crest = P.rise_times(t, X)
-    # wave 1: crossing at t = 0.5 * (0 + 1/3), crest at t = 0.5; wave 2: crossing at 2.0, crest at 2.5
+    # wave 1: crossing at t = 0.5 * (0 + 1/3), crest at t = 0.5; wave 2: crossing at 2.0, crest at
+    # 2.5
     np.testing.assert_allclose(rise, [0.5 - 0.5 / 3, 0.5])
     np.testing.assert_allclose(P.rise_velocities(t, X), [2.0 / (0.5 - 0.5 / 3), 3.0 / 0.5])
     np.testing.assert_allclose(P.upcrossing_times(t, X), [0.5 / 3, 2.0, 3.5 + 0.5 / 5])

@@ -119,7 +119,8 @@ def test_a_level_set_too_high_is_lowered_until_every_row_is_full(monkeypatch):
 
 
 @pytest.mark.parametrize("family, rotation, params",
-                         FAMILIES + [("student", 0, [[0.95], [2.2]]), ("student", 0, [[-0.5], [6.0]])])
+                         FAMILIES + [("student", 0, [[0.95], [2.2]]),
+                                     ("student", 0, [[-0.5], [6.0]])])
 def test_blocks_left_out_hold_no_uniform_above_their_conditional_cdf(family, rotation, params):
     # the bound from a block's ends (single-peaked C(v | u) in u) never leaves out a peak
     # whose largest uniform exceeds its own C(v | u), at levels above and below the median

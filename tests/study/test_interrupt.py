@@ -163,8 +163,8 @@ lf = pd.read_csv("lf.csv")["lf"].to_numpy()
 oracle = pas.CommandOracle([sys.executable, "slow_cfd.py", "{id}", "{lf}", "{result}"],
                            root="runs")
 pas.run_pas(lf, oracle, n_waves=600, p_exp=1e-2, eps1=1e-4, seed=2, max_hf=8,
-            strategy=pas.PAS.paper(), study="campaign.db", callback=lambda study, row: print("told", file=sys.stderr,
-                                                                    flush=True))
+            strategy=pas.PAS.paper(), study="campaign.db",
+            callback=lambda study, row: print("told", file=sys.stderr, flush=True))
 """
 
 

@@ -94,7 +94,8 @@ def test_python_tell_corrects_an_unscreened_load_without_a_refit(told):
     assert len(study.rows) == rows + 1 and study.rows[-1]["replaced_hf"] == 103.0
     loads = stored_loads(study.store)[events[3].index]
     assert loads == {"deck": (130.0, None), "panel": (13.0, None)}
-    assert [a["name"] for a in study.store.load_replacements()] == ["panel", "deck"]  # panel 13 unchanged
+    # panel 13 unchanged
+    assert [a["name"] for a in study.store.load_replacements()] == ["panel", "deck"]
     study.store.close()
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")

@@ -1,4 +1,5 @@
-"""Retrying failed events and the failure-limit flow (issue 26): a set-up mistake is mended, not fatal.
+"""Retrying failed events and the failure-limit flow (issue 26): a set-up mistake is mended, not
+fatal.
 
 The reference of every test is an uninterrupted run with the fixed oracle, run
 by the same code: the point is that a failed-then-retried campaign makes the
@@ -213,7 +214,8 @@ def test_cli_study_retry(case, capsys):
     out = folder / "run"
     (folder / "broken.flag").touch()
     argv = [a if a != "8" else "4" for a in argv]
-    assert _run(capsys, *argv, "--out", out, "--max-failures", "5")[0] == 3  # finished, 2 failed events left out of the fit
+    # finished, 2 failed events left out of the fit
+    assert _run(capsys, *argv, "--out", out, "--max-failures", "5")[0] == 3
     db = str(out / "study.sqlite")
     assert main(["study", "retry", db, "nope"]) == 2
     assert "event nope was never asked for" in capsys.readouterr().err
@@ -275,7 +277,8 @@ def test_cli_study_run_stops_at_the_limit_and_continues_after_retry(tmp_path, ca
 
 
 def test_retry_keeps_the_named_loads_of_reused_results(tmp_path):
-    """Several loads per event and a retry: a reused result keeps its loads, a retried one gets new."""
+    """Several loads per event and a retry: a reused result keeps its loads, a retried one gets
+    new."""
     from pas.study.loads import stored_loads
 
     def loads(ev):

@@ -63,7 +63,8 @@ def _case_a(duration=600.0, seed=11, **kw):
     return W.linear_sea(lambda w: W.jonswap(w, 10.0, 11.0), duration, seed=seed, depth=30.0, **kw)
 
 
-@pytest.mark.parametrize("kw", [{}, {"speed": 5.1, "heading": 180.0}, {"speed": 2.4, "heading": 150.0}])
+@pytest.mark.parametrize("kw", [{}, {"speed": 5.1, "heading": 180.0},
+                                {"speed": 2.4, "heading": 150.0}])
 def test_fft_equals_direct_double_summation(kw):
     sea = _case_a(**kw)
     kern = W.second_order_kernel(sea)

@@ -24,7 +24,8 @@ def check_peaks(values, name: str = "lf_peaks") -> np.ndarray:
     bad = ~np.isfinite(arr)
     if bad.any():
         raise ValueError(
-            f"{name} contains {int(bad.sum())} NaN/inf value(s), first at index {int(np.argmax(bad))}"
+            f"{name} contains {int(bad.sum())} NaN/inf value(s), "
+            f"first at index {int(np.argmax(bad))}"
         )
     return arr
 

@@ -189,7 +189,8 @@ _LF_NAMES = {"file": "lf.file", "column": "lf.column", "id_column": "lf.id_colum
 
 
 def load_peaks(lf_cfg: dict):
-    """LF peaks, ids and meta from the file named in the ``[lf]`` table (:func:`pas.study.inputs.read_lf_peaks`)."""
+    """LF peaks, ids and meta from the file named in the ``[lf]`` table
+    (:func:`pas.study.inputs.read_lf_peaks`)."""
     from ..study.inputs import read_lf_peaks
 
     return read_lf_peaks(lf_cfg["file"], column=lf_cfg.get("column"),

@@ -53,7 +53,8 @@ class SeaState:
 
 
 def _peaks_of(name, given):
-    """``(lf, ids, meta)`` from an array or a DataFrame with an ``lf`` column (``id``, others meta)."""
+    """``(lf, ids, meta)`` from an array or a DataFrame with an ``lf`` column (``id``, others
+    meta)."""
     label = f"lf_peaks[{name!r}]"
     if isinstance(given, pd.DataFrame):
         if "lf" not in given.columns:

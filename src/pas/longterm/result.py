@@ -280,7 +280,8 @@ def _probabilities(p) -> np.ndarray:
 
 
 def _read_off(curve, x) -> str:
-    """Where the sea state's exceedance at ``x`` comes from (:attr:`LongTermResult.contributions`)."""
+    """Where the sea state's exceedance at ``x`` comes from
+    (:attr:`LongTermResult.contributions`)."""
     if not np.isfinite(x):
         return "none"
     if x > curve.h[0]:

@@ -1,4 +1,5 @@
-"""The copula part of the joint likelihood of :mod:`pas.models.joint` and :mod:`pas.models.joint_mixture`.
+"""The copula part of the joint likelihood of :mod:`pas.models.joint` and
+:mod:`pas.models.joint_mixture`.
 
 The optimiser's unconstrained values and the family's parameters, the
 copula terms of ``ℓ = Σ [log c(u, F_H(h)) + log f_H(h)]`` (with the

@@ -1,4 +1,5 @@
-"""The joint conditional fit (:mod:`pas.models.joint`) with a two-component Weibull mixture HF marginal.
+"""The joint conditional fit (:mod:`pas.models.joint`) with a two-component Weibull mixture HF
+marginal.
 
 Beyond the paper.  Impact loads are a narrow quasi-static body and a wide
 impulsive tail (:mod:`pas.stats.weibull_mixture`); one Weibull fitted to all
@@ -171,7 +172,8 @@ def fit_joint_mixture(name: str, u, h, weibull: JointFit, *, start=None, locatio
 def fit_joint_mixture_all(u, h, weibull_fits: dict, *, starts=None, location: bool = True,
                           censor: float = 0.0, cold=True,
                           only=None) -> dict[tuple[str, str], JointFit]:
-    """:func:`fit_joint_mixture` for every family of ``weibull_fits`` (keys ``(family, "weibull")``).
+    """:func:`fit_joint_mixture` for every family of ``weibull_fits`` (keys ``(family,
+    "weibull")``).
 
     A family whose mixture fit fails keeps its Weibull (it gets no mixture
     entry); ``only``: the keys to fit (None: all).

@@ -133,8 +133,10 @@ def plot_mpm_convergence(result, *, truth=None, ax=None, label=None, unit=None,
     if target is not None:
         _precision_marks(ax, result, fitted, float(target), c, name)
     running = pd.to_numeric(hist["mpm"], errors="coerce").ffill().bfill()
-    for status, marker, mcolor, text in (("false_positive", "x", _FP_COLOR, "false positive (HF = 0)"),
-                                         ("failed", "v", _FAIL_COLOR, "failed HF call")):
+    for status, marker, mcolor, text in (
+        ("false_positive", "x", _FP_COLOR, "false positive (HF = 0)"),
+        ("failed", "v", _FAIL_COLOR, "failed HF call"),
+    ):
         sel = (hist["status"] == status).to_numpy()
         if sel.any():
             ax.plot(hist["n_hf"].to_numpy(dtype=float)[sel], running.to_numpy(dtype=float)[sel],

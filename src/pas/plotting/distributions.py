@@ -321,7 +321,8 @@ def plot_scatter(lf, hf, *, result=None, ax=None, lf_unit=None, unit=None,
     -----
     τ (Kendall's rank correlation), λU and λL (upper and lower tail
     dependence) are computed on all the given pairs and shown in the title
-    in words; the legend sits under the x axis label.  λU and λL are fractions of the pairs beyond ``q_tail``;
+    in words; the legend sits under the x axis label.  λU and λL are fractions of the pairs beyond
+    ``q_tail``;
     with fewer than 10 such pairs (fewer than 100 pairs at q = 0.9) they
     would be 0, 0.5 or 1 from a handful of points and are not shown.  Large
     samples are rasterised in vector output.
@@ -376,7 +377,10 @@ def plot_scatter(lf, hf, *, result=None, ax=None, lf_unit=None, unit=None,
                 "-",
                 color="tab:blue",
                 lw=1.5,
-                label=f"{family} copula: conditional {'median' if mid_q == 0.5 else f'{mid_q:.0%}'}",
+                label=(
+                    f"{family} copula: conditional "
+                    f"{'median' if mid_q == 0.5 else f'{mid_q:.0%}'}"
+                ),
             )
     ax.set_xlabel(_with_unit(lf_label, lf_unit))
     ax.set_ylabel(_with_unit(hf_label, unit))

@@ -84,7 +84,8 @@ def gpd_tail_ranks(x, u, *, rng: np.random.Generator | None = None, shape_scale=
     >>> x = np.random.default_rng(0).rayleigh(1.0, 2000)
     >>> u = (np.argsort(np.argsort(x)) + 0.5) / x.size
     >>> v, fit = gpd_tail_ranks(x, u)
-    >>> bool(np.all(np.argsort(v) == np.argsort(x))), bool(np.all(v[x < np.sort(x)[-100]] == u[x < np.sort(x)[-100]]))
+    >>> (bool(np.all(np.argsort(v) == np.argsort(x))),
+    ...  bool(np.all(v[x < np.sort(x)[-100]] == u[x < np.sort(x)[-100]])))
     (True, True)
     """
     x, u = np.asarray(x, float), np.asarray(u, float)

@@ -33,7 +33,8 @@ at ``n ≥ FIRST_BAND_PAIRS`` pairs and whenever the pairs grew by
 :mod:`pas.strategies.forecast` is fitted to), and, once the cheap necessary
 conditions hold (the sampling part and the window within the target), every
 ``BAND_EVERY`` fitted iterations from where the forecast says the target may
-be reached (the larger of its lower end and its expected pairs / ``BAND_GROWTH``).  With ``eps1`` and ``precision`` both given both rules
+be reached (the larger of its lower end and its expected pairs / ``BAND_GROWTH``).  With ``eps1``
+and ``precision`` both given both rules
 must hold; with ``eps1`` alone the rule above is unchanged.  ``fit_check``
 (the study's, :func:`pas.study.precision.judge`): where the cheap conditions
 hold, the fitted model must also pass :func:`pas.stats.fit_check.uniform_check`

@@ -232,7 +232,8 @@ class TailPrediction(Prediction):
         return np.arange(1, self._n0 + 1) / self._n_waves if self._full is None else self._full[0]
 
     def _distribution(self):
-        if self._full is None:  # read-only: the result's table shares them (result.distribution_frame)
+        # read-only: the result's table shares them (result.distribution_frame)
+        if self._full is None:
             self._full = tuple(read_only(a) for a in self._whole())
             self._whole = None
         return self._full

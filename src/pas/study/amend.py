@@ -203,7 +203,8 @@ def _waiting_replacement(store, c, idx: int, value, error):
 
 
 def stage_replacement(store, c, idx: int, value, error, source) -> None:
-    """Store ``(value, error)`` as the replacement of ``idx``'s used result, unless it waits already.
+    """Store ``(value, error)`` as the replacement of ``idx``'s used result, unless it waits
+    already.
 
     A study applying a correction it was told in Python stores it here first
     (:func:`replace_result`), the way ``pas study tell --replace`` does;

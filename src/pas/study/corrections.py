@@ -32,7 +32,8 @@ __all__ = ["Corrections"]
 
 
 class Corrections:
-    """:meth:`retry_failed` and the ``replace=True`` of :meth:`Study.tell <pas.study.study.Study.tell>`."""
+    """:meth:`retry_failed` and the ``replace=True`` of :meth:`Study.tell
+    <pas.study.study.Study.tell>`."""
 
     @property
     def n_told(self) -> int:

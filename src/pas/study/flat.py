@@ -70,7 +70,7 @@ def from_flat(flat: dict, *, strategy: str = "pas", preset: str | None = None,
     (0, Stopping(eps1=None, eps2=0.1, precision=None, fit_check=0.01, k1=10, k2=20, measure='step'), None)
     >>> from_flat({"eps1": 2.0}, preset="paper")["stopping"].measure
     'step'
-    """
+    """  # noqa: E501 (doctest output line)
     if preset not in (None, "default", "paper"):
         raise ValueError(f"preset must be one of default, paper, got {preset!r}")
     paper = preset == "paper"

@@ -38,7 +38,8 @@ def parse_oracle_spec(spec: str) -> dict:
     """The ``[oracle]`` table equivalent to an oracle text spec (``pas run --oracle``).
 
     ``table:FILE[:ID_COLUMN:VALUE_COLUMN]`` gives ``{"table", "id_column",
-    "value_column"}`` (``VALUE_COLUMN`` ``A,B``: a list, one named load per column); ``python:MODULE:FUNCTION`` gives ``{"python"}``;
+    "value_column"}`` (``VALUE_COLUMN`` ``A,B``: a list, one named load per column);
+    ``python:MODULE:FUNCTION`` gives ``{"python"}``;
     ``command:ARGS`` gives ``{"command": [...]}``, the arguments split like a
     shell would split them (never run through one).
 

@@ -118,7 +118,9 @@ def model_bands(studies, n_jobs: int | None = None) -> dict:
         _STUDIES = studies
         t0 = time.perf_counter()
         try:
-            with ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("fork")) as pool:
+            with ProcessPoolExecutor(
+                workers, mp_context=multiprocessing.get_context("fork")
+            ) as pool:
                 for i, (band, wall) in zip(apart, pool.map(_band_in_worker, apart)):
                     if band != _FAILED:
                         studies[i]._model_band_cache = (keys[i], band)

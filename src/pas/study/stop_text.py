@@ -149,7 +149,7 @@ def misfit_text(history: pd.DataFrame) -> str:
     ...                   "fit_misfit": [None, "the count above 0.9"]})
     >>> misfit_text(h)
     '; at 41 HF the fitted model failed the fit check on the evaluated loads (p 0.003, the count above 0.9), so its band was not taken for the precision: it may not hold the truth'
-    """
+    """  # noqa: E501 (doctest output line)
     if "fit_check_p" not in history or "fit_misfit" not in history:
         return ""
     checked = history[history["fit_check_p"].notna()]

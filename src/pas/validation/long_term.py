@@ -225,7 +225,8 @@ def generate_cell(analogue, row, seed, cell_no, hours, *, cache=True, path=None)
 
 
 def long_term_exceedance(x, weights, hf_by_state):
-    """``Q(x) = Σ_s w_s Q_s(x) / Σ_s w_s`` with ``Q_s`` the empirical exceedance of ``hf_by_state[s]``.
+    """``Q(x) = Σ_s w_s Q_s(x) / Σ_s w_s`` with ``Q_s`` the empirical exceedance of
+    ``hf_by_state[s]``.
 
     Parameters
     ----------

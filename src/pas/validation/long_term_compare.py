@@ -187,7 +187,8 @@ def _contour(data, p_exceed, seed, max_hf):
 
 
 def _lf_load(analogue, lf):
-    """The LF peaks as a load: case 2 as they are; case 3 through the quasi-static dam-break load."""
+    """The LF peaks as a load: case 2 as they are; case 3 through the quasi-static dam-break
+    load."""
     if analogue == "2":
         return np.asarray(lf, float)
     c = case_impacts.COEFFICIENTS

@@ -114,7 +114,8 @@ class ScatterDiagram:
         if hs.ndim != 1 or per.ndim != 1 or p.shape != (hs.size, per.size):
             raise ValueError(f"probability must have shape (len(hs), len(period)) = "
                              f"({hs.size}, {per.size}), got {p.shape}")
-        if np.any(~np.isfinite(hs)) or np.any(hs <= 0) or np.any(~np.isfinite(per)) or np.any(per <= 0):
+        if (np.any(~np.isfinite(hs)) or np.any(hs <= 0)
+                or np.any(~np.isfinite(per)) or np.any(per <= 0)):
             raise ValueError("hs and period bin centres must be positive and finite")
         if np.any(~np.isfinite(p)) or np.any(p < 0) or not p.sum() > 0:
             raise ValueError(

@@ -1,4 +1,5 @@
-"""Linear transfer functions of a hull: from the built-in model, a Capytaine dataset or an RAO table.
+"""Linear transfer functions of a hull: from the built-in model, a Capytaine dataset or an RAO
+table.
 
 A :class:`TransferFunction` holds complex amplitudes per unit wave amplitude
 on an (heading, omega) grid for named degrees of freedom, in the convention
@@ -221,7 +222,8 @@ class TransferFunction:
                    source=label or "Capytaine dataset")
 
     def to_table(self):
-        """The long table of :meth:`from_table`: ``omega``, ``heading``, ``dof``, ``amplitude``, ``phase``.
+        """The long table of :meth:`from_table`: ``omega``, ``heading``, ``dof``, ``amplitude``,
+        ``phase``.
 
         ``table.set_index(["omega", "heading", "dof"]).to_xarray()`` is the
         NetCDF layout :meth:`from_table` reads.
