@@ -5,6 +5,7 @@ event equivalence, mesh sensitivity, and the strategies' comparison over seeds.
 """
 
 import argparse
+import sys
 from pathlib import Path
 
 import pandas as pd
@@ -12,7 +13,12 @@ import pandas as pd
 from pas.validation.case_cfd import cfd_lf_record, cfd_table, cfd_truth
 from pas.validation.cfd_compare import compare_cfd, format_cfd, summarise_cfd, top_n_errors
 
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # benchmarks/: the harness
+from harness.result_tables import rewrite_page  # noqa: E402
+
 DATA = Path(__file__).resolve().parents[2] / "src" / "pas" / "validation" / "data"
+PAGE = Path(__file__).resolve().parents[2] / "docs" / "results" / "cfd.md"
+NAMES = {"pas": "PAS (defaults)", "paper": "PAS, paper preset", "as": "AS"}
 
 
 def truth_check():
@@ -55,6 +61,43 @@ def equivalence():
           f"median {shift.median():+.2f} s (range {shift.min():+.2f} to {shift.max():+.2f})")
 
 
+def _signed(v):
+    """A percentage with a typographic sign: +4.4 %, −2.7 %."""
+    return ("+" if v > 0 else "−" if v < 0 else "") + f"{abs(v):.1%}"
+
+
+def comparison_table(runs, facts):
+    """The comparison as the page's Markdown table (with the brute-force row)."""
+    lines = ["| strategy | runs | MPM (kN/m, median) | error, median | \\|error\\|, worst "
+             "| U95 holds the truth | CFD runs | CFD hours |", "|---|---|---|---|---|---|---|---|"]
+    for name, g in runs.groupby("strategy", sort=False):
+        holds = g["holds"].dropna()
+        n = g["n_hf"]
+        span = f" ({n.min():.0f}–{n.max():.0f})" if n.min() != n.max() else ""
+        lines.append(
+            f"| {NAMES.get(name, name)} | {len(g)} | {g['mpm'].median() / 1e3:.1f} | "
+            f"{_signed(g['error'].median())} | {g['error'].abs().max():.1%} | "
+            + (f"{int(holds.sum())}/{len(holds)}" if len(holds) else "–")
+            + f" | {n.median():.0f}{span} | {g['cfd_hours'].median():.2f} |")
+    lines.append(f"| brute force (the truth) | – | {facts['truth'] / 1e3:.1f} | – | – | – | "
+                 f"{facts['n_cfd']} | {facts['truth_hours']:.2f} |")
+    return "\n".join(lines)
+
+
+def mesh_table():
+    m = pd.read_csv(DATA / "cfd_green_water_mesh.csv")
+    m = m[m["status"] == "ok"]
+    base = cfd_table().set_index("id")
+    rows = pd.concat([m, base.loc[m["id"].unique()].reset_index().assign(cell=0.5)])
+    piv = rows.pivot_table(index="id", columns="cell", values="wall_peak_filtered")
+    lines = ["| event | filtered peak at 0.5 m (kN/m) | 0.35 m / 0.5 m | 0.7 m / 0.5 m |",
+             "|---|---|---|---|"]
+    for e, r in piv.iterrows():
+        lines.append(f"| {e} | {r[0.5] / 1e3:.1f} | {r[0.35] / r[0.5]:.2f} | "
+                     f"{r[0.7] / r[0.5]:.2f} |")
+    return "\n".join(lines)
+
+
 def mesh():
     path = DATA / "cfd_green_water_mesh.csv"
     if not path.exists():
@@ -77,6 +120,9 @@ def mesh():
 def main(argv=None):
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("--replications", type=int, default=10)
+    p.add_argument("--write", action="store_true",
+                   help="put the comparison and mesh tables between the markers of "
+                        "docs/results/cfd.md")
     a = p.parse_args(argv)
     truth_check()
     equivalence()
@@ -87,6 +133,9 @@ def main(argv=None):
     print(format_cfd(summarise_cfd(runs, facts)))
     with pd.option_context("display.width", 200):
         print(runs.round(4).to_string())
+    if a.write:
+        rewrite_page(PAGE, {"comparison": comparison_table(runs, facts),
+                            "mesh": mesh_table()}, "report.py")
 
 
 if __name__ == "__main__":

@@ -3,7 +3,7 @@
 From the fit where the forecast first says that more HF are not expected to
 reach the precision target (an infinite forecast: the U95 has not narrowed
 with the pairs), a study goes on to its budget.  Per known-truth problem
-(:mod:`pas.validation.known_truth`, the types of ``precision_stop.py``) and
+(`benchmarks/harness/known_truth.py`, the types of ``precision_stop.py``) and
 data set, run once to the budget (``--budget``, default 80 HF) per precision
 target (``--targets``, default ±5 % and ±10 %), and compare the
 study at that first "out of reach" fit with the study at its end: the MPM's
@@ -23,17 +23,20 @@ from __future__ import annotations
 
 import argparse
 import math
+import sys
 import time
 import warnings
 from pathlib import Path
 
 import numpy as np
 import pandas as pd
-from pas.validation.known_truth import make_problem
-from pas.validation.known_truth_runs import TYPES as KNOWN_TRUTH
-from pas.validation.result_tables import rewrite_page
 
 import pas
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # benchmarks/: the harness
+from harness.known_truth import make_problem  # noqa: E402
+from harness.known_truth_runs import TYPES as KNOWN_TRUTH  # noqa: E402
+from harness.result_tables import rewrite_page  # noqa: E402
 
 TYPES = ("core-gumbel-t0.6", "core-gaussian-t0.75", "core-clayton-t0.6", "core-frank-t0.6",
          "core-gaussian-t0.45", "core-gumbel-t0.3", "tail-gaussian-mix", "tail-gumbel-b3",
