@@ -160,3 +160,12 @@ def test_a_bad_precision_exits_2(problem, capsys):
         main(_argv(problem, "--p-exceed", "1e-4", "--precision", "150%"))
     assert stop.value.code == 2
     assert "expected a fraction" in capsys.readouterr().err
+
+
+def test_a_fresh_output_folder_gives_no_store_warning(problem, capsys):
+    """Every sea state opens the analysis's one store after the run created it: that file
+    is not 'an existing file that holds no study' (the warning for a copied .sqlite)."""
+    out = problem / "fresh"
+    assert main(_argv(problem, "--p-exceed", "1e-3", "--max-hf", "12", "--seed", "1",
+                      "--out", str(out))) == 0
+    assert "holds no study" not in capsys.readouterr().err

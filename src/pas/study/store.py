@@ -67,6 +67,10 @@ __all__ = ["StudyStore", "StoreError", "StoreConflict", "SCHEMA_VERSION", "read_
            "LFInputs", "StoredResult", "Outstanding", "Ask", "Tell", "Replace"]
 
 
+_CREATED_HERE: set[str] = set()
+"""Store files this process created (their later handles did not find them there)."""
+
+
 class StudyStore(StoreViews):
     """One study's SQLite file (:mod:`pas.study.schema` for the tables).
 
@@ -90,8 +94,13 @@ class StudyStore(StoreViews):
         if not create and not os.path.exists(self.path):
             raise FileNotFoundError(f"study store {self.path} does not exist "
                                     "(create it with 'pas study create')")
-        #: whether the file was there (not empty) before this store opened it
-        self.existed = os.path.exists(self.path) and os.path.getsize(self.path) > 0
+        #: whether the file was there (not empty) before this process opened it: a long-term
+        #: analysis opens one file per sea state after its own handle created it
+        key = os.path.realpath(self.path)
+        self.existed = (os.path.exists(self.path) and os.path.getsize(self.path) > 0
+                        and key not in _CREATED_HERE)
+        if not os.path.exists(self.path):
+            _CREATED_HERE.add(key)
         with named_errors(self.path):
             self._conn = sqlite3.connect(self.path, timeout=timeout, isolation_level=None)
             self._conn.execute("PRAGMA journal_mode=WAL")
