@@ -46,7 +46,11 @@ def test_allocation_marks_every_sea_state_and_the_hf_it_got(result):
 def test_convergence_draws_the_history_and_the_target(result):
     fig, ax = plot_long_term_convergence(result)
     line = [ln for ln in ax.get_lines() if ln.get_label() == "long-term value"][0]
-    assert np.asarray(line.get_ydata()) == pytest.approx(result.history["value"].to_numpy())
+    pas_rounds = ~result.history["lf_only"].to_numpy()
+    assert pas_rounds.any() and not pas_rounds[0]            # round 0: no HF, no PAS model
+    assert np.asarray(line.get_ydata())[pas_rounds] == pytest.approx(
+        result.history["value"].to_numpy()[pas_rounds])
+    assert np.isnan(np.asarray(line.get_ydata())[~pas_rounds]).all()
     assert any("target ±5 %" in t for t in ax.get_legend_handles_labels()[1])
 
 
@@ -104,6 +108,26 @@ def test_convergence_scales_on_the_rounds_with_a_value(result):
     low, high = ax.get_ylim()
     assert low > 0.5 * rest["low_sampling"].min()
     assert high >= rest["high_sampling"].max()
-    marks = [ln for ln in ax.get_lines() if "value 0" in ln.get_label()]
+    marks = [ln for ln in ax.get_lines() if "no PAS model" in ln.get_label()]
     assert len(marks) == 1 and list(marks[0].get_xdata()) == h["n_hf"].iloc[:3].tolist()
     assert ax.get_ylabel().endswith("[kN]")
+
+
+def test_convergence_keeps_the_lf_only_rounds_off_the_value_axis(result, impact_result):
+    # before any sea state has a PAS model the value is the LF-only proxy's, in the LF's
+    # unit: the analysis says so per round, and those rounds are marked, not drawn as values
+    for res in (result, impact_result):
+        h = res.history
+        assert "lf_only" in h and h["lf_only"].dtype == bool
+        assert not h["lf_only"].iloc[-1]
+    from dataclasses import replace
+
+    h = result.history.copy()
+    h.loc[h.index[:2], "lf_only"] = True
+    h.loc[h.index[:2], "value"] = 1e3 * h["value"].max()     # a level in another unit
+    fig, ax = plot_long_term_convergence(replace(result, history=h), unit="kN")
+    assert ax.get_ylim()[1] < 10 * result.history["value"].max()
+    value_line = [ln for ln in ax.get_lines() if ln.get_label() == "long-term value"][0]
+    assert np.isnan(value_line.get_ydata()[:2]).all()
+    marks = [ln for ln in ax.get_lines() if "no PAS model" in ln.get_label()]
+    assert list(marks[0].get_xdata()) == h["n_hf"].iloc[:2].tolist()

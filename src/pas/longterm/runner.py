@@ -279,7 +279,8 @@ class _Run:
         wide = [with_record(s, t) for s, t in zip(self.states, triples)]
         _, low, high = value_and_band(wide, self.weights, p, start)
         n_hf = sum(st.n_hf for st in self.studies if st is not None)
-        row = self.target.record(n_hf, x, (low, high))
+        lf_only = not any(st is not None and st.last is not None for st in self.studies)
+        row = self.target.record(n_hf, x, (low, high), lf_only=lf_only)
         reached = False
         if self.target.band_due(row):
             if self.model_band:  # the bands the states' new results call for, one a core

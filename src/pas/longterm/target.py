@@ -85,12 +85,13 @@ class LongTermTarget:
         return {"n_hf": list(rule.band_pairs), "halfwidth": list(rule.band_widths)} if rule \
             else {}
 
-    def record(self, n_hf: int, value: float, sampling) -> dict:
-        """The round's history row: the value and its band without the model bands."""
+    def record(self, n_hf: int, value: float, sampling, *, lf_only: bool = False) -> dict:
+        """The round's history row: the value and its band without the model bands;
+        ``lf_only``: no sea state has a PAS model yet, the value is the LF-only proxy's."""
         floor = relative_half_width(value, sampling)
         row = {"n_hf": int(n_hf), "value": float(value), "low_sampling": float(sampling[0]),
                "high_sampling": float(sampling[1]), "halfwidth_sampling": floor,
-               "low": np.nan, "high": np.nan, "halfwidth": np.nan}
+               "low": np.nan, "high": np.nan, "halfwidth": np.nan, "lf_only": bool(lf_only)}
         self.rows.append(row)
         if self.rule is not None:
             self.rule.mpms.append(float(value))
@@ -138,7 +139,8 @@ class LongTermTarget:
         """One row per allocation round (:meth:`record`, the full band where computed, the
         forecast made then with a target)."""
         columns = ["n_hf", "value", "low_sampling", "high_sampling", "halfwidth_sampling", "low",
-                   "high", "halfwidth", *(FORECAST_COLUMNS if self.rule is not None else ())]
+                   "high", "halfwidth", "lf_only",
+                   *(FORECAST_COLUMNS if self.rule is not None else ())]
         return pd.DataFrame(self.rows, columns=columns)
 
 

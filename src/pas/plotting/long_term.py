@@ -132,10 +132,14 @@ def plot_long_term_convergence(result, *, truth=None, unit=None, ax=None):
                          "(nothing to draw)")
     fig, ax = _new_axes(ax)
     n, value = h["n_hf"].to_numpy(dtype=float), h["value"].to_numpy(dtype=float)
-    ax.fill_between(n, h["low_sampling"].to_numpy(dtype=float),
-                    h["high_sampling"].to_numpy(dtype=float), step="post", color="C0",
-                    alpha=0.2, lw=0, label="band without the model bands")
-    ax.plot(n, value, "-", drawstyle="steps-post", color="C0", label="long-term value")
+    lf_only = (h["lf_only"].astype("boolean").fillna(False).to_numpy(dtype=bool)
+               if "lf_only" in h else np.zeros(len(h), dtype=bool))
+    shown_value = np.where(lf_only, np.nan, value)
+    ax.fill_between(n, np.where(lf_only, np.nan, h["low_sampling"].to_numpy(dtype=float)),
+                    np.where(lf_only, np.nan, h["high_sampling"].to_numpy(dtype=float)),
+                    step="post", color="C0", alpha=0.2, lw=0,
+                    label="band without the model bands")
+    ax.plot(n, shown_value, "-", drawstyle="steps-post", color="C0", label="long-term value")
     full = h["halfwidth"].notna().to_numpy()
     if full.any():
         ax.errorbar(n[full], value[full], yerr=[value[full] - h["low"].to_numpy(float)[full],
@@ -151,10 +155,10 @@ def plot_long_term_convergence(result, *, truth=None, unit=None, ax=None):
     if truth is not None:
         ax.axhline(float(truth), color="C3", ls="--", lw=1.0,
                    label=f"truth {_fmt(float(truth), unit)}")
-    nothing = ~(value > 0)
+    nothing = ~(value > 0) | lf_only
     if nothing.any() and not nothing.all():
-        # rounds before any PAS model reached the level read 0: drawn on the lower edge,
-        # the axis scaled on the rounds with a value so that these do not squash them
+        # rounds before any PAS model reached the level read 0 or the LF-only proxy (in the
+        # LF's unit): drawn on the lower edge, the axis scaled on the rounds with a value
         shown = ~nothing
         ends = np.concatenate([value[shown], h["low_sampling"].to_numpy(float)[shown],
                                h["high_sampling"].to_numpy(float)[shown]])
@@ -164,7 +168,7 @@ def plot_long_term_convergence(result, *, truth=None, unit=None, ax=None):
         ax.set_ylim(bottom, ends.max() + pad)
         ax.plot(n[nothing], np.full(int(nothing.sum()), bottom), "v", ms=6, mfc="none",
                 color="0.4", clip_on=False, ls="none",
-                label="value 0: no PAS model reaches the level yet")
+                label="no PAS model reaches the level yet (value 0 or the LF-only proxy)")
     ax.set_xlabel("HF evaluations spent (all sea states)")
     ax.set_ylabel(_with_unit(f"value at p_exceed = {result.p_exceed:.3g}", unit))
     ax.grid(True, lw=0.3, alpha=0.5)
