@@ -23,7 +23,6 @@ import json
 import os
 import subprocess
 import sys
-import tarfile
 import tempfile
 import time
 from pathlib import Path
@@ -31,8 +30,8 @@ from pathlib import Path
 HERE = Path(__file__).resolve()
 ROOT = HERE.parents[2]
 sys.path.insert(0, str(HERE.parents[1]))  # benchmarks/: the harness
-
 import numpy as np  # noqa: E402
+from harness.baseline import baseline_tree  # noqa: E402
 from harness.timing_problem import N_W, P_EXP, N, scenario  # noqa: E402
 
 BASELINE = "9224ca2"
@@ -97,15 +96,6 @@ def in_child(src, *args):
     return json.loads(out.stdout.strip().splitlines()[-1])
 
 
-def _baseline_tree(commit, into):
-    archive = Path(into) / "src.tar"
-    with open(archive, "wb") as f:
-        subprocess.run(["git", "-C", str(ROOT), "archive", commit, "src"], stdout=f, check=True)
-    with tarfile.open(archive) as tar:
-        tar.extractall(into, filter="data")
-    return Path(into) / "src"
-
-
 def part_long(old_src):
     """Per-iteration CPU time, peak RSS and MPM at n = 15 k / 150 k / 1.5 M, and one
     ``run_pas`` at 1.5 M: old = ``pas`` of ``old_src``, new = this tree's."""
@@ -154,7 +144,7 @@ def main():
     if args.long_child:
         return long_child(args.long_child)
     with tempfile.TemporaryDirectory() as tmp:
-        out = part_long(_baseline_tree(args.baseline, tmp))
+        out = part_long(baseline_tree(args.baseline, tmp))
     if args.json:
         with open(args.json, "w") as fh:
             json.dump(out, fh)

@@ -24,13 +24,14 @@ import json
 import os
 import subprocess
 import sys
-import tarfile
 import tempfile
 import time
 from pathlib import Path
 
 HERE = Path(__file__).resolve()
 ROOT = HERE.parents[2]
+sys.path.insert(0, str(HERE.parents[1]))  # benchmarks/: the harness
+from harness.baseline import baseline_tree  # noqa: E402
 
 
 def _problem(analogue, scale):
@@ -83,15 +84,6 @@ def worker(analogue, scale, max_hf, model_band):
                       "band": [float(b) for b in res.band], "n_hf": res.n_hf, "asked": asked}))
 
 
-def _baseline_tree(commit, into):
-    archive = Path(into) / "src.tar"
-    with open(archive, "wb") as f:
-        subprocess.run(["git", "-C", str(ROOT), "archive", commit, "src"], stdout=f, check=True)
-    with tarfile.open(archive) as tar:
-        tar.extractall(into, filter="data")
-    return Path(into) / "src"
-
-
 def _run(src, args):
     env = dict(os.environ, PYTHONPATH=str(src), MPLBACKEND="Agg")
     cmd = [sys.executable, str(HERE), "--worker", "--analogue", args.analogue,
@@ -116,7 +108,7 @@ def main(argv=None):
         return
     _problem(args.analogue, args.scale)  # the data set into the cache, outside the timing
     with tempfile.TemporaryDirectory() as tmp:
-        old = _run(_baseline_tree(args.baseline, tmp), args)
+        old = _run(baseline_tree(args.baseline, tmp), args)
     new = _run(ROOT / "src", args)
     out = {"analogue": args.analogue, "scale": args.scale, "max_hf": args.max_hf,
            "model_band": args.model_band, "baseline": args.baseline,

@@ -29,7 +29,6 @@ import json
 import os
 import subprocess
 import sys
-import tarfile
 import tempfile
 import time
 from pathlib import Path
@@ -37,8 +36,8 @@ from pathlib import Path
 HERE = Path(__file__).resolve()
 ROOT = HERE.parents[2]
 sys.path.insert(0, str(HERE.parents[1]))  # benchmarks/: the harness
-
 import numpy as np  # noqa: E402
+from harness.baseline import baseline_tree  # noqa: E402
 from harness.timing_problem import (  # noqa: E402
     N_W,
     P_EXP,
@@ -139,15 +138,6 @@ def worker(args):
     print(json.dumps(out))
 
 
-def _baseline_tree(commit, into):
-    archive = Path(into) / "src.tar"
-    with open(archive, "wb") as f:
-        subprocess.run(["git", "-C", str(ROOT), "archive", commit, "src"], stdout=f, check=True)
-    with tarfile.open(archive) as tar:
-        tar.extractall(into, filter="data")
-    return Path(into) / "src"
-
-
 def _run(src, args):
     env = dict(os.environ, PYTHONPATH=str(src), MPLBACKEND="Agg")
     cmd = [sys.executable, str(HERE), "--worker", "--parts", args.parts, "--max-hf",
@@ -217,7 +207,7 @@ def main(argv=None):
     _print("new", out["new"])
     if args.baseline:
         with tempfile.TemporaryDirectory() as tmp:
-            out["old"] = _run(_baseline_tree(args.baseline, tmp), args)
+            out["old"] = _run(baseline_tree(args.baseline, tmp), args)
         _print("old", out["old"])
         _compare(out["old"], out["new"])
     after = reference_seconds()
