@@ -26,7 +26,7 @@ from importlib import resources
 import numpy as np
 import pandas as pd
 
-__all__ = ["CFD_CASE", "CFDCase", "cfd_lf_record", "cfd_table", "cfd_truth"]
+__all__ = ["CFD_CASE", "CFDCase", "cfd_cut", "cfd_lf_record", "cfd_table", "cfd_truth"]
 
 
 @dataclass(frozen=True)
@@ -90,6 +90,15 @@ def cfd_table():
     ref = resources.files("pas.validation") / "data" / "cfd_green_water.csv"
     with resources.as_file(ref) as path:
         return pd.read_csv(path)
+
+
+def cfd_cut(events, table):
+    """``(n_top, cut)``: how many of the largest LF events the table holds without a gap, and
+    the LF threshold just below the last of them (every event above it was run in CFD)."""
+    ranked = events.sort_values("lf", ascending=False)
+    have = ranked["id"].isin(set(table["id"])).to_numpy()
+    n_top = int(np.argmin(have)) if not have.all() else len(have)
+    return n_top, float(ranked["lf"].iloc[n_top - 1]) - 1e-9
 
 
 def cfd_truth(events, table, n_waves, p_exp, *, load=CFD_CASE.load):

@@ -24,7 +24,7 @@ import warnings
 import numpy as np
 import pandas as pd
 
-from .case_cfd import CFD_CASE, cfd_lf_record, cfd_table, cfd_truth
+from .case_cfd import CFD_CASE, cfd_cut, cfd_lf_record, cfd_table, cfd_truth
 
 __all__ = ["EPS1", "compare_cfd", "summarise_cfd", "top_n_errors", "top_n_estimate"]
 
@@ -74,13 +74,8 @@ def compare_cfd(*, seeds=range(5), max_hf=160, strategies=("pas", "paper", "as")
     table = cfd_table()
     ok = table[table["status"] == "ok"]
     truth = cfd_truth(events, ok, n_waves, p_exp)
-    above = events[events["id"].isin(ok["id"])].nlargest(len(events), "lf")
-    ranked = events.sort_values("lf", ascending=False)["id"].tolist()
-    n_top = 0
-    while n_top < len(ranked) and ranked[n_top] in set(ok["id"]):
-        n_top += 1
-    cut = float(events.set_index("id").loc[ranked[n_top - 1], "lf"]) - 1e-9
-    frame = above[above["lf"] > cut].set_index("id")[["lf", "seed", "t_peak"]]
+    n_top, cut = cfd_cut(events, ok)
+    frame = events[events["lf"] > cut].set_index("id")[["lf", "seed", "t_peak"]]
     oracle = TableOracle(ok, id_column="id", value_column=CFD_CASE.load)
     rows = []
     for name in strategies:
