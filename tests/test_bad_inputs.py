@@ -256,8 +256,8 @@ CASES = [
     Case("study tell VALUE nan", 2, "VALUE", ("study", "tell", "{s.db}", "e1", "nan")),
     # -- Python API
     Case("threshold='high'", ValueError, "threshold", call=api(threshold="high")),
-    Case("Stopping(k1=0)", ValueError, "k1", call=api(stopping=pas.Stopping(eps1=0.1, k1=0))),
-    Case("Stopping(k2=-1)", ValueError, "k2", call=api(stopping=pas.Stopping(eps1=0.1, k2=-1))),
+    Case("Stopping(k1=0)", ValueError, "k1", call=lambda ws: pas.Stopping(eps1=0.1, k1=0)),
+    Case("Stopping(k2=-1)", ValueError, "k2", call=lambda ws: pas.Stopping(eps1=0.1, k2=-1)),
     Case(
         "eps1 beside stopping=",
         ValueError,
@@ -277,7 +277,7 @@ CASES = [
         "Budget(max_failures=-1)",
         ValueError,
         "max_failures",
-        call=api(budget=pas.Budget(max_failures=-1)),
+        call=lambda ws: pas.Budget(max_failures=-1),
     ),
     Case("PAS(z='ten')", ValueError, "z", call=lambda ws: pas.PAS(z="ten")),
     Case(
@@ -485,8 +485,8 @@ _TOP_LEVEL = ("eps1", "eps2", "max_hf", "max_failures")
 def test_a_setting_has_one_rule_in_python_the_study_file_and_study_set(key, value, workspace,
                                                                        tmp_path):
     lf = np.asarray(pd.read_csv(workspace / "lf.csv")["lf"])
-    objects = from_flat({"eps1": 0.1, key: value})  # the objects, as the study file builds them
     try:
+        objects = from_flat({"eps1": 0.1, key: value})  # the objects, as the study file does
         pas.make_study(objects.pop("strategy"), lf, n_waves=NW, p_exp=P, seed=1, **objects)
         python_ok = True
     except ValueError:

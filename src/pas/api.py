@@ -18,12 +18,14 @@ from .strategies.as_ import AS
 from .strategies.base import Strategy
 from .strategies.pas import PAS
 from .strategies.screening import check_n_waves
+from .study.corrections import check_retry
+from .study.factory import make_strategy
 from .study.flat import MOVED, SETTINGS_PAGE
 from .study.inputs import split_lf_table
 from .study.oracles import check_oracle
 from .study.result import ScreeningResult
 from .study.settings import UNSET, given_names, keep_stored, resolve
-from .study.store import StudyStore, read_settings
+from .study.store import read_settings
 from .study.study import Study
 
 __all__ = ["run_pas", "run_as", "make_study"]
@@ -121,36 +123,38 @@ def make_study(strategy, lf_peaks, *, n_waves, p_exp, threshold=None, eps1=None,
         Run it with :meth:`~pas.study.study.Study.optimize` (``n_workers``,
         ``pending``) or drive it with ask/tell.
     """
+    return _make_study("make_study", **locals())
+
+
+def _make_study(where, strategy, lf_peaks, *, n_waves, p_exp, threshold, eps1, eps2, precision,
+                seed, max_hf, stopping, budget, store, n_waves_convention, **options) -> Study:
+    """:func:`make_study`, its errors naming ``where`` (the function the user called)."""
     lf, ids, meta = split_lf_table(lf_peaks)
     note = check_n_waves(lf, n_waves, threshold, convention=n_waves_convention,
                          names={"convention": "n_waves_convention='spectral'"})
     if note is not None:
-        warnings.warn(note, stacklevel=3)
+        warnings.warn(note, stacklevel=4)
     if isinstance(strategy, str) and strategy == "paper":
         strategy = PAS.paper()
     elif isinstance(strategy, Strategy):  # its own copy: one object may serve many studies
         strategy = copy.deepcopy(strategy)
     given = given_names(stopping, budget, eps1=eps1, eps2=eps2, precision=precision,
                         max_hf=max_hf)
-    stopping, budget = resolve("make_study", strategy, stopping, budget, eps1=eps1, eps2=eps2,
+    stopping, budget = resolve(where, strategy, stopping, budget, eps1=eps1, eps2=eps2,
                                precision=precision, max_hf=max_hf)
-    stored = ({} if store is None else
-              store.settings() if isinstance(store, StudyStore) else read_settings(store))
-    others = {"target": target, "stop_on_convergence": stop_on_convergence,
-              "adaptive_threshold": adaptive_threshold, "threshold_step": threshold_step,
-              "fp_run": fp_run, "legacy_md": legacy_md}
-    return Study.from_settings(
-        {"strategy": strategy, "n_waves": n_waves, "p_exp": p_exp, "threshold": threshold,
-         "seed": seed, **keep_stored({**stopping.flat(), **budget.flat()}, stored, given),
-         **{k: v for k, v in others.items() if v is not None}},
-        lf, ids=ids, meta=meta, store=store)
+    if store is not None:
+        stopping, budget = keep_stored(stopping, budget, read_settings(store), given)
+    return Study.from_peaks(make_strategy(strategy), lf, n_waves=n_waves, p_exp=p_exp,
+                            threshold=threshold, ids=ids, meta=meta, store=store, seed=seed,
+                            stopping=stopping, budget=budget,
+                            **{k: v for k, v in options.items() if v is not None})
 
 
 @keywords_moved(MOVED, SETTINGS_PAGE)
 def run_pas(lf_peaks, oracle, *, n_waves, p_exp, threshold=None, eps1=None, eps2=None,
             precision=None, seed=None, max_hf=UNSET, stopping=None, budget=None, strategy=None,
-            study=None, batch_size=1, executor=None, callback=None,
-            retry_failed=False) -> ScreeningResult:
+            study=None, batch_size=1, executor=None, callback=None, retry_failed=False,
+            n_waves_convention="count") -> ScreeningResult:
     """Predict the MPM of an HF load with Probabilistic Adaptive Screening.
 
     Parameters
@@ -171,7 +175,7 @@ def run_pas(lf_peaks, oracle, *, n_waves, p_exp, threshold=None, eps1=None, eps2
     n_waves : int
         Number of wave encounters ``n_w`` in the LF Monte-Carlo duration
         (counted: at least the LF peaks over the threshold; for ``n_w = T_MCS
-        / T_p,e`` on purpose use ``pas.make_study(..., n_waves_convention="spectral")``).
+        / T_p,e`` on purpose use ``n_waves_convention="spectral"``).
     p_exp : float
         Target exceedance probability (:func:`pas.p_exp_from_duration`).
     threshold : float, optional
@@ -230,6 +234,9 @@ def run_pas(lf_peaks, oracle, *, n_waves, p_exp, threshold=None, eps1=None, eps2
         With ``study``: run the failed events of the stored study again (after
         fixing their cause), so it continues as if they had not failed
         (:meth:`Study.retry_failed <pas.study.study.Study.retry_failed>`).
+    n_waves_convention : {"count", "spectral"}, default "count"
+        How ``n_waves`` was obtained, as for :func:`make_study` (a validation
+        case's ``run_kwargs()`` gives ``"spectral"``).
     strategy : PAS, optional
         The PAS settings (:class:`~pas.strategies.pas.PAS`): default
         ``PAS()``; ``PAS.paper()`` reproduces the paper's scripts (τ inversion
@@ -265,8 +272,8 @@ def run_pas(lf_peaks, oracle, *, n_waves, p_exp, threshold=None, eps1=None, eps2
 @keywords_moved(MOVED, SETTINGS_PAGE)
 def run_as(lf_peaks, oracle, *, n_waves, p_exp, threshold=None, eps1=None, eps2=None,
            precision=None, seed=None, max_hf=UNSET, stopping=None, budget=None, strategy=None,
-           study=None, batch_size=1, executor=None, callback=None,
-           retry_failed=False) -> ScreeningResult:
+           study=None, batch_size=1, executor=None, callback=None, retry_failed=False,
+           n_waves_convention="count") -> ScreeningResult:
     """Predict the MPM of an HF load with Adaptive Screening (paper App. A), the GPR reference.
 
     Runs :class:`~pas.strategies.as_.AS` in the same study loop as
@@ -295,7 +302,7 @@ def run_as(lf_peaks, oracle, *, n_waves, p_exp, threshold=None, eps1=None, eps2=
     n_waves : int
         Number of wave encounters ``n_w`` in the LF Monte-Carlo duration
         (counted: at least the LF peaks over the threshold; for ``n_w = T_MCS
-        / T_p,e`` on purpose use ``pas.make_study(..., n_waves_convention="spectral")``).
+        / T_p,e`` on purpose use ``n_waves_convention="spectral"``).
     p_exp : float
         Target exceedance probability (:func:`pas.p_exp_from_duration`).
     threshold : float, optional
@@ -353,6 +360,9 @@ def run_as(lf_peaks, oracle, *, n_waves, p_exp, threshold=None, eps1=None, eps2=
         With ``study``: run the failed events of the stored study again (after
         fixing their cause), so it continues as if they had not failed
         (:meth:`Study.retry_failed <pas.study.study.Study.retry_failed>`).
+    n_waves_convention : {"count", "spectral"}, default "count"
+        How ``n_waves`` was obtained, as for :func:`make_study` (a validation
+        case's ``run_kwargs()`` gives ``"spectral"``).
     strategy : AS, optional
         The AS settings (:class:`~pas.strategies.as_.AS`: ``fidelity``
         ``"multi"``/``"single"``, ``range_factor``, ``n_grid``, ``n_lf_bins``,
@@ -390,14 +400,11 @@ def _run(cls, given: dict) -> ScreeningResult:
         raise TypeError(f"run_{cls.name}: strategy must be {cls.__name__}(...), "
                         f"got {strategy!r}")
     check_oracle(given["oracle"])  # before a study store is written
-    if given["retry_failed"] and given["study"] is None:
-        raise ValueError("retry_failed=True needs study=... (the study store of the run whose "
-                         "failed events should run again)")
-    named = ("eps1", "eps2", "precision", "max_hf", "stopping", "budget")
-    resolve(f"run_{cls.name}", strategy, given["stopping"], given["budget"],
-            **{k: given[k] for k in named[:4]})  # its errors name run_pas, before any store
-    built = make_study(strategy, given["lf_peaks"], store=given["study"],
-                       **{k: given[k] for k in ("n_waves", "p_exp", "threshold", "seed", *named)})
+    check_retry(given["retry_failed"], given["study"])
+    keys = ("n_waves", "p_exp", "threshold", "eps1", "eps2", "precision", "seed", "max_hf",
+            "stopping", "budget", "n_waves_convention")
+    built = _make_study(f"run_{cls.name}", strategy, given["lf_peaks"], store=given["study"],
+                        **{k: given[k] for k in keys})
     if given["retry_failed"]:
         built.retry_failed()
     executor = given["executor"]

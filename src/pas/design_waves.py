@@ -30,8 +30,10 @@ import pandas as pd
 from .stats.exceedance import exceedance_probabilities, value_at_exceedance
 from .strategies.design_waves import DesignWaves, LevelLadder
 from .strategies.stopping import range_grid
+from .study.corrections import check_retry
 from .study.oracles import check_oracle
 from .study.result import ScreeningResult, distribution_frame
+from .study.settings import Budget, Stopping
 from .study.state import EventState
 from .study.study import Study
 from .waves.design import rayleigh_target
@@ -134,12 +136,12 @@ class DesignWaveStudy(Study):
     """
 
     def __init__(self, lfset, strategy, *, episodes=(), run_settings=None, store=None,
-                 **settings):
+                 **options):
         self.episodes = list(episodes)
         self.run_settings = dict(run_settings or {})
-        settings = {"eps1": 1.0, "seed": 0, "adaptive_threshold": False,
-                    "max_failures": lfset.n, **settings}
-        super().__init__(lfset, strategy, store=store, **settings)
+        options = {"stopping": Stopping(eps1=1.0), "seed": 0, "adaptive_threshold": False,
+                   "budget": Budget(max_hf=None, max_failures=lfset.n), **options}
+        super().__init__(lfset, strategy, store=store, **options)
 
     def settings(self) -> dict:
         """What defines a design-wave study (the stopping settings do not apply)."""
@@ -322,9 +324,7 @@ def _check_renamed(target, record, study, retry_failed) -> None:
     if record is not None and study is None:
         raise ValueError("record: results are stored in a study store since pas 0.2: give "
                          "study='rcw.sqlite' (with it, record= imports a 0.1 record file)")
-    if retry_failed and study is None:
-        raise ValueError("retry_failed=True needs study=... (the study store of the run whose "
-                         "failed episodes should run again)")
+    check_retry(retry_failed, study)
 
 
 def _result(rows, p_exp, n_waves, name, settings, complete) -> ScreeningResult:

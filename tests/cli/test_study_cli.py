@@ -300,7 +300,7 @@ def test_set_tightens_eps1_and_grows_the_budget_of_a_converged_study(tmp_path, c
         before = store.settings()
     # settings that decide what is asked cannot change; bad values are named
     for argv, needle in ((["--eps1", "-1"], "--eps1"), (["--max-hf", "2"], "--max-hf"),
-                         (["--max-hf", "-3"], "--max-hf must be an integer ≥ 4"),
+                         (["--max-hf", "-3"], "--max-hf must be a positive integer"),
                          (["--k1", "-3"], "--k1"), ([], "--eps1")):
         assert cli("study", "set", db, *argv) == 2
         assert needle in capsys.readouterr().err

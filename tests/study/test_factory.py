@@ -7,7 +7,14 @@ import pytest
 
 import pas
 from pas.strategies.base import Strategy
-from pas.study.factory import LF_SETTINGS, STRATEGIES, STUDY_SETTINGS, make_strategy
+from pas.study.factory import (
+    LF_SETTINGS,
+    STRATEGIES,
+    STUDY_SETTINGS,
+    make_strategy,
+    study_options,
+)
+from pas.study.settings import BUDGET_NAMES, STOPPING_NAMES
 from pas.study.study import Study
 
 LF = np.random.default_rng(0).rayleigh(1.0, 400)
@@ -18,9 +25,20 @@ def test_registry_names_are_the_strategies_own():
 
 
 def test_study_settings_are_the_study_constructor_keywords():
+    """Every flat study setting is a field of the Stopping or Budget the constructor takes,
+    or a constructor keyword of its own."""
     params = inspect.signature(Study).parameters
-    keywords = [n for n, p in params.items() if p.kind == p.KEYWORD_ONLY and n != "store"]
-    assert sorted(keywords) == sorted(STUDY_SETTINGS)
+    keywords = {n for n, p in params.items() if p.kind == p.KEYWORD_ONLY and n != "store"}
+    objects = {*STOPPING_NAMES.values(), *BUDGET_NAMES.values()}
+    assert keywords - {"stopping", "budget"} == set(STUDY_SETTINGS) - objects
+    assert {"stopping", "budget"} <= keywords
+
+
+def test_study_options_refuse_an_unknown_name():
+    with pytest.raises(ValueError, match=r"unknown study settings \['k3'\]; known: "):
+        study_options({"k1": 5, "k3": 1})
+    assert study_options({"k1": 5, "max_failures": 2, "fp_run": 3}) == {
+        "stopping": pas.Stopping(k1=5), "budget": pas.Budget(max_failures=2), "fp_run": 3}
 
 
 def test_settings_round_trip_through_from_settings():

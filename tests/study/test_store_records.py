@@ -28,7 +28,7 @@ def new_study(path) -> pas.Study:
     return pas.Study(
         pas.LFSet(LF, n_waves=N, p_exp=1e-2),
         pas.PAS(band=pas.ModelBand(n_bootstrap=0)),
-        eps1=1e-3,
+        stopping=pas.Stopping(eps1=1e-3),
         seed=2,
         store=StudyStore(path),
     )
@@ -127,7 +127,8 @@ def test_refit_reads_replacements_in_the_log(tmp_path):
     """Reproduction: refit of a store holding a replacement raised "already told"."""
     db = tmp_path / "s.db"
     study = pas.Study(pas.LFSet(LF, n_waves=N, p_exp=1e-2),
-                      pas.PAS(band=pas.ModelBand(n_bootstrap=0)), eps1=1e-3, seed=2,
+                      pas.PAS(band=pas.ModelBand(n_bootstrap=0)),
+                      stopping=pas.Stopping(eps1=1e-3), seed=2,
                       store=StudyStore(db), target="a")
     first = study.ask()
     for ev in first:

@@ -76,7 +76,8 @@ def test_studies_in_one_file_do_not_see_each_other(tmp_path):
     rng = np.random.default_rng(0)
     lfs = {"a": rng.rayleigh(1.0, 200), "b": rng.rayleigh(2.0, 300)}
     studies = {k: pas.Study(pas.LFSet(v, n_waves=v.size, p_exp=0.02, sea_state=k), pas.PAS(
-        band=pas.ModelBand(n_bootstrap=0)), eps1=0.01, seed=1, store=StudyStore(path, scope=k))
+        band=pas.ModelBand(n_bootstrap=0)), stopping=pas.Stopping(eps1=0.01), seed=1,
+        store=StudyStore(path, scope=k))
         for k, v in lfs.items()}
     for k, st in studies.items():
         for ev in st.ask():

@@ -176,6 +176,12 @@ all check a setting with :func:`check_setting`, so they accept and refuse the sa
 The strategy settings are checked by the strategy's constructor."""
 
 
+def draw_seed(seed=None) -> int:
+    """``seed``, or a seed drawn from the OS when it is None (recorded, so a run can be
+    repeated)."""
+    return int(np.random.SeedSequence().entropy % (2**63)) if seed is None else int(seed)
+
+
 def check_setting(name: str, value):
     """``value`` of the study setting ``name`` checked by its rule in :data:`SETTING_CHECKS`.
 

@@ -17,8 +17,11 @@ import time
 
 import numpy as np
 
+from .._support.checks import draw_seed
 from ..strategies.screening import LFSet
 from ..study import precision as study_precision
+from ..study.corrections import check_retry
+from ..study.factory import study_options
 from ..study.loop import execute, failure_limit
 from ..study.oracles import OracleFailureLimit, check_oracle
 from ..study.schema import StoreError, dumps
@@ -121,9 +124,7 @@ def run_long_term(sea_states, lf_peaks, oracle, *, p_exceed=None, return_period=
     """
     t_start = time.perf_counter()
     check_oracle(oracle)
-    if retry_failed and study is None:
-        raise ValueError("retry_failed=True needs study=... (the store of the analysis whose "
-                         "failed events should run again)")
+    check_retry(retry_failed, study)
     states = read_sea_states(sea_states, lf_peaks)
     p = design_exceedance(states, p_exceed, return_period, hours_per_year)
     weights = encounter_weights(states)
@@ -170,7 +171,7 @@ def _default_strategy():
 def _open_root(path, settings, seed):
     """The store's own scope with the analysis's settings (checked when it exists), and the seed."""
     if path is None:
-        return None, _seed(seed)
+        return None, draw_seed(seed)
     root = StudyStore(path, scope="")
     stored = root.get(LONG_TERM_KEY)
     if stored is None and not root.is_new:
@@ -178,7 +179,7 @@ def _open_root(path, settings, seed):
         raise StoreError(f"study store {path} holds a single study, not a long-term analysis: "
                          "give run_long_term another file")
     if stored is None:
-        seed = _seed(seed)
+        seed = draw_seed(seed)
         root.put(LONG_TERM_KEY, {**settings, "seed": seed})
         return root, seed
     for key in sorted(settings):
@@ -201,12 +202,6 @@ _MAY_CHANGE = ("max_hf", "precision")
 """Settings a continued analysis may change: its budget and its precision target."""
 
 
-def _seed(seed) -> int:
-    if seed is None:
-        return int(np.random.SeedSequence().entropy % (2**63))
-    return int(seed)
-
-
 def _make_study(state, i, q_lf, strategy, seed, max_hf, eps1, settings, path) -> Study:
     """The sea state's study, at ``p_exp`` = its LF exceedance at the LF-only long-term level
     (within its record: ``1/n_w`` for a level above it)."""
@@ -219,9 +214,10 @@ def _make_study(state, i, q_lf, strategy, seed, max_hf, eps1, settings, path) ->
     own_seed = int(np.random.SeedSequence([seed, i]).generate_state(1, dtype=np.uint64)[0]
                    % (2**63))
     store = None if path is None else StudyStore(path, scope=state.name)
-    return Study(lfset, copy.deepcopy(strategy), eps1=1.0 if eps1 is None else eps1,
-                 stop_on_convergence=eps1 is not None, seed=own_seed, max_hf=max_hf,
-                 store=store, **settings)
+    options = study_options({"eps1": 1.0 if eps1 is None else eps1, "max_hf": max_hf,
+                             "stop_on_convergence": eps1 is not None, "seed": own_seed,
+                             **settings})
+    return Study(lfset, copy.deepcopy(strategy), store=store, **options)
 
 
 class _Run:
@@ -238,7 +234,7 @@ class _Run:
         self._curves: dict[int, tuple] = {}
 
     def spent(self) -> int:
-        return sum(s.n_hf + s._n_pending for s in self.studies if s is not None)
+        return sum(s.n_hf + s.n_pending for s in self.studies if s is not None)
 
     def left_over(self) -> None:
         """Events a killed run left asked but not told: told from the store or run again."""
@@ -319,7 +315,7 @@ class _Run:
                 st = self.studies[i]
                 if len(asks) == batch_size or gain[i] <= 0:
                     break
-                if st is None or i in self.closed or (st._initial is None
+                if st is None or i in self.closed or (not st.started
                                                       and st.strategy.n_initial > room):
                     continue
                 events = st.ask(1)

@@ -25,10 +25,9 @@ from __future__ import annotations
 import copy
 
 from ..strategies.screening import Event
-from .factory import STUDY_SETTINGS
 from .state import EventState
 
-__all__ = ["Corrections"]
+__all__ = ["Corrections", "check_retry"]
 
 
 class Corrections:
@@ -102,13 +101,18 @@ class Corrections:
             ``retried`` (event ids), ``dropped`` (asks taken out of the log)
             and ``kept`` (their results kept for reuse).
         """
-        if self.store is None:
-            raise ValueError("retry_failed needs a study store: create the study with store=... "
-                             "(a failed event of a study in memory cannot be rewound)")
+        check_retry(True, self.store, "store")
         keys = None if ids is None else [str(i.id if isinstance(i, Event) else i) for i in ids]
         report = self.store.retry_failed(keys)
         if report["retried"]:
-            kw = {k: v for k, v in self.settings().items() if k in STUDY_SETTINGS}
             self.__dict__.update(type(self)(self.lfset, self.strategy, store=self.store,
-                                            **kw).__dict__)
+                                            **self.options()).__dict__)
         return report
+
+
+def check_retry(retry_failed: bool, store, name: str = "study") -> None:
+    """A ``ValueError`` naming the argument ``name`` when failed events are to run again in a
+    study without a store (a failed event of a study in memory cannot be rewound)."""
+    if retry_failed and store is None:
+        raise ValueError(f"retry_failed=True needs {name}=... (a study store: the failed "
+                         "events of a study in memory cannot be rewound)")

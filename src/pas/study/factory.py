@@ -36,7 +36,8 @@ from .settings import (
     Stopping,
 )
 
-__all__ = ["study_settings", "STRATEGIES", "LF_SETTINGS", "STUDY_SETTINGS", "DEFAULT_MAX_HF",
+__all__ = ["study_settings", "study_options", "STRATEGIES", "LF_SETTINGS", "STUDY_SETTINGS",
+           "DEFAULT_MAX_HF",
            "make_strategy"]
 
 STRATEGIES = {"pas": PAS, "as": AS}
@@ -112,12 +113,22 @@ def strategy_flat_settings(strategy) -> dict:
 
 
 def study_settings(study) -> dict:
-    """Everything that defines ``study``: its strategy settings and study settings (stored)."""
-    lfset, stop = study.lfset, study.stopping
-    stopping = Stopping(**{f: getattr(stop, f) for f in STOPPING_NAMES if hasattr(stop, f)})
+    """Everything that defines ``study`` by flat names (what its store keeps): its strategy
+    settings and study settings."""
+    lfset, options = study.lfset, study.options()
     return {"strategy": study.strategy.name,
             "strategy_settings": strategy_flat_settings(study.strategy),
             "n_waves": lfset.n_waves, "p_exp": lfset.p_exp, "threshold": lfset.threshold,
-            **stopping.flat(),
-            **Budget(max_hf=study.max_hf, max_failures=study.max_failures).flat(),
-            **{name: getattr(study, name) for name in OTHER_STUDY_SETTINGS}}
+            **options.pop("stopping").flat(), **options.pop("budget").flat(), **options}
+
+
+def study_options(flat: dict) -> dict:
+    """The :class:`~pas.study.study.Study` keywords from flat study settings (a store's,
+    :data:`STUDY_SETTINGS`): the :class:`Stopping` and :class:`Budget` objects and the other
+    settings given.  An unknown name is a ``ValueError`` naming the known ones."""
+    unknown = sorted(set(flat) - set(STUDY_SETTINGS))
+    if unknown:
+        raise ValueError(f"unknown study settings {unknown}; known: "
+                         f"{', '.join(sorted(STUDY_SETTINGS))}")
+    return {"stopping": Stopping.from_flat(flat), "budget": Budget.from_flat(flat),
+            **{name: flat[name] for name in OTHER_STUDY_SETTINGS if name in flat}}

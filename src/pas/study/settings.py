@@ -11,6 +11,8 @@ from __future__ import annotations
 
 from dataclasses import asdict, dataclass, fields
 
+from .._support.checks import check_setting
+
 __all__ = ["Stopping", "Budget", "DEFAULT_MAX_HF", "STOPPING_NAMES", "BUDGET_NAMES",
            "OTHER_STUDY_SETTINGS", "RESUMABLE", "UNSET", "resolve"]
 
@@ -55,10 +57,20 @@ class Stopping:
     k2: int = 20
     measure: str = "window"
 
+    def __post_init__(self):
+        _check_fields(self, STOPPING_NAMES)
+
     @classmethod
     def paper(cls, **given) -> Stopping:
         """The paper's rule: Eq. 28's per-iteration change (``measure="step"``)."""
         return cls(**{"measure": "step", **given})
+
+    @classmethod
+    def from_flat(cls, flat: dict, *, paper: bool = False) -> Stopping:
+        """The rule from flat study settings (a store, a study file); other names are ignored
+        and missing ones take the defaults (the paper's with ``paper``)."""
+        given = {field: flat[name] for field, name in STOPPING_NAMES.items() if name in flat}
+        return (cls.paper if paper else cls)(**given)
 
     def flat(self) -> dict:
         """The flat study settings (``stop_measure`` for ``measure``; ``precision`` and
@@ -85,14 +97,32 @@ class Budget:
     max_hf: int | None = DEFAULT_MAX_HF
     max_failures: int = 10
 
+    def __post_init__(self):
+        _check_fields(self, BUDGET_NAMES)
+
     @classmethod
     def paper(cls, **given) -> Budget:
         """No budget, as the paper's scripts ran."""
         return cls(**{"max_hf": None, **given})
 
+    @classmethod
+    def from_flat(cls, flat: dict, *, paper: bool = False) -> Budget:
+        """The budget from flat study settings (a store, a study file), as
+        :meth:`Stopping.from_flat`."""
+        given = {field: flat[name] for field, name in BUDGET_NAMES.items() if name in flat}
+        return (cls.paper if paper else cls)(**given)
+
     def flat(self) -> dict:
         """The flat study settings."""
         return asdict(self)
+
+
+def _check_fields(settings, names: dict) -> None:
+    """Check every field of a frozen settings object by the rule of its flat name
+    (:data:`pas._support.checks.SETTING_CHECKS`), so an object refuses what a study file
+    refuses, and keep the checked value (``3.0`` becomes ``3``)."""
+    for field, name in names.items():
+        object.__setattr__(settings, field, check_setting(name, getattr(settings, field)))
 
 
 STOPPING_NAMES = {f.name: ("stop_measure" if f.name == "measure" else f.name)
@@ -133,22 +163,24 @@ def given_names(stopping, budget, *, eps1=None, eps2=None, precision=None,
     return given
 
 
-def keep_stored(flat: dict, stored: dict, given) -> dict:
-    """``flat`` with each :data:`RESUMABLE` setting not in ``given`` as ``stored`` has it.
+def keep_stored(stopping: Stopping, budget: Budget, stored: dict,
+                given) -> tuple[Stopping, Budget]:
+    """``stopping`` and ``budget`` with each :data:`RESUMABLE` setting not in ``given`` as
+    ``stored`` (a store's flat settings) has it.
 
     A resumed study keeps the stopping rule and budget in its store (set by
     ``pas study set``, or by the call that created it) unless the call names
     them: a default never overwrites a stored value.
     """
     if not stored:
-        return flat
-    out = dict(flat)
+        return stopping, budget
+    flat = {**stopping.flat(), **budget.flat()}
     for k in set(RESUMABLE) - set(given):
         if k in stored:
-            out[k] = stored[k]
+            flat[k] = stored[k]
         elif k in (STOPPING_NAMES["precision"], STOPPING_NAMES["fit_check"]):  # only when set
-            out.pop(k, None)
-    return out
+            flat.pop(k, None)
+    return Stopping.from_flat(flat), Budget.from_flat(flat)
 
 
 def resolve(where: str, strategy, stopping, budget, *, eps1=None, eps2=None, precision=None,

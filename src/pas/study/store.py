@@ -478,7 +478,10 @@ def _as_result(value, error):
 
 
 def read_settings(path) -> dict:
-    """Stored settings of the study at ``path`` (``{}`` when there is no store yet)."""
+    """Stored settings of the study at ``path`` or in an open :class:`StudyStore` (``{}``
+    when there is no store yet)."""
+    if isinstance(path, StudyStore):
+        return path.settings()
     if not os.path.exists(os.fspath(path)):
         return {}
     with StudyStore(path, create=False) as store:

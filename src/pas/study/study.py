@@ -11,23 +11,24 @@ positives (paper Step 6), failed oracle calls, the adaptive threshold
 from __future__ import annotations
 
 import warnings
+from dataclasses import asdict, fields
 
 import numpy as np
 import pandas as pd
 
-from .._support.checks import SETTING_CHECKS, check_int, check_setting
+from .._support.checks import check_int, check_setting, draw_seed
 from ..strategies.base import Pairs, Prediction, Strategy
 from ..strategies.screening import Event, LFSet
 from ..strategies.stopping import StoppingRule, range_grid
 from . import loop, precision
 from .answers import check_hf_answer, check_target, lacks_target
 from .corrections import Corrections
-from .factory import LF_SETTINGS, STUDY_SETTINGS, make_strategy, study_settings
+from .factory import LF_SETTINGS, STUDY_SETTINGS, make_strategy, study_options, study_settings
 from .replay import attach
 from .result import ScreeningResult
-from .settings import STOPPING_NAMES
+from .settings import OTHER_STUDY_SETTINGS, Budget, Stopping
 from .state import EventState
-from .store import StudyStore, read_settings
+from .store import read_settings
 
 __all__ = ["Study"]
 
@@ -41,37 +42,27 @@ class Study(Corrections):
         LF peaks over threshold (steps 1–4).
     strategy : Strategy
         :class:`~pas.strategies.pas.PAS` or :class:`~pas.strategies.as_.AS`.
-    eps1 : float, optional
-        Stopping limit on the mean distribution change, in load units.
-    precision : float, optional
-        Stop once the U95 of the MPM is within ``±precision × MPM`` and holds the last ``k2``
-        MPMs (e.g. 0.10; :mod:`pas.strategies.stopping`); this, ``eps1`` or both (both hold).
-    fit_check : float or None, default 0.01
-        With ``precision``: the level of the fit check a stop needs
-        (:class:`~pas.study.settings.Stopping`).
-    eps2 : float, default 0.1
-        Stopping limit on the COV of the MPM (with ``eps1``).
-    k1, k2 : int, default 20
-        Stopping windows (App. C).
+    stopping : Stopping, optional
+        The stopping rule (App. C, and the precision target); default
+        :class:`~pas.study.settings.Stopping`'s.
+    budget : Budget, optional
+        HF evaluations and failed oracle calls the study may spend; default
+        :class:`~pas.study.settings.Budget`'s.
     seed : int, optional
         Seed of every random draw; drawn from the OS when None and reported.
-    max_hf : int, optional
-        Stop after this many HF evaluations (converged or not).
-    max_failures : int, default 10
-        Raise :class:`OracleFailureLimit` when more oracle calls fail.
+    target : str, optional
+        With an oracle answering several named loads ``{name: load}``: the
+        one to screen on (:func:`~pas.study.answers.check_hf_answer`).
     stop_on_convergence : bool, default True
-        False keeps sampling until ``max_hf`` or the pool is empty.
+        False keeps sampling until ``budget.max_hf`` or the pool is empty.
     adaptive_threshold : bool, default True
         Raise the acquisition threshold by ``threshold_step`` × max LF after
         ``fp_run`` (5) consecutive false positives (§2.4; see
         :meth:`_maybe_raise_threshold` for the reading of the paper's rule).
-    stop_measure : {"window", "step"}, default "window"
-        ``Ē`` of the stopping rule: the change of the distribution across the
-        last ``k1`` iterations, or the mean per-iteration change of App. C,
-        Eq. 28 (:class:`~pas.strategies.stopping.StoppingRule`).
-    target : str, optional
-        With an oracle answering several named loads ``{name: load}``: the
-        one to screen on (:func:`~pas.study.answers.check_hf_answer`).
+    threshold_step : float, default 0.02
+        The step of ``adaptive_threshold``, a share of the largest LF peak.
+    fp_run : int, default 5
+        False positives in a row that raise the threshold.
     legacy_md : bool, default False
         MD gaps between true positives only and the earlier reading of the
         threshold rule (pas 0.1): set for study stores written then, so they
@@ -84,27 +75,25 @@ class Study(Corrections):
         the study lives in memory only.
     """
 
-    def __init__(self, lfset: LFSet, strategy: Strategy, *, eps1=None, eps2=0.1, k1=20, k2=20,
-                 seed=None, max_hf=None, max_failures=10, stop_on_convergence=True,
-                 adaptive_threshold=True, threshold_step=0.02, fp_run=5, stop_measure="window",
-                 legacy_md=False, target=None, precision=None, fit_check=0.01, store=None):
+    def __init__(self, lfset: LFSet, strategy: Strategy, *, stopping: Stopping | None = None,
+                 budget: Budget | None = None, seed=None, target=None, stop_on_convergence=True,
+                 adaptive_threshold=True, threshold_step=0.02, fp_run=5, legacy_md=False,
+                 store=None):
         self.lfset = lfset
         self.strategy = strategy
-        # the keyword settings above, by the rules the study file and 'pas study set' use
-        # max_hf first: its least value is the strategy's, stricter than the generic rule
-        self.max_hf = None if max_hf is None else check_int(max_hf, "max_hf", strategy.n_initial)
-        given = {k: v for k, v in locals().items() if k in SETTING_CHECKS}
-        ok = {k: check_setting(k, v) for k, v in given.items()}
-        self.stopping = StoppingRule(**{f: ok[name] for f, name in STOPPING_NAMES.items()})
-        seed = ok["seed"]
-        self.seed = int(np.random.SeedSequence().entropy % (2**63) if seed is None else seed)
+        self.budget = Budget() if budget is None else budget
+        # its least value is the strategy's, stricter than the budget's own rule
+        self.max_hf = (None if self.budget.max_hf is None
+                       else check_int(self.budget.max_hf, "max_hf", strategy.n_initial))
+        self.max_failures = self.budget.max_failures
+        self.stopping = StoppingRule(**asdict(Stopping() if stopping is None else stopping))
+        self.seed = draw_seed(check_setting("seed", seed))
         strategy.reset(self.seed)
-        self.max_failures = ok["max_failures"]
-        self.stop_on_convergence = ok["stop_on_convergence"]
-        self.adaptive_threshold = ok["adaptive_threshold"]
-        self.threshold_step = ok["threshold_step"]
-        self.fp_run = ok["fp_run"]
-        self.legacy_md = ok["legacy_md"]
+        self.stop_on_convergence = check_setting("stop_on_convergence", stop_on_convergence)
+        self.adaptive_threshold = check_setting("adaptive_threshold", adaptive_threshold)
+        self.threshold_step = check_setting("threshold_step", threshold_step)
+        self.fp_run = check_setting("fp_run", fp_run)
+        self.legacy_md = check_setting("legacy_md", legacy_md)
         self.target = check_target(target)
         self.grid = range_grid(lfset.p_exp)
         self.state: dict[int, EventState] = {}
@@ -124,16 +113,32 @@ class Study(Corrections):
             attach(self, store)
 
     @classmethod
+    def from_peaks(cls, strategy: Strategy, lf_peaks, *, n_waves, p_exp, threshold=None,
+                   ids=None, meta=None, store=None, seed=None, **options) -> Study:
+        """A study of ``strategy`` on the LF peaks ``lf_peaks`` (its :class:`LFSet` built here).
+
+        ``options`` are the constructor's keywords; with ``seed=None`` an
+        existing store's seed is used.
+        """
+        lfset = LFSet(lf_peaks, n_waves=n_waves, p_exp=p_exp, threshold=threshold, ids=ids,
+                      meta=meta, min_peaks=max(4, strategy.n_initial),
+                      sea_state=getattr(store, "scope", None) or None)
+        if store is not None and seed is None:
+            seed = read_settings(store).get("seed")
+        return cls(lfset, strategy, store=store, seed=seed, **options)
+
+    @classmethod
     def from_settings(cls, settings: dict, lf_peaks, *, ids=None, meta=None,
                       store=None) -> Study:
-        """Build a study from its settings, the dict :meth:`settings` returns.
+        """Build a study from its flat settings, the dict :meth:`settings` returns (a store's).
 
         Parameters
         ----------
         settings : dict
             ``strategy`` (a name, class or instance), ``strategy_settings``,
-            ``n_waves``, ``p_exp``, ``threshold`` and the keyword settings of
-            this class (:mod:`pas.study.factory`); unknown keys raise ``ValueError``.
+            ``n_waves``, ``p_exp``, ``threshold`` and the study settings by
+            their flat names (:mod:`pas.study.factory`); unknown keys raise
+            ``ValueError``.
         lf_peaks : array-like
             LF peak of every wave event.
         ids, meta : sequence, optional
@@ -147,15 +152,11 @@ class Study(Corrections):
         if unknown:
             raise ValueError(f"unknown study settings {unknown}; known: {', '.join(sorted(known))}")
         strategy = make_strategy(settings["strategy"], settings.get("strategy_settings"))
-        lfset = LFSet(lf_peaks, n_waves=settings["n_waves"], p_exp=settings["p_exp"],
-                      threshold=settings.get("threshold"), ids=ids, meta=meta,
-                      min_peaks=max(4, strategy.n_initial),
-                      sea_state=getattr(store, "scope", None) or None)
-        study_kw = {k: settings[k] for k in STUDY_SETTINGS if k in settings}
-        if store is not None and study_kw.get("seed") is None:
-            stored = store.settings() if isinstance(store, StudyStore) else read_settings(store)
-            study_kw["seed"] = stored.get("seed")
-        return cls(lfset, strategy, store=store, **study_kw)
+        return cls.from_peaks(strategy, lf_peaks, n_waves=settings["n_waves"],
+                              p_exp=settings["p_exp"], threshold=settings.get("threshold"),
+                              ids=ids, meta=meta, store=store,
+                              **study_options({k: v for k, v in settings.items()
+                                               if k in STUDY_SETTINGS}))
 
     # -- bookkeeping -------------------------------------------------------
     def _positions(self, status) -> list[int]:
@@ -168,8 +169,14 @@ class Study(Corrections):
         ]
 
     @property
-    def _n_pending(self) -> int:
+    def n_pending(self) -> int:
+        """Events asked for and not yet told."""
         return len(self._positions(EventState.PENDING))
+
+    @property
+    def started(self) -> bool:
+        """True once the strategy's initial events have been asked for."""
+        return self._initial is not None
 
     @property
     def n_hf(self) -> int:
@@ -207,7 +214,7 @@ class Study(Corrections):
         """True when the study should ask for nothing more."""
         if self.converged and self.stop_on_convergence:
             return True
-        if self.max_hf is not None and self.n_hf + self._n_pending >= self.max_hf:
+        if self.max_hf is not None and self.n_hf + self.n_pending >= self.max_hf:
             return True
         return self._initial is not None and not self.available().any()
 
@@ -227,7 +234,7 @@ class Study(Corrections):
             # a replay repeats the stored asks whatever the (possibly changed) stopping
             # settings and budget say now: they decided when to stop, not what to ask
             room = n if self.max_hf is None or self._replaying else \
-                min(n, self.max_hf - self.n_hf - self._n_pending)
+                min(n, self.max_hf - self.n_hf - self.n_pending)
             # MD's gaps run over every evaluated event, false positives included, and the
             # pending ones: only then can MD sample below the lowest true positive and
             # "oversample zero HF values" as §2.4 describes
@@ -384,8 +391,16 @@ class Study(Corrections):
                              executor=executor, n_workers=n_workers, pending=pending)
 
     def settings(self) -> dict:
-        """Everything that defines this study: strategy settings and study settings."""
+        """Everything that defines this study, by flat names (what its store keeps)."""
         return study_settings(self)
+
+    def options(self) -> dict:
+        """The constructor's keywords that rebuild this study's settings (``stopping`` and
+        ``budget`` as objects)."""
+        rule = self.stopping
+        return {"stopping": Stopping(**{f.name: getattr(rule, f.name) for f in fields(Stopping)}),
+                "budget": Budget(max_hf=self.max_hf, max_failures=self.max_failures),
+                **{name: getattr(self, name) for name in OTHER_STUDY_SETTINGS}}
 
     # -- results -----------------------------------------------------------
     def history(self) -> pd.DataFrame:
