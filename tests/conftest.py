@@ -94,29 +94,3 @@ def no_band(**settings):
 
     return PAS(band=ModelBand(n_bootstrap=0), **settings)
 
-
-def make_flat(strategy, lf_peaks, *, n_waves, p_exp, threshold=None, store=None,
-              n_waves_convention="count", ids=None, meta=None, preset=None, **flat):
-    """pas 0.1's ``make_study(strategy, lf_peaks, ..., **flat settings)``: the settings through
-    :func:`pas.study.flat.from_flat` into the objects, for the tests of store and loop
-    behaviour written with flat names."""
-    import pas
-    from pas.study.flat import from_flat
-    from pas.study.inputs import lf_table
-
-    name = strategy if isinstance(strategy, str) else strategy.name
-    objects = from_flat(flat, strategy=name, preset=preset)
-    table = lf_peaks if ids is None and meta is None else lf_table(lf_peaks, ids, meta)
-    return pas.make_study(objects.pop("strategy"), table, n_waves=n_waves, p_exp=p_exp,
-                          threshold=threshold, store=store,
-                          n_waves_convention=n_waves_convention, **objects)
-
-
-def run_flat(lf_peaks, oracle, *, study=None, batch_size=1, pending="resubmit", n_workers=None,
-             executor=None, callback=None, retry_failed=False, strategy="pas", **flat):
-    """pas 0.1's ``run_pas(..., **flat settings)`` (:func:`make_flat`)."""
-    built = make_flat(strategy, lf_peaks, store=study, **flat)
-    if retry_failed:
-        built.retry_failed()
-    return built.optimize(oracle, batch_size=batch_size, callback=callback, executor=executor,
-                          n_workers=n_workers, pending=pending)

@@ -7,9 +7,9 @@ import warnings
 import numpy as np
 import pandas as pd
 import pytest
-from conftest import make_flat, run_flat
 
 import pas
+from pas import PAS, ModelBand, Stopping
 from pas.cli import main
 from pas.cli._progress import Progress, precision_text
 from pas.cli._stopping_options import precision_option
@@ -17,8 +17,8 @@ from pas.cli._stopping_options import precision_option
 N = 2000
 LF = np.random.default_rng(0).rayleigh(2.0, N)
 HF = 1.2 * LF ** 1.1 * np.random.default_rng(1).lognormal(0, 0.2, N)
-FAST = {"n_bootstrap": 12, "z": 5, "k2": 5, "families": ("gaussian", "gumbel"),
-        "band_marginals": "fitted"}
+FAST = PAS(z=5, families=("gaussian", "gumbel"),
+           band=ModelBand(n_bootstrap=12, marginals="fitted"))
 
 
 @pytest.mark.parametrize("text, value", [("10%", 0.1), ("0.1", 0.1), (" 10 % ", 0.1),
@@ -76,7 +76,8 @@ def test_run_with_precision_prints_the_target_and_the_forecast(files, capsys):
 
 
 def test_progress_line_of_a_precision_study():
-    study = make_flat("pas", LF, n_waves=N, p_exp=0.01, precision=0.1, seed=1, **FAST)
+    study = pas.make_study(FAST, LF, n_waves=N, p_exp=0.01, seed=1,
+                           stopping=Stopping(precision=0.1, k2=5))
     row = {"row": 11, "event_id": "e7", "lf": 5.0, "hf": 6.0, "status": "true_positive",
            "mpm": 9.7, "mpm_low": 9.5, "mpm_high": 9.9, "halfwidth": 0.142,
            "halfwidth_sampling": 0.02, "forecast_hf": 58.6, "forecast_hf_low": 40.2,
@@ -98,8 +99,8 @@ def test_status_and_set_of_a_precision_study(tmp_path, capsys):
     db = tmp_path / "s.db"
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        run_flat(LF, lambda ev: float(HF[ev.index]), n_waves=N, p_exp=0.01, precision=0.03,
-                    seed=1, max_hf=12, study=db, **FAST)
+        pas.run_pas(LF, lambda ev: float(HF[ev.index]), n_waves=N, p_exp=0.01, seed=1,
+                    max_hf=12, strategy=FAST, stopping=Stopping(precision=0.03, k2=5), study=db)
     code, out, _ = _cli(capsys, "study", "status", db)
     assert code == 0
     line = next(x for x in out.splitlines() if x.startswith("precision target ±3 %"))

@@ -9,7 +9,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 import pytest  # noqa: E402
-from conftest import make_flat  # noqa: E402
+from conftest import no_band  # noqa: E402
 from matplotlib.figure import Figure  # noqa: E402
 
 import pas  # noqa: E402
@@ -30,8 +30,7 @@ def _close():
 @pytest.fixture(scope="module")
 def replaced():
     """Eight events told, the last one with a typo, then corrected with ``replace=True``."""
-    study = make_flat("pas", LF, n_waves=N, p_exp=1e-2, eps1=1e-3, seed=5, max_hf=30,
-                      n_bootstrap=0)
+    study = pas.make_study(no_band(), LF, n_waves=N, p_exp=1e-2, eps1=1e-3, seed=5, max_hf=30)
     told = 0
     while told < 8:
         for ev in study.ask():

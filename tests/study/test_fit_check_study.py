@@ -5,18 +5,19 @@ import warnings
 
 import numpy as np
 import pytest
-from conftest import run_flat
 from scipy import stats
 
 import pas
+from pas import PAS, ModelBand, Stopping
 from pas.stats.fit_check import uniform_check
 
 N = 20_000
 LF = np.random.default_rng(1).rayleigh(1.0, N)
 SECOND = np.random.default_rng(2).random(N) < 0.5
 SCATTER = np.exp(0.05 * np.random.default_rng(3).standard_normal(N))
-FAST = {"n_waves": N, "p_exp": 1e-3, "seed": 0, "n_bootstrap": 12, "z": 5, "k2": 20,
-        "families": ("gaussian", "gumbel"), "band_marginals": "fitted", "max_hf": 50}
+MAX_HF = 50
+FAST = PAS(z=5, families=("gaussian", "gumbel"),
+           band=ModelBand(n_bootstrap=12, marginals="fitted"))
 
 
 def two_branches(ev):
@@ -28,10 +29,11 @@ def one_branch(ev):
     return float(LF[ev.index] ** 2 * SCATTER[ev.index])
 
 
-def run(oracle, **kw):
+def run(oracle, **stopping):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        return run_flat(LF, oracle, **{**FAST, **kw})
+        return pas.run_pas(LF, oracle, n_waves=N, p_exp=1e-3, seed=0, max_hf=MAX_HF,
+                           strategy=FAST, stopping=Stopping(k2=20, **stopping))
 
 
 @pytest.fixture(scope="module")
@@ -41,12 +43,12 @@ def checked():
 
 def test_without_the_check_the_band_alone_stops_the_misfitting_model():
     res = run(two_branches, precision=0.9, fit_check=None)
-    assert res.converged and res.n_hf < FAST["max_hf"]
+    assert res.converged and res.n_hf < MAX_HF
     assert "fit_check_p" not in res.history
 
 
 def test_the_check_keeps_that_band_from_being_taken_for_the_precision(checked):
-    assert not checked.converged and checked.n_hf == FAST["max_hf"]
+    assert not checked.converged and checked.n_hf == MAX_HF
     failed = checked.history["fit_misfit"].notna()
     assert failed.sum() >= 5 and (checked.history.loc[failed, "fit_check_p"] < 0.01).all()
     line = checked.summary().splitlines()[0]
@@ -55,7 +57,7 @@ def test_the_check_keeps_that_band_from_being_taken_for_the_precision(checked):
 
 def test_a_right_model_passes_the_check_and_stops_as_it_would_without_it():
     res = run(one_branch, precision=0.9)
-    assert res.converged and res.n_hf < FAST["max_hf"]
+    assert res.converged and res.n_hf < MAX_HF
     assert (res.history["fit_check_p"].dropna() >= 0.01).all()
     # the check draws nothing and held nothing back: the study is the one without it
     plain = run(one_branch, precision=0.9, fit_check=None)

@@ -2,12 +2,13 @@
 
 import numpy as np
 import pytest
-from conftest import make_flat, run_flat
+from conftest import no_band
 
 import pas
+from pas import Budget
 
 LF = np.random.default_rng(0).rayleigh(1.0, 500)
-KW = dict(n_waves=500, p_exp=0.01, eps1=0.01, seed=0, n_bootstrap=0)
+KW = dict(n_waves=500, p_exp=0.01, eps1=0.01, seed=0)
 
 
 def test_no_oracle_call_after_the_failure_limit_in_process():
@@ -18,7 +19,7 @@ def test_no_oracle_call_after_the_failure_limit_in_process():
         raise RuntimeError("no licence")
 
     with pytest.raises(pas.OracleFailureLimit, match="max_failures=1.*no licence") as info:
-        run_flat(LF, oracle, max_failures=1, **KW)
+        pas.run_pas(LF, oracle, strategy=no_band(), budget=Budget(max_failures=1), **KW)
     # the 4 initial events form one batch; the limit is passed at the 2nd failure
     assert len(calls) == 2 and info.value.result.n_failed == 2
 
@@ -36,8 +37,9 @@ def test_failure_limit_result_skips_the_model_band():
         return 2.0 * ev.lf ** 1.2
 
     with pytest.raises(pas.OracleFailureLimit) as info:
-        run_flat(lf, oracle, n_waves=600, p_exp=1e-2, eps1=1e-4, seed=3, max_hf=40,
-                    max_failures=2, stop_on_convergence=False)
+        pas.make_study(pas.PAS(), lf, n_waves=600, p_exp=1e-2, eps1=1e-4, seed=3,
+                       budget=Budget(max_hf=40, max_failures=2),
+                       stop_on_convergence=False).optimize(oracle)
     res = info.value.result
     assert np.isfinite(res.mpm) and res.mpm_band_model is None
     assert tuple(res.mpm_band) == tuple(res.mpm_band_sampling)
@@ -52,18 +54,21 @@ def test_failure_limit_also_with_a_store(tmp_path):
 
     db = tmp_path / "s.db"
     with pytest.raises(pas.OracleFailureLimit):
-        run_flat(LF, oracle, max_failures=1, study=db, **KW)
+        pas.run_pas(LF, oracle, strategy=no_band(), budget=Budget(max_failures=1), study=db,
+                    **KW)
     assert len(calls) == 2
     # resumed with the same limit: the loop stops before resubmitting or asking anything
     with pytest.raises(pas.OracleFailureLimit):
-        run_flat(LF, lambda ev: pytest.fail("oracle called"), max_failures=1, study=db, **KW)
+        pas.run_pas(LF, lambda ev: pytest.fail("oracle called"), strategy=no_band(),
+                    budget=Budget(max_failures=1), study=db, **KW)
     # a raised limit (a budget, changeable on resume) lets the study go on
-    res = run_flat(LF, lambda ev: 2.0 * ev.lf, max_failures=5, max_hf=8, study=db, **KW)
+    res = pas.run_pas(LF, lambda ev: 2.0 * ev.lf, strategy=no_band(),
+                      budget=Budget(max_hf=8, max_failures=5), study=db, **KW)
     assert res.n_failed == 2 and res.n_hf == 8
 
 
 def test_tell_records_failures_beyond_the_limit_without_raising():
-    study = make_flat(pas.PAS, LF, max_failures=0, **KW)
+    study = pas.make_study(no_band(), LF, budget=Budget(max_failures=0), **KW)
     events = study.ask()
     for ev in events:
         study.tell(ev, error="crashed")

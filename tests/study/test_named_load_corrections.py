@@ -9,7 +9,7 @@ import warnings
 
 import numpy as np
 import pytest
-from conftest import make_flat
+from conftest import no_band
 
 import pas
 from pas.cli import main
@@ -32,8 +32,8 @@ def cli(*argv):
 def told(tmp_path):
     """A stored study screening on deck, its 4 initial events told deck and panel loads."""
     db = tmp_path / "s.db"
-    study = make_flat("pas", LF, n_waves=N, p_exp=0.01, eps1=0.01, seed=5, target="deck",
-                      store=db, n_bootstrap=0)
+    study = pas.make_study(no_band(), LF, n_waves=N, p_exp=0.01, eps1=0.01, seed=5,
+                           target="deck", store=db)
     events = study.ask(4)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")

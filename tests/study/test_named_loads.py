@@ -15,9 +15,9 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 import pytest
-from conftest import make_flat, run_flat
 
 import pas
+from pas import PAS, ModelBand
 from pas.cli import main
 from pas.strategies.screening import Event
 from pas.study.command_oracle import CommandOracle, parse_result
@@ -29,8 +29,13 @@ from pas.study.resume import open_study
 
 N = 300
 LF = np.random.default_rng(3).rayleigh(1.0, N)
-KW = dict(n_waves=N, p_exp=0.01, eps1=0.01, seed=5, n_bootstrap=0, max_hf=8,
-          stop_on_convergence=False, families=("gaussian", "gumbel"))
+KW = dict(n_waves=N, p_exp=0.01, eps1=0.01, seed=5, max_hf=8, stop_on_convergence=False)
+FAST = PAS(families=("gaussian", "gumbel"), band=ModelBand(n_bootstrap=0))
+
+
+def run(oracle, target=None, store=None):
+    """The 8-event study of these tests (no stop on convergence) screening on ``target``."""
+    return pas.make_study(FAST, LF, target=target, store=store, **KW).optimize(oracle)
 
 
 def deck(i):
@@ -75,9 +80,9 @@ def runs(tmp_path_factory):
     store = tmp_path_factory.mktemp("named") / "deck.sqlite"
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        on_deck = run_flat(LF, all_loads, target="deck", study=store, **KW)
-        on_float = run_flat(LF, deck_only, **KW)
-        on_panel = run_flat(LF, all_loads, target="panel", **KW)
+        on_deck = run(all_loads, target="deck", store=store)
+        on_float = run(deck_only)
+        on_panel = run(all_loads, target="panel")
     return store, on_deck, on_float, on_panel
 
 
@@ -152,7 +157,7 @@ def test_refit_of_an_unknown_load_is_a_one_line_error(runs, capsys):
 
 
 def test_answers_fail_on_a_missing_or_invalid_target_never_as_zero():
-    study = make_flat("pas", LF, n_waves=N, p_exp=0.01, eps1=0.01, seed=5, target="deck")
+    study = pas.make_study(PAS(), LF, n_waves=N, p_exp=0.01, eps1=0.01, seed=5, target="deck")
     a, b, c, d = study.ask(4)
     assert study.tell(a, {"panel": 2.0})["error"] == \
         "oracle's answer has no load 'deck' (the target; it has panel)"
@@ -163,7 +168,7 @@ def test_answers_fail_on_a_missing_or_invalid_target_never_as_zero():
     assert study.tell(d, {"deck": 0.0, "panel": 3.0})["status"] == "false_positive"
     assert (study.n_failed, study.n_false_positive) == (3, 1)
     with pytest.raises(ValueError, match="^target must be the name of one load"):
-        make_flat("pas", LF, n_waves=N, p_exp=0.01, eps1=0.01, target=3)
+        pas.make_study(PAS(), LF, n_waves=N, p_exp=0.01, eps1=0.01, target=3)
 
 
 def test_several_loads_without_target_stop_at_once_and_resume_with_it(tmp_path, runs):
@@ -173,11 +178,11 @@ def test_several_loads_without_target_stop_at_once_and_resume_with_it(tmp_path, 
         warnings.simplefilter("ignore")
         with pytest.raises(ValueError, match=r"^event \d+: oracle returned 3 loads \(deck, panel, "
                                              r"sensor\) and the study has no target: .*target="):
-            run_flat(LF, oracle, study=store, **KW)
+            run(oracle, store=store)
         assert oracle.calls == 1
         with pas.StudyStore(store, create=False) as s:
             assert len(stored_loads(s)) == 1       # the one HF run is kept
-        resumed = run_flat(LF, oracle, study=store, target="deck", **KW)
+        resumed = run(oracle, target="deck", store=store)
     assert oracle.calls == 8                       # its answer was not asked for again
     assert resumed.mpm == pytest.approx(on_deck.mpm, rel=1e-9)
 
@@ -220,7 +225,7 @@ def test_command_result_file_may_hold_named_loads(tmp_path):
 def asked_store(tmp_path):
     """A stored study screening on deck with its 4 initial events asked."""
     db = tmp_path / "s.db"
-    study = make_flat("pas", LF, n_waves=N, p_exp=0.01, eps1=0.01, seed=5, target="deck",
+    study = pas.make_study(PAS(), LF, n_waves=N, p_exp=0.01, eps1=0.01, seed=5, target="deck",
                            store=db)
     events = study.ask(4)
     study.store.close()

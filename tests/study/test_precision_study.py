@@ -6,27 +6,30 @@ import warnings
 
 import numpy as np
 import pytest
-from conftest import run_flat
 
 import pas
+from pas import PAS, ModelBand, Stopping
 from pas.strategies.forecast import relative_half_width
 from pas.study.result import ScreeningResult
 
 N = 2000
 LF = np.random.default_rng(0).rayleigh(2.0, N)
 NOISE = np.random.default_rng(1).lognormal(0, 0.2, N)
-FAST = {"n_waves": N, "p_exp": 1e-2, "seed": 1, "n_bootstrap": 12, "z": 5, "k2": 5,
-        "families": ("gaussian", "gumbel"), "band_marginals": "fitted"}
+K2 = 5
 
 
 def oracle(ev):
     return 1.2 * ev.lf ** 1.1 * NOISE[ev.index]
 
 
-def run(**kw):
+def run(*, max_hf, n_bootstrap=12, study=None, **stopping):
+    """A fast PAS study (``z=5``, two families, a 12-replicate band) stopped by ``stopping``."""
+    strategy = PAS(z=5, families=("gaussian", "gumbel"),
+                   band=ModelBand(n_bootstrap=n_bootstrap, marginals="fitted"))
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        return run_flat(LF, oracle, **{**FAST, **kw})
+        return pas.run_pas(LF, oracle, n_waves=N, p_exp=1e-2, seed=1, max_hf=max_hf,
+                           strategy=strategy, stopping=Stopping(k2=K2, **stopping), study=study)
 
 
 @pytest.fixture(scope="module")
@@ -135,6 +138,6 @@ def test_the_forecast_never_says_fewer_than_the_window_needs(reached, short):
         assert len(rows)
         fits = np.arange(1, len(res.fitted) + 1)[res.fitted["forecast_hf"].notna().to_numpy()]
         per_pair = rows["n_hf"].to_numpy() / rows["n_pairs"].to_numpy()
-        still = np.maximum(FAST["k2"] - fits, np.where(rows["stop"].astype(bool), 0, 1))
+        still = np.maximum(K2 - fits, np.where(rows["stop"].astype(bool), 0, 1))
         assert np.all(rows["forecast_hf"].to_numpy() >= still * per_pair * (1 - 1e-9))
         assert np.all(rows["forecast_hf_low"].to_numpy() >= still * per_pair * (1 - 1e-9))

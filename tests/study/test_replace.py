@@ -12,15 +12,16 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from conftest import make_flat
 
+import pas
+from pas import PAS, ModelBand
 from pas.cli import main
 from pas.study import amend, open_study
 from pas.study.store import SCHEMA_VERSION, StoredResult, StoreError, StudyStore
 
 N = 400
 LF = np.random.default_rng(0).rayleigh(1.0, N)
-KW = dict(n_waves=N, p_exp=1e-2, eps1=1e-3, seed=5, max_hf=30, n_bootstrap=0)
+KW = dict(n_waves=N, p_exp=1e-2, eps1=1e-3, seed=5, max_hf=30)
 TYPO, RIGHT = 999.0, 12.5
 
 
@@ -28,9 +29,9 @@ def good(ev):
     return 2.0 * ev.lf ** 1.2
 
 
-def _campaign(db, n_events, last_value=None, **settings):
+def _campaign(db, n_events, last_value=None, n_bootstrap=0):
     """Ask and tell ``n_events`` events; the last one told ``last_value`` (when given)."""
-    study = make_flat("pas", LF, store=db, **{**KW, **settings})
+    study = pas.make_study(PAS(band=ModelBand(n_bootstrap=n_bootstrap)), LF, store=db, **KW)
     told = 0
     while told < n_events:
         for ev in study.ask():
@@ -104,7 +105,7 @@ def test_replace_in_python_and_an_earlier_value_keeps_the_asks(tmp_path):
 def test_a_value_after_an_error_and_a_replacement_waiting_for_the_driver(tmp_path, capsys):
     """Reproduction: a real value after --error was refused as "already told"."""
     db = str(tmp_path / "s.db")
-    study = make_flat("pas", LF, store=db, **KW)
+    study = pas.make_study(PAS(band=ModelBand(n_bootstrap=0)), LF, store=db, **KW)
     first = study.ask()
     study.tell(first[0], error="basin wave maker tripped")
     for ev in first[1:]:

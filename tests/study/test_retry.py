@@ -14,16 +14,19 @@ import textwrap
 import numpy as np
 import pandas as pd
 import pytest
-from conftest import make_flat, run_flat
 
 import pas
+from pas import PAS, Budget, ModelBand
 from pas.cli import main
 from pas.study import open_study
 from pas.study.store import StoreError, StudyStore, Tell
 
 N = 400
 LF = np.random.default_rng(0).rayleigh(1.0, N)
-KW = dict(n_waves=N, p_exp=1e-2, eps1=1e-3, seed=5, max_hf=12, n_bootstrap=0)
+KW = dict(n_waves=N, p_exp=1e-2, eps1=1e-3, seed=5)
+NO_BAND = PAS(band=ModelBand(n_bootstrap=0))
+MAX_HF = 12
+LENIENT = Budget(max_hf=MAX_HF, max_failures=50)  # failed events get substitutes
 BROKEN_ABOVE = 2.2  # the wrong input deck fails for the largest events (48 of 400)
 
 
@@ -52,15 +55,16 @@ def _asks(db):
 def test_retry_after_substitutes_asks_what_an_uninterrupted_run_asks(tmp_path, caplog):
     """Reproduction: resumed with a larger max_failures the largest events stayed failed."""
     ref_db, db = str(tmp_path / "ref.db"), str(tmp_path / "s.db")
-    ref = run_flat(LF, good, study=ref_db, **KW)
+    ref = pas.run_pas(LF, good, study=ref_db, strategy=NO_BAND, max_hf=MAX_HF, **KW)
     oracle = Flaky()
-    first = run_flat(LF, oracle, study=db, max_failures=50, **KW)
+    first = pas.run_pas(LF, oracle, study=db, strategy=NO_BAND, budget=LENIENT, **KW)
     assert first.n_failed >= 2 and _asks(db) != _asks(ref_db)   # substitutes were asked
     with StudyStore(db, create=False) as store:
         told_before = {r.idx: r.hf for r in store.events().itertuples() if r.state == "done"}
     oracle.fixed, oracle.calls = True, []
     with caplog.at_level(logging.INFO, logger="pas"):
-        res = run_flat(LF, oracle, study=db, max_failures=50, retry_failed=True, **KW)
+        res = pas.run_pas(LF, oracle, study=db, strategy=NO_BAND, budget=LENIENT,
+                          retry_failed=True, **KW)
     assert f"resuming {db}: {len(first.history)} results reused" in caplog.text
     assert res.n_failed == 0 and res.n_hf == ref.n_hf
     assert res.mpm == pytest.approx(ref.mpm, rel=1e-9)
@@ -84,7 +88,8 @@ def test_retry_after_substitutes_asks_what_an_uninterrupted_run_asks(tmp_path, c
 def test_retry_of_chosen_events_and_its_errors(tmp_path):
     db = str(tmp_path / "s.db")
     oracle = Flaky()
-    run_flat(LF, oracle, study=db, max_failures=50, **{**KW, "max_hf": 6})
+    pas.run_pas(LF, oracle, study=db, strategy=NO_BAND, budget=Budget(max_hf=6, max_failures=50),
+                **KW)
     with StudyStore(db, create=False) as store:
         ev = store.events()
         failed = [str(i) for i in ev.loc[ev["state"] == "failed", "event_id"]]
@@ -101,12 +106,12 @@ def test_retry_of_chosen_events_and_its_errors(tmp_path):
     with pytest.raises(ValueError, match="retry_failed=True needs study="):
         pas.run_pas(LF, good, retry_failed=True, n_waves=N, p_exp=1e-2, eps1=1e-3)
     with pytest.raises(ValueError, match="needs store="):
-        make_flat("pas", LF, **KW).retry_failed()
+        pas.make_study(NO_BAND, LF, max_hf=MAX_HF, **KW).retry_failed()
 
 
 def test_a_result_told_for_a_dropped_pending_event_is_kept(tmp_path):
     db = str(tmp_path / "s.db")
-    study = make_flat("pas", LF, store=db, **KW)
+    study = pas.make_study(NO_BAND, LF, store=db, max_hf=MAX_HF, **KW)
     first = study.ask()
     for ev in first[:-1]:
         study.tell(ev, good(ev))
@@ -289,12 +294,14 @@ def test_retry_keeps_the_named_loads_of_reused_results(tmp_path):
             return {"deck": super().__call__(ev), "panel": 0.5 * ev.lf ** 1.5}
 
     ref_db, db = str(tmp_path / "ref.db"), str(tmp_path / "s.db")
-    ref = run_flat(LF, loads, study=ref_db, target="deck", **KW)
+    ref = pas.make_study(NO_BAND, LF, store=ref_db, target="deck", max_hf=MAX_HF,
+                         **KW).optimize(loads)
     oracle = FlakyLoads()
-    run_flat(LF, oracle, study=db, target="deck", max_failures=50, **KW)
+    pas.make_study(NO_BAND, LF, store=db, target="deck", budget=LENIENT, **KW).optimize(oracle)
     oracle.fixed = True
-    res = run_flat(LF, oracle, study=db, target="deck", max_failures=50, retry_failed=True,
-                      **KW)
+    study = pas.make_study(NO_BAND, LF, store=db, target="deck", budget=LENIENT, **KW)
+    study.retry_failed()
+    res = study.optimize(oracle)
     assert res.n_failed == 0 and res.mpm == pytest.approx(ref.mpm, rel=1e-9)
     with StudyStore(db, create=False) as store:
         final = set(store.events()["idx"])

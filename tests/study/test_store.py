@@ -10,13 +10,14 @@ from collections import Counter
 import _campaign
 import numpy as np
 import pytest
-from conftest import make_flat, run_flat
 
 import pas
+from pas import PAS, ModelBand, SelectedSample, Stopping
 from pas.study.store import SCHEMA_VERSION, StoreConflict, StoreError, StudyStore
 
 LF = np.random.default_rng(0).rayleigh(1.0, 2000)
-KW = dict(n_waves=2000, p_exp=1e-2, eps1=1e-4, seed=5, max_hf=20, n_bootstrap=0)
+KW = dict(n_waves=2000, p_exp=1e-2, eps1=1e-4, seed=5, max_hf=20)
+NO_BAND = PAS(band=ModelBand(n_bootstrap=0))
 
 
 def hf(ev):
@@ -53,9 +54,10 @@ def _n_results(db):
 @pytest.mark.slow
 def test_store_records_everything_and_resume_is_a_no_op(tmp_path):
     db = str(tmp_path / "s.db")
-    ref = run_flat(LF, hf, **KW)
-    res = run_flat(LF, hf, study=db, **KW)
-    again = run_flat(LF, lambda ev: pytest.fail("finished event re-run"), study=db, **KW)
+    ref = pas.run_pas(LF, hf, strategy=NO_BAND, **KW)
+    res = pas.run_pas(LF, hf, strategy=NO_BAND, study=db, **KW)
+    again = pas.run_pas(LF, lambda ev: pytest.fail("finished event re-run"), strategy=NO_BAND,
+                        study=db, **KW)
     assert res.mpm == ref.mpm == again.mpm
     assert list(again.history["event_index"]) == list(ref.history["event_index"])
     with StudyStore(db, create=False) as store:
@@ -75,14 +77,14 @@ def test_store_records_everything_and_resume_is_a_no_op(tmp_path):
 @pytest.mark.parametrize("batch_size,crash_at", [(1, 9), (4, 9), (4, 6)])
 def test_resubmit_after_crash_matches_uninterrupted(tmp_path, batch_size, crash_at):
     db = str(tmp_path / "s.db")
-    ref = run_flat(LF, hf, batch_size=batch_size, **KW)
+    ref = pas.run_pas(LF, hf, strategy=NO_BAND, batch_size=batch_size, **KW)
     first = CrashingOracle(crash_at)
     with pytest.raises(Crash):
-        run_flat(LF, first, study=db, batch_size=batch_size, **KW)
+        pas.run_pas(LF, first, strategy=NO_BAND, study=db, batch_size=batch_size, **KW)
     with StudyStore(db, create=False) as store:
         assert (store.events()["state"] == "pending").sum() >= 1
     second = CrashingOracle(10**6)
-    res = run_flat(LF, second, study=db, batch_size=batch_size, **KW)
+    res = pas.run_pas(LF, second, strategy=NO_BAND, study=db, batch_size=batch_size, **KW)
     assert not set(first.calls) & set(second.calls)  # nothing finished is run twice
     assert len(first.calls) + len(second.calls) == res.n_hf == 20
     assert res.mpm == ref.mpm
@@ -93,39 +95,40 @@ def test_resubmit_after_crash_matches_uninterrupted(tmp_path, batch_size, crash_
 def test_pending_wait_leaves_event_for_tell(tmp_path):
     db = str(tmp_path / "s.db")
     with pytest.raises(Crash):
-        run_flat(LF, CrashingOracle(8), study=db, **KW)
+        pas.run_pas(LF, CrashingOracle(8), strategy=NO_BAND, study=db, **KW)
     with StudyStore(db, create=False) as store:
         waiting = store.events().query("state == 'pending'")
     (idx,) = waiting["idx"]
     second = CrashingOracle(10**6)
-    run_flat(LF, second, study=db, pending="wait", **{**KW, "max_hf": 12})
+    pas.make_study(NO_BAND, LF, store=db, **{**KW, "max_hf": 12}).optimize(second, pending="wait")
     assert idx not in second.calls
     with StudyStore(db, create=False) as store:
         ev = store.events().set_index("idx")
         assert ev.loc[idx, "state"] == "pending" and ev.loc[idx, "attempts"] == 1
         store.tell_by_key(ev.loc[idx, "key"], 1.5)
-    res = run_flat(LF, CrashingOracle(10**6), study=db, pending="wait", **{**KW, "max_hf": 14})
+    res = pas.make_study(NO_BAND, LF, store=db, **{**KW, "max_hf": 14}).optimize(
+        CrashingOracle(10**6), pending="wait")
     assert res.n_hf == 14
     assert 1.5 in set(res.history["hf"])
 
 
 def test_settings_and_peaks_must_match(tmp_path):
     db = str(tmp_path / "s.db")
-    run_flat(LF, hf, study=db, **{**KW, "max_hf": 6})
+    pas.run_pas(LF, hf, strategy=NO_BAND, study=db, **{**KW, "max_hf": 6})
     with pytest.raises(StoreError, match="p_exp"):
-        run_flat(LF, hf, study=db, **{**KW, "p_exp": 2e-2})
+        pas.run_pas(LF, hf, strategy=NO_BAND, study=db, **{**KW, "p_exp": 2e-2})
     with pytest.raises(StoreError, match="threshold"):
-        run_flat(LF, hf, study=db, **{**KW, "threshold": 0.1})
+        pas.run_pas(LF, hf, strategy=NO_BAND, study=db, **{**KW, "threshold": 0.1})
     with pytest.raises(StoreError, match="z differs"):
-        run_flat(LF, hf, study=db, z=20, **KW)
+        pas.run_pas(LF, hf, strategy=PAS(z=20, band=ModelBand(n_bootstrap=0)), study=db, **KW)
     with pytest.raises(StoreError, match="seed"):
-        run_flat(LF, hf, study=db, **{**KW, "seed": 6})
+        pas.run_pas(LF, hf, strategy=NO_BAND, study=db, **{**KW, "seed": 6})
     lf2 = LF.copy()
     lf2[3] += 1e-9
     with pytest.raises(StoreError, match="lf_peaks differ"):
-        run_flat(lf2, hf, study=db, **KW)
+        pas.run_pas(lf2, hf, strategy=NO_BAND, study=db, **KW)
     # a budget may grow; seed=None takes the stored seed
-    res = run_flat(LF, hf, study=db, **{**KW, "max_hf": 8, "seed": None})
+    res = pas.run_pas(LF, hf, strategy=NO_BAND, study=db, **{**KW, "max_hf": 8, "seed": None})
     assert res.n_hf == 8 and res.seed == 5
 
 
@@ -143,8 +146,8 @@ def test_newer_schema_is_refused(tmp_path):
 
 def test_two_drivers_conflict(tmp_path):
     db = str(tmp_path / "s.db")
-    a = make_flat(pas.PAS, LF, store=db, **KW)
-    b = make_flat(pas.PAS, LF, store=db, **KW)
+    a = pas.make_study(NO_BAND, LF, store=db, **KW)
+    b = pas.make_study(NO_BAND, LF, store=db, **KW)
     for ev in a.ask():
         a.tell(ev, hf(ev))
     with pytest.raises(StoreConflict, match="another process"):
@@ -200,30 +203,36 @@ def test_resume_after_unusable_indicator_warning(tmp_path):
     rng = np.random.default_rng(0)
     lf = rng.rayleigh(3.0, 3000)
     hf = 1.0 / lf + rng.uniform(0, 0.01, 3000)
-    kw = dict(n_waves=3000, p_exp=1e-2, eps1=1e-9, seed=0, max_hf=12, n_bootstrap=0,
+    kw = dict(n_waves=3000, p_exp=1e-2, eps1=1e-9, seed=0, max_hf=12, strategy=NO_BAND,
               study=str(tmp_path / "s.db"))
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        first = run_flat(lf, lambda ev: float(hf[ev.index]), **kw)
-        again = run_flat(lf, lambda ev: float(hf[ev.index]), **kw)
+        first = pas.run_pas(lf, lambda ev: float(hf[ev.index]), **kw)
+        again = pas.run_pas(lf, lambda ev: float(hf[ev.index]), **kw)
     assert again.mpm == first.mpm and again.n_hf == first.n_hf == 12
 
 
 # eps1 = 0.05 converges after 12 HF evaluations on this problem, 0.03 after 15 (with the
 # per-step measure and redrawn uniforms, whose noise makes eps1 matter here)
-STOP = dict(n_waves=2000, p_exp=1e-2, seed=5, max_hf=60, n_bootstrap=0, k1=6, k2=6,
-            stop_measure="step", estimator="selected", common_random_numbers=False)
+STOP = dict(n_waves=2000, p_exp=1e-2, seed=5, max_hf=60,
+            strategy=PAS(estimator=SelectedSample(), common_random_numbers=False,
+                         band=ModelBand(n_bootstrap=0)))
+
+
+def step_rule(eps1, **given):
+    """The stopping rule of these tests: the per-step measure (Eq. 28) over windows of 6."""
+    return Stopping(**{"eps1": eps1, "k1": 6, "k2": 6, "measure": "step", **given})
 
 
 @pytest.mark.parametrize("batch_size", [1, 2])
 def test_resume_with_a_tighter_eps1_asks_what_an_uninterrupted_run_asks(tmp_path, batch_size):
     db = str(tmp_path / "s.db")
-    loose = run_flat(LF, hf, study=db, eps1=0.05, batch_size=batch_size, **STOP)
-    ref = run_flat(LF, hf, eps1=0.03, batch_size=batch_size, **STOP)
+    loose = pas.run_pas(LF, hf, study=db, stopping=step_rule(0.05), batch_size=batch_size, **STOP)
+    ref = pas.run_pas(LF, hf, stopping=step_rule(0.03), batch_size=batch_size, **STOP)
     assert loose.converged and ref.converged and ref.n_hf > loose.n_hf  # the test has teeth
     calls = []
-    res = run_flat(LF, lambda ev: calls.append(ev.index) or hf(ev), study=db, eps1=0.03,
-                      batch_size=batch_size, **STOP)
+    res = pas.run_pas(LF, lambda ev: calls.append(ev.index) or hf(ev), study=db,
+                      stopping=step_rule(0.03), batch_size=batch_size, **STOP)
     assert list(res.history["event_index"]) == list(ref.history["event_index"])
     assert res.mpm == ref.mpm and res.converged
     assert len(calls) == ref.n_hf - loose.n_hf  # only the new events ran
@@ -238,13 +247,13 @@ def test_resume_with_a_tighter_eps1_asks_what_an_uninterrupted_run_asks(tmp_path
 
 def test_resume_with_looser_limits_or_smaller_budget_keeps_what_was_done(tmp_path):
     db = str(tmp_path / "s.db")
-    tight = run_flat(LF, hf, study=db, eps1=0.03, **STOP)
+    tight = pas.run_pas(LF, hf, study=db, stopping=step_rule(0.03), **STOP)
     no_call = lambda ev: pytest.fail("a finished study asked for more")  # noqa: E731
     # the looser limit would have stopped earlier; the evaluated events stay, nothing new runs
-    res = run_flat(LF, no_call, study=db, **{**STOP, "eps1": 0.05, "k1": 5, "eps2": 0.2})
+    res = pas.run_pas(LF, no_call, study=db, stopping=step_rule(0.05, k1=5, eps2=0.2), **STOP)
     assert res.n_hf == tight.n_hf and res.converged
     assert list(res.history["event_index"]) == list(tight.history["event_index"])
-    res = run_flat(LF, no_call, study=db, **{**STOP, "eps1": 0.03, "max_hf": 8})
+    res = pas.run_pas(LF, no_call, study=db, stopping=step_rule(0.03), **{**STOP, "max_hf": 8})
     assert res.n_hf == tight.n_hf
     with StudyStore(db, create=False) as store:
         keys = [c["key"] for c in store.get("settings_changes")]
