@@ -40,8 +40,21 @@ def _oracle(ev):
 
 
 @pytest.mark.parametrize("run", [pas.run_pas, pas.run_as])
-def test_the_run_functions_take_at_most_18_parameters(run):
-    assert len(inspect.signature(run).parameters) <= 18
+def test_the_run_functions_take_at_most_19_parameters(run):
+    """Settings live in objects; the signature keeps the inputs, the shortcuts a user types and
+    the run's own options (n_waves_convention, so a case's run_kwargs() passes)."""
+    assert len(inspect.signature(run).parameters) <= 19
+
+
+def test_a_case_run_kwargs_pass_to_run_pas():
+    from pas.validation import generate_case
+
+    d = generate_case("1a", seed=0)
+    kw = d.run_kwargs()
+    assert kw["n_waves_convention"] == "spectral" and kw["n_waves"] < d.lf.size
+    res = pas.run_pas(d.lf_table(), d.oracle(), **kw, seed=1, max_hf=8,
+                      strategy=pas.PAS(band=pas.ModelBand(n_bootstrap=0)))
+    assert res.n_hf == 8
 
 
 @pytest.mark.parametrize("name", OLD_KEYWORDS)

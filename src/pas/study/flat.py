@@ -25,7 +25,7 @@ MOVED = {
        if field not in ("eps1", "eps2", "precision")},
     "max_failures": "budget=Budget(max_failures=...)",
     **{name: _ADVANCED.format(name=name)
-       for name in (*OTHER_STUDY_SETTINGS[1:], "n_waves_convention")},
+       for name in OTHER_STUDY_SETTINGS[1:]},
     "ids": "lf_peaks=pandas.DataFrame({'lf': ...}, index=ids) (the index is the event id)",
     "meta": "lf_peaks=pandas.DataFrame({'lf': ..., 'name': ...}) (the other columns are "
             "event.meta)",

@@ -89,8 +89,8 @@ class CaseData:
                 for s, a, b in zip(self.seed_no, self.t_start, self.t_end)]
 
     def run_kwargs(self) -> dict:
-        """The case's own arguments of :func:`pas.make_study` (and :func:`pas.run_pas` but for
-        the convention).
+        """The case's own arguments of :func:`pas.run_pas`, :func:`pas.run_as` and
+        :func:`pas.make_study`.
 
         ``n_waves``, ``p_exp``, ``eps1``, ``threshold`` and
         ``n_waves_convention="spectral"``: the case's ``n_w`` is ``T_MCS /
@@ -99,8 +99,8 @@ class CaseData:
 
         Examples
         --------
-        ``pas.make_study(pas.PAS(), d.lf_table(), **d.run_kwargs(), seed=1).optimize(d.oracle())``
-        on a case ``d = pas.validation.generate_case("3b")``.
+        ``pas.run_pas(d.lf_table(), d.oracle(), **d.run_kwargs(), seed=1)`` on a case
+        ``d = pas.validation.generate_case("3b")``.
         """
         return {"n_waves": int(self.n_waves), "p_exp": float(self.p_exp),
                 "eps1": float(self.eps1), "threshold": self.threshold,
