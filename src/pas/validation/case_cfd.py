@@ -18,8 +18,6 @@ every event whose LF crest is above the cut, and a random sample below it.
 
 from __future__ import annotations
 
-import json
-import os
 from dataclasses import dataclass
 from importlib import resources
 
@@ -49,11 +47,6 @@ class CFDCase:
         """The sea's recipe for :mod:`pas.cfd.event` (``--sea``)."""
         return {"hs": self.hs, "tp": self.tp, "gamma": self.gamma, "depth": self.depth,
                 "duration": self.duration, "omega_max": self.omega_max}
-
-    def write_recipe(self, path) -> str:
-        with open(path, "w") as f:
-            json.dump(self.recipe(), f, indent=1)
-        return os.fspath(path)
 
 
 CFD_CASE = CFDCase()
