@@ -138,19 +138,6 @@ def test_generation_is_seeded():
     assert a.hf.size != c.hf.size or not np.array_equal(a.hf, c.hf)
 
 
-@pytest.mark.parametrize("case", ["3a", "4a", "3a-hard", "4a-hard"])
-def test_model_seed_redraws_the_hf_model_only(case):
-    base = build_case(case, scale=0.05)
-    same = build_case(case, scale=0.05, model_seed=0)  # the default is the data seed
-    other = build_case(case, scale=0.05, model_seed=1)
-    np.testing.assert_array_equal(same.hf, base.hf)
-    np.testing.assert_array_equal(other.lf, base.lf)  # the sea is kept
-    assert not np.array_equal(other.hf, base.hf)
-    assert other.info["model_seed"] == 1 and "model_seed" not in base.info
-    with pytest.raises(ValueError, match="impact cases"):
-        build_case("2b", scale=0.05, model_seed=1)
-
-
 def test_bad_scale():
     with pytest.raises(ValueError, match="scale"):
         build_case("1a", scale=0.0)

@@ -47,7 +47,7 @@ import numpy as np
 from ..stats.peaks import rise_velocities, segment_max, upcrossing_times, zero_upcrossings
 from ..waves import FERRY_190M, GRAVITY
 from ..waves.ship import RHO_SEAWATER
-from ._common import DT, model_rng, windows
+from ._common import DT, add_events, generator_state, joined, model_rng, windows
 from ._impact_signals import OMEGA_MAX, OMEGA_MAX_2, impact_sea, rwe_coefficients  # noqa: F401
 
 __all__ = ["generate_green_water", "generate_slamming", "green_water_load", "slamming_load",
@@ -244,20 +244,9 @@ def relative_elevation_coefficients(sea, kernel, *, x, y=0.0, c_sw=None):
     return lin, nonlin
 
 
-def _collect(out, **arrays):
-    for name, v in arrays.items():
-        out[name].append(v)
-
-
-def _generator_state(coeffs, seed, model_seed):
-    """A generator's coefficients, empty event columns, the HF model's seed and sea cache."""
-    out = {k: [] for k in ("lf", "hf", "seed_no", "t_start", "t_end")}
-    return _coeffs(coeffs), out, seed if model_seed is None else model_seed, [None]
-
-
-def generate_green_water(spec, seed, n_seeds, duration, *, coeffs=None, model_seed=None):
+def generate_green_water(spec, seed, n_seeds, duration, *, coeffs=None):
     """Events of case 3a/3b: LF bow RWE peak (m), HF green-water force (kN)."""
-    c, out, rseed, box = _generator_state(coeffs, seed, model_seed)
+    c, out, box = generator_state(COEFFICIENTS, coeffs)
     for k in range(n_seeds):
         sea, kern = impact_sea(spec, seed, k, duration, box)
         lin, nl = relative_elevation_coefficients(sea, kern, x=FERRY_190M.length / 2.0,
@@ -266,12 +255,10 @@ def generate_green_water(spec, seed, n_seeds, duration, *, coeffs=None, model_se
         r_hf = sea.synthesise(nl, DT)[1] + c["bow_wave"] * sea.speed**2 / (2.0 * GRAVITY)
         u, t0, t1 = windows(r_lf)
         lf = segment_max(r_lf, u)[0]
-        d = _draws(model_rng(rseed, k, _TAG_GW), lf.size, _GW_DRAWS)
-        hf = _green_water_force(segment_max(r_hf, u)[0], d, c)
-        _collect(out, lf=lf, hf=hf, t_start=t0, t_end=t1, seed_no=np.full(lf.size, k))
-    events = {k: np.concatenate(v) for k, v in out.items()}
-    return events, {"coefficients": c, "model": "green water (paper-like): non-linear RWE over "
-                    "freeboard + margin, deflection, dam-break load with impulsive part"}
+        d = _draws(model_rng(seed, k, _TAG_GW), lf.size, _GW_DRAWS)
+        add_events(out, k, lf, _green_water_force(segment_max(r_hf, u)[0], d, c), t0, t1)
+    return joined(out), {"coefficients": c, "model": "green water (paper-like): non-linear RWE "
+                         "over freeboard + margin, deflection, dam-break load with impulsive part"}
 
 
 def _nonlinear_rise(t, r_hf, u):
@@ -286,9 +273,9 @@ def _nonlinear_rise(t, r_hf, u):
     return peak, rise
 
 
-def generate_slamming(spec, seed, n_seeds, duration, *, coeffs=None, model_seed=None):
+def generate_slamming(spec, seed, n_seeds, duration, *, coeffs=None):
     """Events of case 4a/4b: LF RRV at station 19 (m/s), HF slamming force (kN)."""
-    c, out, rseed, box = _generator_state(coeffs, seed, model_seed)
+    c, out, box = generator_state(COEFFICIENTS, coeffs)
     for k in range(n_seeds):
         sea, kern = impact_sea(spec, seed, k, duration, box)
         lin, nl = relative_elevation_coefficients(sea, kern, x=FERRY_190M.station_x(19),
@@ -298,9 +285,7 @@ def generate_slamming(spec, seed, n_seeds, duration, *, coeffs=None, model_seed=
         u, t0, t1 = windows(r_lf)
         lf = rise_velocities(t, r_lf, u)
         peak, rise = _nonlinear_rise(t, r_hf, u)
-        d = _draws(model_rng(rseed, k, _TAG_SLAM), lf.size, _SLAM_DRAWS)
-        hf = _slamming_force(_impact_velocity(peak, rise, c), d, c)
-        _collect(out, lf=lf, hf=hf, t_start=t0, t_end=t1, seed_no=np.full(lf.size, k))
-    events = {k: np.concatenate(v) for k, v in out.items()}
-    return events, {"coefficients": c, "model": "slamming (paper-like): Wagner load at the "
-                    "panel-level speed of the non-linear rise, impulsive part"}
+        d = _draws(model_rng(seed, k, _TAG_SLAM), lf.size, _SLAM_DRAWS)
+        add_events(out, k, lf, _slamming_force(_impact_velocity(peak, rise, c), d, c), t0, t1)
+    return joined(out), {"coefficients": c, "model": "slamming (paper-like): Wagner load at "
+                         "the panel-level speed of the non-linear rise, impulsive part"}

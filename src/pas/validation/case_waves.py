@@ -32,7 +32,7 @@ from ..stats.exceedance import exceedance_probabilities, value_at_exceedance
 from ..stats.peaks import segment_max
 from ..waves import jonswap, linear_sea, second_order_elevation, second_order_kernel
 from ..waves.spectra import wave_number
-from ._common import DT, condition_sea, phase_seed, windows
+from ._common import DT, add_events, condition_sea, joined, phase_seed, windows
 
 __all__ = ["generate_case1", "NOISE", "VERSION"]
 
@@ -76,13 +76,11 @@ def generate_case1(spec, seed, n_seeds, duration, n_waves, *, noise=False):
         hf = segment_max(eta1 + eta2, u)[0]
         n_nonpos += int(np.count_nonzero(hf <= 0))
         hf = np.maximum(hf, 0.0)
-        for name, v in (("lf", lf), ("hf", hf), ("t_start", t0), ("t_end", t1),
-                        ("seed_no", np.full(lf.size, k))):
-            out[name].append(v)
+        add_events(out, k, lf, hf, t0, t1)
         hs_real.append(4.0 * float(np.std(eta1)))
         m0s.append(sea.m0)
         lin_crests.append(segment_max(eta1, windows(eta1)[0])[0] if noise else lf)
-    events = {k: np.concatenate(v) for k, v in out.items()}
+    events = joined(out)
     info = _physics(spec, np.concatenate(lin_crests), events["hf"], hs_real,
                     float(np.mean(m0s)), n_waves, noise)
     info["n_hf_nonpositive"] = n_nonpos
