@@ -284,12 +284,13 @@ def test_episode_functions_reproduce_generated_events(small, case):
     # event when fed that event's relative elevation and random inputs.
     from pas.validation import case_impacts as ci
     from pas.validation._common import DT, model_rng, seed_plan, windows
-    from pas.validation._impact_signals import impact_sea
-    from pas.waves import FERRY_190M
+    from pas.validation._impact_signals import OMEGA_MAX_2, impact_sea
+    from pas.waves import FERRY_190M, second_order_kernel
 
     d, spec = small[case], get_case(case)
     n, dur = seed_plan(spec.t_mcs, d.scale)
-    sea, kern = impact_sea(spec, 0, 0, dur, [None])
+    sea = impact_sea(spec, 0, 0, dur)
+    kern = second_order_kernel(sea, omega_max=OMEGA_MAX_2)
     green = case == "3a"
     x, y = (FERRY_190M.length / 2, 0.0) if green else (FERRY_190M.station_x(19), -9.0)
     lin, nl = ci.relative_elevation_coefficients(sea, kern, x=x, y=y)

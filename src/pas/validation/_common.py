@@ -63,10 +63,9 @@ def window_of(index, u):
 
 
 def generator_state(frozen, overrides):
-    """A generator's coefficients (``frozen`` with ``overrides``), empty event columns and
-    the box that keeps its second-order kernel once built."""
+    """A generator's coefficients (``frozen`` with ``overrides``) and empty event columns."""
     columns = {k: [] for k in ("lf", "hf", "seed_no", "t_start", "t_end")}
-    return dict(frozen, **(overrides or {})), columns, [None]
+    return dict(frozen, **(overrides or {})), columns
 
 
 def add_events(columns, k, lf, hf, t_start, t_end):

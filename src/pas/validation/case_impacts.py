@@ -47,8 +47,8 @@ import numpy as np
 from ..stats.peaks import rise_velocities, segment_max, upcrossing_times, zero_upcrossings
 from ..waves import FERRY_190M, GRAVITY
 from ..waves.ship import RHO_SEAWATER
-from ._common import DT, add_events, generator_state, joined, model_rng, windows
-from ._impact_signals import OMEGA_MAX, OMEGA_MAX_2, impact_sea, rwe_coefficients  # noqa: F401
+from ._common import add_events, generator_state, joined, model_rng, windows
+from ._impact_signals import impact_sea, relative_elevations, rwe_coefficients
 
 __all__ = ["generate_green_water", "generate_slamming", "green_water_load", "slamming_load",
            "relative_elevation_coefficients", "COEFFICIENTS", "VERSION"]
@@ -246,13 +246,11 @@ def relative_elevation_coefficients(sea, kernel, *, x, y=0.0, c_sw=None):
 
 def generate_green_water(spec, seed, n_seeds, duration, *, coeffs=None):
     """Events of case 3a/3b: LF bow RWE peak (m), HF green-water force (kN)."""
-    c, out, box = generator_state(COEFFICIENTS, coeffs)
+    c, out = generator_state(COEFFICIENTS, coeffs)
     for k in range(n_seeds):
-        sea, kern = impact_sea(spec, seed, k, duration, box)
-        lin, nl = relative_elevation_coefficients(sea, kern, x=FERRY_190M.length / 2.0,
-                                                  c_sw=c["c_sw"])
-        r_lf = sea.synthesise(lin, DT)[1]
-        r_hf = sea.synthesise(nl, DT)[1] + c["bow_wave"] * sea.speed**2 / (2.0 * GRAVITY)
+        sea = impact_sea(spec, seed, k, duration)
+        _, _, _, r_lf, r_hf = relative_elevations(sea, c, bow=True)
+        r_hf = r_hf + c["bow_wave"] * sea.speed**2 / (2.0 * GRAVITY)
         u, t0, t1 = windows(r_lf)
         lf = segment_max(r_lf, u)[0]
         d = _draws(model_rng(seed, k, _TAG_GW), lf.size, _GW_DRAWS)
@@ -275,13 +273,10 @@ def _nonlinear_rise(t, r_hf, u):
 
 def generate_slamming(spec, seed, n_seeds, duration, *, coeffs=None):
     """Events of case 4a/4b: LF RRV at station 19 (m/s), HF slamming force (kN)."""
-    c, out, box = generator_state(COEFFICIENTS, coeffs)
+    c, out = generator_state(COEFFICIENTS, coeffs)
     for k in range(n_seeds):
-        sea, kern = impact_sea(spec, seed, k, duration, box)
-        lin, nl = relative_elevation_coefficients(sea, kern, x=FERRY_190M.station_x(19),
-                                                  y=c["y_station19"], c_sw=c["c_sw"])
-        t, r_lf = sea.synthesise(lin, DT)
-        r_hf = sea.synthesise(nl, DT)[1]
+        _, _, t, r_lf, r_hf = relative_elevations(impact_sea(spec, seed, k, duration), c,
+                                                  bow=False)
         u, t0, t1 = windows(r_lf)
         lf = rise_velocities(t, r_lf, u)
         peak, rise = _nonlinear_rise(t, r_hf, u)

@@ -95,7 +95,7 @@ def generate_case2(spec, seed, n_seeds, duration, *, mode, coeffs=None):
     """
     if mode not in ("hog", "sag"):
         raise ValueError("mode must be 'hog' or 'sag'")
-    c, out, _ = generator_state(COEFFICIENTS, coeffs)
+    c, out = generator_state(COEFFICIENTS, coeffs)
     cond = spec.condition
     for k in range(n_seeds):
         sea = condition_sea(cond, duration, seed, k, omega_max=OMEGA_MAX)
