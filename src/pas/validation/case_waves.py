@@ -28,10 +28,10 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..records.theory import forristall_parameters
 from ..stats.exceedance import exceedance_probabilities, value_at_exceedance
 from ..stats.peaks import segment_max
 from ..waves import jonswap, linear_sea, second_order_elevation, second_order_kernel
-from ..waves.spectra import wave_number
 from ._common import DT, add_events, condition_sea, joined, phase_seed, windows
 
 __all__ = ["generate_case1", "NOISE", "VERSION"]
@@ -93,11 +93,8 @@ def _physics(spec, lin, hf, hs_real, m0, n_waves, noise):
     emp_lin = float(value_at_exceedance(*exceedance_probabilities(lin, n_waves), p))
     ln_n = np.log(lin.size / (n_waves * p))  # crests per wave exceeding = n_w p / n_z
     rayleigh = float(np.sqrt(2.0 * m0 * ln_n))
-    # Forristall (2000), long-crested: P(C > c) = exp(-(c / (a Hs))^b).
-    t1 = cond.tp / 1.198
-    s1 = 2 * np.pi * cond.hs / (9.81 * t1**2)
-    ur = cond.hs / (float(wave_number(2 * np.pi / t1, cond.depth)) ** 2 * cond.depth**3)
-    a, b = 0.3536 + 0.2892 * s1 + 0.1060 * ur, 2 - 2.1597 * s1 + 0.0968 * ur**2
+    # Forristall (2000), long-crested: P(C > c) = exp(-(c / (a Hs))^b), T1 = Tp / 1.198.
+    a, b, _, _ = forristall_parameters(cond.hs, cond.tp / 1.198, cond.depth)
     hs = np.asarray(hs_real)
     return {
         "hs_realised": [round(h, 4) for h in hs_real],
