@@ -24,6 +24,7 @@ import warnings
 import numpy as np
 import pandas as pd
 
+from ..stats.exceedance import exceedance_probabilities, value_at_exceedance
 from .case_cfd import CFD_CASE, cfd_cut, cfd_lf_record, cfd_table, cfd_truth
 
 __all__ = ["EPS1", "compare_cfd", "summarise_cfd", "top_n_estimate"]
@@ -39,10 +40,9 @@ def top_n_estimate(events, table, n, n_waves, p_exp, *, load=CFD_CASE.load):
     linearly on ``ln d`` from the last two)."""
     top = events.nlargest(n, "lf")["id"]
     loads = table.set_index("id").loc[top, load].to_numpy(float)
-    h = np.sort(loads)[::-1]
-    d = np.arange(1, n + 1) / n_waves
+    d, h = exceedance_probabilities(loads, n_waves)
     if p_exp <= d[-1]:
-        return float(np.interp(np.log(p_exp), np.log(d), h)), list(top)
+        return float(value_at_exceedance(d, h, p_exp)), list(top)
     slope = (h[-1] - h[-2]) / (np.log(d[-1]) - np.log(d[-2]))
     return float(h[-1] + slope * (np.log(p_exp) - np.log(d[-1]))), list(top)
 
