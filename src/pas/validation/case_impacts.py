@@ -11,19 +11,10 @@ models, their physics, calibration and references are in
 HF model as a function of an episode
 ------------------------------------
 Both HF models can be evaluated on any short wave episode, e.g. a design
-wave, from the non-linear relative wave elevation at the
-structure; :func:`relative_elevation_coefficients` gives it for a
+wave, from the non-linear relative wave elevation at the structure
+(:func:`green_water_load` from ``R''`` at the bow, :func:`slamming_load` from
+``R''`` at station 19); :func:`relative_elevation_coefficients` gives it for a
 :class:`~pas.waves.LinearSea` and a second-order kernel.
-
-``green_water_load(r_bow, *, speed, window=None, rng=None, coefficients=None) -> float``
-    ``r_bow``: ``R''`` at the bow over the episode (m, without the steady bow
-    wave, which is added here from ``speed`` in m/s).  Returns the HF
-    green-water force (kN, 0 = no green water on the accommodation).
-
-``slamming_load(r_19, dt, *, window=None, rng=None, coefficients=None) -> float``
-    ``r_19``: ``R''`` at station 19, weather side (m), sampled at ``dt`` (s),
-    starting before the zero up-crossing that precedes the impact.  Returns
-    the HF slamming force (kN, 0 below the noise threshold).
 
 ``window=(i0, i1)`` picks the wave event inside a longer record (the
 generator's events are the zero-up-crossing waves of the LF ``R'``); the
