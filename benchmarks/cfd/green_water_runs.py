@@ -28,6 +28,9 @@ import pandas as pd
 
 from pas.validation.case_cfd import CFD_CASE, cfd_lf_record
 
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # benchmarks/: the harness
+from harness.cfd import write_sea_recipe  # noqa: E402
+
 DATA = Path(os.environ.get(
     "PAS_CFD_DATA", Path(__file__).resolve().parents[2] / "src" / "pas" / "validation" / "data"))
 TABLES = {"truth": "cfd_green_water.csv", "equivalence": "cfd_green_water_equivalence.csv",
@@ -139,7 +142,7 @@ def main(argv=None):
     a = p.parse_args(argv)
     events, n_waves, p_exp = cfd_lf_record()
     os.makedirs(a.root, exist_ok=True)
-    recipe = CFD_CASE.write_recipe(Path(a.root).resolve() / "sea.json")
+    recipe = write_sea_recipe(Path(a.root).resolve() / "sea.json")
     todo = [j for j in jobs(events, a) if a.only is None or j[0] in a.only]
     print(f"{len(todo)} runs; n_waves {n_waves}, p_exp {p_exp:.4g}", flush=True)
     with ThreadPoolExecutor(a.workers) as pool:

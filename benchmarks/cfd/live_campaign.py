@@ -28,6 +28,9 @@ import pandas as pd
 from pas.validation.case_cfd import CFD_CASE, cfd_lf_record, cfd_table
 from pas.validation.cfd_compare import EPS1
 
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # benchmarks/: the harness
+from harness.cfd import write_sea_recipe  # noqa: E402
+
 
 def command(out, oracle, events, n_waves, p_exp, cut, seed, max_hf):
     return [sys.executable, "-m", "pas", "run", str(events), "--oracle", oracle,
@@ -59,7 +62,7 @@ def main(argv=None):
     cut = float(ranked["lf"].iloc[a.top - 1]) - 1e-9
     ev = ranked[ranked["lf"] > cut][["id", "lf", "seed", "t_peak"]]
     ev.to_csv(work / "events.csv", index=False)
-    sea = CFD_CASE.write_recipe(work / "sea.json")
+    sea = write_sea_recipe(work / "sea.json")
     live = ("command:" + sys.executable + " -m pas.cfd.event --sea " + sea +
             " --seed {seed} --t-peak {t_peak} --out {result}")
     cmd = command(work / "live", live, work / "events.csv", n_waves, p_exp, cut, a.seed,

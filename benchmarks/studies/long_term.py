@@ -39,6 +39,7 @@ import pandas as pd
 from pas.validation.long_term_compare import P_VALIDATED
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # benchmarks/: the harness
+from harness.long_term_data_sets import p_exceed_of_return_period, pool_data_sets  # noqa: E402
 from harness.result_tables import write_between_markers  # noqa: E402
 
 LEVELS = (5e-6, 2e-6, 1e-6)
@@ -64,7 +65,7 @@ def _truth_row(data, seconds, plan, p_exceed, kept_hours):
             row[f"half{half}_{p:g}"] = value_at_exceedance_long_term(p, data.weights, hf)
     for p in LEVELS:
         row[f"truth_{p:g}"] = data.truth(p)
-    p20 = data.p_exceed_of_return_period(20)
+    p20 = p_exceed_of_return_period(data, 20)
     share = data.contributions(p_exceed).set_index("sea_state")
     dropped = list(plan["name"][~plan["kept"]])
     row.update({"p_20y": p20, "truth_20y": data.truth(p20),
@@ -124,8 +125,6 @@ def truth_only(analogue, seeds, out, *, p_exceed=P_VALIDATED, scale=1.0):
 
 def pool(analogue, seeds, out, *, p_exceed=P_VALIDATED, scale=1.0):
     """Write ``pooled_<a>.csv``: the truth over data sets ``1 … seeds`` together (cached)."""
-    from pas.validation.long_term_data import pool_data_sets
-
     made = [_data_set(analogue, seed, scale, p_exceed) for seed in range(1, seeds + 1)]
     pooled = pool_data_sets([m[0] for m in made])
     row = {"analogue": analogue, "kept_hours": made[0][2], "p_exceed": p_exceed,

@@ -5,6 +5,7 @@ import math
 import numpy as np
 import pandas as pd
 import pytest
+from harness.long_term_data_sets import p_exceed_of_return_period, pool_data_sets
 
 from pas.validation.long_term import (
     generate_cell,
@@ -14,11 +15,7 @@ from pas.validation.long_term import (
     value_at_exceedance_long_term,
 )
 from pas.validation.long_term_compare import combine_curves, iform_contour
-from pas.validation.long_term_data import (
-    LongTermData,
-    generate_long_term,
-    pool_data_sets,
-)
+from pas.validation.long_term_data import LongTermData, generate_long_term
 
 
 def _two_states():
@@ -42,7 +39,6 @@ def test_two_sea_states_by_hand():
     assert data.truth(0.3) == pytest.approx(10.0 + f * (5.0 - 10.0), rel=1e-12)
     assert data.truth(0.2) == pytest.approx(10.0, rel=1e-12)
     assert math.isnan(data.truth(0.1))          # beyond the largest event
-    assert data.lf_value(0.3) == pytest.approx(0.5 * data.truth(0.3), rel=1e-12)
 
 
 def test_contributions_of_two_states():
@@ -172,3 +168,9 @@ def test_pooled_data_sets_weigh_each_sea_state_by_its_summed_rate():
     assert pooled.sea_states["duration"].tolist() == pytest.approx([4.0, 4.0 / 3.0], rel=1e-9)
     assert list(pooled.ids["A"]) == ["d1-e0", "d1-e1", "d2-e0", "d2-e1"]
     assert len(pooled.meta["B"]) == 4
+
+
+def test_return_period_exceedance_by_hand():
+    # Σ p ν / Σ p = 0.75 · 4/40 + 0.25 · 2/10 = 0.125 encounters per second, 8766 h a year
+    p20 = p_exceed_of_return_period(_two_states(), 20)
+    assert p20 == pytest.approx(1.0 / (20 * 3600.0 * 8766.0 * 0.125), rel=1e-12)

@@ -62,6 +62,24 @@ def window_of(index, u):
     return np.where((w >= 0) & (w < u.size - 1), w, -1)
 
 
+def generator_state(frozen, overrides):
+    """A generator's coefficients (``frozen`` with ``overrides``) and empty event columns."""
+    columns = {k: [] for k in ("lf", "hf", "seed_no", "t_start", "t_end")}
+    return dict(frozen, **(overrides or {})), columns
+
+
+def add_events(columns, k, lf, hf, t_start, t_end):
+    """Append the wave events of realisation ``k`` to a generator's columns."""
+    for name, v in (("lf", lf), ("hf", hf), ("t_start", t_start), ("t_end", t_end),
+                    ("seed_no", np.full(lf.size, k))):
+        columns[name].append(v)
+
+
+def joined(columns):
+    """The events of all realisations: one array per column."""
+    return {k: np.concatenate(v) for k, v in columns.items()}
+
+
 def coefficients_on(n, *parts):
     """Sum complex FFT coefficient arrays of different lengths on one grid of length ``n``."""
     out = np.zeros(n, dtype=complex)

@@ -19,10 +19,10 @@ import numpy as np
 
 from ..stats.peaks import zero_upcrossings
 from ..waves import FERRY_190M, second_order_coefficients, second_order_kernel, ship_rao
-from ._common import coefficients_on, condition_sea
+from ._common import DT, coefficients_on, condition_sea
 
-__all__ = ["OMEGA_MAX", "OMEGA_MAX_2", "rwe_coefficients", "impact_sea", "crossing_values",
-           "time_derivative"]
+__all__ = ["OMEGA_MAX", "OMEGA_MAX_2", "rwe_coefficients", "impact_sea", "relative_elevations",
+           "crossing_values", "time_derivative"]
 
 OMEGA_MAX = 3.0      # rad/s, linear components
 OMEGA_MAX_2 = 2.2    # rad/s, second-order interactions (3.5 wp; bounds the O(N^2) kernel)
@@ -58,12 +58,23 @@ def rwe_coefficients(sea, kernel, x, y, c_sw):
     return coefficients_on(n, lin), coefficients_on(n, lin, a2), slope
 
 
-def impact_sea(spec, seed, k, duration, kernel_box):
-    """Sea of realisation ``k`` and the second-order kernel (built once, kept in ``kernel_box``)."""
-    sea = condition_sea(spec.condition, duration, seed, k, omega_max=OMEGA_MAX)
-    if kernel_box[0] is None:
-        kernel_box[0] = second_order_kernel(sea, omega_max=OMEGA_MAX_2)
-    return sea, kernel_box[0]
+def impact_sea(spec, seed, k, duration):
+    """Sea of realisation ``k`` of an impact case."""
+    return condition_sea(spec.condition, duration, seed, k, omega_max=OMEGA_MAX)
+
+
+def relative_elevations(sea, c, *, bow):
+    """``R'`` and ``R''`` at the bow or at station 19, weather side (coefficients ``c``).
+
+    Returns ``nonlin, slope, t, r_lf, r_hf``: the FFT coefficients of ``R''`` and of
+    the wave slope (:func:`rwe_coefficients`), the sample times and the records of
+    ``R'`` and ``R''`` (without the steady bow wave).
+    """
+    kernel = second_order_kernel(sea, omega_max=OMEGA_MAX_2)  # built once per grid (cached)
+    x, y = (FERRY_190M.length / 2.0, 0.0) if bow else (FERRY_190M.station_x(19), c["y_station19"])
+    lin, nonlin, slope = rwe_coefficients(sea, kernel, x, y, c["c_sw"])
+    t, r_lf = sea.synthesise(lin, DT)
+    return nonlin, slope, t, r_lf, sea.synthesise(nonlin, DT)[1]
 
 
 def time_derivative(sea, coefficients):

@@ -18,13 +18,13 @@ every event whose LF crest is above the cut, and a random sample below it.
 
 from __future__ import annotations
 
-import json
-import os
 from dataclasses import dataclass
 from importlib import resources
 
 import numpy as np
 import pandas as pd
+
+from ..stats.exceedance import exceedance_probabilities, value_at_exceedance
 
 __all__ = ["CFD_CASE", "CFDCase", "cfd_cut", "cfd_lf_record", "cfd_table", "cfd_truth"]
 
@@ -49,11 +49,6 @@ class CFDCase:
         """The sea's recipe for :mod:`pas.cfd.event` (``--sea``)."""
         return {"hs": self.hs, "tp": self.tp, "gamma": self.gamma, "depth": self.depth,
                 "duration": self.duration, "omega_max": self.omega_max}
-
-    def write_recipe(self, path) -> str:
-        with open(path, "w") as f:
-            json.dump(self.recipe(), f, indent=1)
-        return os.fspath(path)
 
 
 CFD_CASE = CFDCase()
@@ -109,8 +104,7 @@ def cfd_truth(events, table, n_waves, p_exp, *, load=CFD_CASE.load):
     exceedance per wave, ``rank / n_waves``, equals ``p_exp``, interpolated on
     ``ln`` of the exceedance (as the predictions are).
     """
-    loads = np.sort(table[load].to_numpy(float))[::-1]
-    d = np.arange(1, loads.size + 1) / n_waves
+    d, loads = exceedance_probabilities(table[load].to_numpy(float), n_waves)
     if p_exp < d[0] or p_exp > d[-1]:
         raise ValueError("p_exp lies outside the table's exceedance range")
-    return float(np.interp(np.log(p_exp), np.log(d), loads))
+    return float(value_at_exceedance(d, loads, p_exp))

@@ -11,19 +11,10 @@ models, their physics, calibration and references are in
 HF model as a function of an episode
 ------------------------------------
 Both HF models can be evaluated on any short wave episode, e.g. a design
-wave, from the non-linear relative wave elevation at the
-structure; :func:`relative_elevation_coefficients` gives it for a
+wave, from the non-linear relative wave elevation at the structure
+(:func:`green_water_load` from ``R''`` at the bow, :func:`slamming_load` from
+``R''`` at station 19); :func:`relative_elevation_coefficients` gives it for a
 :class:`~pas.waves.LinearSea` and a second-order kernel.
-
-``green_water_load(r_bow, *, speed, window=None, rng=None, coefficients=None) -> float``
-    ``r_bow``: ``R''`` at the bow over the episode (m, without the steady bow
-    wave, which is added here from ``speed`` in m/s).  Returns the HF
-    green-water force (kN, 0 = no green water on the accommodation).
-
-``slamming_load(r_19, dt, *, window=None, rng=None, coefficients=None) -> float``
-    ``r_19``: ``R''`` at station 19, weather side (m), sampled at ``dt`` (s),
-    starting before the zero up-crossing that precedes the impact.  Returns
-    the HF slamming force (kN, 0 below the noise threshold).
 
 ``window=(i0, i1)`` picks the wave event inside a longer record (the
 generator's events are the zero-up-crossing waves of the LF ``R'``); the
@@ -47,8 +38,8 @@ import numpy as np
 from ..stats.peaks import rise_velocities, segment_max, upcrossing_times, zero_upcrossings
 from ..waves import FERRY_190M, GRAVITY
 from ..waves.ship import RHO_SEAWATER
-from ._common import DT, model_rng, windows
-from ._impact_signals import OMEGA_MAX, OMEGA_MAX_2, impact_sea, rwe_coefficients  # noqa: F401
+from ._common import add_events, generator_state, joined, model_rng, windows
+from ._impact_signals import impact_sea, relative_elevations, rwe_coefficients
 
 __all__ = ["generate_green_water", "generate_slamming", "green_water_load", "slamming_load",
            "relative_elevation_coefficients", "COEFFICIENTS", "VERSION"]
@@ -244,34 +235,19 @@ def relative_elevation_coefficients(sea, kernel, *, x, y=0.0, c_sw=None):
     return lin, nonlin
 
 
-def _collect(out, **arrays):
-    for name, v in arrays.items():
-        out[name].append(v)
-
-
-def _generator_state(coeffs, seed, model_seed):
-    """A generator's coefficients, empty event columns, the HF model's seed and sea cache."""
-    out = {k: [] for k in ("lf", "hf", "seed_no", "t_start", "t_end")}
-    return _coeffs(coeffs), out, seed if model_seed is None else model_seed, [None]
-
-
-def generate_green_water(spec, seed, n_seeds, duration, *, coeffs=None, model_seed=None):
+def generate_green_water(spec, seed, n_seeds, duration, *, coeffs=None):
     """Events of case 3a/3b: LF bow RWE peak (m), HF green-water force (kN)."""
-    c, out, rseed, box = _generator_state(coeffs, seed, model_seed)
+    c, out = generator_state(COEFFICIENTS, coeffs)
     for k in range(n_seeds):
-        sea, kern = impact_sea(spec, seed, k, duration, box)
-        lin, nl = relative_elevation_coefficients(sea, kern, x=FERRY_190M.length / 2.0,
-                                                  c_sw=c["c_sw"])
-        r_lf = sea.synthesise(lin, DT)[1]
-        r_hf = sea.synthesise(nl, DT)[1] + c["bow_wave"] * sea.speed**2 / (2.0 * GRAVITY)
+        sea = impact_sea(spec, seed, k, duration)
+        _, _, _, r_lf, r_hf = relative_elevations(sea, c, bow=True)
+        r_hf = r_hf + c["bow_wave"] * sea.speed**2 / (2.0 * GRAVITY)
         u, t0, t1 = windows(r_lf)
         lf = segment_max(r_lf, u)[0]
-        d = _draws(model_rng(rseed, k, _TAG_GW), lf.size, _GW_DRAWS)
-        hf = _green_water_force(segment_max(r_hf, u)[0], d, c)
-        _collect(out, lf=lf, hf=hf, t_start=t0, t_end=t1, seed_no=np.full(lf.size, k))
-    events = {k: np.concatenate(v) for k, v in out.items()}
-    return events, {"coefficients": c, "model": "green water (paper-like): non-linear RWE over "
-                    "freeboard + margin, deflection, dam-break load with impulsive part"}
+        d = _draws(model_rng(seed, k, _TAG_GW), lf.size, _GW_DRAWS)
+        add_events(out, k, lf, _green_water_force(segment_max(r_hf, u)[0], d, c), t0, t1)
+    return joined(out), {"coefficients": c, "model": "green water (paper-like): non-linear RWE "
+                         "over freeboard + margin, deflection, dam-break load with impulsive part"}
 
 
 def _nonlinear_rise(t, r_hf, u):
@@ -286,21 +262,16 @@ def _nonlinear_rise(t, r_hf, u):
     return peak, rise
 
 
-def generate_slamming(spec, seed, n_seeds, duration, *, coeffs=None, model_seed=None):
+def generate_slamming(spec, seed, n_seeds, duration, *, coeffs=None):
     """Events of case 4a/4b: LF RRV at station 19 (m/s), HF slamming force (kN)."""
-    c, out, rseed, box = _generator_state(coeffs, seed, model_seed)
+    c, out = generator_state(COEFFICIENTS, coeffs)
     for k in range(n_seeds):
-        sea, kern = impact_sea(spec, seed, k, duration, box)
-        lin, nl = relative_elevation_coefficients(sea, kern, x=FERRY_190M.station_x(19),
-                                                  y=c["y_station19"], c_sw=c["c_sw"])
-        t, r_lf = sea.synthesise(lin, DT)
-        r_hf = sea.synthesise(nl, DT)[1]
+        _, _, t, r_lf, r_hf = relative_elevations(impact_sea(spec, seed, k, duration), c,
+                                                  bow=False)
         u, t0, t1 = windows(r_lf)
         lf = rise_velocities(t, r_lf, u)
         peak, rise = _nonlinear_rise(t, r_hf, u)
-        d = _draws(model_rng(rseed, k, _TAG_SLAM), lf.size, _SLAM_DRAWS)
-        hf = _slamming_force(_impact_velocity(peak, rise, c), d, c)
-        _collect(out, lf=lf, hf=hf, t_start=t0, t_end=t1, seed_no=np.full(lf.size, k))
-    events = {k: np.concatenate(v) for k, v in out.items()}
-    return events, {"coefficients": c, "model": "slamming (paper-like): Wagner load at the "
-                    "panel-level speed of the non-linear rise, impulsive part"}
+        d = _draws(model_rng(seed, k, _TAG_SLAM), lf.size, _SLAM_DRAWS)
+        add_events(out, k, lf, _slamming_force(_impact_velocity(peak, rise, c), d, c), t0, t1)
+    return joined(out), {"coefficients": c, "model": "slamming (paper-like): Wagner load at "
+                         "the panel-level speed of the non-linear rise, impulsive part"}

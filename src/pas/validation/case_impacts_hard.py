@@ -68,15 +68,9 @@ from __future__ import annotations
 import numpy as np
 
 from ..stats.peaks import rise_velocities, segment_max
-from ..waves import FERRY_190M
 from ..waves.ship import RHO_SEAWATER
-from ._common import DT, model_rng, window_of, windows
-from ._impact_signals import (
-    crossing_values,
-    impact_sea,
-    rwe_coefficients,
-    time_derivative,
-)
+from ._common import DT, add_events, generator_state, joined, model_rng, window_of, windows
+from ._impact_signals import crossing_values, impact_sea, relative_elevations, time_derivative
 
 __all__ = ["generate_green_water", "generate_slamming", "COEFFICIENTS", "VERSION"]
 
@@ -96,67 +90,61 @@ COEFFICIENTS = {
     # fixed choices (not tuned)
     "gw_scatter": 0.3, "beta_min_deg": 3.0, "slam_scatter": 0.15,
 }
-def generate_green_water(spec, seed, n_seeds, duration, *, coeffs=None, model_seed=None):
-    """Events of case 3a/3b: LF bow RWE peak, HF green-water force (kN)."""
-    c = dict(COEFFICIENTS, **(coeffs or {}))
-    out = {k: [] for k in ("lf", "hf", "seed_no", "t_start", "t_end")}
-    rseed = seed if model_seed is None else model_seed  # the HF model's random parts
-    box = [None]
+
+
+def green_water_force(peak, margin, scatter, c):
+    """Force (kN) of events with non-linear bow RWE peak ``peak`` (bow wave included), deflection
+    margin ``margin`` and event scatter ``scatter``; 0 below the noise threshold."""
     rho_g_w = RHO_SEAWATER * 9.81 * c["accommodation_width"] / 1000.0  # kN/m^2
+    h = np.maximum(peak - c["freeboard"] - margin, 0.0)
+    force = c["C_gw"] * rho_g_w * h**2 * scatter
+    return np.where(force >= c["noise_kN"], force, 0.0)
+
+
+def slamming_forces(v, slope, scatter, c):
+    """Wagner force (kN) of panel immersions at speed ``v`` (m/s) under the wave-front slope
+    ``slope``, with event scatter ``scatter``."""
+    k_force = 0.5 * RHO_SEAWATER * c["C0"] * np.pi * c["panel_area"] / 1000.0  # kN s^2/m^2
+    beta = np.maximum(np.deg2rad(c["beta_flare_deg"]) - np.arctan(-slope),
+                      np.deg2rad(c["beta_min_deg"]))
+    return k_force / np.tan(beta) * np.maximum(v, 0.0) ** 2 * scatter
+
+
+def generate_green_water(spec, seed, n_seeds, duration, *, coeffs=None):
+    """Events of case 3a/3b: LF bow RWE peak, HF green-water force (kN)."""
+    c, out = generator_state(COEFFICIENTS, coeffs)
     for k in range(n_seeds):
-        sea, kern = impact_sea(spec, seed, k, duration, box)
-        lin, nl, _ = rwe_coefficients(sea, kern, FERRY_190M.length / 2.0, 0.0, c["c_sw"])
-        r_lf = sea.synthesise(lin, DT)[1]
-        r_hf = sea.synthesise(nl, DT)[1] + c["bow_wave"] * sea.speed**2 / (2.0 * 9.81)
+        sea = impact_sea(spec, seed, k, duration)
+        _, _, _, r_lf, r_hf = relative_elevations(sea, c, bow=True)
+        r_hf = r_hf + c["bow_wave"] * sea.speed**2 / (2.0 * 9.81)
         u, t0, t1 = windows(r_lf)
         lf = segment_max(r_lf, u)[0]
-        peak = segment_max(r_hf, u)[0]
-        rng = model_rng(rseed, k, 3)
+        rng = model_rng(seed, k, 3)
         margin = rng.exponential(c["delta_mean"], lf.size)
         scatter = rng.lognormal(0.0, c["gw_scatter"], lf.size)
-        h = np.maximum(peak - c["freeboard"] - margin, 0.0)
-        force = c["C_gw"] * rho_g_w * h**2 * scatter
-        hf = np.where(force >= c["noise_kN"], force, 0.0)
-        for name, v in (("lf", lf), ("hf", hf), ("t_start", t0), ("t_end", t1),
-                        ("seed_no", np.full(lf.size, k))):
-            out[name].append(v)
-    events = {k: np.concatenate(v) for k, v in out.items()}
-    return events, {"coefficients": c, "model": "green water: non-linear RWE over freeboard "
-                                                 "+ random deflection margin, dam-break load"}
+        add_events(out, k, lf, green_water_force(segment_max(r_hf, u)[0], margin, scatter, c),
+                   t0, t1)
+    return joined(out), {"coefficients": c, "model": "green water: non-linear RWE over "
+                         "freeboard + random deflection margin, dam-break load"}
 
 
-def generate_slamming(spec, seed, n_seeds, duration, *, coeffs=None, model_seed=None):
+def generate_slamming(spec, seed, n_seeds, duration, *, coeffs=None):
     """Events of case 4a/4b: LF RRV at station 19 (m/s), HF slamming force (kN)."""
-    c = dict(COEFFICIENTS, **(coeffs or {}))
-    out = {k: [] for k in ("lf", "hf", "seed_no", "t_start", "t_end")}
-    rseed = seed if model_seed is None else model_seed  # the HF model's random parts
-    box = [None]
-    x19 = FERRY_190M.station_x(19)
-    k_force = 0.5 * RHO_SEAWATER * c["C0"] * np.pi * c["panel_area"] / 1000.0  # kN s^2/m^2
-    b_f, b_min = np.deg2rad(c["beta_flare_deg"]), np.deg2rad(c["beta_min_deg"])
+    c, out = generator_state(COEFFICIENTS, coeffs)
     for k in range(n_seeds):
-        sea, kern = impact_sea(spec, seed, k, duration, box)
-        lin, nl, slope = rwe_coefficients(sea, kern, x19, c["y_station19"], c["c_sw"])
-        t, r_lf = sea.synthesise(lin, DT)
-        r_hf = sea.synthesise(nl, DT)[1]
+        sea = impact_sea(spec, seed, k, duration)
+        nl, slope, t, r_lf, r_hf = relative_elevations(sea, c, bow=False)
         v_hf = sea.synthesise(time_derivative(sea, nl), DT)[1]
         s_hf = sea.synthesise(slope, DT)[1]
         u, t0, t1 = windows(r_lf)
         lf = rise_velocities(t, r_lf, u)
         idx, (v, s) = crossing_values(r_hf, c["panel_height"], v_hf, s_hf)
-        beta = np.maximum(b_f - np.arctan(-s), b_min)
-        rng = model_rng(rseed, k, 4)
-        force = k_force / np.tan(beta) * np.maximum(v, 0.0) ** 2 \
-            * rng.lognormal(0.0, c["slam_scatter"], idx.size)
+        rng = model_rng(seed, k, 4)
+        force = slamming_forces(v, s, rng.lognormal(0.0, c["slam_scatter"], idx.size), c)
         win = window_of(idx, u)
         hf = np.zeros(lf.size)
         ok = win >= 0
         np.maximum.at(hf, win[ok], force[ok])
-        hf = np.where(hf >= c["noise_kN"], hf, 0.0)
-        for name, val in (("lf", lf), ("hf", hf), ("t_start", t0), ("t_end", t1),
-                          ("seed_no", np.full(lf.size, k))):
-            out[name].append(val)
-    events = {k: np.concatenate(v) for k, v in out.items()}
-    return events, {"coefficients": c, "model": "slamming: Wagner-type momentum load at panel "
-                                                 "immersion, flare-to-surface angle from the "
-                                                 "wave-front slope"}
+        add_events(out, k, lf, np.where(hf >= c["noise_kN"], hf, 0.0), t0, t1)
+    return joined(out), {"coefficients": c, "model": "slamming: Wagner-type momentum load at "
+                         "panel immersion, flare-to-surface angle from the wave-front slope"}

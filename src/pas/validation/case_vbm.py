@@ -48,7 +48,7 @@ import numpy as np
 from ..stats.peaks import segment_max, segment_min
 from ..waves import FERRY_190M, ship_rao
 from ..waves.ship import RHO_SEAWATER
-from ._common import DT, condition_sea, windows
+from ._common import DT, add_events, condition_sea, generator_state, joined, windows
 
 __all__ = ["generate_case2", "COEFFICIENTS", "VERSION"]
 
@@ -95,9 +95,8 @@ def generate_case2(spec, seed, n_seeds, duration, *, mode, coeffs=None):
     """
     if mode not in ("hog", "sag"):
         raise ValueError("mode must be 'hog' or 'sag'")
-    c = dict(COEFFICIENTS, **(coeffs or {}))
+    c, out = generator_state(COEFFICIENTS, coeffs)
     cond = spec.condition
-    out = {k: [] for k in ("lf", "hf", "seed_no", "t_start", "t_end")}
     for k in range(n_seeds):
         sea = condition_sea(cond, duration, seed, k, omega_max=OMEGA_MAX)
         m_lin, m_nl = _signals(sea, c)
@@ -107,13 +106,8 @@ def generate_case2(spec, seed, n_seeds, duration, *, mode, coeffs=None):
             lf, hf = segment_max(s_lin, u)[0], segment_max(s_nl, u)[0]
         else:
             lf, hf = -segment_min(s_lin, u)[0], -segment_min(s_nl, u)[0]
-        out["lf"].append(lf)
-        out["hf"].append(np.maximum(hf, 0.0))
-        out["t_start"].append(t0)
-        out["t_end"].append(t1)
-        out["seed_no"].append(np.full(lf.size, k))
-    events = {k: np.concatenate(v) for k, v in out.items()}
-    return events, {
+        add_events(out, k, lf, np.maximum(hf, 0.0), t0, t1)
+    return joined(out), {
         "coefficients": c,
         "model": "linear VBM + bow-flare and midbody-flare quadratic Froude-Krylov",
     }

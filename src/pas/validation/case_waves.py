@@ -28,11 +28,11 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..records.theory import forristall_parameters
 from ..stats.exceedance import exceedance_probabilities, value_at_exceedance
 from ..stats.peaks import segment_max
 from ..waves import jonswap, linear_sea, second_order_elevation, second_order_kernel
-from ..waves.spectra import wave_number
-from ._common import DT, condition_sea, phase_seed, windows
+from ._common import DT, add_events, condition_sea, joined, phase_seed, windows
 
 __all__ = ["generate_case1", "NOISE", "VERSION"]
 
@@ -76,13 +76,11 @@ def generate_case1(spec, seed, n_seeds, duration, n_waves, *, noise=False):
         hf = segment_max(eta1 + eta2, u)[0]
         n_nonpos += int(np.count_nonzero(hf <= 0))
         hf = np.maximum(hf, 0.0)
-        for name, v in (("lf", lf), ("hf", hf), ("t_start", t0), ("t_end", t1),
-                        ("seed_no", np.full(lf.size, k))):
-            out[name].append(v)
+        add_events(out, k, lf, hf, t0, t1)
         hs_real.append(4.0 * float(np.std(eta1)))
         m0s.append(sea.m0)
         lin_crests.append(segment_max(eta1, windows(eta1)[0])[0] if noise else lf)
-    events = {k: np.concatenate(v) for k, v in out.items()}
+    events = joined(out)
     info = _physics(spec, np.concatenate(lin_crests), events["hf"], hs_real,
                     float(np.mean(m0s)), n_waves, noise)
     info["n_hf_nonpositive"] = n_nonpos
@@ -95,11 +93,8 @@ def _physics(spec, lin, hf, hs_real, m0, n_waves, noise):
     emp_lin = float(value_at_exceedance(*exceedance_probabilities(lin, n_waves), p))
     ln_n = np.log(lin.size / (n_waves * p))  # crests per wave exceeding = n_w p / n_z
     rayleigh = float(np.sqrt(2.0 * m0 * ln_n))
-    # Forristall (2000), long-crested: P(C > c) = exp(-(c / (a Hs))^b).
-    t1 = cond.tp / 1.198
-    s1 = 2 * np.pi * cond.hs / (9.81 * t1**2)
-    ur = cond.hs / (float(wave_number(2 * np.pi / t1, cond.depth)) ** 2 * cond.depth**3)
-    a, b = 0.3536 + 0.2892 * s1 + 0.1060 * ur, 2 - 2.1597 * s1 + 0.0968 * ur**2
+    # Forristall (2000), long-crested: P(C > c) = exp(-(c / (a Hs))^b), T1 = Tp / 1.198.
+    a, b, _, _ = forristall_parameters(cond.hs, cond.tp / 1.198, cond.depth)
     hs = np.asarray(hs_real)
     return {
         "hs_realised": [round(h, 4) for h in hs_real],

@@ -24,9 +24,10 @@ import warnings
 import numpy as np
 import pandas as pd
 
+from ..stats.exceedance import exceedance_probabilities, value_at_exceedance
 from .case_cfd import CFD_CASE, cfd_cut, cfd_lf_record, cfd_table, cfd_truth
 
-__all__ = ["EPS1", "compare_cfd", "summarise_cfd", "top_n_errors", "top_n_estimate"]
+__all__ = ["EPS1", "compare_cfd", "summarise_cfd", "top_n_estimate"]
 
 EPS1 = 5000.0
 """Stopping limit of the comparison (N/m): 2 % of 250 kN/m, the wall-force scale of the
@@ -39,10 +40,9 @@ def top_n_estimate(events, table, n, n_waves, p_exp, *, load=CFD_CASE.load):
     linearly on ``ln d`` from the last two)."""
     top = events.nlargest(n, "lf")["id"]
     loads = table.set_index("id").loc[top, load].to_numpy(float)
-    h = np.sort(loads)[::-1]
-    d = np.arange(1, n + 1) / n_waves
+    d, h = exceedance_probabilities(loads, n_waves)
     if p_exp <= d[-1]:
-        return float(np.interp(np.log(p_exp), np.log(d), h)), list(top)
+        return float(value_at_exceedance(d, h, p_exp)), list(top)
     slope = (h[-1] - h[-2]) / (np.log(d[-1]) - np.log(d[-2]))
     return float(h[-1] + slope * (np.log(p_exp) - np.log(d[-1]))), list(top)
 
@@ -111,15 +111,6 @@ def compare_cfd(*, seeds=range(5), max_hf=160, strategies=("pas", "paper", "as")
     facts = {"truth": truth, "n_waves": n_waves, "p_exp": p_exp, "cut": cut, "n_cfd": len(ok),
              "n_above_cut": n_top, "truth_hours": _hours(ok, ok["id"])}
     return runs, facts
-
-
-def top_n_errors(ns=(10, 20, 30, 40, 50, 60, 70, 80, 100, 120, 150)):
-    """The top-N habit's error against the truth for several ``N``."""
-    events, n_waves, p_exp = cfd_lf_record()
-    ok = cfd_table().query("status == 'ok'")
-    truth = cfd_truth(events, ok, n_waves, p_exp)
-    return pd.DataFrame([{"N": n, "error": top_n_estimate(events, ok, n, n_waves, p_exp)[0]
-                          / truth - 1.0} for n in ns])
 
 
 def _design_row():

@@ -115,14 +115,7 @@ class CaseData:
 
     def oracle(self):
         """A table oracle: ``oracle(event) -> hf[event.index]``; counts its calls."""
-        hf = self.hf
-
-        def oracle(event):
-            oracle.calls += 1
-            return float(hf[event.index])
-
-        oracle.calls = 0
-        return oracle
+        return table_oracle(self.hf)
 
     # -- persistence -----------------------------------------------------
     def save(self, path) -> None:
@@ -139,6 +132,16 @@ class CaseData:
             scalars = json.loads(str(z["meta"]))
             arrays = {k: z[k] for k in z.files if k != "meta"}
         return cls(**arrays, **scalars)
+
+
+def table_oracle(hf):
+    """``oracle(event) -> hf[event.index]`` for the HF values ``hf``; counts its calls."""
+    def oracle(event):
+        oracle.calls += 1
+        return float(hf[event.index])
+
+    oracle.calls = 0
+    return oracle
 
 
 def ground_truth(hf, n_waves, p_exp, method):

@@ -53,13 +53,12 @@ from ..waves import (
     ship_rao,
     wave_number,
 )
-from ..waves.ship import RHO_SEAWATER
 from ..waves.surrogate import response_surrogate
 from . import case_impacts, case_impacts_hard, case_vbm, case_waves
 from ._common import DT
 from ._impact_signals import OMEGA_MAX as IMPACT_OMEGA_MAX
 from ._impact_signals import OMEGA_MAX_2 as IMPACT_OMEGA_MAX_2
-from ._impact_signals import crossing_values, rwe_coefficients, time_derivative
+from ._impact_signals import crossing_values, relative_elevations, time_derivative
 from .registry import get_case
 
 __all__ = [
@@ -147,30 +146,20 @@ def _vbm(episode, coeffs=None, *, mode):
     return max(float(v), 0.0)
 
 
-def _relative_elevations(sea, c, *, bow):
-    """LF and HF relative wave elevation records at the bow or at station 19."""
-    kern = second_order_kernel(sea, omega_max=IMPACT_OMEGA_MAX_2)  # cached per grid
-    x, y = (FERRY_190M.length / 2.0, 0.0) if bow else (FERRY_190M.station_x(19),
-                                                       c["y_station19"])
-    lin, nl, slope = rwe_coefficients(sea, kern, x, y, c["c_sw"])
-    return lin, nl, slope, sea.synthesise(lin, DT)[1], sea.synthesise(nl, DT)[1]
-
-
 def _green_water_hard(episode, coeffs=None):
     """Case 3-hard at the medians: deflection margin ``delta_mean ln 2``, scatter 1."""
     c, sea = dict(case_impacts_hard.COEFFICIENTS, **(coeffs or {})), episode.sea
-    _, _, _, r_lf, r_hf = _relative_elevations(sea, c, bow=True)
+    _, _, _, r_lf, r_hf = relative_elevations(sea, c, bow=True)
     r_hf = r_hf + c["bow_wave"] * sea.speed**2 / (2.0 * 9.81)
-    peak = float(segment_max(r_hf, _window(r_lf, episode.t0))[0][0])
-    h = max(peak - c["freeboard"] - c["delta_mean"] * np.log(2.0), 0.0)
-    force = c["C_gw"] * RHO_SEAWATER * 9.81 * c["accommodation_width"] / 1000.0 * h**2
-    return force if force >= c["noise_kN"] else 0.0
+    peak = segment_max(r_hf, _window(r_lf, episode.t0))[0]
+    return float(case_impacts_hard.green_water_force(peak, c["delta_mean"] * np.log(2.0), 1.0,
+                                                     c)[0])
 
 
 def _slamming_hard(episode, coeffs=None):
     """Case 4-hard at the median scatter: largest Wagner impact in the wave at t0."""
     c, sea = dict(case_impacts_hard.COEFFICIENTS, **(coeffs or {})), episode.sea
-    _, nl, slope, r_lf, r_hf = _relative_elevations(sea, c, bow=False)
+    nl, slope, _, r_lf, r_hf = relative_elevations(sea, c, bow=False)
     v_hf = sea.synthesise(time_derivative(sea, nl), DT)[1]
     s_hf = sea.synthesise(slope, DT)[1]
     win = _window(r_lf, episode.t0)
@@ -178,17 +167,14 @@ def _slamming_hard(episode, coeffs=None):
     inside = (idx >= win[0]) & (idx < win[1])
     if not inside.any():
         return 0.0
-    beta = np.maximum(np.deg2rad(c["beta_flare_deg"]) - np.arctan(-s[inside]),
-                      np.deg2rad(c["beta_min_deg"]))
-    k_force = 0.5 * RHO_SEAWATER * c["C0"] * np.pi * c["panel_area"] / 1000.0
-    force = float(np.max(k_force / np.tan(beta) * np.maximum(v[inside], 0.0) ** 2))
+    force = float(np.max(case_impacts_hard.slamming_forces(v[inside], s[inside], 1.0, c)))
     return force if force >= c["noise_kN"] else 0.0
 
 
 def _green_water(episode, coeffs=None):
     """Case 3 (paper-like) at the medians: :func:`.case_impacts.green_water_load`."""
     c, sea = dict(case_impacts.COEFFICIENTS, **(coeffs or {})), episode.sea
-    _, _, _, r_lf, r_hf = _relative_elevations(sea, c, bow=True)
+    _, _, _, r_lf, r_hf = relative_elevations(sea, c, bow=True)
     return case_impacts.green_water_load(r_hf, speed=sea.speed, window=_window(r_lf, episode.t0),
                                          coefficients=c)
 
@@ -196,7 +182,7 @@ def _green_water(episode, coeffs=None):
 def _slamming(episode, coeffs=None):
     """Case 4 (paper-like) at the medians: the generator's rise rule in the wave at t0."""
     c, sea = dict(case_impacts.COEFFICIENTS, **(coeffs or {})), episode.sea
-    _, _, _, r_lf, r_hf = _relative_elevations(sea, c, bow=False)
+    _, _, _, r_lf, r_hf = relative_elevations(sea, c, bow=False)
     return case_impacts.slamming_load(r_hf, DT, window=_window(r_lf, episode.t0), coefficients=c)
 
 

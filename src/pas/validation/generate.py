@@ -57,11 +57,8 @@ def cache_path(case_id, seed=0, scale=1.0, path=None) -> Path:
     )
 
 
-def _events(spec, seed, n_seeds, duration, n_waves, model_seed=None):
+def _events(spec, seed, n_seeds, duration, n_waves):
     fam = spec.family
-    if model_seed is not None and fam not in "34":
-        raise ValueError(f"model_seed applies to the impact cases (3a-4b, -hard) only, "
-                         f"not to {spec.id}")
     if fam == "1":
         return case_waves.generate_case1(spec, seed, n_seeds, duration, n_waves,
                                          noise=spec.id == "1b")
@@ -69,24 +66,16 @@ def _events(spec, seed, n_seeds, duration, n_waves, model_seed=None):
         return case_vbm.generate_case2(spec, seed, n_seeds, duration,
                                        mode="hog" if spec.id == "2a" else "sag")
     if fam == "3":
-        return _impact_module(spec).generate_green_water(spec, seed, n_seeds, duration,
-                                                         model_seed=model_seed)
-    return _impact_module(spec).generate_slamming(spec, seed, n_seeds, duration,
-                                                  model_seed=model_seed)
+        return _impact_module(spec).generate_green_water(spec, seed, n_seeds, duration)
+    return _impact_module(spec).generate_slamming(spec, seed, n_seeds, duration)
 
 
-def build_case(case_id, *, seed=0, scale=1.0, model_seed=None) -> CaseData:
-    """Run the physics of ``case_id`` (no cache); see :func:`generate_case`.
-
-    ``model_seed`` (impact cases only; default ``seed``) seeds the random parts of the
-    HF model alone: another value keeps the sea — the LF peaks and the non-linear
-    response they come from — and redraws only those parts, so the loads, the
-    number of impacts and the truth change while the LF does not.
-    """
+def build_case(case_id, *, seed=0, scale=1.0) -> CaseData:
+    """Run the physics of ``case_id`` (no cache); see :func:`generate_case`."""
     spec = get_case(case_id)
     n_seeds, duration = seed_plan(spec.t_mcs, scale)
     n_waves = max(1, int(round(spec.n_waves * scale)))
-    ev, info = _events(spec, seed, n_seeds, duration, n_waves, model_seed)
+    ev, info = _events(spec, seed, n_seeds, duration, n_waves)
     if 1.0 / n_waves > spec.p_exp:
         raise ValueError(
             f"scale={scale:g} leaves n_w={n_waves}, too few waves to reach "
@@ -96,8 +85,6 @@ def build_case(case_id, *, seed=0, scale=1.0, model_seed=None) -> CaseData:
     tau, lu, ll = dependence(ev["lf"], ev["hf"], spec.threshold)
     hf = ev["hf"]
     info.update(extra)
-    if model_seed is not None:
-        info["model_seed"] = int(model_seed)
     info.update({"n_seeds": n_seeds, "seed_duration_s": duration, "n_events": int(hf.size),
                  "impact_rate": float(np.sum(hf > 0) / n_waves) if spec.family in "34" else None,
                  "n_lf_over_threshold": int(np.sum(ev["lf"] > spec.threshold))

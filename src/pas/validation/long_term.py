@@ -55,10 +55,8 @@ from .registry import Condition, get_case
 
 __all__ = [
     "ANALOGUES",
-    "HOURS_PER_YEAR",
     "NORTH_ATLANTIC",
     "cell_seed",
-    "encounters_per_year",
     "generate_cell",
     "long_term_exceedance",
     "scatter_diagram",
@@ -73,9 +71,6 @@ NORTH_ATLANTIC = {
     "sigma": (0.1334, 0.0264, -0.1906),  # std of ln Tz: b0 + b1 exp(b2 Hs)
 }
 """The joint Hs–Tz model binned by :func:`scatter_diagram` (DNV 2010)."""
-
-HOURS_PER_YEAR = 8766.0
-"""Hours in a year at sea (365.25 days): the 20-year value assumes the ship always at sea."""
 
 ANALOGUES = {
     "3": {"case": "3a", "gamma": 3.3, "depth": 179.9, "heading": 150.0, "speed": 2.4,
@@ -280,9 +275,3 @@ def value_at_exceedance_long_term(p, weights, hf_by_state):
     f = 0.0 if hi == lo else (np.log(p) - lo) / (hi - lo)
     return float(vals[k - 1] + f * (vals[k] - vals[k - 1]))
 
-
-def encounters_per_year(sea_states, hours_per_year=HOURS_PER_YEAR):
-    """Wave encounters per year: ``3600 · hours_per_year · Σ p_s ν_s / Σ p_s``."""
-    p = sea_states["probability"].to_numpy(float)
-    nu = sea_states["n_waves"].to_numpy(float) / sea_states["duration"].to_numpy(float)
-    return 3600.0 * float(hours_per_year) * float(np.sum(p * nu) / np.sum(p))

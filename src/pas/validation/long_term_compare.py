@@ -31,6 +31,7 @@ from scipy.stats import norm
 from ..api import run_pas
 from ..study.settings import Stopping
 from . import case_impacts
+from .data import table_oracle
 from .long_term import (
     ANALOGUES,
     NORTH_ATLANTIC,
@@ -95,12 +96,6 @@ def combine_curves(p, weights, curves):
     return 0.5 * (lo + hi)
 
 
-def _table_oracle(hf):
-    def oracle(event):
-        return float(hf[event.index])
-    return oracle
-
-
 def _uniform(data, kept, p_exceed, seed, max_hf):
     w, tot = data.weights, float(sum(data.weights.values()))
     mean, low, high, n_hf, skipped = {}, {}, {}, 0, []
@@ -129,7 +124,7 @@ def _cell_study(data, s, n, p_s, seed, max_hf):
     for threshold in dict.fromkeys((_case(data).threshold, None)):
         try:
             lf = pd.DataFrame({"lf": data.lf[s]}, index=list(data.ids[s]))  # ids: the index
-            return run_pas(lf, _table_oracle(data.hf[s]), n_waves=n, p_exp=p_s,
+            return run_pas(lf, table_oracle(data.hf[s]), n_waves=n, p_exp=p_s,
                            seed=seed, max_hf=max_hf,
                            threshold=threshold, **_pas_kwargs(data)), None
         except ValueError as exc:
@@ -179,7 +174,7 @@ def _contour(data, p_exceed, seed, max_hf):
     ev = generate_cell(data.analogue, row, 900 + data.seed, 500 + best, hours)
     n = ev["lf"].size
     hf = ev["hf"]
-    res = run_pas(ev["lf"], _table_oracle(hf), n_waves=n, p_exp=p_w, seed=seed,
+    res = run_pas(ev["lf"], table_oracle(hf), n_waves=n, p_exp=p_w, seed=seed,
                   max_hf=max_hf, threshold=_case(data).threshold, **_pas_kwargs(data))
     return res.mpm, tuple(float(b) for b in res.mpm_band), res.n_hf, {
         "beta": beta, "hs": float(row["hs"]), "tp": float(row["tp"]), "hours": float(hours),

@@ -10,22 +10,20 @@ contribute at a level; :func:`generate_long_term` makes the data set.
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 
 import numpy as np
 import pandas as pd
 
 from .long_term import (
     ANALOGUES,
-    HOURS_PER_YEAR,
-    encounters_per_year,
     generate_cell,
     long_term_exceedance,
     scatter_diagram,
     value_at_exceedance_long_term,
 )
 
-__all__ = ["LongTermData", "generate_long_term", "plan_cells", "pool_data_sets"]
+__all__ = ["LongTermData", "generate_long_term", "plan_cells"]
 
 
 @dataclass
@@ -73,14 +71,6 @@ class LongTermData:
         """The brute-force long-term value at ``p_exceed`` (per encounter)."""
         return value_at_exceedance_long_term(p_exceed, self.weights, self.hf)
 
-    def lf_value(self, p_exceed):
-        """The LF-only (linear) long-term value: the same combination over the LF peaks."""
-        return value_at_exceedance_long_term(p_exceed, self.weights, self.lf)
-
-    def p_exceed_of_return_period(self, years, hours_per_year=HOURS_PER_YEAR):
-        """Per-encounter exceedance of the ``years`` return period: ``1 / (years · N_year)``."""
-        return 1.0 / (float(years) * encounters_per_year(self.sea_states, hours_per_year))
-
     def contributions(self, p_exceed):
         """Each sea state's share of ``Q`` at the truth value, with a 95 % upper bound.
 
@@ -108,19 +98,6 @@ class LongTermData:
             return float(hf[event.sea_state][event.index])
 
         return oracle
-
-    def subset(self, names):
-        """The data set restricted to the sea states ``names`` (probabilities not renormalised)."""
-        names = list(names)
-        keep = self.sea_states["name"].isin(names)
-
-        def pick(d):
-            return {n: d[n] for n in names}
-
-        return replace(self, sea_states=self.sea_states[keep].reset_index(drop=True),
-                       lf=pick(self.lf), hf=pick(self.hf), ids=pick(self.ids),
-                       meta=pick(self.meta))
-
 
 def generate_long_term(analogue, *, seed=0, hours=10, cells=None, cache=True, path=None,
                        progress=None):
@@ -170,30 +147,6 @@ def generate_long_term(analogue, *, seed=0, hours=10, cells=None, cache=True, pa
     return LongTermData(str(analogue), pd.DataFrame(rows), lf, hf, ids, meta, int(seed),
                         a["unit"], {"dropped_probability": dropped,
                                     "seconds": time.perf_counter() - t0})
-
-
-def pool_data_sets(datasets):
-    """One data set of the union of ``datasets`` (redraws of one scatter, same sea states).
-
-    Per sea state every event of every data set (ids prefixed ``d<seed>-``),
-    ``n_waves``, ``duration`` and ``hours`` summed, so that its encounter rate
-    is theirs together; its truth has about the error of one data set's
-    divided by √(number of data sets).
-    """
-    names = list(datasets[0].hf)
-
-    def joined(attr):
-        return {s: np.concatenate([getattr(d, attr)[s] for d in datasets]) for s in names}
-
-    table = datasets[0].sea_states.copy()
-    for col in ("n_waves", "duration", "hours"):
-        table[col] = sum(d.sea_states.set_index("name").loc[table["name"], col].to_numpy()
-                         for d in datasets)
-    ids = {s: np.concatenate([np.char.add(f"d{d.seed}-", d.ids[s].astype(str)) for d in datasets])
-           for s in names}
-    meta = {s: pd.concat([d.meta[s] for d in datasets], ignore_index=True) for s in names}
-    return replace(datasets[0], sea_states=table, lf=joined("lf"), hf=joined("hf"), ids=ids,
-                   meta=meta, info={"pooled_seeds": [d.seed for d in datasets]})
 
 
 def plan_cells(analogue, p_exceed, *, pilot_hours=4, min_share=1e-3, cells=None, cache=True,

@@ -29,7 +29,7 @@ from ..study.flat import from_flat
 from ..study.settings import DEFAULT_MAX_HF
 from .episodes import run_rcw_case
 from .generate import generate_case
-from .registry import get_case
+from .registry import CASE_IDS, get_case
 
 __all__ = ["reproduce", "run_case", "summarise", "PAPER_SETTINGS", "STRATEGIES"]
 
@@ -180,7 +180,7 @@ def reproduce(cases=None, *, replications=1, scale=1.0, out=None, seed=0, strate
     """
     from .properties import properties_table
 
-    ids = [get_case(c).id for c in (cases or [c for c in _all_ids()])]
+    ids = [get_case(c).id for c in (cases or CASE_IDS)]
     strategies = parse_strategies(",".join(strategies or _strategies()))
     replications = int(replications)
     if replications < 1:
@@ -215,8 +215,3 @@ def reproduce(cases=None, *, replications=1, scale=1.0, out=None, seed=0, strate
             files += write_figures(out, datasets, first, table)
     return {"table": table, "runs": runs_df, "data": datasets, "properties": props,
             "results": first, "files": files}
-
-
-def _all_ids():
-    from .registry import CASE_IDS
-    return CASE_IDS
