@@ -157,7 +157,7 @@ def _lf_rank_streams(strategy, pairs, lfset, plan, lf_rng) -> list:
         except (ValueError, np.linalg.LinAlgError):
             continue  # the fit fails before it draws
         n0 = conditioning_set(lfset.lf, b.lf.min()).size
-        strategy._population_ranks(lfset, n0, impact, lf_rng)
+        strategy.population_ranks(lfset, n0, impact, lf_rng)
     return streams
 
 
@@ -178,7 +178,7 @@ def replicate_starts(strategy, b, lfset, starts: dict, choice) -> ReplicateStart
     location = strategy.estimator.hf_location
     impact = strategy.impact_of(b)
     n0 = conditioning_set(lfset.lf, b.lf.min()).size
-    u = strategy._population_ranks(lfset, n0, impact, None)[b.position]
+    u = strategy.population_ranks(lfset, n0, impact, None)[b.position]
     aic = {k: 2.0 * starts[k].copula.npars
            - 2.0 * float(np.sum(pair_logliks(starts[k], u, b.hf, location=location)))
            for k in keys}
@@ -263,7 +263,7 @@ def _prepared(strategy, pairs, lfset, plan, lf_rng) -> list:
             impact = strategy.impact_of(b)
             n0 = conditioning_set(lfset.lf, b.lf.min()).size
             out.append(Replicate(b, impact, n0,
-                                 strategy._population_ranks(lfset, n0, impact, lf_rng), None))
+                                 strategy.population_ranks(lfset, n0, impact, lf_rng), None))
         except (ValueError, np.linalg.LinAlgError):
             out.append(None)
     return out

@@ -17,7 +17,7 @@ fits with one method, :meth:`fit`, which returns :class:`CandidateFits`.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Callable, ClassVar
 
 import numpy as np
@@ -49,7 +49,8 @@ class FitRequest:
     ``update``: the fit is the study's (False for band replicates);
     ``hf_marginal``: overrides the estimator's for this fit; ``lf_ranks_rng``:
     draws the LF population ranks; ``starts``: joint fits to start from
-    (band replicates).  The last three apply to :class:`ConditionalLikelihood`.
+    (band replicates); ``warm``: the study's warm starts, read and updated by
+    the fit.  The last four apply to :class:`ConditionalLikelihood`.
     """
 
     families: tuple
@@ -59,6 +60,33 @@ class FitRequest:
     hf_marginal: str | None = None
     lf_ranks_rng: np.random.Generator | None = None
     starts: dict | None = None
+    warm: WarmStarts | None = None
+
+
+@dataclass
+class WarmStarts:
+    """The joint fits a study's next fit starts from (one per PAS, renewed by its ``reset``).
+
+    ``joint``: the last study fit of every candidate; ``last``: the last fit
+    of any kind (a band's final fits read it); ``n_fits``: study fits so far.
+    """
+
+    joint: dict = field(default_factory=dict)
+    last: dict = field(default_factory=dict)
+    n_fits: int = 0
+
+    def of(self, family: str | None = None) -> dict:
+        """The warm starts of every candidate, or of ``family``'s alone."""
+        if family is None:
+            return self.joint
+        return {k: v for k, v in self.joint.items() if k[0] == family}
+
+    def record(self, every: dict, *, study_fit: bool) -> None:
+        """Keep the fits ``every`` made; a study fit of all candidates is the next start."""
+        self.last = every
+        if study_fit:
+            self.joint = every
+            self.n_fits += 1
 
 
 @dataclass(frozen=True)
@@ -109,7 +137,8 @@ class ConditionalLikelihood:
         keep = np.ones(len(pairs), dtype=bool)
         n0 = conditioning_set(lfset.lf, pairs.lf.min()).size
         cond_lf = lfset.lf[:n0]
-        u_cond = pas._population_ranks(lfset, n0, request.impact, request.lf_ranks_rng)
+        u_cond = pas.population_ranks(lfset, n0, request.impact, request.lf_ranks_rng)
+        warm = request.warm
         starts, update = request.starts, request.update
         # a band replicate fits only the candidates that can win it (band.ReplicateStarts)
         only = set(starts) if isinstance(starts, band.ReplicateStarts) else None
@@ -117,21 +146,17 @@ class ConditionalLikelihood:
             cold = band.COLD_FAMILIES
         else:
             family = request.families[0] if request.one_family else None
-            starts = pas._joint if family is None else {
-                k: v for k, v in pas._joint.items() if k[0] == family}
+            starts = warm.of(family)
             # a warm start from the previous iteration converges in a few steps; every
             # COLD_EVERY-th fit, and every fit with update=False, also starts from the
             # data, so no fit stays trapped in the basin of another sample
-            cold = not update or (family is None and pas._n_fits % COLD_EVERY == 0)
+            cold = not update or (family is None and warm.n_fits % COLD_EVERY == 0)
         choice = request.hf_marginal or self.hf_marginal
         u_pairs = u_cond[pairs.position]
         every, joint = fit_hf_candidates(u_pairs, pairs.hf, request.families, choice,
                                          starts=starts, location=self.hf_location,
                                          cold=cold or not starts, only=only)
-        pas._last_joint = every
-        if update and not request.one_family:
-            pas._joint = every
-            pas._n_fits += 1
+        warm.record(every, study_fit=update and not request.one_family)
         return joint_candidates(joint, cond_lf, u_cond, keep)
 
 

@@ -50,6 +50,7 @@ from .estimators import (
     ConditionalLikelihood,
     FitRequest,
     SelectedSample,
+    WarmStarts,
 )
 from .flat import moved_setting, pas_kwargs, pas_to_flat
 from .random_numbers import PeakUniforms
@@ -196,10 +197,8 @@ class PAS(Strategy):
     def reset(self, seed: int | None = None) -> None:
         self.family_ = None
         self._uniforms = PeakUniforms(self.z, seed, self.common_random_numbers)
-        self._joint = {}
-        self._n_fits = 0
+        self.warm = WarmStarts()
         self._lf_tail_fits = {}
-        self._last_joint = {}
         self._ranks = None
 
     def propose(self, selected_d, lfset: LFSet, available: np.ndarray,
@@ -235,7 +234,8 @@ class PAS(Strategy):
         impact = self.impact_of(pairs)
         request = FitRequest(self.families if family is None else (family,), impact,
                              one_family=family is not None, update=update,
-                             hf_marginal=hf_marginal, lf_ranks_rng=lf_ranks_rng, starts=starts)
+                             hf_marginal=hf_marginal, lf_ranks_rng=lf_ranks_rng, starts=starts,
+                             warm=self.warm)
         return self.model_of(self.estimator.fit(self, pairs, lfset, request), lfset, impact,
                              family, update=update)
 
@@ -255,7 +255,7 @@ class PAS(Strategy):
                            None if impact is None else impact(cond), fitted.copulas,
                            int((~fitted.keep).sum()))
 
-    def _population_ranks(self, lfset: LFSet, n0: int, impact, rng):
+    def population_ranks(self, lfset: LFSet, n0: int, impact, rng):
         """:func:`population_lf_ranks` of the top ``n0`` LF peaks; without an impact model or
         a draw the same every iteration, so kept for the latest ``n0`` of this ``lfset``."""
         fixed = impact is None and rng is None
@@ -342,5 +342,6 @@ class PAS(Strategy):
         impact = self.impact_of(pairs)
         self.estimator.fit(self, pairs, lfset, FitRequest(self.families, impact, update=False,
                                                           hf_marginal=hf_marginal,
-                                                          starts=self._joint))
-        return self._last_joint
+                                                          starts=self.warm.joint,
+                                                          warm=self.warm))
+        return self.warm.last
