@@ -169,7 +169,7 @@ def test_the_default_forks_only_a_process_without_other_threads(monkeypatch):
 
     monkeypatch.setattr(band.multiprocessing, "get_context", spy)
     monkeypatch.setattr(band, "default_jobs", lambda: 2)
-    monkeypatch.setattr(band, "_replicate_mpm", float)
+    monkeypatch.setattr(band, "_replicate_mpm", lambda job, i: float(i))
     plan = [None] * 4
     release = threading.Event()
     other = threading.Thread(target=release.wait)

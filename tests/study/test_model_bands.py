@@ -25,7 +25,7 @@ def _studies(sizes=(600, 2500, 1200), max_hf=14):
                     callback=lambda study, row: seen.append(study))
         study = seen[-1]
         study.strategy.band = pas.ModelBand(n_bootstrap=12)
-        study._model_band_cache = None  # run_pas's result kept the band of no replicates
+        study.kept_band = None  # run_pas's result kept the band of no replicates
         out.append(study)
     return out
 

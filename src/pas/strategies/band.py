@@ -26,6 +26,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .._support.checks import check_int, check_option
+from .._support.forked import forked_call, forked_pool
 from ..models.joint import HF_MARGINALS
 from ..models.joint_batch import batchable
 from ..models.joint_mixture import MIXTURE, pair_logliks
@@ -88,8 +89,6 @@ PRUNE_AIC = 100.0
 """A replicate refits the families with a candidate within this AIC of its best eligible
 one, judged at the final fits' parameters on its resampled pairs (module docs)."""
 
-_JOB = None  # (strategy, pairs, lfset, starts, plan, lf_rngs) while replicate_mpms runs;
-# batched: (strategy, pairs, lfset, starts, plan, replicates, width)
 
 
 class ReplicateStarts(dict):
@@ -190,10 +189,11 @@ def replicate_starts(strategy, b, lfset, starts: dict, choice) -> ReplicateStart
     return ReplicateStarts((k, starts[k]) for k in keys if k[0] in kept)
 
 
-def _replicate_mpm(i: int) -> tuple | None:
-    """The MPMs of replicate ``i`` of the running job (:func:`model_form.replicate_values
+def _replicate_mpm(job: tuple, i: int) -> tuple | None:
+    """The MPMs of replicate ``i`` of ``job`` ``(strategy, pairs, lfset, starts, plan,
+    lf_rngs)`` (:func:`model_form.replicate_values
     <pas.strategies.model_form.replicate_values>`), None when it cannot be fitted."""
-    strategy, pairs, lfset, starts, plan, lf_rngs = _JOB
+    strategy, pairs, lfset, starts, plan, lf_rngs = job
     tp, fp, marginal, draw_rng = plan[i]
     b = _resampled(pairs, tp, fp)
     if b is None:
@@ -223,7 +223,6 @@ def replicate_mpms(strategy, pairs, lfset, starts, plan, lf_rng=None,
     ``n_jobs``: processes (1: this process; -1: every core; None: every core
     on Linux unless this process runs other threads, module docs).
     """
-    global _JOB
     n_jobs = process_count(n_jobs, len(plan))
     if _can_batch(strategy, starts, plan):
         return _batched_mpms(strategy, pairs, lfset, starts, plan, lf_rng, n_jobs)
@@ -233,14 +232,11 @@ def replicate_mpms(strategy, pairs, lfset, starts, plan, lf_rng=None,
         lf_rngs = [None] * len(plan)
     else:
         lf_rngs = _lf_rank_streams(strategy, pairs, lfset, plan, lf_rng)
-    _JOB = (strategy, pairs, lfset, starts, plan, lf_rngs)
-    try:
-        if n_jobs == 1:
-            return [_replicate_mpm(i) for i in range(len(plan))]
-        with multiprocessing.get_context("fork").Pool(n_jobs) as pool:
-            return pool.map(_replicate_mpm, range(len(plan)), chunksize=1)
-    finally:
-        _JOB = None
+    job = (strategy, pairs, lfset, starts, plan, lf_rngs)
+    if n_jobs == 1:
+        return [_replicate_mpm(job, i) for i in range(len(plan))]
+    with forked_pool(n_jobs, _replicate_mpm, job) as pool:
+        return pool.map(forked_call, range(len(plan)), chunksize=1)
 
 
 def _can_batch(strategy, starts, plan) -> bool:
@@ -269,10 +265,11 @@ def _prepared(strategy, pairs, lfset, plan, lf_rng) -> list:
     return out
 
 
-def _chunk_mpms(indices) -> list:
-    """The MPMs of the replicates ``indices`` of the running batched job, fitted together
-    from the starts that can win each (:func:`replicate_starts`)."""
-    strategy, pairs, lfset, starts, plan, replicates, width = _JOB
+def _chunk_mpms(job: tuple, indices) -> list:
+    """The MPMs of the replicates ``indices`` of the batched ``job`` ``(strategy, pairs,
+    lfset, starts, plan, replicates, width)``, fitted together from the starts that can
+    win each (:func:`replicate_starts`)."""
+    strategy, pairs, lfset, starts, plan, replicates, width = job
     chunk = {}
     for i in indices:
         if replicates[i] is not None:
@@ -296,20 +293,16 @@ def _chunk_mpms(indices) -> list:
 def _batched_mpms(strategy, pairs, lfset, starts, plan, lf_rng, n_jobs) -> list:
     """:func:`replicate_mpms` with the replicates fitted together, in ``n_jobs`` chunks:
     this process fits the first, forked workers the others meanwhile."""
-    global _JOB
     replicates = _prepared(strategy, pairs, lfset, plan, lf_rng)
     width = max([np.unique(r[0].position).size for r in replicates if r is not None] or [1])
-    _JOB = (strategy, pairs, lfset, starts, plan, replicates, width)
+    job = (strategy, pairs, lfset, starts, plan, replicates, width)
     chunks = [list(c) for c in np.array_split(np.arange(len(plan)), n_jobs) if c.size]
-    try:
-        if len(chunks) <= 1:
-            return _chunk_mpms(chunks[0]) if chunks else []
-        with multiprocessing.get_context("fork").Pool(len(chunks) - 1) as pool:
-            others = pool.map_async(_chunk_mpms, chunks[1:], chunksize=1)
-            first = _chunk_mpms(chunks[0])
-            return first + [x for part in others.get() for x in part]
-    finally:
-        _JOB = None
+    if len(chunks) <= 1:
+        return _chunk_mpms(job, chunks[0]) if chunks else []
+    with forked_pool(len(chunks) - 1, _chunk_mpms, job) as pool:
+        others = pool.map_async(forked_call, chunks[1:], chunksize=1)
+        first = _chunk_mpms(job, chunks[0])
+        return first + [x for part in others.get() for x in part]
 
 
 def bootstrap_band(strategy, band: ModelBand, pairs, lfset, rng: np.random.Generator,

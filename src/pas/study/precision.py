@@ -14,13 +14,12 @@ a study that stopped on its band reports that band without refitting it.
 from __future__ import annotations
 
 import inspect
-import multiprocessing
 import time
-from concurrent.futures import ProcessPoolExecutor
 from concurrent.futures.process import BrokenProcessPool
 
 import numpy as np
 
+from .._support.forked import forked_call, forked_executor
 from ..strategies.forecast import relative_half_width
 
 __all__ = ["model_band", "model_bands", "judge", "forecast_row", "union"]
@@ -43,8 +42,7 @@ def _band_key(study, pairs) -> tuple:
 
 def _kept(study, key) -> bool:
     """Whether ``study`` keeps the model band of ``key`` (:func:`_band_key`)."""
-    cached = getattr(study, "_model_band_cache", None)
-    return cached is not None and cached[0] == key
+    return study.kept_band is not None and study.kept_band[0] == key
 
 
 def model_band(study, pairs, row: dict | None = None, n_jobs: int | None = None) -> tuple | None:
@@ -57,8 +55,8 @@ def model_band(study, pairs, row: dict | None = None, n_jobs: int | None = None)
     """
     key = _band_key(study, pairs)
     if _kept(study, key):
-        return study._model_band_cache[1]
-    stored = getattr(study, "_stored_bands", {}).get(row["row"]) if row is not None else None
+        return study.kept_band[1]
+    stored = study.stored_bands.get(row["row"]) if row is not None else None
     if (study._replaying and stored is not None and stored.get("event_index") == row["event_index"]
             and stored.get("hf") == row["hf"]):
         band = (float(stored["model_low"]), float(stored["model_high"]))
@@ -67,19 +65,18 @@ def model_band(study, pairs, row: dict | None = None, n_jobs: int | None = None)
         kw = {} if n_jobs is None else {"n_jobs": n_jobs}  # an own model_band may not take it
         mb = study.strategy.model_band(pairs, study.lfset, rng, **kw)
         band = None if mb is None else (float(mb[0]), float(mb[1]))
-    study._model_band_cache = (key, band)
+    study.kept_band = (key, band)
     return band
 
 
-_STUDIES = None  # the studies of model_bands while its workers run
 _FAILED = "failed"  # a worker's answer for a band that raised: the caller computes it again
 
 
-def _band_in_worker(i: int) -> tuple:
-    """``(band, wall s)`` of study ``i`` of the running :func:`model_bands`, in one process;
+def _band_in_worker(studies, i: int) -> tuple:
+    """``(band, wall s)`` of study ``i`` of ``studies``, in a worker of :func:`model_bands`;
     :data:`_FAILED` for a band that raised (its error may not survive pickling)."""
     t0 = time.perf_counter()
-    study = _STUDIES[i]
+    study = studies[i]
     try:
         band = model_band(study, study.pairs(), n_jobs=1)
     except Exception:  # noqa: BLE001 - computed again by the caller, which raises it as it is
@@ -103,7 +100,6 @@ def model_bands(studies, n_jobs: int | None = None) -> dict:
     Returns the wall seconds spent on each study's band, by position (computed at once,
     their share of the wall time the bands took together, in proportion to each band's
     own)."""
-    global _STUDIES
     from ..strategies.band import process_count
 
     keys = {i: _band_key(st, st.pairs()) for i, st in enumerate(studies)
@@ -115,20 +111,15 @@ def model_bands(studies, n_jobs: int | None = None) -> dict:
     seconds = {}
     workers = process_count(n_jobs, len(apart))
     if workers > 1:
-        _STUDIES = studies
         t0 = time.perf_counter()
         try:
-            with ProcessPoolExecutor(
-                workers, mp_context=multiprocessing.get_context("fork")
-            ) as pool:
-                for i, (band, wall) in zip(apart, pool.map(_band_in_worker, apart)):
+            with forked_executor(workers, _band_in_worker, studies) as pool:
+                for i, (band, wall) in zip(apart, pool.map(forked_call, apart)):
                     if band != _FAILED:
-                        studies[i]._model_band_cache = (keys[i], band)
+                        studies[i].kept_band = (keys[i], band)
                         seconds[i] = wall
         except BrokenProcessPool:  # a worker died (out of memory, killed): the rest here
             pass
-        finally:
-            _STUDIES = None
         # the wall time they took together, shared in proportion to each band's own
         scale = (time.perf_counter() - t0) / max(sum(seconds.values()), 1e-12)
         seconds = {i: wall * scale for i, wall in seconds.items()}

@@ -67,7 +67,7 @@ def attach(study, store) -> list[dict]:
         changes = store.bind(settings, study.lfset) + ([adopted] if adopted else [])
     study._replaying = True
     # the model bands a precision study computed in its loop, reused rather than refitted
-    study._stored_bands = {r["row"]: r for r in store.history() if r.get("model_low") is not None}
+    study.stored_bands = {r["row"]: r for r in store.history() if r.get("model_low") is not None}
     try:
         for n, op in enumerate(store.ops()):
             if isinstance(op, Ask):
@@ -79,7 +79,7 @@ def attach(study, store) -> list[dict]:
             else:
                 study.tell(op.idx, op.hf, error=op.error, replace=isinstance(op, Replace))
     finally:
-        study._replaying, study._stored_bands = False, {}
+        study._replaying, study.stored_bands = False, {}
     stored = store.history()
     if stored and study.rows and stored[-1].get("mpm") is not None:
         replayed = study.rows[len(stored) - 1].get("mpm")

@@ -108,6 +108,8 @@ class Study(Corrections):
         self._warned_tau = False
         self._before_fit = None  # (row, model state before the fit it made) of the last fit
         self._replaying = False  # set by pas.study.replay.attach
+        self.kept_band = None  # (what it depends on, (low, high)): pas.study.precision
+        self.stored_bands = {}  # a replayed store's model bands by history row
         self.store = None
         if store is not None:
             attach(self, store)
