@@ -22,7 +22,7 @@ from ..strategies.screening import LFSet
 from ..study import precision as study_precision
 from ..study.corrections import check_retry
 from ..study.factory import study_options
-from ..study.loop import execute, failure_limit
+from ..study.loop import failure_limit, run_batch
 from ..study.oracles import OracleFailureLimit, check_oracle
 from ..study.schema import StoreError, dumps
 from ..study.store import StudyStore
@@ -329,35 +329,21 @@ class _Run:
             self.round(asks)
 
     def round(self, asks) -> None:
-        """Run the HF events of ``asks`` (``[(sea-state position, events)]``), store, then tell."""
-        results, todo = {}, []
-        for i, events in asks:
-            st = self.studies[i]
-            stored = {r.idx: (r.hf, r.error) for r in st.store.outstanding() if r.has_result} \
-                if st.store is not None else {}
-            mine = [ev for ev in events if ev.index not in stored]
-            results.update({(i, idx): v for idx, v in stored.items()})
-            todo += [(i, ev) for ev in mine]
-            if st.store is not None and mine:
-                st.store.mark_submitted(mine)
-        where = {id(ev): i for i, ev in todo}
-        target = next((st.target for st in self.studies if st is not None), None)
-        for ev, (value, error, loads) in execute(self.oracle, [ev for _, ev in todo], target,
-                                                 self.executor):
-            i = where[id(ev)]
-            st = self.studies[i]
-            if st.store is not None:
-                st.store.record_result(ev, value, error, loads=loads)
-            results[(i, ev.index)] = (value, error)
-        for i, events in asks:
-            st = self.studies[i]
-            for ev in events:
-                value, error = results[(i, ev.index)]
-                t0 = time.perf_counter()
-                row = st.tell(ev, value, error=error)
-                self.seconds[i] = self.seconds.get(i, 0.0) + time.perf_counter() - t0
-                if self.callback is not None:
-                    self.callback(self.states[i].name, st, row)
-                if (failure := failure_limit(st)) is not None:
-                    raise OracleFailureLimit(f"sea state {self.states[i].name}: {failure}",
-                                             result=failure.result)
+        """Run the HF events of ``asks`` (``[(sea-state position, events)]``), store, then tell
+        (:func:`pas.study.loop.run_batch`)."""
+        position = {id(self.studies[i]): i for i, _ in asks}
+
+        def tell(st, ev, value, error):
+            i = position[id(st)]
+            t0 = time.perf_counter()
+            row = st.tell(ev, value, error=error)
+            self.seconds[i] = self.seconds.get(i, 0.0) + time.perf_counter() - t0
+            if self.callback is not None:
+                self.callback(self.states[i].name, st, row)
+            if (failure := failure_limit(st)) is not None:
+                return OracleFailureLimit(f"sea state {self.states[i].name}: {failure}",
+                                          result=failure.result)
+            return None
+
+        run_batch([(self.studies[i], events) for i, events in asks], self.oracle, self.executor,
+                  tell)

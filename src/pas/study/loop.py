@@ -46,7 +46,7 @@ from .oracles import OracleFailureLimit, call_oracle_loads, check_oracle
 from .signals import terminate_as_interrupt
 from .state import EventState
 
-__all__ = ["optimize", "execute", "failure_limit", "PENDING_POLICIES"]
+__all__ = ["optimize", "run_batch", "execute", "failure_limit", "PENDING_POLICIES"]
 
 PENDING_POLICIES = ("resubmit", "wait")
 
@@ -196,13 +196,6 @@ class _Loop:
             batch = []
         return study.result()
 
-    def _tell(self, event, value, error, replace=False):
-        """Tell one result; the failure limit's error when it is now exceeded."""
-        row = self.study.tell(event, value, error=error, replace=replace)
-        if self.callback is not None:
-            self.callback(self.study, row)
-        return failure_limit(self.study)
-
     def _left_over(self, pending):
         """Events asked but not told when the loop starts, in ask order."""
         if self.store is None:
@@ -215,58 +208,87 @@ class _Loop:
     def _absorb(self):
         """Tell results and replacements other processes stored meanwhile (arrival order)."""
         for waiting in self.store.unconsumed() if self.store is not None else ():
-            if (failure := self._tell(int(waiting.idx), waiting.hf, waiting.error,
+            if (failure := self._tell(self.study, int(waiting.idx), waiting.hf, waiting.error,
                                       replace=True)) is not None:
                 raise failure
 
     def _run_batch(self, batch):
-        store = self.store
-        results = {}
-        if store is not None:
-            results = {r.idx: (r.hf, r.error) for r in store.outstanding() if r.has_result}
-            results.update(answers_from_loads(
-                store, [ev.index for ev in batch if ev.index not in results], self.study.target))
-        told, failure = 0, None
+        run_batch([(self.study, batch)], self.oracle, self.executor, self._tell)
 
-        def tell_ready():
-            nonlocal told, failure
-            while failure is None and told < len(batch) and batch[told].index in results:
-                ev = batch[told]
-                told += 1
-                failure = self._tell(ev, *results[ev.index])
+    def _tell(self, study, event, value, error, replace=False):
+        """Tell one result; the failure limit's error when it is now exceeded."""
+        row = study.tell(event, value, error=error, replace=replace)
+        if self.callback is not None:
+            self.callback(study, row)
+        return failure_limit(study)
 
-        tell_ready()
-        todo = [ev for ev in batch if ev.index not in results]
-        if failure is None and todo:
-            if store is not None:
-                store.mark_submitted(todo)
-            for ev, (value, error, loads) in self._execute(todo):
-                if lacks_target(loads, self.study.target):
-                    self._stop_for_target(ev, loads, error)
-                if store is not None:
-                    store.record_result(ev, value, error, loads=loads)
-                results[ev.index] = (value, error)
-                tell_ready()
-                if failure is not None and self.executor is None:
-                    break  # in this process: no oracle call after the limit
-        if failure is not None:
-            raise failure
 
-    def _stop_for_target(self, event, loads, error):
-        """An answer of several loads and no target: keep its loads, stop before the next call.
+def run_batch(asks, oracle, executor, tell) -> None:
+    """Run the events of ``asks`` (``[(study, events)]``), storing each result as it arrives
+    and telling each study its results in ask order.
 
-        The event stays pending; rerun with the target and its stored loads give its
-        result (:func:`pas.study.loads.adopt_target`), no HF run is repeated.
-        """
-        where = ""
-        if self.store is not None:
-            record_loads(self.store, event, loads)
-            where = f"; its loads are kept in {self.store.path}, rerun with the target to use them"
-        raise ValueError(f"event {event.id}: {error}{where}")
+    A result already stored (a killed run's, or loads stored for want of a
+    target) is taken without calling the oracle.  ``tell(study, event, value,
+    error)`` tells one result and returns the failure limit's error when it is
+    now exceeded; the first such error is raised once the calls already
+    running are stored (in this process no further call is made).
+    """
+    results, told = [], [0] * len(asks)
+    for study, events in asks:
+        stored = {}
+        if study.store is not None:
+            stored = {r.idx: (r.hf, r.error) for r in study.store.outstanding() if r.has_result}
+            stored.update(answers_from_loads(
+                study.store, [ev.index for ev in events if ev.index not in stored],
+                study.target))
+        results.append(stored)
+    failure = None
 
-    def _execute(self, events):
-        """Yield ``(event, (value, error, loads))`` as the oracle calls finish."""
-        yield from execute(self.oracle, events, self.study.target, self.executor)
+    def tell_ready(k):
+        nonlocal failure
+        study, events = asks[k]
+        while failure is None and told[k] < len(events) and events[told[k]].index in results[k]:
+            ev = events[told[k]]
+            told[k] += 1
+            failure = tell(study, ev, *results[k][ev.index])
+
+    for k in range(len(asks)):
+        tell_ready(k)
+    todo = [(k, ev) for k, (_, events) in enumerate(asks) for ev in events
+            if ev.index not in results[k]]
+    if failure is None and todo:
+        for k in dict.fromkeys(k for k, _ in todo):
+            if asks[k][0].store is not None:
+                asks[k][0].store.mark_submitted([ev for j, ev in todo if j == k])
+        where = {id(ev): k for k, ev in todo}
+        target = asks[todo[0][0]][0].target
+        for ev, (value, error, loads) in execute(oracle, [ev for _, ev in todo], target,
+                                                 executor):
+            k = where[id(ev)]
+            study = asks[k][0]
+            if lacks_target(loads, study.target):
+                _stop_for_target(study, ev, loads, error)
+            if study.store is not None:
+                study.store.record_result(ev, value, error, loads=loads)
+            results[k][ev.index] = (value, error)
+            tell_ready(k)
+            if failure is not None and executor is None:
+                break  # in this process: no oracle call after the limit
+    if failure is not None:
+        raise failure
+
+
+def _stop_for_target(study, event, loads, error):
+    """An answer of several loads and no target: keep its loads, stop before the next call.
+
+    The event stays pending; rerun with the target and its stored loads give its
+    result (:func:`pas.study.loads.adopt_target`), no HF run is repeated.
+    """
+    where = ""
+    if study.store is not None:
+        record_loads(study.store, event, loads)
+        where = f"; its loads are kept in {study.store.path}, rerun with the target to use them"
+    raise ValueError(f"event {event.id}: {error}{where}")
 
 
 def execute(oracle, events, target=None, executor: Executor | None = None):
