@@ -86,18 +86,17 @@ def test_final_sample_refits_write_fills_the_three_tables(tmp_path, capsys):
             ("3a", "final", "study", 1, -0.50),
             ("3a", "final", "default", 0, 0.04),
             ("3a", "final", "default", 1, 0.06),
-            ("4a", "final", "censor 0.2", 0, 0.123),
-            ("4a", "final", "censor 0.2", 1, 0.2),
         ]
     )
-    every = _refits([("4a", "every", "default", 0, -0.3), ("4a", "every", "default", 1, -0.2)])
+    every = _refits([("4a", "every", "default", 0, -0.3), ("4a", "every", "default", 1, -0.2),
+                     ("4a", "every", "hf_marginal=weibull_mixture", 0, 0.123),
+                     ("4a", "every", "hf_marginal=weibull_mixture", 1, 0.2)])
     final.to_csv(tmp_path / "final.csv", index=False)
     every.to_csv(tmp_path / "every.csv", index=False)
     page = _write_investigations(tmp_path, "benchmarks/investigations/final_sample_refits.py",
                                  f"{tmp_path / 'final.csv'},{tmp_path / 'every.csv'}")
-    # censoring: 4a every-event default |0.3|, |0.2| -> 25.0 / 30.0; 4a final c 0.2 -> 16.2 / 20.0
-    assert "| 0 (default) | 25.0 / 30.0 % | – | – | – |" in page
-    assert "| 0.2 | – | – | 16.2 / 20.0 % | – |" in page
+    # HF marginal: 4a every-event mixture |0.123|, |0.2| -> 16 / 20 (two digits)
+    assert "| Weibull mixture, every event told | – | – | 16 / 20 % | – |" in page
     # settings: the studies |0.1|, |0.5| -> 30 / 50; the default refitted 0.04, 0.06 -> 5.0 / 6.0
     assert "| PAS's studies themselves (not refitted) | 30 / 50 % | – |" in page
     assert "| default, refitted | 5.0 / 6.0 % | – |" in page
@@ -177,8 +176,8 @@ def test_validation_summary_from_the_spread_fixture():
 
 
 def test_a_write_leaves_the_tables_it_has_no_results_for(tmp_path, capsys):
-    """Results of one --every-event run fill the censoring and HF-marginal tables; the
-    estimator-settings table (final samples of 3a, 3b) keeps its rows."""
+    """Results of one --every-event run fill the HF-marginal table; the estimator-settings
+    table (final samples of 3a, 3b) keeps its rows."""
     _refits([("4a", "every", "default", 0, -0.3)]).to_csv(tmp_path / "e.csv", index=False)
     _write_investigations(tmp_path, "benchmarks/investigations/final_sample_refits.py",
                           str(tmp_path / "e.csv"))
@@ -187,7 +186,8 @@ def test_a_write_leaves_the_tables_it_has_no_results_for(tmp_path, capsys):
     block = re.compile(rf"<!-- BEGIN {tag} -->.*?<!-- END {tag} -->", re.DOTALL)
     assert (block.search(copy.read_text(encoding="utf-8")).group()
             == block.search(INVESTIGATIONS.read_text(encoding="utf-8")).group())
-    assert "| 0 (default) | 30.0 / 30.0 % | – | – | – |" in copy.read_text(encoding="utf-8")
+    assert "| Weibull (default), every event told | – | – | 30 / 30 % | – |" in copy.read_text(
+        encoding="utf-8")
     assert "left as they were" in capsys.readouterr().out
 
 

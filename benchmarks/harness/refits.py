@@ -11,11 +11,8 @@ pairs, every event told, every event weighted as MD's design includes events.
 
 from __future__ import annotations
 
-import functools
-
 import numpy as np
 
-import pas.strategies.estimators as fit_module  # the module whose fit_hf_candidates PAS calls
 import pas.strategies.pas as pas_module
 from pas.strategies.base import Pairs
 from pas.strategies.screening import LFSet
@@ -42,7 +39,7 @@ def pairs_at(lfset, hf_pool, positions):
     return Pairs(tp, lfset.lf[tp], hf_pool[tp], lfset.d[tp], lfset.lf[fp], fp)
 
 
-def error_at(data, lfset, hf_pool, positions, seed, settings=None, joint_kw=None):
+def error_at(data, lfset, hf_pool, positions, seed, settings=None):
     """Relative MPM error of PAS fitted to the events at pool ``positions`` (no band).
 
     Parameters
@@ -57,28 +54,20 @@ def error_at(data, lfset, hf_pool, positions, seed, settings=None, joint_kw=None
         Seed of the strategy and of its draws.
     settings : dict, optional
         PAS settings; ``n_bootstrap`` > 0 reads the median of the bootstrap MPMs.
-    joint_kw : dict, optional
-        Keywords of the joint fit (e.g. ``censor``), passed to
-        :func:`pas.models.joint_mixture.fit_hf_candidates` for this call only.
 
     Returns
     -------
     float
         ``MPM / truth − 1``.
     """
-    settings, joint_kw = settings or {}, joint_kw or {}
+    settings = settings or {}
     pairs = pairs_at(lfset, hf_pool, positions)
-    original = fit_module.fit_hf_candidates
-    fit_module.fit_hf_candidates = functools.partial(original, **joint_kw)
-    try:
-        strategy = pas_module.PAS.from_flat({"n_bootstrap": 0, **settings})
-        strategy.reset(seed)
-        mpm = strategy.predict(pairs, lfset, np.random.default_rng(seed)).mpm
-        if settings.get("n_bootstrap"):
-            mpm = float(np.median(strategy.model_band(pairs, lfset,
-                                                      np.random.default_rng(seed))[2]))
-    finally:
-        fit_module.fit_hf_candidates = original
+    strategy = pas_module.PAS.from_flat({"n_bootstrap": 0, **settings})
+    strategy.reset(seed)
+    mpm = strategy.predict(pairs, lfset, np.random.default_rng(seed)).mpm
+    if settings.get("n_bootstrap"):
+        mpm = float(np.median(strategy.model_band(pairs, lfset,
+                                                  np.random.default_rng(seed))[2]))
     return mpm / data.truth_mpm - 1
 
 

@@ -3,10 +3,8 @@ the same studies run to the HF budget without stopping.
 
 For each of ``N`` data sets PAS runs with its defaults; its final sample
 (true and false positives) is then refitted with each setting below and the
-MPM error printed ("censor c": the smallest fraction c of the loads enter the
-joint likelihood left-censored, :func:`pas.models.joint.fit_joint`), with the median and worst
-|error| over the data sets.
-``--every-event`` refits the default, the censored settings, the log-normal and the Weibull
+MPM error printed, with the median and worst |error| over the data sets.
+``--every-event`` refits the default, the log-normal and the Weibull
 mixture to every event of each data set instead (no sampling: the model's
 own bias).  ``--only NAME,NAME`` keeps the listed settings.
 ``--to-budget`` instead runs each study to 160 HF (ε1 = 1e-12) and prints the
@@ -30,7 +28,6 @@ from __future__ import annotations
 
 import argparse
 import dataclasses
-import functools
 import sys
 import warnings
 from pathlib import Path
@@ -45,7 +42,6 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # benchmarks/: the
 from harness.error_tables import (  # noqa: E402
     add_write_options,
     grid_table,
-    median_worst,
     saved_results,
     write_tables,
 )
@@ -58,16 +54,12 @@ from harness.refits import (  # noqa: E402
 
 # name: (PAS settings, keyword of the joint fit)
 VARIANTS = {
-    "default": ({}, {}),
-    "hf_location=False": ({"hf_location": False}, {}),
-    "hf_marginal=both": ({"hf_marginal": "both"}, {}),
-    "hf_marginal=lognormal": ({"hf_marginal": "lognormal"}, {}),
-    "hf_marginal=weibull_mixture": ({"hf_marginal": "weibull_mixture"}, {}),
-    "censor 0.2": ({}, {"censor": 0.2}),  # the paper's upper-tail mode (upper 80 %), §2.3
-    "censor 0.3": ({}, {"censor": 0.3}),
-    "censor 0.5": ({}, {"censor": 0.5}),
-    "censor 0.7": ({}, {"censor": 0.7}),  # with every event told: the truth's top 30 %
-    "bootstrap median": ({"n_bootstrap": 50}, {}),
+    "default": {},
+    "hf_location=False": {"hf_location": False},
+    "hf_marginal=both": {"hf_marginal": "both"},
+    "hf_marginal=lognormal": {"hf_marginal": "lognormal"},
+    "hf_marginal=weibull_mixture": {"hf_marginal": "weibull_mixture"},
+    "bootstrap median": {"n_bootstrap": 50},
 }
 
 
@@ -79,12 +71,6 @@ MODES = {None: "final", "--every-event": "every", "--md-weighted": "md-weighted"
 STUDY = ("PAS's studies themselves (not refitted)", {"setting": "study"})
 IMPACT_CASES = [(case, {"case": case}) for case in ("3a", "3b", "4a", "4b")]
 TABLES = {
-    "censoring": ("c", [STUDY, ("0 (default)", {"setting": "default"})]
-                  + [(f"{c}", {"setting": f"censor {c}"}) for c in (0.2, 0.3, 0.5, 0.7)],
-                  [(f"{case}, {label}", {"case": case, "mode": mode})
-                   for mode, label in (("every", "every event told"),
-                                       ("final", "PAS's final samples")) for case in ("4a", "4b")],
-                  functools.partial(median_worst, decimals=1)),
     "hf-marginal": ("HF marginal", [
         ("Weibull (default), every event told", {"mode": "every", "setting": "default"}),
         ("Weibull mixture, every event told",
@@ -99,8 +85,6 @@ TABLES = {
         STUDY, ("default, refitted", {"setting": "default"}),
         ("`hf_location=False`", {"setting": "hf_location=False"}),
         ('`hf_marginal="both"`', {"setting": "hf_marginal=both"}),
-        *((f"the smallest {100 * c:.0f} % of the loads left-censored",
-           {"setting": f"censor {c}"}) for c in (0.2, 0.3, 0.5, 0.7)),
         ("the median of the 50 bootstrap MPMs", {"setting": "bootstrap median"})],
         [(case, {"case": case, "mode": "final"}) for case in ("3a", "3b")]),
 }
@@ -120,11 +104,11 @@ def save_errors(path, case: str, mode: str, errors: dict) -> None:
                      ).to_csv(path, index=False)
 
 
-def refit_error(data, res, seed, settings, joint_kw):
+def refit_error(data, res, seed, settings):
     """:func:`error_at` on the events ``res`` evaluated (None: every event of the data set)."""
     lfset, hf_pool = pool_of(data)
     idx = np.arange(lfset.n) if res is None else evaluated_positions(data, lfset, res)
-    return error_at(data, lfset, hf_pool, idx, seed, settings, joint_kw)
+    return error_at(data, lfset, hf_pool, idx, seed, settings)
 
 
 def main(argv=None):
@@ -161,22 +145,21 @@ def main(argv=None):
                 below = np.mean(loads < data.info["weibull"]["theta"])
                 line = [(f"{case} {seed} every event told ({below:.0%} of the impacts below "
                          f"the truth Weibull's location)")]
-                for name, (settings, joint_kw) in variants.items():
-                    if name.startswith(("default", "censor", "hf_marginal=weibull_mixture",
+                for name, settings in variants.items():
+                    if name.startswith(("default", "hf_marginal=weibull_mixture",
                                      "hf_marginal=lognormal")):
-                        errors[name].append(refit_error(data, None, seed, settings, joint_kw))
+                        errors[name].append(refit_error(data, None, seed, settings))
                         line.append(f"{name} {errors[name][-1]:+.2f}")
                 print(" | ".join(line), flush=True)
                 continue
             if "--md-weighted" in flags:
                 lfset, hf_pool = pool_of(data)
                 line = [f"{case} {seed}"]
-                for name, (settings, joint_kw) in variants.items():
-                    every = error_at(data, lfset, hf_pool, np.arange(lfset.n), seed, settings,
-                                     joint_kw)
+                for name, settings in variants.items():
+                    every = error_at(data, lfset, hf_pool, np.arange(lfset.n), seed, settings)
                     errors[name].append(error_at(data, lfset, hf_pool,
                                                  md_design_positions(lfset.n, seed=seed), seed,
-                                                 settings, joint_kw))
+                                                 settings))
                     line.append(f"{name}: every event {every:+.2f}, weighted as MD includes "
                                 f"events {errors[name][-1]:+.2f}")
                 print(" | ".join(line), flush=True)
@@ -194,8 +177,8 @@ def main(argv=None):
             res, row = run_case(data, seed=seed)
             errors.setdefault("study", []).append(row["M2"])
             line = [f"{case} {seed} study {row['M2']:+.2f} ({row['n_hf']} HF)"]
-            for name, (settings, joint_kw) in variants.items():
-                errors[name].append(refit_error(data, res, seed, settings, joint_kw))
+            for name, settings in variants.items():
+                errors[name].append(refit_error(data, res, seed, settings))
                 line.append(f"{name} {errors[name][-1]:+.2f}")
         print(" | ".join(line), flush=True)
     save_errors(args.csv, case, MODES[args.mode], errors)
