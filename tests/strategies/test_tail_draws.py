@@ -145,8 +145,8 @@ def test_the_whole_distribution_drawn_row_by_row_is_the_full_draws(monkeypatch):
     model = _model("student", 0, [[0.6], [4.0]], 4000, impact=np.linspace(0.9, 0.3, 4000))
     crn, r, q, _, q64 = _uniforms(6, 4000)
     whole = hf_distribution(model.draws(r, q64), 5000)
-    monkeypatch.setattr(tail_draws, "ROWWISE_ABOVE", 100)
-    for got, want in zip(tail_draws.full_distribution(model, r, q, 5000, crn), whole):
+    for got, want in zip(tail_draws.full_distribution(model, r, q, 5000, crn, rowwise_above=100),
+                         whole):
         np.testing.assert_allclose(got, want, rtol=1e-12, atol=1e-14)
 
 
@@ -253,16 +253,15 @@ def test_a_candidate_level_that_differs_between_peaks_within_the_margin_keeps_th
         mid = np.sqrt(lo * hi)
         lo, hi = (mid, hi) if above(mid) < 0.7 * k else (lo, mid)
 
-    def skewed(copula, v, u, r_max):
+    def skewed(copula, v, u, r_max, margin):
         t = conditional_cdf(copula, np.array([v]), u)
         tail = (1 - v) / (1 + margin)
         t[::2] = conditional_cdf(copula, np.array([1 - tail * (1 + margin / 2)]), u)[::2]
         return t
 
-    monkeypatch.setattr(tail_draws, "MARGIN", margin)
     monkeypatch.setattr(tail_draws, "_stratified_tail", lambda *a: hi)
     monkeypatch.setattr(tail_draws, "_cdf_where_reached", skewed)
-    top = tail_draws.top_draws(model, r, q, r_max, k, crn)
+    top = tail_draws.top_draws(model, r, q, r_max, k, crn, margin=margin)
     np.testing.assert_allclose(np.sort(top, axis=1)[:, ::-1], _full_top(model, r, q, k),
                                rtol=1e-12)
 

@@ -16,6 +16,7 @@ same iterates, slower) with a warning that says so.
 
 from __future__ import annotations
 
+import functools
 import warnings
 
 import numpy as np
@@ -60,29 +61,24 @@ def _message(task) -> str:
     return f"{status_messages.get(status, status)}: {task_messages.get(detail, detail)}"
 
 
-_DRIVER_WORKS = None
-"""Whether this scipy's ``setulb`` takes the driver's arguments (:func:`driver_works`)."""
-
-
+@functools.cache
 def driver_works() -> bool:
     """Whether scipy's private ``setulb`` still works as :func:`minimise_together` calls
     it: tried once, on a one-parameter quadratic, and remembered."""
-    global _DRIVER_WORKS
-    if _DRIVER_WORKS is None:
-        def square(X, rows):
-            return (X[:, 0] - 1.0) ** 2, 2.0 * (X - 1.0)
+    def square(X, rows):
+        return (X[:, 0] - 1.0) ** 2, 2.0 * (X - 1.0)
 
-        try:
-            res = _step_through(square, [np.zeros(1)], [[(None, None)]], np.zeros(1, int))[0]
-            _DRIVER_WORKS = bool(abs(res.x[0] - 1.0) < 1e-6)
-        except Exception:  # noqa: BLE001 - any failure of a private routine means "not usable"
-            _DRIVER_WORKS = False
-        if not _DRIVER_WORKS:
-            warnings.warn("this scipy's private L-BFGS-B routine (scipy.optimize._lbfgsb."
-                          "setulb) is not called as pas expects: the joint fits use "
-                          "scipy.optimize.minimize instead (the same results, slower)",
-                          RuntimeWarning, stacklevel=2)
-    return _DRIVER_WORKS
+    try:
+        res = _step_through(square, [np.zeros(1)], [[(None, None)]], np.zeros(1, int))[0]
+        works = bool(abs(res.x[0] - 1.0) < 1e-6)
+    except Exception:  # noqa: BLE001 - any failure of a private routine means "not usable"
+        works = False
+    if not works:
+        warnings.warn("this scipy's private L-BFGS-B routine (scipy.optimize._lbfgsb."
+                      "setulb) is not called as pas expects: the joint fits use "
+                      "scipy.optimize.minimize instead (the same results, slower)",
+                      RuntimeWarning, stacklevel=2)
+    return works
 
 
 def minimise_together(objective, starts, bounds, rows):

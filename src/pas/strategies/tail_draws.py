@@ -79,7 +79,8 @@ def _stratified_tail(copula, u, impact, target: float) -> float | None:
     return None if enough.size == 0 else float(LEVELS[enough[0]])
 
 
-def top_draws(model, r, q, r_max, k: int, uniforms) -> np.ndarray | None:
+def top_draws(model, r, q, r_max, k: int, uniforms, *, margin: float = MARGIN
+              ) -> np.ndarray | None:
     """The ``k`` largest HF draws of every realisation, ``(z, k)``, each row unordered.
 
     The values :meth:`FittedModel.draws(r, q) <pas.strategies.steps.FittedModel.draws>`
@@ -89,6 +90,7 @@ def top_draws(model, r, q, r_max, k: int, uniforms) -> np.ndarray | None:
     (:meth:`~pas.strategies.random_numbers.PeakUniforms.q_for`).  None where this saves nothing
     (``k`` a large share of ``n0``, too few impacts to fill the rows) or the family
     has no closed-form inverse (not in :data:`~pas.models.conditional_cdf.CLOSED_FORMS`).
+    ``margin``: the relative margin below a checked level (:data:`MARGIN`).
     """
     n0 = r.shape[1]
     target = k + SPARE_SD * np.sqrt(k) + 10.0
@@ -96,8 +98,8 @@ def top_draws(model, r, q, r_max, k: int, uniforms) -> np.ndarray | None:
         return None
     u = np.clip(np.asarray(model.u_cond, float), EPS, 1 - EPS)
     tail = _stratified_tail(model.copula, u, model.impact, target)
-    while tail is not None and tail * (1 + MARGIN) < 1 - EPS:
-        t_low = _cdf_where_reached(model.copula, 1.0 - tail * (1 + MARGIN), u, r_max)
+    while tail is not None and tail * (1 + margin) < 1 - EPS:
+        t_low = _cdf_where_reached(model.copula, 1.0 - tail * (1 + margin), u, r_max, margin)
         top, fewest = _top_above(model, r, q, r_max, t_low, k, 1.0 - tail, uniforms)
         if top is not None:
             return top
@@ -115,12 +117,12 @@ def _single_peaked(copula, v: float) -> bool:
     return base in ("gaussian", "clayton", "gumbel", "frank") or (base == "student" and v > 0.5)
 
 
-def _cdf_where_reached(copula, v: float, u, r_max) -> np.ndarray:
+def _cdf_where_reached(copula, v: float, u, r_max, margin: float = MARGIN) -> np.ndarray:
     """``C(v | u)`` at every peak whose largest uniform may exceed it, 2 elsewhere.
 
     Blocks of :data:`BLOCK` peaks whose largest uniform lies below the least ``C(v | u)``
     over the block's range of ``u`` (read at its ends, :func:`_single_peaked`; a
-    relative ``MARGIN`` below it) are left out: the draws there stay below ``v``.
+    relative ``margin`` below it) are left out: the draws there stay below ``v``.
     """
     v = np.array([v])
     if not _single_peaked(copula, v[0]):
@@ -130,7 +132,7 @@ def _cdf_where_reached(copula, v: float, u, r_max) -> np.ndarray:
     blocks = np.pad(u, (0, pad), mode="edge").reshape(-1, BLOCK)
     ends = conditional_cdf(copula, v, np.concatenate([blocks.min(axis=1), blocks.max(axis=1)]))
     least = ends.reshape(2, -1).min(axis=0)
-    reached = np.pad(r_max, (0, pad)).reshape(-1, BLOCK).max(axis=1) > least - MARGIN * (1 - least)
+    reached = np.pad(r_max, (0, pad)).reshape(-1, BLOCK).max(axis=1) > least - margin * (1 - least)
     where = np.flatnonzero(np.repeat(reached, BLOCK)[:n0])
     t = np.full(n0, 2.0)
     t[where] = conditional_cdf(copula, v, u[where])
@@ -172,22 +174,23 @@ def _every_draw(model, r, q, uniforms) -> np.ndarray:
     return model.draws(r, _q(model, q, uniforms, np.arange(model.n0)))
 
 
-def full_distribution(model, r, q, n_waves: int, uniforms):
+def full_distribution(model, r, q, n_waves: int, uniforms, *,
+                      rowwise_above: int = ROWWISE_ABOVE):
     """:func:`~pas.strategies.steps.hf_distribution` of ``model.draws(r, q)``.
 
-    Above :data:`ROWWISE_ABOVE` draws one realisation at a time (in pieces of
-    ``ROWWISE_ABOVE / 8`` peaks), twice (the mean, then the spread about it),
+    Above ``rowwise_above`` draws one realisation at a time (in pieces of
+    ``rowwise_above / 8`` peaks), twice (the mean, then the spread about it),
     with the sums numpy's ``mean`` and ``std(ddof=1)`` over the realisations
     take, in their order.
     """
     z, n0 = r.shape
-    if r.size <= ROWWISE_ABOVE:
+    if r.size <= rowwise_above:
         return hf_distribution(_every_draw(model, r, q, uniforms), n_waves)
 
     def sorted_row(j):
         h = np.empty(n0)
-        for start in range(0, n0, ROWWISE_ABOVE // 8):  # a few MB of temporaries at a time
-            cut = slice(start, start + ROWWISE_ABOVE // 8)
+        for start in range(0, n0, rowwise_above // 8):  # a few MB of temporaries at a time
+            cut = slice(start, start + rowwise_above // 8)
             peaks = np.arange(n0)[cut]
             h[cut] = model.draws(r[j:j + 1, cut], _q(model, None if q is None else q[j:j + 1, cut],
                                                      uniforms, peaks, [j]), peaks=cut)[0]
