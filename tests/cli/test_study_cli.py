@@ -394,3 +394,12 @@ def test_every_study_action_help_says_what_it_does(action, capsys):
     lines = capsys.readouterr().out.splitlines()
     text = lines[lines.index("", 1) + 1]  # the paragraph after the usage lines
     assert text[0].isupper() and len(text.split()) >= 4 and not text.startswith("positional")
+
+
+def test_a_study_file_takes_fit_check_at_the_top_as_its_page_lists_it(tmp_path, capsys):
+    toml = write_case(tmp_path, extra='precision = "10%"\nfit_check = 0.05')
+    db = str(tmp_path / "s.db")
+    assert cli("study", "create", db, "--config", toml) == 0
+    with StudyStore(db) as store:
+        settings = store.settings()
+    assert (settings["precision"], settings["fit_check"]) == (0.1, 0.05)

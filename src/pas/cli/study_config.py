@@ -14,7 +14,7 @@ from pathlib import Path
 __all__ = ["load_config", "load_peaks", "study_objects", "check_oracle_command"]
 
 _TOP = {"n_waves": int, "n_waves_convention": str, "p_exp": float, "eps1": float,
-        "precision": (float, str), "eps2": float,
+        "precision": (float, str), "fit_check": float, "eps2": float,
         "threshold": float, "strategy": str, "preset": str, "seed": int, "max_hf": int,
         "max_failures": int, "batch_size": int, "target": str,
         "lf": dict, "settings": dict, "oracle": dict}
@@ -131,7 +131,7 @@ def _check_settings(cfg: dict, where: str) -> None:
     _in_file(strategy_settings, where, "settings", settings)
 
 
-_FLAT_TOP = ("eps1", "precision", "eps2", "max_hf", "max_failures", "target")
+_FLAT_TOP = ("eps1", "precision", "fit_check", "eps2", "max_hf", "max_failures", "target")
 """Top-level keys of the file that are flat study settings (:func:`pas.study.flat.from_flat`)."""
 
 
