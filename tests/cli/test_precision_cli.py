@@ -134,7 +134,7 @@ def test_study_file_takes_precision_as_text_or_number(files, capsys, stop, expec
     assert pas.study.open_study(files / "s.db").stopping.precision == expected
 
 
-@pytest.mark.parametrize("stop, needle", [("", "give precision"),
+@pytest.mark.parametrize("stop, needle", [("", "give eps1 ("),
                                           ('precision = "10"', "s.toml: precision"),
                                           ("precision = 1.5", "precision must be")])
 def test_study_file_without_a_valid_stopping_rule_is_refused(files, capsys, stop, needle):

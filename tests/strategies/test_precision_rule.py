@@ -69,8 +69,10 @@ def test_eps1_alone_is_the_papers_rule_and_neither_is_an_error():
     assert rule.update(CURVE, 100.0)[3] is True
     assert not rule.precision_met(100.0, (99.0, 101.0))
     assert not rule.band_due(50, True, 0.0)
-    with pytest.raises(ValueError, match="give eps1 .* or precision"):
-        StoppingRule(eps1=None, precision=None)
+    from pas.study.settings import lacks_a_limit
+
+    assert lacks_a_limit({"eps1": None, "precision": None}).startswith("give eps1 (")
+    assert lacks_a_limit({"precision": 0.1}) is None
 
 
 def test_without_eps1_the_paper_part_does_not_block():

@@ -259,6 +259,7 @@ def run(args) -> int:
     from ..study.oracle_spec import keep_start_dir
     from ..study.oracles import OracleFailureLimit
     from ..study.replay import attach
+    from ..study.settings import lacks_a_limit
     from ..study.store import StoreError, read_settings
     from . import EXIT_FAILED_LEFT_OUT, EXIT_STOPPED
     from ._progress import Progress, stopped
@@ -281,9 +282,8 @@ def run(args) -> int:
         stored = {} if store is None else read_settings(store)
         seed = args.seed if args.seed is not None or store is None else stored.get("seed")
         settings = _resumable_settings(args, stored)
-        if settings.get("eps1") is None and settings.get("precision") is None:
-            raise ValueError("give --precision P (e.g. 10%: stop once the U95 of the MPM is "
-                             "within ±10 % of it) or --eps1 E (a limit in load units)")
+        if (missing := lacks_a_limit(settings, spell=lambda name: "--" + name)) is not None:
+            raise ValueError(missing)
         objects = _settings_objects(args, settings)
         inputs = {name: getattr(args, name) for name in _INPUTS}
         study = make_study(objects.pop("strategy"), lf_table(lf, ids, meta, "--meta-columns"),

@@ -45,6 +45,7 @@ def _typed_ok(value, kind) -> bool:
 def load_config(path) -> dict:
     """Read and check a study TOML file; returns the checked keys plus ``lf`` data."""
     from ..study.factory import STRATEGIES
+    from ..study.settings import lacks_a_limit
 
     path = Path(path)
     if not path.exists():
@@ -61,9 +62,8 @@ def load_config(path) -> dict:
         if key not in raw:
             raise ValueError(f"{where}: {key} is missing")
     cfg = {k: _typed(v, _TOP[k], k, where) for k, v in raw.items()}
-    if "eps1" not in cfg and "precision" not in cfg:
-        raise ValueError(f"{where}: give precision (e.g. precision = \"10%\": stop once the "
-                         "U95 of the MPM is within ±10 % of it) or eps1 (a limit in load units)")
+    if (missing := lacks_a_limit(cfg)) is not None:
+        raise ValueError(f"{where}: {missing}")
     if isinstance(cfg.get("precision"), str):
         from argparse import ArgumentTypeError
 

@@ -108,9 +108,6 @@ class StoppingRule:
     def __post_init__(self):
         if self.measure not in ("window", "step"):
             raise ValueError(f"stop_measure must be 'window' or 'step', got {self.measure!r}")
-        if self.eps1 is None and self.precision is None:
-            raise ValueError("give eps1 (a limit in load units, the paper's rule) or precision "
-                             "(e.g. 0.10 to stop once the U95 of the MPM is within ±10 % of it)")
 
     @property
     def min_iterations(self) -> int:

@@ -14,6 +14,7 @@ from dataclasses import asdict, dataclass, fields
 from .._support.checks import check_setting
 
 __all__ = ["Stopping", "Budget", "DEFAULT_MAX_HF", "STOPPING_NAMES", "BUDGET_NAMES",
+           "STOP_LIMITS", "lacks_a_limit",
            "OTHER_STUDY_SETTINGS", "RESUMABLE", "UNSET", "resolve"]
 
 DEFAULT_MAX_HF = 160
@@ -134,6 +135,26 @@ OTHER_STUDY_SETTINGS = ("seed", "stop_on_convergence", "adaptive_threshold", "th
                         "fp_run", "legacy_md", "target")
 """Study settings that are keywords of :func:`pas.make_study` and of
 :class:`~pas.study.study.Study` (no object of their own)."""
+STOP_LIMITS = {"eps1": "a limit in load units, the paper's rule",
+               "precision": "e.g. 10 %: stop once the U95 of the MPM is within ±10 % of it"}
+"""The :class:`Stopping` settings that can each end a study by itself: a study needs one at
+least (:func:`lacks_a_limit`)."""
+
+
+def lacks_a_limit(flat: dict, spell=str) -> str | None:
+    """The one-line error for flat settings that set none of :data:`STOP_LIMITS`, else None;
+    ``spell(name)`` writes a name as the caller's user types it (``--eps1``).
+
+    >>> lacks_a_limit({"eps1": 0.5}) is None
+    True
+    >>> lacks_a_limit({"eps2": 0.1}, spell=lambda n: "--" + n)[:17]
+    'give --eps1 (a li'
+    """
+    if any(flat.get(name) is not None for name in STOP_LIMITS):
+        return None
+    return "give " + " or ".join(f"{spell(name)} ({why})" for name, why in STOP_LIMITS.items())
+
+
 RESUMABLE = (*STOPPING_NAMES.values(), *BUDGET_NAMES.values())
 """Settings that may change when a study is resumed: the stopping rule and the
 budget.  They decide when a study stops, never which event it asks for next."""

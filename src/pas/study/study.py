@@ -26,7 +26,7 @@ from .corrections import Corrections
 from .factory import LF_SETTINGS, STUDY_SETTINGS, make_strategy, study_options, study_settings
 from .replay import attach
 from .result import ScreeningResult
-from .settings import OTHER_STUDY_SETTINGS, Budget, Stopping
+from .settings import OTHER_STUDY_SETTINGS, Budget, Stopping, lacks_a_limit
 from .state import EventState
 from .store import read_settings
 
@@ -86,7 +86,10 @@ class Study(Corrections):
         self.max_hf = (None if self.budget.max_hf is None
                        else check_int(self.budget.max_hf, "max_hf", strategy.n_initial))
         self.max_failures = self.budget.max_failures
-        self.stopping = StoppingRule(**asdict(Stopping() if stopping is None else stopping))
+        stopping = Stopping() if stopping is None else stopping
+        if (missing := lacks_a_limit(stopping.flat())) is not None:
+            raise ValueError(missing)
+        self.stopping = StoppingRule(**asdict(stopping))
         self.seed = draw_seed(check_setting("seed", seed))
         strategy.reset(self.seed)
         self.stop_on_convergence = check_setting("stop_on_convergence", stop_on_convergence)
