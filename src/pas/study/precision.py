@@ -57,7 +57,7 @@ def model_band(study, pairs, row: dict | None = None, n_jobs: int | None = None)
     if _kept(study, key):
         return study.kept_band[1]
     stored = study.stored_bands.get(row["row"]) if row is not None else None
-    if (study._replaying and stored is not None and stored.get("event_index") == row["event_index"]
+    if (study.replaying and stored is not None and stored.get("event_index") == row["event_index"]
             and stored.get("hf") == row["hf"]):
         band = (float(stored["model_low"]), float(stored["model_high"]))
     else:

@@ -122,8 +122,7 @@ def _replay(study, store, results, own_target: bool) -> int:
     for op in store.ops():
         if isinstance(op, Ask):
             positions = [study.lfset.position_of(i) for i in op.indices]
-            if study._initial is None:
-                study._initial = positions
+            study.start_with(positions)
             for p in positions:
                 study.state[p] = EventState.PENDING
         else:

@@ -65,7 +65,7 @@ def attach(study, store) -> list[dict]:
                           stacklevel=3)
         adopted = None if store.is_new else adopt_target(store, settings)
         changes = store.bind(settings, study.lfset) + ([adopted] if adopted else [])
-    study._replaying = True
+    study.replaying = True
     # the model bands a precision study computed in its loop, reused rather than refitted
     study.stored_bands = {r["row"]: r for r in store.history() if r.get("model_low") is not None}
     try:
@@ -79,7 +79,7 @@ def attach(study, store) -> list[dict]:
             else:
                 study.tell(op.idx, op.hf, error=op.error, replace=isinstance(op, Replace))
     finally:
-        study._replaying, study.stored_bands = False, {}
+        study.replaying, study.stored_bands = False, {}
     stored = store.history()
     if stored and study.rows and stored[-1].get("mpm") is not None:
         replayed = study.rows[len(stored) - 1].get("mpm")

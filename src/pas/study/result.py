@@ -105,7 +105,7 @@ class ScreeningResult:
         distribution = distribution_frame([], [], [], [])
         pair_frame = pd.DataFrame({"lf": pairs.lf, "hf": pairs.hf})
         if pred is not None:
-            if study._range_short(pred):
+            if study.range_short(pred):
                 warnings.warn(
                     f"the predicted distribution ends at d = {pred.d[-1]:.3g}, short of "
                     f"2·P_exp = {study.grid[-1]:.3g}: the lowest true positive lies above the LF "
@@ -140,7 +140,7 @@ class ScreeningResult:
             range_curves=pd.DataFrame.from_dict(study.curves, orient="index", columns=study.grid),
             p_exp=study.lfset.p_exp, n_waves=study.lfset.n_waves, seed=study.seed, family=family,
             settings=study.settings(), forecast=forecast)
-        if model_band and pred is not None and study.store is not None and not study._replaying:
+        if model_band and pred is not None and study.store is not None and not study.replaying:
             from .stored_results import save_result
             save_result(study.store, study, result)
         return result

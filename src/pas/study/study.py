@@ -110,7 +110,7 @@ class Study(Corrections):
         self._initial = None
         self._warned_tau = False
         self._before_fit = None  # (row, model state before the fit it made) of the last fit
-        self._replaying = False  # set by pas.study.replay.attach
+        self.replaying = False  # True while pas.study.replay.attach replays a store's log
         self.kept_band = None  # (what it depends on, (low, high)): pas.study.precision
         self.stored_bands = {}  # a replayed store's model bands by history row
         self.store = None
@@ -183,6 +183,11 @@ class Study(Corrections):
         """True once the strategy's initial events have been asked for."""
         return self._initial is not None
 
+    def start_with(self, positions) -> None:
+        """Take ``positions`` as the initial events if none are yet (a stored log's first ask)."""
+        if self._initial is None:
+            self._initial = list(positions)
+
     @property
     def n_hf(self) -> int:
         return sum(s.is_evaluated() for s in self.state.values())
@@ -233,12 +238,12 @@ class Study(Corrections):
         if self._initial is None:
             self._initial = self.strategy.initial_positions(self.lfset)
             new = list(self._initial)
-        elif self.finished and not self._replaying:
+        elif self.finished and not self.replaying:
             return []
         else:
             # a replay repeats the stored asks whatever the (possibly changed) stopping
             # settings and budget say now: they decided when to stop, not what to ask
-            room = n if self.max_hf is None or self._replaying else \
+            room = n if self.max_hf is None or self.replaying else \
                 min(n, self.max_hf - self.n_hf - self.n_pending)
             # MD's gaps run over every evaluated event, false positives included, and the
             # pending ones: only then can MD sample below the lowest true positive and
@@ -350,7 +355,7 @@ class Study(Corrections):
         self.last = pred
         h_range = pred.at(self.grid)
         e, e_bar, cov, stop = self.stopping.update(h_range, pred.mpm)
-        if self._range_short(pred):
+        if self.range_short(pred):
             stop = False
             row["range_short"] = True
         if self.stopping.precision is not None:  # may compute the model band
@@ -369,7 +374,7 @@ class Study(Corrections):
                 "indicator does not rank the HF loads, so the screening assumption fails; "
                 "check the indicator, its threshold and the event matching", stacklevel=2)
 
-    def _range_short(self, pred: Prediction) -> bool:
+    def range_short(self, pred: Prediction) -> bool:
         """True when the predicted distribution ends short of 2·P_exp.
 
         The MPM and the stopping range are then read off a clamped end of the
