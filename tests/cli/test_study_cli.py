@@ -136,7 +136,7 @@ BAD_TOML = [
     ("'lf'", "NAN_IN_LF"),
     ("oracle.timeout", TOML.format(extra="") + '[oracle]\ncommand = ["x"]\ntimeout = "long"\n'),
     ("oracle.command", TOML.format(extra="") + '[oracle]\nroot = "r"\n'),
-    ("placeholder 'sede'", TOML.format(extra="") + '[oracle]\ncommand = ["x", "{sede}"]\n'),
+    ("unknown placeholder {sede}", TOML.format(extra="") + '[oracle]\ncommand = ["x", "{sede}"]\n'),
     ("oracle: id_column: column 'id'", TOML.format(extra="") + '[oracle]\ntable = "peaks.csv"\n'),
     ("batch_size", TOML.format(extra="batch_size = 0")),
     ("max_hf must be an integer ≥ 4", TOML.format(extra="max_hf = 2")),  # the file's key

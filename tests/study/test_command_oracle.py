@@ -181,3 +181,43 @@ def test_command_placeholder_cwd_is_the_start_folder(tmp_path):
     oracle = CommandOracle(["tool", "{cwd}", "{workdir}"], root="r", cwd=tmp_path)
     assert oracle.command(EV, "/w") == ["tool", str(tmp_path), "/w"]
     assert os.path.isabs(oracle.root) and oracle.root == str(tmp_path / "r")
+
+
+KNOWN = "{id}, {index}, {lf}, {d}, {workdir}, {cwd}, {result}, {seed}"
+
+
+def test_an_unknown_placeholder_is_refused_before_any_event(tmp_path):
+    lf = np.random.default_rng(0).rayleigh(2.0, 300)
+    table = pd.DataFrame({"lf": lf, "seed": np.arange(300)})
+    study = pas.make_study(pas.PAS, table, n_waves=300, p_exp=1e-2, eps1=0.05, seed=0)
+    (tmp_path / "cfd.py").write_text(SCRIPT)
+    oracle = CommandOracle([sys.executable, "cfd.py", "{idd}", "{result}"], root="runs",
+                           cwd=tmp_path)
+    with pytest.raises(ValueError) as info:
+        study.optimize(oracle)
+    assert str(info.value) == f"command: unknown placeholder {{idd}} (known: {KNOWN})"
+    assert study.rows == [] and not (tmp_path / "runs").exists()
+
+
+def test_pas_run_refuses_an_unknown_placeholder_before_its_folder(campaign, capsys):
+    start, _ = campaign
+    _lf_file(start)
+    pd.read_csv(start / "lf.csv").assign(seed=1).to_csv(start / "lf.csv", index=False)
+    code = main(["run", "lf.csv", "--meta-columns", "seed", "--oracle",
+                 f"command:{sys.executable} cfd.py {{lf}} {{idd}} {{result}}", "--n-waves",
+                 "600", "--p-exp", "1e-2", "--eps1", "1e-4", "--seed", "2", "--out", "out"])
+    err = capsys.readouterr().err
+    assert code == 2
+    assert err == f"pas run: error: command: unknown placeholder {{idd}} (known: {KNOWN})\n"
+    assert not (start / "out").exists()
+
+
+def test_run_long_term_refuses_an_unknown_placeholder_before_any_event(tmp_path):
+    import _longterm_problem as problem
+
+    oracle = CommandOracle(["solver", "{sea_state}", "{lf}", "{sede}"], root="runs", cwd=tmp_path)
+    with pytest.raises(ValueError, match=r"^command: unknown placeholder \{sede\} \(known: "
+                                         r"\{id\}, .*\{sea_state\}\)$"):
+        pas.run_long_term(problem.table(), problem.lf_peaks(0), oracle, p_exceed=1e-4,
+                          study=tmp_path / "lt.sqlite")
+    assert not (tmp_path / "runs").exists()

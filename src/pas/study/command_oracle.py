@@ -209,6 +209,19 @@ class CommandOracle:
         return _filled(self.args, event, files, workdir=workdir, cwd=self.cwd,
                        result=os.path.join(workdir, self.result_name))
 
+    def check(self, event) -> None:
+        """Refuse, before any event runs, a command that would fail every event: a
+        placeholder ``event`` does not fill (``{idd}`` for ``{id}``).
+
+        ``event`` is one of the study's (its meta names the placeholders every event
+        fills).  Raises a one-line :class:`ValueError` naming the placeholder and the
+        known ones.
+        """
+        try:
+            self.command(event, "{workdir}")
+        except OracleError as exc:
+            raise ValueError(str(exc)) from None
+
     def recorded_command(self, event, files: dict | None = None) -> list[str]:
         """The command as an event's folder records it (:mod:`pas.study.workdirs`): the
         argument list as given, the event's fields filled in and the folders left as
@@ -381,7 +394,12 @@ def _filled(args, event, files, **folders) -> list[str]:
                   d=repr(float(event.d)), **folders)
     try:
         return [a.format_map(fields) for a in args]
-    except (KeyError, IndexError) as exc:
+    except KeyError as exc:
+        first = ["id", "index", "lf", "d", *folders]
+        known = first + [k for k in fields if k not in first]
+        raise OracleError(f"command: unknown placeholder {{{exc.args[0]}}} (known: "
+                          + ", ".join(f"{{{k}}}" for k in known) + ")") from None
+    except IndexError as exc:
         raise OracleError(f"args: placeholder {exc} is neither an event field nor in its "
                           "meta") from None
     except ValueError as exc:  # e.g. {lf:.3f}: the fields are text
