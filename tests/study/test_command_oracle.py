@@ -221,3 +221,43 @@ def test_run_long_term_refuses_an_unknown_placeholder_before_any_event(tmp_path)
         pas.run_long_term(problem.table(), problem.lf_peaks(0), oracle, p_exceed=1e-4,
                           study=tmp_path / "lt.sqlite")
     assert not (tmp_path / "runs").exists()
+
+
+def test_a_missing_interpreter_script_is_refused_before_any_event(tmp_path):
+    lf = np.random.default_rng(0).rayleigh(2.0, 300)
+    study = pas.make_study(pas.PAS, lf, n_waves=300, p_exp=1e-2, eps1=0.05, seed=0)
+    (tmp_path / "hf.py").write_text(SCRIPT)
+    oracle = CommandOracle([sys.executable, "hff.py", "{lf}", "{result}"], root="runs",
+                           cwd=tmp_path)
+    with pytest.raises(ValueError) as info:
+        study.optimize(oracle)
+    assert str(info.value) == (f"command: hff.py not found: looked for {tmp_path / 'hff.py'} "
+                               f"(relative paths resolve against {tmp_path}, the folder the "
+                               "study was started from)")
+    assert study.rows == [] and not (tmp_path / "runs").exists()
+
+
+@pytest.mark.parametrize("args", [
+    ["python3", "hf.py", "{lf}"],               # there
+    ["python3", "-u", "missing.py"],            # not clearly the script: an option first
+    ["python3", "{cwd}/missing.py"],            # a placeholder: left to the event
+    ["mpirun", "missing.py"],                   # not an interpreter this check knows
+    ["bash", "-c", "missing.sh"],
+    ["python3", "data.csv"],                    # no script
+])
+def test_the_up_front_check_leaves_commands_it_cannot_be_sure_of(tmp_path, args):
+    (tmp_path / "hf.py").write_text(SCRIPT)
+    CommandOracle(args, root="runs", cwd=tmp_path).check(EV)
+
+
+def test_pas_run_refuses_a_missing_script_before_its_folder(campaign, capsys):
+    start, _ = campaign
+    _lf_file(start)
+    code = main(["run", "lf.csv", "--oracle", "command:bash run.sh {lf} {result}", "--n-waves",
+                 "600", "--p-exp", "1e-2", "--eps1", "1e-4", "--seed", "2", "--out", "out"])
+    err = capsys.readouterr().err
+    assert code == 2
+    assert err == (f"pas run: error: command: run.sh not found: looked for {start / 'run.sh'} "
+                   f"(relative paths resolve against {start}, the folder the study was "
+                   "started from)\n")
+    assert not (start / "out").exists()
