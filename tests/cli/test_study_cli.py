@@ -394,3 +394,21 @@ def test_every_study_action_help_says_what_it_does(action, capsys):
     lines = capsys.readouterr().out.splitlines()
     text = lines[lines.index("", 1) + 1]  # the paragraph after the usage lines
     assert text[0].isupper() and len(text.split()) >= 4 and not text.startswith("positional")
+
+
+def test_status_of_a_pas_run_folder_reads_its_study_sqlite(tmp_path, capsys):
+    cfg = write_case(tmp_path)
+    out = tmp_path / "out"  # as 'pas run --out out' names its store
+    out.mkdir()
+    db = str(out / "study.sqlite")
+    assert cli("study", "create", db, "--config", cfg) == 0
+    capsys.readouterr()
+    assert cli("study", "status", db, "--json") == 0
+    by_file = json.loads(capsys.readouterr().out)
+    assert cli("study", "status", str(out), "--json") == 0
+    assert json.loads(capsys.readouterr().out) == by_file
+    assert by_file["study"] == db
+    assert cli("study", "status", str(tmp_path)) == 2  # a folder without one
+    assert capsys.readouterr().err == (f"pas study: error: STUDY: {tmp_path} is a folder with no "
+                                       "study.sqlite in it (give a study store, or the --out "
+                                       "folder of pas run)\n")
