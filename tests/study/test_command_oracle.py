@@ -261,3 +261,23 @@ def test_pas_run_refuses_a_missing_script_before_its_folder(campaign, capsys):
                    f"(relative paths resolve against {start}, the folder the study was "
                    "started from)\n")
     assert not (start / "out").exists()
+
+
+def test_a_resumed_pas_run_refuses_a_missing_script_before_recording_it(campaign, capsys):
+    start, _ = campaign
+    _lf_file(start)
+    code, _, err = _pas_run(capsys, "lf.csv", "out", 4)
+    assert code == 0, err
+    spec = f"command:{sys.executable} cfdd.py {{lf}} {{cwd}}/factor.txt {{result}}"
+    code = main(["run", "lf.csv", "--oracle", spec, "--n-waves", "600", "--p-exp", "1e-2",
+                 "--eps1", "1e-4", "--seed", "2", "--max-hf", "5", "--out", "out",
+                 "--preset", "paper", "--quiet"])
+    err = capsys.readouterr().err
+    assert code == 2 and "HF command changed" not in err
+    assert err.splitlines()[-1] == (f"pas run: error: command: cfdd.py not found: looked for "
+                                    f"{start / 'cfdd.py'} (relative paths resolve against "
+                                    f"{start}, the folder the study was started from)")
+    with StudyStore(start / "out" / "study.sqlite", create=False) as store:
+        assert store.get("oracle_command") == [sys.executable, "cfd.py", "{lf}",
+                                               "{cwd}/factor.txt", "{result}"]
+        assert store.get("oracle_command_changes") is None

@@ -291,7 +291,7 @@ def run(args) -> int:
                            n_waves=args.n_waves, p_exp=args.p_exp, threshold=args.threshold,
                            seed=seed, target=args.target, **objects,
                            n_waves_convention="spectral")  # checked above, with option names
-        # a new study's command before its folder is made (a resumed one's in optimize,
+        # a new study's command before its folder is made (a resumed one's by keep_start_dir,
         # against the folder the study was started in)
         if not stored and isinstance(oracle, CommandOracle):
             oracle.check(study.lfset.event(0))
@@ -300,7 +300,7 @@ def run(args) -> int:
             for ch in attach(study, store):
                 print(f"pas run: {ch['key']} changed from {ch['old']} to {ch['new']} on resuming "
                       f"(recorded in {store})", file=sys.stderr)
-            oracle, note = keep_start_dir(oracle, study.store)
+            oracle, note = keep_start_dir(oracle, study.store, study.lfset.event(0))
             for line in (note or "").splitlines():
                 print(f"pas run: {line}", file=sys.stderr)
             if args.retry_failed:
