@@ -136,7 +136,7 @@ BAD_TOML = [
     ("'lf'", "NAN_IN_LF"),
     ("oracle.timeout", TOML.format(extra="") + '[oracle]\ncommand = ["x"]\ntimeout = "long"\n'),
     ("oracle.command", TOML.format(extra="") + '[oracle]\nroot = "r"\n'),
-    ("placeholder 'sede'", TOML.format(extra="") + '[oracle]\ncommand = ["x", "{sede}"]\n'),
+    ("unknown placeholder {sede}", TOML.format(extra="") + '[oracle]\ncommand = ["x", "{sede}"]\n'),
     ("oracle: id_column: column 'id'", TOML.format(extra="") + '[oracle]\ntable = "peaks.csv"\n'),
     ("batch_size", TOML.format(extra="batch_size = 0")),
     ("max_hf must be an integer ≥ 4", TOML.format(extra="max_hf = 2")),  # the file's key
@@ -403,3 +403,21 @@ def test_a_study_file_takes_fit_check_at_the_top_as_its_page_lists_it(tmp_path, 
     with StudyStore(db) as store:
         settings = store.settings()
     assert (settings["precision"], settings["fit_check"]) == (0.1, 0.05)
+
+
+def test_status_of_a_pas_run_folder_reads_its_study_sqlite(tmp_path, capsys):
+    cfg = write_case(tmp_path)
+    out = tmp_path / "out"  # as 'pas run --out out' names its store
+    out.mkdir()
+    db = str(out / "study.sqlite")
+    assert cli("study", "create", db, "--config", cfg) == 0
+    capsys.readouterr()
+    assert cli("study", "status", db, "--json") == 0
+    by_file = json.loads(capsys.readouterr().out)
+    assert cli("study", "status", str(out), "--json") == 0
+    assert json.loads(capsys.readouterr().out) == by_file
+    assert by_file["study"] == db
+    assert cli("study", "status", str(tmp_path)) == 2  # a folder without one
+    assert capsys.readouterr().err == (f"pas study: error: STUDY: {tmp_path} is a folder with no "
+                                       "study.sqlite in it (give a study store, or the --out "
+                                       "folder of pas run)\n")

@@ -232,3 +232,18 @@ def test_a_sea_states_curves_are_rebuilt_only_when_its_fit_or_the_proxy_ratios_c
     assert again is not first[1] and again[1].h[0] == pytest.approx(2.0 * states[1].lf.max())
     fitted.last = fit()                                       # a new fit: new curves
     assert run.curves(0, (0.5, 2.0, 3.0)) is not first[0]
+
+
+def test_the_summary_gives_the_loads_unit():
+    from pas.longterm.result import LongTermResult
+
+    contributions = pd.DataFrame({"sea_state": ["H3", "H4"], "share": [0.4, 0.6], "n_hf": [8, 12],
+                                  "read_off": ["pas", "tail"]})
+    res = LongTermResult(value=123.4, band=(110.0, 150.0), p_exceed=1e-5, n_hf=20,
+                         distribution=pd.DataFrame(), contributions=contributions, lf_value=4.2,
+                         extension_bounds=(100.0, 160.0), seed=1)
+    lines = res.summary(unit="kN").splitlines()
+    assert lines[0] == ("long-term value at p_exceed = 1e-05 per wave encounter: 123.4 kN "
+                        "(U95 110 – 150 kN)")
+    assert lines[-1].endswith("the value is 100 – 160 kN")
+    assert "kN" not in res.summary()

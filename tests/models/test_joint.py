@@ -387,3 +387,18 @@ def test_a_deep_copy_of_a_joint_fit_shares_it_and_its_values_cannot_change():
     with pytest.raises(ValueError):
         fit.x[0] = 1.0
 
+
+
+def test_copula_parameters_reach_their_bounds_without_overflow():
+    """An optimiser value far past a bound gives the bound, with no overflow in exp()."""
+    from pas.models.joint_likelihood import copula_parameters, parameter_slope
+
+    c = np.array([800.0, 0.0, -800.0])
+    with np.errstate(over="raise"):
+        clayton = copula_parameters("clayton", [c])[0, 0]
+        gumbel = copula_parameters("gumbel", [c])[0, 0]
+        slopes = parameter_slope("clayton", [c]), parameter_slope("gumbel", [c])
+    np.testing.assert_array_equal(clayton, [28.0, 1.0, 1e-6])
+    np.testing.assert_array_equal(gumbel, [50.0, 2.0, 1.0])
+    np.testing.assert_array_equal(slopes[0], [0.0, 1.0, 0.0])  # flat at both clips
+    np.testing.assert_array_equal(slopes[1], [0.0, 1.0, 0.0])  # flat at 50; e^c at 1

@@ -277,3 +277,14 @@ def test_reproduce_case_figure_reads_right(problem, converged, tmp_path):
                 rcw = [t for t in _legend_texts(ax) if t.startswith("RCW")]
                 assert not any("band" in t and "no band" not in t for t in rcw), (name, rcw)
     assert all(f.stat().st_size > 20_000 for f in files)
+
+
+# -- titles ---------------------------------------------------------------------
+@pytest.mark.parametrize("n", [N, 26])  # tail dependence estimated, and not
+def test_the_scatter_title_fits_in_its_figure(problem, n):
+    lf, hf = problem
+    fig, ax = plot_scatter(lf[:n], hf[:n], lf_unit="m", unit="kN")
+    fig.canvas.draw()
+    box = ax.title.get_window_extent()
+    assert box.x0 >= 0 and box.x1 <= fig.bbox.x1 and box.y1 <= fig.bbox.y1, \
+        f"title {ax.get_title()!r} cut by the figure edge"

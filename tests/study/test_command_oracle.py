@@ -181,3 +181,103 @@ def test_command_placeholder_cwd_is_the_start_folder(tmp_path):
     oracle = CommandOracle(["tool", "{cwd}", "{workdir}"], root="r", cwd=tmp_path)
     assert oracle.command(EV, "/w") == ["tool", str(tmp_path), "/w"]
     assert os.path.isabs(oracle.root) and oracle.root == str(tmp_path / "r")
+
+
+KNOWN = "{id}, {index}, {lf}, {d}, {workdir}, {cwd}, {result}, {seed}"
+
+
+def test_an_unknown_placeholder_is_refused_before_any_event(tmp_path):
+    lf = np.random.default_rng(0).rayleigh(2.0, 300)
+    table = pd.DataFrame({"lf": lf, "seed": np.arange(300)})
+    study = pas.make_study(pas.PAS, table, n_waves=300, p_exp=1e-2, eps1=0.05, seed=0)
+    (tmp_path / "cfd.py").write_text(SCRIPT)
+    oracle = CommandOracle([sys.executable, "cfd.py", "{idd}", "{result}"], root="runs",
+                           cwd=tmp_path)
+    with pytest.raises(ValueError) as info:
+        study.optimize(oracle)
+    assert str(info.value) == f"command: unknown placeholder {{idd}} (known: {KNOWN})"
+    assert study.rows == [] and not (tmp_path / "runs").exists()
+
+
+def test_pas_run_refuses_an_unknown_placeholder_before_its_folder(campaign, capsys):
+    start, _ = campaign
+    _lf_file(start)
+    pd.read_csv(start / "lf.csv").assign(seed=1).to_csv(start / "lf.csv", index=False)
+    code = main(["run", "lf.csv", "--meta-columns", "seed", "--oracle",
+                 f"command:{sys.executable} cfd.py {{lf}} {{idd}} {{result}}", "--n-waves",
+                 "600", "--p-exp", "1e-2", "--eps1", "1e-4", "--seed", "2", "--out", "out"])
+    err = capsys.readouterr().err
+    assert code == 2
+    assert err == f"pas run: error: command: unknown placeholder {{idd}} (known: {KNOWN})\n"
+    assert not (start / "out").exists()
+
+
+def test_run_long_term_refuses_an_unknown_placeholder_before_any_event(tmp_path):
+    import _longterm_problem as problem
+
+    oracle = CommandOracle(["solver", "{sea_state}", "{lf}", "{sede}"], root="runs", cwd=tmp_path)
+    with pytest.raises(ValueError, match=r"^command: unknown placeholder \{sede\} \(known: "
+                                         r"\{id\}, .*\{sea_state\}\)$"):
+        pas.run_long_term(problem.table(), problem.lf_peaks(0), oracle, p_exceed=1e-4,
+                          study=tmp_path / "lt.sqlite")
+    assert not (tmp_path / "runs").exists()
+
+
+def test_a_missing_interpreter_script_is_refused_before_any_event(tmp_path):
+    lf = np.random.default_rng(0).rayleigh(2.0, 300)
+    study = pas.make_study(pas.PAS, lf, n_waves=300, p_exp=1e-2, eps1=0.05, seed=0)
+    (tmp_path / "hf.py").write_text(SCRIPT)
+    oracle = CommandOracle([sys.executable, "hff.py", "{lf}", "{result}"], root="runs",
+                           cwd=tmp_path)
+    with pytest.raises(ValueError) as info:
+        study.optimize(oracle)
+    assert str(info.value) == (f"command: hff.py not found: looked for {tmp_path / 'hff.py'} "
+                               f"(relative paths resolve against {tmp_path}, the folder the "
+                               "study was started from)")
+    assert study.rows == [] and not (tmp_path / "runs").exists()
+
+
+@pytest.mark.parametrize("args", [
+    ["python3", "hf.py", "{lf}"],               # there
+    ["python3", "-u", "missing.py"],            # not clearly the script: an option first
+    ["python3", "{cwd}/missing.py"],            # a placeholder: left to the event
+    ["mpirun", "missing.py"],                   # not an interpreter this check knows
+    ["bash", "-c", "missing.sh"],
+    ["python3", "data.csv"],                    # no script
+])
+def test_the_up_front_check_leaves_commands_it_cannot_be_sure_of(tmp_path, args):
+    (tmp_path / "hf.py").write_text(SCRIPT)
+    CommandOracle(args, root="runs", cwd=tmp_path).check(EV)
+
+
+def test_pas_run_refuses_a_missing_script_before_its_folder(campaign, capsys):
+    start, _ = campaign
+    _lf_file(start)
+    code = main(["run", "lf.csv", "--oracle", "command:bash run.sh {lf} {result}", "--n-waves",
+                 "600", "--p-exp", "1e-2", "--eps1", "1e-4", "--seed", "2", "--out", "out"])
+    err = capsys.readouterr().err
+    assert code == 2
+    assert err == (f"pas run: error: command: run.sh not found: looked for {start / 'run.sh'} "
+                   f"(relative paths resolve against {start}, the folder the study was "
+                   "started from)\n")
+    assert not (start / "out").exists()
+
+
+def test_a_resumed_pas_run_refuses_a_missing_script_before_recording_it(campaign, capsys):
+    start, _ = campaign
+    _lf_file(start)
+    code, _, err = _pas_run(capsys, "lf.csv", "out", 4)
+    assert code == 0, err
+    spec = f"command:{sys.executable} cfdd.py {{lf}} {{cwd}}/factor.txt {{result}}"
+    code = main(["run", "lf.csv", "--oracle", spec, "--n-waves", "600", "--p-exp", "1e-2",
+                 "--eps1", "1e-4", "--seed", "2", "--max-hf", "5", "--out", "out",
+                 "--preset", "paper", "--quiet"])
+    err = capsys.readouterr().err
+    assert code == 2 and "HF command changed" not in err
+    assert err.splitlines()[-1] == (f"pas run: error: command: cfdd.py not found: looked for "
+                                    f"{start / 'cfdd.py'} (relative paths resolve against "
+                                    f"{start}, the folder the study was started from)")
+    with StudyStore(start / "out" / "study.sqlite", create=False) as store:
+        assert store.get("oracle_command") == [sys.executable, "cfd.py", "{lf}",
+                                               "{cwd}/factor.txt", "{result}"]
+        assert store.get("oracle_command_changes") is None

@@ -125,7 +125,7 @@ def test_command_oracle_never_takes_the_result_of_another_command(tmp_path, scri
     # a placeholder typo is an error before any kept result is looked at
     typo = CommandOracle([sys.executable, script, "ok", "{sede}", "{result}"], root=tmp_path)
     value, err = call_oracle(typo, EV)
-    assert value is None and "placeholder 'sede'" in err
+    assert value is None and "unknown placeholder {sede}" in err
     # a format spec is a one-line error: the fields are text
     spec = CommandOracle([sys.executable, script, "ok", "{lf:.3f}", "{result}"], root=tmp_path)
     value, err = call_oracle(spec, EV)
@@ -141,7 +141,7 @@ def test_command_oracle_checks_and_pickles(tmp_path, script):
         CommandOracle("python cfd.py {id}", root=tmp_path)
     with pytest.raises(ValueError, match="timeout"):
         CommandOracle(["x"], root=tmp_path, timeout=-1)
-    with pytest.raises(OracleError, match="placeholder 'nope'"):
+    with pytest.raises(OracleError, match="unknown placeholder {nope}"):
         CommandOracle(["x", "{nope}"], root=tmp_path).command(EV, str(tmp_path))
     assert parse_result(" 3.25\n") == 3.25
     oracle = command(script, tmp_path / "pool", "ok", "{lf}")

@@ -87,7 +87,8 @@ def add_parser(sub) -> None:
     p.add_argument("--figures", action="store_true",
                    help="draw the long-term figures into OUT/figures/ (distribution, "
                         "allocation over the first two descriptive columns, convergence)")
-    p.add_argument("--unit", help="unit of the HF load, for the figures (e.g. kN)")
+    p.add_argument("--unit", help="unit of the HF load, for the summary and the figures "
+                                  "(e.g. kN)")
     p.add_argument("--seed", type=int, help="random seed (default: drawn and reported)")
     p.add_argument("--study", metavar="FILE",
                    help="the analysis' store (default OUT/long-term.sqlite)")
@@ -214,9 +215,6 @@ def run(args) -> int:
     if args.json:
         print(text)
     else:
-        text = result.summary() if callable(getattr(result, "summary", None)) else \
-            (f"long-term value {result.value:.6g} (U95 {result.band[0]:.6g} .. "
-             f"{result.band[1]:.6g}) at p_exceed {result.p_exceed:.3g}, {result.n_hf} HF")
-        print(text)
+        print(result.summary(unit=args.unit))
         print(f"results written to {out}/")
     return 0

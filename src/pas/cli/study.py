@@ -6,7 +6,7 @@
     pas study ask STUDY.db [-n N] [--format table|csv|json] [-o FILE]
     pas study tell STUDY.db EVENT VALUE | EVENT --error MSG | EVENT --load N=V ... | --csv FILE
         [--replace]
-    pas study status STUDY.db [--json] [--events] [--refresh]
+    pas study status STUDY [--json] [--events] [--refresh]
     pas study set STUDY.db [--precision P] [--eps1 E] [--eps2 C] [--k1 K] [--k2 K] [--max-hf N]
         [--max-failures N]
     pas study refit STUDY.db --target NAME [--out DIR]   (pas.cli.study_loads)
@@ -130,7 +130,8 @@ def add_parser(sub) -> None:
         "status",
         "print the MPM so far, whether it has converged, the counts and the pending events",
     )
-    s.add_argument("study", metavar="STUDY.db")
+    s.add_argument("study", metavar="STUDY",
+                   help="study store, or the --out folder of pas run (its study.sqlite)")
     s.add_argument("--json", action="store_true")
     s.add_argument("--events", action="store_true",
                    help="also every event asked, replaced results and asks dropped by a retry")

@@ -214,6 +214,4 @@ def check_oracle_command(spec, event, config) -> None:
     try:
         oracle.command(event, oracle.root)  # a spec with a command makes a CommandOracle
     except OracleError as exc:
-        raise ValueError(f"[oracle] command of {config}: {exc} (the event fields are id, "
-                         f"index, lf, d, workdir, result, cwd and the LF table's meta "
-                         f"columns: {', '.join(map(str, event.meta)) or 'none'})") from None
+        raise ValueError(f"[oracle] command of {config}: {exc}") from None

@@ -44,14 +44,24 @@ def add_parsers(cmds) -> None:
                    help="event ids (default: every running program of the study)")
 
 
+def store_file(study: str) -> str:
+    """The study store ``STUDY`` names: the file itself, or the ``study.sqlite`` that
+    ``pas run`` keeps in its ``--out`` folder when ``study`` is a folder."""
+    path = Path(study)
+    if not path.is_dir():
+        return study
+    if not (path / "study.sqlite").is_file():
+        raise ValueError(f"STUDY: {study} is a folder with no study.sqlite in it (give a study "
+                         "store, or the --out folder of pas run)")
+    return str(path / "study.sqlite")
+
+
 def _root(study: str) -> str:
     """The folder of the study's event folders, from its store."""
     from ..study.oracle_spec import ROOT_KEY
     from ..study.store import StudyStore
 
-    path = Path(study)
-    if path.is_dir():
-        path = path / "study.sqlite"
+    path = Path(store_file(study))
     if not path.is_file():
         raise ValueError(f"STUDY: {study} is neither a study store nor a pas run --out folder "
                          "holding study.sqlite")

@@ -24,8 +24,10 @@ def status(args) -> int:
     """
     from ..study.store import StudyStore
     from ..study.stored_results import stored_result
+    from .study_programs import store_file
 
-    with StudyStore(args.study, create=False) as store:
+    path = store_file(args.study)
+    with StudyStore(path, create=False) as store:
         waiting = store.unconsumed()
         shown, n_told, key = stored_result(store)
         if getattr(args, "refresh", False):
@@ -47,7 +49,7 @@ def status(args) -> int:
     shown.setdefault("precision", None)  # a result stored before precision targets
     stop_state = shown.pop("stop_text", None)
     fitted = shown.pop("fitted")
-    info = {"study": args.study, **shown, "n_pending": len(pend),
+    info = {"study": path, **shown, "n_pending": len(pend),
             "results_not_yet_used": len(waiting),
             "converged": None if waiting else used_converged,
             "converged_with_waiting": shown["converged"] if included else None,

@@ -186,12 +186,16 @@ class LongTermResult:
             self.forecast, None if max_hf is None else max_hf - self.n_hf, of="the value",
             words=("precision reached", "precision NOT reached"), floor_name=FLOOR_NAME)
 
-    def summary(self) -> str:
-        """A few lines: the value and band, HF spent, the sea states that decide it."""
+    def summary(self, unit: str | None = None) -> str:
+        """A few lines: the value and band, HF spent, the sea states that decide it.
+
+        ``unit`` (e.g. ``"kN"``) is appended to the value and its bands.
+        """
         lo, hi = self.band
+        u = f" {unit}" if unit else ""
         c = self.contributions.sort_values("share", ascending=False)
         lines = [f"long-term value at p_exceed = {self.p_exceed:.3g} per wave encounter: "
-                 f"{self.value:.4g} (U95 {lo:.4g} – {hi:.4g})",
+                 f"{self.value:.4g}{u} (U95 {lo:.4g} – {hi:.4g}{u})",
                  f"HF evaluations: {self.n_hf} over {int((c['n_hf'] > 0).sum())} of {len(c)} "
                  f"sea states; LF-only long-term level of the indicator: {self.lf_value:.4g}"]
         if self.precision is not None:
@@ -210,7 +214,7 @@ class LongTermResult:
                          "distribution but off a tail above a record or an LF-only proxy "
                          "(column read_off); with the proxy below the PAS ranges at its bounds "
                          f"the value is {self.extension_bounds[0]:.4g} – "
-                         f"{self.extension_bounds[1]:.4g}")
+                         f"{self.extension_bounds[1]:.4g}{u}")
         return "\n".join(lines)
 
 

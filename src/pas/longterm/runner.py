@@ -20,6 +20,7 @@ import numpy as np
 from .._support.checks import draw_seed
 from ..strategies.screening import LFSet
 from ..study import precision as study_precision
+from ..study.command_oracle import CommandOracle
 from ..study.corrections import check_retry
 from ..study.factory import study_options
 from ..study.loop import failure_limit, run_batch
@@ -151,6 +152,9 @@ def run_long_term(sea_states, lf_peaks, oracle, *, p_exceed=None, return_period=
     run = _Run(states, weights, studies, oracle, executor, callback, max_hf, target=target,
                model_band=model_band, root=root)
     try:
+        first = next((st for st in studies if st is not None), None)
+        if first is not None and isinstance(oracle, CommandOracle):  # a typo'd command
+            oracle.check(first.lfset.event(0))  # fails here, not every event
         run.left_over()
         run.allocate(p, batch_size, top)
     finally:

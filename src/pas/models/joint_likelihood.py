@@ -17,6 +17,11 @@ __all__ = ["copula_parameters", "parameter_slope", "loglik_and_copula_gradient",
            "negloglik_closure", "NU_STEP"]
 
 
+_PAST_BOUNDS = 4.0
+"""exp(4) = 54.6 lies past the Clayton and Gumbel bounds (28, 50): a larger optimiser value
+gives the bound all the same, and exp() of it would overflow."""
+
+
 def copula_parameters(base: str, c):
     """Unconstrained optimiser values → the family's parameter matrix (inside its bounds);
     with an array of values per parameter, shape ``(npar, 1, *values.shape)``."""
@@ -27,9 +32,9 @@ def copula_parameters(base: str, c):
             nu = 2.0 + 48.0 / (1.0 + np.exp(-c[1]))
         return np.array([[0.999 * np.tanh(c[0])], [nu]])
     if base == "clayton":
-        return np.array([[np.clip(np.exp(c[0]), 1e-6, 28.0)]])
+        return np.array([[np.clip(np.exp(np.minimum(c[0], _PAST_BOUNDS)), 1e-6, 28.0)]])
     if base == "gumbel":
-        return np.array([[np.minimum(1.0 + np.exp(c[0]), 50.0)]])
+        return np.array([[np.minimum(1.0 + np.exp(np.minimum(c[0], _PAST_BOUNDS)), 50.0)]])
     if base == "frank":
         return np.array([[35.0 * np.tanh(c[0] / 35.0)]])
     raise ValueError(f"no joint fit for the copula family {base!r}")
@@ -40,7 +45,7 @@ def parameter_slope(base: str, c) -> float:
     elementwise for an array of optimiser values per parameter."""
     if base in ("gaussian", "student"):
         return 0.999 * (1.0 - np.tanh(c[0]) ** 2)
-    e = np.exp(c[0])
+    e = np.exp(np.minimum(c[0], _PAST_BOUNDS))
     if base == "clayton":
         return np.where((1e-6 < e) & (e < 28.0), e, 0.0)
     if base == "gumbel":

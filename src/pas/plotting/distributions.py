@@ -321,11 +321,11 @@ def plot_scatter(lf, hf, *, result=None, ax=None, lf_unit=None, unit=None,
     -----
     τ (Kendall's rank correlation), λU and λL (upper and lower tail
     dependence) are computed on all the given pairs and shown in the title
-    in words; the legend sits under the x axis label.  λU and λL are fractions of the pairs beyond
-    ``q_tail``;
-    with fewer than 10 such pairs (fewer than 100 pairs at q = 0.9) they
-    would be 0, 0.5 or 1 from a handful of points and are not shown.  Large
-    samples are rasterised in vector output.
+    in words, on two lines (one would be wider than the figure); the legend
+    sits under the x axis label.  λU and λL are fractions of the pairs
+    beyond ``q_tail``; with fewer than 10 such pairs (fewer than 100 pairs at
+    q = 0.9) they would be 0, 0.5 or 1 from a handful of points and are not
+    shown.  Large samples are rasterised in vector output.
     """
     from ..stats.dependence import empirical_tail_dependence, kendall_tau
 
@@ -342,10 +342,10 @@ def plot_scatter(lf, hf, *, result=None, ax=None, lf_unit=None, unit=None,
     n_tail = int(np.sum(np.arange(1, x.size + 1) / (x.size + 1) > q_tail))  # pairs with u > q
     if n_tail >= _MIN_TAIL_POINTS:
         lam_u, lam_l = empirical_tail_dependence(x, y, q=q_tail)
-        stats_txt = (f"rank correlation (Kendall) {tau:.2f}; tail dependence beyond the "
+        stats_txt = (f"rank correlation (Kendall) {tau:.2f}\ntail dependence beyond the "
                      f"{q_tail:.0%} quantile: upper {lam_u:.2f}, lower {lam_l:.2f}")
     else:
-        stats_txt = (f"rank correlation (Kendall) {tau:.2f}; tail dependence not estimated: "
+        stats_txt = (f"rank correlation (Kendall) {tau:.2f}\ntail dependence not estimated: "
                      f"{n_tail} of {x.size} pairs beyond the {q_tail:.0%} quantile "
                      f"(needs {_MIN_TAIL_POINTS})")
     many = x.size > 2000

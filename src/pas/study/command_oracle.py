@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import json
 import os
+import re
 import shutil
 import subprocess
 import tempfile
@@ -156,7 +157,9 @@ class CommandOracle:
     A non-zero exit status, a time-out, a missing or unreadable result file
     raise :class:`OracleError` (recorded as a failed event, never as 0), and
     so does a relative script argument (``cfd.py``, ``../hf/run.sh``) missing
-    from ``cwd``, naming the path it was looked for.
+    from ``cwd``, naming the path it was looked for; the script of an
+    interpreter (``python3 cfd.py``) and the placeholders are checked before
+    any event runs (:meth:`check`).
     While the program runs it holds an ``flock`` on ``root/<id>/.lock``
     (inherited by the program), which records the program's PID, the ``pas``
     process, host, start and time-out (:mod:`pas.study.hf_programs`).  A
@@ -208,6 +211,25 @@ class CommandOracle:
         """The argument list for ``event`` (``files``: extra placeholders, e.g. an episode's)."""
         return _filled(self.args, event, files, workdir=workdir, cwd=self.cwd,
                        result=os.path.join(workdir, self.result_name))
+
+    def check(self, event) -> None:
+        """Refuse, before any event runs, a command that would fail every event: a
+        placeholder ``event`` does not fill (``{idd}`` for ``{id}``), or the script of an
+        interpreter (``python3 hff.py``, ``bash run.sh``) missing from :attr:`cwd`.
+
+        ``event`` is one of the study's (its meta names the placeholders every event
+        fills).  Raises a one-line :class:`ValueError` naming the placeholder and the
+        known ones, or the path the script was looked for.
+        """
+        try:
+            self.command(event, "{workdir}")
+        except OracleError as exc:
+            raise ValueError(str(exc)) from None
+        program = os.path.basename(self.args[0]).removesuffix(".exe")
+        if len(self.args) > 1 and _INTERPRETER.fullmatch(program):
+            missing = self._missing_script(self.args[1])
+            if missing:
+                raise ValueError(missing)
 
     def recorded_command(self, event, files: dict | None = None) -> list[str]:
         """The command as an event's folder records it (:mod:`pas.study.workdirs`): the
@@ -272,13 +294,20 @@ class CommandOracle:
         the path it was looked for (else the program would be handed a path relative to
         the event's folder, and fail there)."""
         for a in self.args[1:]:
-            if ("{" not in a and not os.path.isabs(a) and not a.startswith("-")
-                    and not any(c.isspace() for c in a)
-                    and os.path.splitext(a)[1] in _SCRIPT_SUFFIXES):
-                raise OracleError(
-                    f"command: {a} not found: looked for "
+            missing = self._missing_script(a)
+            if missing:
+                raise OracleError(missing)
+
+    def _missing_script(self, a: str) -> str | None:
+        """The message for ``a``, a relative script (``cfd.py``, ``../hf/run.sh``) that is
+        not in :attr:`cwd` (:func:`resolve_paths` made those that are absolute), else None."""
+        if ("{" not in a and not os.path.isabs(a) and not a.startswith("-")
+                and not any(c.isspace() for c in a)
+                and os.path.splitext(a)[1] in _SCRIPT_SUFFIXES):
+            return (f"command: {a} not found: looked for "
                     f"{os.path.normpath(os.path.join(self.cwd, a))} (relative paths resolve "
                     f"against {self.cwd}, the folder the study was started from)")
+        return None
 
     def _lock(self, fd, event, workdir) -> bool:
         """Wait for the event's lock; True when the program can inherit it (``flock``).
@@ -369,6 +398,8 @@ class CommandOracle:
 
 _SCRIPT_SUFFIXES = (".py", ".sh", ".bash", ".jl", ".R", ".r", ".m", ".pl", ".rb", ".tcl", ".lua",
                     ".js")
+_INTERPRETER = re.compile(r"(python|pypy)[0-9.]*|(ba|da|k|z)?sh")
+"""Programs whose first argument, when it is a script, is the file they run."""
 
 
 def _filled(args, event, files, **folders) -> list[str]:
@@ -381,7 +412,12 @@ def _filled(args, event, files, **folders) -> list[str]:
                   d=repr(float(event.d)), **folders)
     try:
         return [a.format_map(fields) for a in args]
-    except (KeyError, IndexError) as exc:
+    except KeyError as exc:
+        first = ["id", "index", "lf", "d", *folders]
+        known = first + [k for k in fields if k not in first]
+        raise OracleError(f"command: unknown placeholder {{{exc.args[0]}}} (known: "
+                          + ", ".join(f"{{{k}}}" for k in known) + ")") from None
+    except IndexError as exc:
         raise OracleError(f"args: placeholder {exc} is neither an event field nor in its "
                           "meta") from None
     except ValueError as exc:  # e.g. {lf:.3f}: the fields are text

@@ -41,6 +41,7 @@ from concurrent.futures import Executor, ProcessPoolExecutor, as_completed
 
 from .._support.checks import check_option, check_positive_int
 from .answers import lacks_target
+from .command_oracle import CommandOracle
 from .loads import answers_from_loads, record_loads
 from .oracles import OracleFailureLimit, call_oracle_loads, check_oracle
 from .signals import terminate_as_interrupt
@@ -81,11 +82,16 @@ def optimize(study, oracle, *, batch_size: int = 1, executor: Executor | None = 
     ------
     TypeError
         ``oracle`` is not callable (checked before any call).
+    ValueError
+        A :class:`~pas.study.command_oracle.CommandOracle` that cannot run the
+        study's events (:meth:`~pas.study.command_oracle.CommandOracle.check`).
     OracleFailureLimit
         When more than ``study.max_failures`` oracle calls failed, with the
         result so far.
     """
     check_oracle(oracle)
+    if isinstance(oracle, CommandOracle):  # a typo'd command fails here, not every event
+        oracle.check(study.lfset.event(0))
     check_option(pending, "pending", PENDING_POLICIES)
     batch_size = check_positive_int(batch_size, "batch_size")
     own = None

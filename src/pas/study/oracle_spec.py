@@ -123,16 +123,18 @@ def oracle_from_spec(spec, *, root=None, timeout=None, cwd=None):
     raise ValueError(f"an oracle needs one of command, table or python, got {sorted(o)}")
 
 
-def keep_start_dir(oracle, store):
+def keep_start_dir(oracle, store, event=None):
     """``oracle`` resolved against the directory its study was first started from.
 
     A :class:`CommandOracle` bound to a new study store records its ``cwd``
     there (under :data:`START_DIR_KEY`); on a store holding another one it is
     rebuilt with that one (its ``root`` kept), so relative script paths keep
-    meaning the files of the first run.  Its argument list is recorded too
-    (:data:`COMMAND_KEY`): one that differs from the stored one is a change,
-    appended to :data:`COMMAND_CHANGES_KEY` and said once.  Other oracles are
-    returned as they are.
+    meaning the files of the first run.  With ``event`` (one of the study's)
+    it is then checked (:meth:`CommandOracle.check`): a command that cannot
+    run is a :class:`ValueError` before anything of it is recorded.  Its
+    argument list is recorded (:data:`COMMAND_KEY`): one that differs from the
+    stored one is a change, appended to :data:`COMMAND_CHANGES_KEY` and said
+    once.  Other oracles are returned as they are.
 
     Returns
     -------
@@ -142,20 +144,23 @@ def keep_start_dir(oracle, store):
     """
     if not isinstance(oracle, CommandOracle) or store is None:
         return oracle, None
-    notes = [_command_change(oracle, store)]
-    store.put(ROOT_KEY, oracle.root)
+    notes = []
     recorded = store.get(START_DIR_KEY)
-    if recorded is None:
-        store.put(START_DIR_KEY, oracle.cwd)
-    elif recorded != oracle.cwd:
+    if recorded is not None and recorded != oracle.cwd:
         try:
             oracle = oracle.with_cwd(recorded)
         except ValueError:  # the first run's folder is gone: use this one, and say so
-            notes.insert(0, f"the study was started in {recorded}, which no longer exists; "
-                            f"the command's relative paths resolve against {oracle.cwd}")
+            notes.append(f"the study was started in {recorded}, which no longer exists; "
+                         f"the command's relative paths resolve against {oracle.cwd}")
         else:
-            notes.insert(0, f"the command's relative paths resolve against {recorded}, where "
-                            "the study was started")
+            notes.append(f"the command's relative paths resolve against {recorded}, where "
+                         "the study was started")
+    if event is not None:
+        oracle.check(event)
+    notes.append(_command_change(oracle, store))
+    store.put(ROOT_KEY, oracle.root)
+    if recorded is None:
+        store.put(START_DIR_KEY, oracle.cwd)
     notes = [n for n in notes if n]
     return oracle, "\n".join(notes) if notes else None
 
