@@ -4,15 +4,13 @@
 program in ``root/<event>`` (:mod:`pas.study.workdirs`), never via a shell, and
 reads the HF peak it writes to ``{result}`` (:func:`parse_result`).  The folder
 records the command (:func:`pas.study.workdirs.command_record`), so a result is
-reused only for the same one.  Relative paths in the command are files of the
-folder the campaign is started from (:func:`resolve_paths`).
+reused only for the same one.  The argument list itself — its placeholders, its
+relative paths, the result file's text — is :mod:`pas.study.command_template`'s.
 """
 
 from __future__ import annotations
 
-import json
 import os
-import re
 import shutil
 import subprocess
 import tempfile
@@ -22,6 +20,7 @@ import warnings
 import numpy as np
 
 from ._processes import OWN_SESSION, kill_group, try_lock
+from .command_template import filled, missing_script, parse_result, resolve_paths, runs_script
 from .hf_programs import (
     ENDED,
     LOCK,
@@ -39,66 +38,9 @@ from .workdirs import command_record, event_dir, read_record, write_record
 __all__ = ["CommandOracle", "parse_result", "resolve_paths"]
 
 
-def parse_result(text: str):
-    """An HF answer from a result file: a number, a JSON number or ``{"value": x}``,
-    or several named loads as a JSON object ``{"deck_force": 812.0, "panel_p3": 41.2}``.
-
-    A JSON object with the one key ``value`` is that number; any other object is
-    a mapping of named loads, checked by :func:`check_hf_answer`.
-    """
-    text = text.strip()
-    try:
-        return float(text)
-    except ValueError:
-        pass
-    try:
-        obj = json.loads(text)
-    except ValueError:
-        obj = None
-    if isinstance(obj, dict) and list(obj) == ["value"]:
-        obj = obj["value"]
-    if isinstance(obj, dict) and obj:
-        return obj
-    if isinstance(obj, (int, float)) and not isinstance(obj, bool):
-        return float(obj)
-    raise OracleError(f"result file holds {text[:60]!r}, not a number or a JSON object of "
-                      "named loads")
-
-
 def _reusable(answer) -> bool:
     """True for a result left by an earlier run that may be taken instead of running again."""
     return isinstance(answer, dict) or (answer is not None and np.isfinite(answer) and answer >= 0)
-
-
-def resolve_paths(args, cwd: str) -> list[str]:
-    """``args`` with the relative paths that name something in ``cwd`` made absolute.
-
-    The rule of :class:`CommandOracle`: the program (``args[0]``) is resolved
-    when it contains a directory separator (``./cfd.sh``, ``bin/cfd``) or
-    names a file in ``cwd``; a bare name otherwise (``python``) is left to
-    the ``PATH``.  A later argument is resolved when it names an existing
-    file or directory relative to ``cwd`` (``cfd_event.py``, ``mesh/``).
-    Absolute paths, ``.`` and ``..``, options (``-x``, ``--out=f``) and
-    arguments with a placeholder are left as they are (write
-    ``{cwd}/case.json`` to be explicit).
-
-    Examples
-    --------
-    >>> resolve_paths(["python", "./missing.py", "--lf", "{lf}"], "/campaign")
-    ['python', './missing.py', '--lf', '{lf}']
-    """
-    def rel(a: str) -> bool:
-        return bool(a) and "{" not in a and not os.path.isabs(a) and not a.startswith("-") \
-            and os.path.normpath(a) not in (".", "..")
-
-    def here(a: str) -> str:
-        return os.path.normpath(os.path.join(cwd, a))
-
-    program, rest = args[0], list(args[1:])
-    seps = tuple(s for s in (os.sep, os.altsep) if s)
-    if rel(program) and (any(s in program for s in seps) or os.path.isfile(here(program))):
-        program = here(program)
-    return [program] + [here(a) if rel(a) and os.path.exists(here(a)) else a for a in rest]
 
 
 class CommandOracle:
@@ -209,7 +151,7 @@ class CommandOracle:
 
     def command(self, event, workdir: str, files: dict | None = None) -> list[str]:
         """The argument list for ``event`` (``files``: extra placeholders, e.g. an episode's)."""
-        return _filled(self.args, event, files, workdir=workdir, cwd=self.cwd,
+        return filled(self.args, event, files, workdir=workdir, cwd=self.cwd,
                        result=os.path.join(workdir, self.result_name))
 
     def check(self, event) -> None:
@@ -226,8 +168,8 @@ class CommandOracle:
         except OracleError as exc:
             raise ValueError(str(exc)) from None
         program = os.path.basename(self.args[0]).removesuffix(".exe")
-        if len(self.args) > 1 and _INTERPRETER.fullmatch(program):
-            missing = self._missing_script(self.args[1])
+        if len(self.args) > 1 and runs_script(program):
+            missing = missing_script(self.cwd, self.args[1])
             if missing:
                 raise ValueError(missing)
 
@@ -237,7 +179,7 @@ class CommandOracle:
         ``{workdir}``, ``{cwd}`` and ``{result}``, so that a campaign folder moved
         elsewhere still matches its records."""
         inside = {k: "{workdir}/" + os.path.basename(v) for k, v in (files or {}).items()}
-        return _filled(self.template, event, inside, workdir="{workdir}", cwd="{cwd}",
+        return filled(self.template, event, inside, workdir="{workdir}", cwd="{cwd}",
                        result="{result}")
 
     def __call__(self, event) -> float:
@@ -294,20 +236,9 @@ class CommandOracle:
         the path it was looked for (else the program would be handed a path relative to
         the event's folder, and fail there)."""
         for a in self.args[1:]:
-            missing = self._missing_script(a)
+            missing = missing_script(self.cwd, a)
             if missing:
                 raise OracleError(missing)
-
-    def _missing_script(self, a: str) -> str | None:
-        """The message for ``a``, a relative script (``cfd.py``, ``../hf/run.sh``) that is
-        not in :attr:`cwd` (:func:`resolve_paths` made those that are absolute), else None."""
-        if ("{" not in a and not os.path.isabs(a) and not a.startswith("-")
-                and not any(c.isspace() for c in a)
-                and os.path.splitext(a)[1] in _SCRIPT_SUFFIXES):
-            return (f"command: {a} not found: looked for "
-                    f"{os.path.normpath(os.path.join(self.cwd, a))} (relative paths resolve "
-                    f"against {self.cwd}, the folder the study was started from)")
-        return None
 
     def _lock(self, fd, event, workdir) -> bool:
         """Wait for the event's lock; True when the program can inherit it (``flock``).
@@ -394,35 +325,6 @@ class CommandOracle:
             if missing_ok:
                 return None
             raise OracleError(f"{path}: {exc}") from None
-
-
-_SCRIPT_SUFFIXES = (".py", ".sh", ".bash", ".jl", ".R", ".r", ".m", ".pl", ".rb", ".tcl", ".lua",
-                    ".js")
-_INTERPRETER = re.compile(r"(python|pypy)[0-9.]*|(ba|da|k|z)?sh")
-"""Programs whose first argument, when it is a script, is the file they run."""
-
-
-def _filled(args, event, files, **folders) -> list[str]:
-    """``args`` with ``event``'s fields, its meta, ``files`` and ``folders`` filled in."""
-    fields = {str(k): v for k, v in event.meta.items()}
-    fields.update(files or {})
-    if getattr(event, "sea_state", None) is not None:  # else a meta key of that name
-        fields["sea_state"] = event.sea_state
-    fields.update(id=event.id, index=event.index, lf=repr(float(event.lf)),
-                  d=repr(float(event.d)), **folders)
-    try:
-        return [a.format_map(fields) for a in args]
-    except KeyError as exc:
-        first = ["id", "index", "lf", "d", *folders]
-        known = first + [k for k in fields if k not in first]
-        raise OracleError(f"command: unknown placeholder {{{exc.args[0]}}} (known: "
-                          + ", ".join(f"{{{k}}}" for k in known) + ")") from None
-    except IndexError as exc:
-        raise OracleError(f"args: placeholder {exc} is neither an event field nor in its "
-                          "meta") from None
-    except ValueError as exc:  # e.g. {lf:.3f}: the fields are text
-        raise OracleError(f"args: {exc} (the fields are filled in as text: write {{lf}}, "
-                          "not {lf:.3f})") from None
 
 
 def _difference(recorded: dict, record: dict) -> str:

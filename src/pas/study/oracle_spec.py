@@ -3,7 +3,7 @@
 ``table:FILE[:ID_COLUMN:VALUE_COLUMN]``, ``command:ARGS ...`` and
 ``python:FILE.py:FUNCTION`` (:func:`parse_oracle_spec`), or the same as a dict.
 A command's relative paths mean paths in the directory the study was started
-from (:func:`~pas.study.command_oracle.resolve_paths`): the spec's ``cwd``, which
+from (:func:`~pas.study.command_template.resolve_paths`): the spec's ``cwd``, which
 ``pas study create`` sets to the study file's folder, and which
 :func:`keep_start_dir` records in a ``pas run`` study store, so a resumed
 run in another folder runs the same files.
