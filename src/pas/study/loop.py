@@ -36,10 +36,12 @@ from __future__ import annotations
 
 import atexit
 import gc
+import os
 import pickle
 from concurrent.futures import Executor, ProcessPoolExecutor, as_completed
 
 from .._support.checks import check_option, check_positive_int
+from .._support.forked import end_with_parent
 from .answers import lacks_target
 from .command_oracle import CommandOracle
 from .loads import answers_from_loads, record_loads
@@ -96,7 +98,9 @@ def optimize(study, oracle, *, batch_size: int = 1, executor: Executor | None = 
     batch_size = check_positive_int(batch_size, "batch_size")
     own = None
     if executor is None and n_workers is not None:
-        own = executor = ProcessPoolExecutor(check_positive_int(n_workers, "n_workers"))
+        own = executor = ProcessPoolExecutor(check_positive_int(n_workers, "n_workers"),
+                                             initializer=end_with_parent,
+                                             initargs=(os.getpid(),))
     try:
         with terminate_as_interrupt():
             if isinstance(executor, ProcessPoolExecutor):
