@@ -1,4 +1,4 @@
-"""Bad inputs as a new user gives them (issue 26): one line naming the argument, no traceback.
+"""Bad inputs as a new user gives them: one line naming the argument, no traceback.
 
 :data:`CASES` is the table: a CLI case runs ``pas`` in process through
 :func:`pas.cli.main` and gives its exit code; a Python case calls the API and

@@ -1,4 +1,4 @@
-"""The user guide's CFD snippets run verbatim, from the folder a user stands in (issue 26).
+"""The user guide's CFD snippets run verbatim, from the folder a user stands in.
 
 Both command-oracle snippets under "CFD: the command oracle" (docs/guide/hf-tool.md) (the Python
 ``CommandOracle`` one and the ``pas run --oracle 'command:...'`` one) are

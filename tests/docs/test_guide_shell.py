@@ -1,4 +1,4 @@
-"""The user guide's shell blocks for the table oracle and for ask/tell run verbatim (issue 26).
+"""The user guide's shell blocks for the table oracle and for ask/tell run verbatim.
 
 Each ``pas ...`` line of the block (continuations joined, comments dropped)
 is run in order through the CLI's ``main(argv)`` in a folder holding the

@@ -1,4 +1,4 @@
-"""Figures read right (issue 26): legends readable and off the curves, the stop of a study
+"""Figures read right: legends readable and off the curves, the stop of a study
 visible, ΔAIC to the selected family, samples and design waves labelled for what they are."""
 
 import dataclasses

@@ -246,7 +246,7 @@ def test_figures_write_png(tmp_path, linear_record):
     plt.close("all")
 
 
-# ------------------------------------------------------------ issue 15 checks
+# ------------------------------------------------------------ input checks
 N_WAVES = 400   # crests per seed (one exposure duration)
 
 

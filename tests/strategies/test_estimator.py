@@ -1,4 +1,4 @@
-"""Issue 10, cause 3: the estimator, not the equations.
+"""The estimator, not the equations.
 
 A sample spread uniformly over ln d (as MD spreads it) is tail-heavy.  Fitted
 in selected-sample space (the paper, Eq. 5 and 15), a one-parameter copula and

@@ -1,6 +1,6 @@
 """Faithful MD and adaptive threshold (paper §2.4, Eq. 16–17) and common random numbers.
 
-Issue 10, causes 1 and 2: MD's gaps must include the false positives, so it can
+MD's gaps must include the false positives, so it can
 sample below the lowest true positive and the threshold rule can fire; and the
 stopping measures must see model change, not redrawn conditional draws.
 """

@@ -1,4 +1,4 @@
-"""Long records: the top of each realisation drawn alone is the full draw's top (issue 27)."""
+"""Long records: the top of each realisation drawn alone is the full draw's top."""
 
 import contextlib
 

@@ -2,7 +2,7 @@
 
 A command's relative program or script (``python cfd_event.py``) means a file
 in the directory the study was started from, not in the event's run folder
-``root/<id>/`` (issue 26): in Python (``cwd=``, pickled to workers), in
+``root/<id>/``: in Python (``cwd=``, pickled to workers), in
 ``pas run`` (recorded in its store, so a resume from another folder runs the
 same script) and in ``pas study create`` (the TOML file's folder).
 """

@@ -1,4 +1,4 @@
-"""Exit codes scripts can trust and counts that add up (issue 26), the README's ``pas impacts``
+"""Exit codes scripts can trust and counts that add up, the README's ``pas impacts``
 example as written, plain ``--help`` text and a generated case's own run arguments."""
 
 import json

@@ -1,6 +1,6 @@
 """Ctrl-C during ``pas run`` with a command oracle: a quick exit, nothing lost on resume.
 
-Issue 26: Ctrl-C took 6 s to exit (here 33 s on a loaded machine), spent on
+Ctrl-C took 6 s to exit (here 33 s on a loaded machine), spent on
 the bootstrap refits of the partial result's model band and on the
 interpreter's collections at exit.  The tests interrupt a real ``pas run``
 process, and a Python campaign, while the HF program runs; the ``pas run`` is

@@ -1,4 +1,4 @@
-"""Correcting a told result (issue 26): ``tell --replace`` keeps the old value and refits.
+"""Correcting a told result: ``tell --replace`` keeps the old value and refits.
 
 The reference of the fit test is a second store holding the same events with
 the new value told in the first place, driven by the same code: a replacement

@@ -1,4 +1,4 @@
-"""Retrying failed events and the failure-limit flow (issue 26): a set-up mistake is mended, not
+"""Retrying failed events and the failure-limit flow: a set-up mistake is mended, not
 fatal.
 
 The reference of every test is an uninterrupted run with the fixed oracle, run
@@ -317,7 +317,7 @@ def test_retry_keeps_the_named_loads_of_reused_results(tmp_path):
 
 def test_command_oracle_campaign_fails_then_retried_matches_an_uninterrupted_run(
         tmp_path, monkeypatch, capsys):
-    """Issue 26's campaign: a CFD command with a wrong input fails to the limit, is fixed and
+    """A new user's campaign: a CFD command with a wrong input fails to the limit, is fixed and
     rerun with --retry-failed on the same --out; it ends as a run with the fixed command."""
     import sys
 

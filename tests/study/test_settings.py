@@ -1,4 +1,4 @@
-"""Settings as objects (issue 25): the face's size, every keyword of pas 0.1 reachable, one
+"""Settings as objects: the face's size, every keyword of pas 0.1 reachable, one
 source of names, the paper preset, the lf_peaks table and the docs table."""
 
 import dataclasses

@@ -14,7 +14,7 @@ states stored as ``pending``/``done``/``false_positive``/``failed``) with::
 The expected numbers below are what that version printed when it reopened
 the file; they are not computed by the code under test.  They are fitted MPMs
 from another machine, so they are compared to a relative ``REPLAY_RTOL``:
-an optimiser amplifies last-bit libm/BLAS differences to about 1e-9 (issue 25).
+an optimiser amplifies last-bit libm/BLAS differences to about 1e-9.
 """
 
 import json

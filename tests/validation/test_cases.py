@@ -87,7 +87,7 @@ def test_case1_physics(small):
 
 @pytest.mark.slow
 def test_case2_hog_sag_asymmetry(small):
-    # VERSION 3 (issue 11): the midbody side-flare term outweighs the bow flare, so the
+    # VERSION 3: the midbody side-flare term outweighs the bow flare, so the
     # non-linear hogging peaks grow and the sagging peaks shrink: the paper's order hog > sag
     hog, sag = small["2a"], small["2b"]
     np.testing.assert_array_equal(hog.t_start, sag.t_start)  # same wave windows
@@ -179,7 +179,7 @@ def _digest(a):
 # on the machine that recorded them the raw arrays were also compared bit for bit
 # (identical at scale 0.1 and 1.0).  The truth MPM is a fit, whose optimiser amplifies
 # last-bit differences of libm/BLAS: 3b gave 5336.852321456016 on another machine, 1.6e-9
-# relative off, so it is compared to TRUTH_RTOL (issue 25).
+# relative off, so it is compared to TRUTH_RTOL.
 HARD_REFERENCE = {
     "3a": (1824, "98571e8aa27ef7ff", "ee6a29d9b9d6eeb4", "02fdbeae46c56a23", "40ab1c8dabaca156",
            "422cd57ee7ce77c7", 1964.52241391635),
@@ -280,7 +280,7 @@ def test_slamming_load_of_an_episode_uses_the_panel_level_speed():
 @pytest.mark.slow
 @pytest.mark.parametrize("case", ["3a", "4a"])
 def test_episode_functions_reproduce_generated_events(small, case):
-    # The per-episode HF functions (for design waves, issue 12) give the generator's HF of an
+    # The per-episode HF functions (for design waves) give the generator's HF of an
     # event when fed that event's relative elevation and random inputs.
     from pas.validation import case_impacts as ci
     from pas.validation._common import DT, model_rng, seed_plan, windows
