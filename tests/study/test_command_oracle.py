@@ -281,3 +281,15 @@ def test_a_resumed_pas_run_refuses_a_missing_script_before_recording_it(campaign
         assert store.get("oracle_command") == [sys.executable, "cfd.py", "{lf}",
                                                "{cwd}/factor.txt", "{result}"]
         assert store.get("oracle_command_changes") is None
+
+
+def test_an_indexed_placeholder_is_refused_before_any_event(tmp_path):
+    lf = np.random.default_rng(0).rayleigh(2.0, 300)
+    table = pd.DataFrame({"lf": lf, "seed": np.arange(300)})
+    study = pas.make_study(pas.PAS, table, n_waves=300, p_exp=1e-2, eps1=0.05, seed=0)
+    (tmp_path / "cfd.py").write_text(SCRIPT)
+    oracle = CommandOracle([sys.executable, "cfd.py", "{seed[0]}", "{result}"], root="runs",
+                           cwd=tmp_path)
+    with pytest.raises(ValueError, match=r"^args: a placeholder indexes .* not \{seed\[0\]\}$"):
+        study.optimize(oracle)
+    assert study.rows == [] and not (tmp_path / "runs").exists()

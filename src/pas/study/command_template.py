@@ -97,9 +97,10 @@ def filled(args, event, files, **folders) -> list[str]:
         known = first + [k for k in fields if k not in first]
         raise OracleError(f"command: unknown placeholder {{{exc.args[0]}}} (known: "
                           + ", ".join(f"{{{k}}}" for k in known) + ")") from None
-    except IndexError as exc:
-        raise OracleError(f"args: placeholder {exc} is neither an event field nor in its "
-                          "meta") from None
+    except (IndexError, TypeError, AttributeError) as exc:  # {seed[0]}, {lf.real}
+        raise OracleError(f"args: a placeholder indexes or reads an attribute of a field "
+                          f"({exc}); the fields are filled in whole: write {{seed}}, not "
+                          "{seed[0]}") from None
     except ValueError as exc:  # e.g. {lf:.3f}: the fields are text
         raise OracleError(f"args: {exc} (the fields are filled in as text: write {{lf}}, "
                           "not {lf:.3f})") from None
