@@ -15,7 +15,8 @@ strategy's copula and marginals from :attr:`ScreeningResult.pairs` with
 :func:`pas.strategies.pas.remove_outliers`.
 
 This module re-exports the figure functions, which live in
-:mod:`pas.plotting.convergence` (:func:`plot_mpm_convergence`, :func:`plot_aic`),
+:mod:`pas.plotting.convergence` (:func:`plot_mpm_convergence`), :mod:`pas.plotting.aic`
+(:func:`plot_aic`),
 :mod:`pas.plotting.distributions` (:func:`plot_distribution`, :func:`plot_scatter`,
 :func:`conditional_quantile_curves`) and :mod:`pas.plotting.metrics`
 (:func:`plot_metrics`).
@@ -35,11 +36,11 @@ from ._common import (  # noqa: F401  (private helpers, kept importable from her
     _strategy_name,
     _with_unit,
 )
+from .aic import plot_aic  # noqa: F401
 from .convergence import (  # noqa: F401
     _FAIL_COLOR,
     _FP_COLOR,
     _convergence_row,
-    plot_aic,
     plot_mpm_convergence,
 )
 from .distributions import (  # noqa: F401
