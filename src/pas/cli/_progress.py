@@ -2,7 +2,8 @@
 
 :class:`Progress` prints one line per told result and, even when quiet, one
 stderr line per failed HF evaluation; :func:`stopped_message` is the one line
-printed when Ctrl-C or a closed pipe ends a run early.
+printed when Ctrl-C or a closed pipe ends a run early; :func:`resuming_line` and
+:func:`retried_line` say what a continued run reuses and runs again.
 """
 
 from __future__ import annotations
@@ -12,7 +13,7 @@ import os
 import sys
 
 __all__ = ["Progress", "RunStopped", "failure_line", "precision_text", "stopped", "stopped_message",
-           "EXIT_INTERRUPTED", "EXIT_BROKEN_PIPE"]
+           "resuming_line", "retried_line", "EXIT_INTERRUPTED", "EXIT_BROKEN_PIPE"]
 
 #: Exit codes of an early stop: Ctrl-C (128 + SIGINT) and a closed pipe (128 + SIGPIPE),
 #: what a shell reports for a process those signals killed.
@@ -217,3 +218,29 @@ def _finite(x) -> bool:
 
 def _num(x, fmt=".3g") -> str:
     return format(x, fmt) if _finite(x) else "-"
+
+
+def retried_line(report: dict) -> str:
+    """The line ``pas run --retry-failed`` prints: what runs again and what was kept."""
+    if not report["retried"]:
+        return "pas run: --retry-failed: the study has no failed event to retry"
+    n = len(report["retried"])
+    return (f"pas run: retrying {n} failed event(s) ({', '.join(report['retried'][:5])}"
+            f"{', ...' if n > 5 else ''}); {report['dropped']} later ask(s) taken out of the "
+            f"study's log, {report['kept']} of their results kept and reused if asked again")
+
+
+def resuming_line(study, store) -> str:
+    """The line ``pas run`` prints when it continues a stored study: what it reuses."""
+    waiting = study.store.outstanding()
+    with_result = sum(r.has_result for r in waiting)
+    reused = study.n_told + with_result
+    line = f"pas run: resuming {store}: {reused} results reused"
+    parts = [f"{study.n_failed} failed"] if study.n_failed else []
+    if with_result:
+        parts.append(f"{with_result} stored but not yet used by the study")
+    if parts:
+        line += f" ({', '.join(parts)})"
+    if len(waiting) > with_result:
+        line += f", {len(waiting) - with_result} pending event(s) to run again"
+    return line

@@ -263,7 +263,7 @@ def run(args) -> int:
     from ..study.settings import lacks_a_limit
     from ..study.store import StoreError, read_settings
     from . import EXIT_FAILED_LEFT_OUT, EXIT_STOPPED
-    from ._progress import Progress, stopped
+    from ._progress import Progress, resuming_line, retried_line, stopped
 
     _check_numbers(args)
     lf, ids, meta = read_lf_peaks(args.lf_file, column=args.lf_column, id_column=args.id_column,
@@ -304,9 +304,9 @@ def run(args) -> int:
             for line in (note or "").splitlines():
                 print(f"pas run: {line}", file=sys.stderr)
             if args.retry_failed:
-                print(_retried_line(study.retry_failed()), file=sys.stderr)
+                print(retried_line(study.retry_failed()), file=sys.stderr)
             if stored:
-                print(_resuming_line(study, store), file=sys.stderr)
+                print(resuming_line(study, store), file=sys.stderr)
         try:
             result = study.optimize(oracle, batch_size=args.batch_size, n_workers=args.workers,
                                     callback=Progress(quiet=args.quiet))
@@ -368,30 +368,6 @@ def _resumable_settings(args, stored: dict) -> dict:
         if hasattr(args, key):
             setattr(args, key, out.get(key))
     return out
-
-
-def _retried_line(report: dict) -> str:
-    if not report["retried"]:
-        return "pas run: --retry-failed: the study has no failed event to retry"
-    n = len(report["retried"])
-    return (f"pas run: retrying {n} failed event(s) ({', '.join(report['retried'][:5])}"
-            f"{', ...' if n > 5 else ''}); {report['dropped']} later ask(s) taken out of the "
-            f"study's log, {report['kept']} of their results kept and reused if asked again")
-
-
-def _resuming_line(study, store) -> str:
-    waiting = study.store.outstanding()
-    with_result = sum(r.has_result for r in waiting)
-    reused = study.n_told + with_result
-    line = f"pas run: resuming {store}: {reused} results reused"
-    parts = [f"{study.n_failed} failed"] if study.n_failed else []
-    if with_result:
-        parts.append(f"{with_result} stored but not yet used by the study")
-    if parts:
-        line += f" ({', '.join(parts)})"
-    if len(waiting) > with_result:
-        line += f", {len(waiting) - with_result} pending event(s) to run again"
-    return line
 
 
 def _save_partial(study, out, inputs, args):
