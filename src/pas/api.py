@@ -24,7 +24,7 @@ from .study.flat import MOVED, SETTINGS_PAGE
 from .study.inputs import split_lf_table
 from .study.oracles import check_oracle
 from .study.result import ScreeningResult
-from .study.settings import UNSET, given_names, keep_stored, resolve
+from .study.settings import UNSET, given_names, keep_stored, lacks_a_limit, resolve
 from .study.store import read_settings
 from .study.study import Study
 
@@ -123,17 +123,19 @@ def make_study(strategy, lf_peaks, *, n_waves, p_exp, threshold=None, eps1=None,
         Run it with :meth:`~pas.study.study.Study.optimize` (``n_workers``,
         ``pending``) or drive it with ask/tell.
     """
-    return _make_study("make_study", **locals())
+    return _make_study("make_study", **locals(), stacklevel=4)
 
 
 def _make_study(where, strategy, lf_peaks, *, n_waves, p_exp, threshold, eps1, eps2, precision,
-                seed, max_hf, stopping, budget, store, n_waves_convention, **options) -> Study:
-    """:func:`make_study`, its errors naming ``where`` (the function the user called)."""
+                seed, max_hf, stopping, budget, store, n_waves_convention, stacklevel,
+                **options) -> Study:
+    """:func:`make_study`, its errors naming ``where`` (the function the user called) and its
+    warnings the user's line (``stacklevel`` frames up)."""
     lf, ids, meta = split_lf_table(lf_peaks)
     note = check_n_waves(lf, n_waves, threshold, convention=n_waves_convention,
                          names={"convention": "n_waves_convention='spectral'"})
     if note is not None:
-        warnings.warn(note, stacklevel=4)
+        warnings.warn(note, stacklevel=stacklevel)
     if isinstance(strategy, str) and strategy == "paper":
         strategy = PAS.paper()
     elif isinstance(strategy, Strategy):  # its own copy: one object may serve many studies
@@ -144,6 +146,8 @@ def _make_study(where, strategy, lf_peaks, *, n_waves, p_exp, threshold, eps1, e
                                precision=precision, max_hf=max_hf)
     if store is not None:
         stopping, budget = keep_stored(stopping, budget, read_settings(store), given)
+    if (missing := lacks_a_limit(stopping.flat())) is not None:
+        raise ValueError(f"{where}: {missing}")
     return Study.from_peaks(make_strategy(strategy), lf, n_waves=n_waves, p_exp=p_exp,
                             threshold=threshold, ids=ids, meta=meta, store=store, seed=seed,
                             stopping=stopping, budget=budget,
@@ -404,7 +408,7 @@ def _run(cls, given: dict) -> ScreeningResult:
     keys = ("n_waves", "p_exp", "threshold", "eps1", "eps2", "precision", "seed", "max_hf",
             "stopping", "budget", "n_waves_convention")
     built = _make_study(f"run_{cls.name}", strategy, given["lf_peaks"], store=given["study"],
-                        **{k: given[k] for k in keys})
+                        stacklevel=5, **{k: given[k] for k in keys})
     if given["retry_failed"]:
         built.retry_failed()
     executor = given["executor"]

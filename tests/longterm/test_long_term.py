@@ -247,3 +247,33 @@ def test_the_summary_gives_the_loads_unit():
                         "(U95 110 – 150 kN)")
     assert lines[-1].endswith("the value is 100 – 160 kN")
     assert "kN" not in res.summary()
+
+
+def test_results_still_running_are_stored_when_a_tell_raises(tmp_path):
+    """A callback that raises during a round: every HF result the round's calls return is in
+    the store (a resumed analysis takes them instead of running the events again)."""
+    import sqlite3
+    from concurrent.futures import ThreadPoolExecutor
+
+    table, lf = _small()
+    oracle = problem.Oracle()
+
+    def callback(name, study, row):
+        raise RuntimeError("the user's callback broke")
+
+    db = tmp_path / "lt.sqlite"
+    with ThreadPoolExecutor(4) as pool, pytest.raises(RuntimeError, match="callback broke"):
+        pas.run_long_term(table, lf, oracle, max_hf=12, study=db, batch_size=3, executor=pool,
+                          callback=callback, **FAST)
+    with sqlite3.connect(db) as c:
+        stored = c.execute("SELECT COUNT(*) FROM events WHERE result_at IS NOT NULL").fetchone()[0]
+    assert len(oracle.calls) >= 2 and stored == len(oracle.calls)
+
+
+@pytest.mark.parametrize("key", ["seed", "eps1", "max_hf", "stop_on_convergence"])
+def test_study_settings_may_not_set_what_run_long_term_sets(tmp_path, key):
+    table, lf = _small()
+    with pytest.raises(ValueError, match=f"^study_settings: run_long_term sets {key} itself"):
+        pas.run_long_term(table, lf, problem.Oracle(), max_hf=8, study=tmp_path / "lt.sqlite",
+                          study_settings={key: 1}, **FAST)
+    assert not (tmp_path / "lt.sqlite").exists()

@@ -105,7 +105,7 @@ def test_retry_of_chosen_events_and_its_errors(tmp_path):
         assert all(states[k] == "failed" for k in failed[:-1] if k in states)
     with pytest.raises(ValueError, match="retry_failed=True needs study="):
         pas.run_pas(LF, good, retry_failed=True, n_waves=N, p_exp=1e-2, eps1=1e-3)
-    with pytest.raises(ValueError, match="needs store="):
+    with pytest.raises(ValueError, match="needs a study store"):
         pas.make_study(NO_BAND, LF, max_hf=MAX_HF, **KW).retry_failed()
 
 

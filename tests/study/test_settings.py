@@ -204,3 +204,13 @@ def test_resumed_python_study_keeps_what_pas_study_set_changed(tmp_path):
     run(eps2=0.1)  # named in the call: the new value replaces the stored one
     with StudyStore(db, create=False) as store:
         assert store.settings()["eps2"] == 0.1 and store.settings()["max_hf"] == 18
+
+
+def test_the_n_waves_warning_points_at_the_users_line():
+    lf = np.random.default_rng(0).rayleigh(1.0, 500)
+    with pytest.warns(UserWarning, match="n_waves") as caught:
+        pas.make_study(pas.PAS(), lf, n_waves=450, p_exp=1e-2, eps1=0.5, threshold=0.5)
+    with pytest.warns(UserWarning, match="n_waves") as caught_run:
+        pas.run_pas(lf, _oracle, n_waves=450, p_exp=1e-2, eps1=0.5, max_hf=4, threshold=0.5)
+    assert {w.filename for w in [*caught, *caught_run] if "n_waves" in str(w.message)} == {
+        __file__}

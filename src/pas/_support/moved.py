@@ -8,9 +8,10 @@ import inspect
 __all__ = ["keywords_moved"]
 
 
-def keywords_moved(moved: dict, page: str):
+def keywords_moved(moved: dict, page: str, name: str | None = None):
     """Decorate a function so that a keyword it does not take, but ``moved`` names, raises
-    ``TypeError: f: name is now <place>; see <page>`` (its signature stays as written).
+    ``TypeError: f: name is now <place>; see <page>`` (its signature stays as written);
+    ``name`` is what the message calls the function (default its ``__name__``).
 
     Examples
     --------
@@ -24,16 +25,16 @@ def keywords_moved(moved: dict, page: str):
     """
     def decorate(func):
         names = set(inspect.signature(func).parameters)
-        where = func.__name__
+        where = name or func.__name__
 
         @functools.wraps(func)
         def wrapper(*args, **kwargs):
-            for name in kwargs:
-                if name not in names:
-                    place = moved.get(name)
+            for key in kwargs:
+                if key not in names:
+                    place = moved.get(key)
                     if place is None:
-                        raise TypeError(f"{where}: unknown keyword argument {name!r}; see {page}")
-                    raise TypeError(f"{where}: {name} is now {place}; see {page}")
+                        raise TypeError(f"{where}: unknown keyword argument {key!r}; see {page}")
+                    raise TypeError(f"{where}: {key} is now {place}; see {page}")
             return func(*args, **kwargs)
 
         return wrapper

@@ -44,7 +44,7 @@ def add_parsers(cmds) -> None:
                    help="event ids (default: every running program of the study)")
 
 
-def store_file(study: str) -> str:
+def store_path(study: str) -> str:
     """The study store ``STUDY`` names: the file itself, or the ``study.sqlite`` that
     ``pas run`` keeps in its ``--out`` folder when ``study`` is a folder."""
     path = Path(study)
@@ -61,7 +61,7 @@ def _root(study: str) -> str:
     from ..study.oracle_spec import ROOT_KEY
     from ..study.store import StudyStore
 
-    path = Path(store_file(study))
+    path = Path(store_path(study))
     if not path.is_file():
         raise ValueError(f"STUDY: {study} is neither a study store nor a pas run --out folder "
                          "holding study.sqlite")

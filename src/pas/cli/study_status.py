@@ -24,9 +24,9 @@ def status(args) -> int:
     """
     from ..study.store import StudyStore
     from ..study.stored_results import stored_result
-    from .study_programs import store_file
+    from .study_programs import store_path
 
-    path = store_file(args.study)
+    path = store_path(args.study)
     with StudyStore(path, create=False) as store:
         waiting = store.unconsumed()
         shown, n_told, key = stored_result(store)

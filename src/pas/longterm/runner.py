@@ -126,6 +126,9 @@ def run_long_term(sea_states, lf_peaks, oracle, *, p_exceed=None, return_period=
     t_start = time.perf_counter()
     check_oracle(oracle)
     check_retry(retry_failed, study)
+    if taken := sorted(set(study_settings or ()) & set(_OWN_STUDY_SETTINGS)):
+        raise ValueError(f"study_settings: run_long_term sets {', '.join(taken)} itself (give "
+                         "its own eps1, max_hf and seed); leave them out of study_settings")
     states = read_sea_states(sea_states, lf_peaks)
     p = design_exceedance(states, p_exceed, return_period, hours_per_year)
     weights = encounter_weights(states)
@@ -152,9 +155,9 @@ def run_long_term(sea_states, lf_peaks, oracle, *, p_exceed=None, return_period=
     run = _Run(states, weights, studies, oracle, executor, callback, max_hf, target=target,
                model_band=model_band, root=root)
     try:
-        first = next((st for st in studies if st is not None), None)
-        if first is not None and isinstance(oracle, CommandOracle):  # a typo'd command
-            oracle.check(first.lfset.event(0))  # fails here, not every event
+        live = [st for st in studies if st is not None and (st.pending or not st.finished)]
+        if live and isinstance(oracle, CommandOracle):  # a typo'd command
+            oracle.check(live[0].lfset.event(0))  # fails here, not every event
         run.left_over()
         run.allocate(p, batch_size, top)
     finally:
@@ -206,6 +209,10 @@ _MAY_CHANGE = ("max_hf", "precision")
 """Settings a continued analysis may change: its budget and its precision target."""
 
 
+_OWN_STUDY_SETTINGS = ("eps1", "max_hf", "seed", "stop_on_convergence")
+"""Settings of each sea state's study that :func:`run_long_term` sets itself."""
+
+
 def _make_study(state, i, q_lf, strategy, seed, max_hf, eps1, settings, path) -> Study:
     """The sea state's study, at ``p_exp`` = its LF exceedance at the LF-only long-term level
     (within its record: ``1/n_w`` for a level above it)."""
@@ -218,9 +225,9 @@ def _make_study(state, i, q_lf, strategy, seed, max_hf, eps1, settings, path) ->
     own_seed = int(np.random.SeedSequence([seed, i]).generate_state(1, dtype=np.uint64)[0]
                    % (2**63))
     store = None if path is None else StudyStore(path, scope=state.name)
-    options = study_options({"eps1": 1.0 if eps1 is None else eps1, "max_hf": max_hf,
-                             "stop_on_convergence": eps1 is not None, "seed": own_seed,
-                             **settings})
+    own = {"eps1": 1.0 if eps1 is None else eps1, "max_hf": max_hf,
+           "stop_on_convergence": eps1 is not None, "seed": own_seed}
+    options = study_options({**own, **settings})
     return Study(lfset, copy.deepcopy(strategy), store=store, **options)
 
 

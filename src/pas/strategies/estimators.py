@@ -41,27 +41,6 @@ __all__ = ["ConditionalLikelihood", "SelectedSample", "ESTIMATORS", "CandidateFi
 COLD_EVERY = 10
 """Every this many study fits, the conditional estimator also starts from the data."""
 
-@dataclass(frozen=True)
-class FitRequest:
-    """One fit's circumstances (:meth:`pas.strategies.pas.PAS.fit`).
-
-    ``families``: the candidates; ``one_family``: only that one is fitted;
-    ``update``: the fit is the study's (False for band replicates);
-    ``hf_marginal``: overrides the estimator's for this fit; ``lf_ranks_rng``:
-    draws the LF population ranks; ``starts``: joint fits to start from
-    (band replicates); ``warm``: the study's warm starts, read and updated by
-    the fit.  The last four apply to :class:`ConditionalLikelihood`.
-    """
-
-    families: tuple
-    impact: Callable | None
-    one_family: bool = False
-    update: bool = True
-    hf_marginal: str | None = None
-    lf_ranks_rng: np.random.Generator | None = None
-    starts: dict | None = None
-    warm: WarmStarts | None = None
-
 
 @dataclass
 class WarmStarts:
@@ -87,6 +66,29 @@ class WarmStarts:
         if study_fit:
             self.joint = every
             self.n_fits += 1
+
+
+@dataclass(frozen=True)
+class FitRequest:
+    """One fit's circumstances (:meth:`pas.strategies.pas.PAS.fit`).
+
+    ``families``: the candidates; ``one_family``: only that one is fitted;
+    ``update``: the fit is the study's (False for band replicates);
+    ``hf_marginal``: overrides the estimator's for this fit; ``lf_ranks_rng``:
+    draws the LF population ranks; ``starts``: joint fits to start from
+    (band replicates); ``warm``: the study's warm starts, read and updated by
+    the fit (a fresh one when not given).  The last four apply to
+    :class:`ConditionalLikelihood`.
+    """
+
+    families: tuple
+    impact: Callable | None
+    one_family: bool = False
+    update: bool = True
+    hf_marginal: str | None = None
+    lf_ranks_rng: np.random.Generator | None = None
+    starts: dict | None = None
+    warm: WarmStarts = field(default_factory=WarmStarts)
 
 
 @dataclass(frozen=True)
@@ -130,7 +132,7 @@ class ConditionalLikelihood:
 
     def fit(self, pas, pairs, lfset, request: FitRequest) -> CandidateFits:
         """Population LF ranks and the joint conditional likelihood; reads and updates the
-        warm starts ``pas`` carries."""
+        request's warm starts (``request.warm``)."""
         # Step 7 removes pairs by their HF value: a selection on the response, which
         # the conditional likelihood does not allow (it would drop the largest loads
         # from the tail it fits), so every pair is kept

@@ -101,7 +101,9 @@ class Corrections:
             ``retried`` (event ids), ``dropped`` (asks taken out of the log)
             and ``kept`` (their results kept for reuse).
         """
-        check_retry(True, self.store, "store")
+        if self.store is None:
+            raise ValueError("retry_failed needs a study store: create the study with store=... "
+                             "(a failed event of a study in memory cannot be rewound)")
         keys = None if ids is None else [str(i.id if isinstance(i, Event) else i) for i in ids]
         report = self.store.retry_failed(keys)
         if report["retried"]:
@@ -110,9 +112,9 @@ class Corrections:
         return report
 
 
-def check_retry(retry_failed: bool, store, name: str = "study") -> None:
-    """A ``ValueError`` naming the argument ``name`` when failed events are to run again in a
-    study without a store (a failed event of a study in memory cannot be rewound)."""
+def check_retry(retry_failed: bool, store) -> None:
+    """A ``ValueError`` when ``retry_failed=True`` is given without ``study=`` (a store):
+    a failed event of a study in memory cannot be rewound."""
     if retry_failed and store is None:
-        raise ValueError(f"retry_failed=True needs {name}=... (a study store: the failed "
+        raise ValueError("retry_failed=True needs study=... (a study store: the failed "
                          "events of a study in memory cannot be rewound)")

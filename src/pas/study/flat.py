@@ -1,6 +1,8 @@
 """Flat settings (a study file, ``--set NAME=VALUE``, a store of pas 0.1) to and from objects.
 
-:func:`from_flat` is the one reader of a flat dict of names; :data:`MOVED`
+:func:`from_flat` reads the flat dict of a study file or the command line (a
+store's is :func:`pas.study.factory.study_options`'s, with the same
+:meth:`Stopping.from_flat <pas.study.settings.Stopping.from_flat>`); :data:`MOVED`
 says where each keyword :func:`pas.run_pas` took in pas 0.1 lives now, for
 the error an old keyword raises and for ``docs/reference/settings.md``
 (:func:`moved_table`, a test checks the page against it).
@@ -77,10 +79,9 @@ def from_flat(flat: dict, *, strategy: str = "pas", preset: str | None = None,
     if paper and strategy != "pas":
         raise ValueError(f"preset 'paper' is a set of PAS settings; it does not apply to "
                          f"{strategy!r}")
-    rest = dict(flat)
-    stopping = {field: rest.pop(name) for field, name in STOPPING_NAMES.items() if name in rest}
-    budget = {field: rest.pop(name) for field, name in BUDGET_NAMES.items() if name in rest}
-    study = {name: rest.pop(name) for name in OTHER_STUDY_SETTINGS if name in rest}
+    taken = {*STOPPING_NAMES.values(), *BUDGET_NAMES.values(), *OTHER_STUDY_SETTINGS}
+    rest = {k: v for k, v in flat.items() if k not in taken}
+    study = {name: flat[name] for name in OTHER_STUDY_SETTINGS if name in flat}
     if paper:
         base = PAS.paper().settings()
         if rest.get("estimator", base["estimator"]) != base["estimator"]:
@@ -89,8 +90,8 @@ def from_flat(flat: dict, *, strategy: str = "pas", preset: str | None = None,
     built = PAS.from_flat(rest, strict=strict) if strategy == "pas" else make_strategy(strategy,
                                                                                        rest)
     built.paper_study = paper
-    return {"strategy": built, "stopping": (Stopping.paper if paper else Stopping)(**stopping),
-            "budget": (Budget.paper if paper else Budget)(**budget), **study}
+    return {"strategy": built, "stopping": Stopping.from_flat(flat, paper=paper),
+            "budget": Budget.from_flat(flat, paper=paper), **study}
 
 
 def moved_table() -> str:

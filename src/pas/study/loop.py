@@ -92,8 +92,8 @@ def optimize(study, oracle, *, batch_size: int = 1, executor: Executor | None = 
         result so far.
     """
     check_oracle(oracle)
-    if isinstance(oracle, CommandOracle):  # a typo'd command fails here, not every event
-        oracle.check(study.lfset.event(0))
+    if isinstance(oracle, CommandOracle) and (study.pending or not study.finished):
+        oracle.check(study.lfset.event(0))  # a typo'd command fails here, not every event
     check_option(pending, "pending", PENDING_POLICIES)
     batch_size = check_positive_int(batch_size, "batch_size")
     own = None
@@ -240,8 +240,10 @@ def run_batch(asks, oracle, executor, tell) -> None:
     A result already stored (a killed run's, or loads stored for want of a
     target) is taken without calling the oracle.  ``tell(study, event, value,
     error)`` tells one result and returns the failure limit's error when it is
-    now exceeded; the first such error is raised once the calls already
-    running are stored (in this process no further call is made).
+    now exceeded; the first such error, or an error raised while telling, is
+    raised once the calls already running are stored (in this process no
+    further call is made).  Ctrl-C is not held back: running calls go on in
+    their own sessions and a resumed run takes their results.
     """
     results, told = [], [0] * len(asks)
     for study, events in asks:
@@ -271,19 +273,32 @@ def run_batch(asks, oracle, executor, tell) -> None:
             if asks[k][0].store is not None:
                 asks[k][0].store.mark_submitted([ev for j, ev in todo if j == k])
         where = {id(ev): k for k, ev in todo}
-        target = asks[todo[0][0]][0].target
-        for ev, (value, error, loads) in execute(oracle, [ev for _, ev in todo], target,
-                                                 executor):
+        targets = {asks[k][0].target for k, _ in todo}
+        if len(targets) > 1:
+            raise ValueError(f"one batch of studies screening different loads {sorted(targets)}")
+        error = None  # an error while telling: the results still arriving are stored first
+        for ev, (value, error_text, loads) in execute(oracle, [ev for _, ev in todo],
+                                                      targets.pop(), executor):
             k = where[id(ev)]
             study = asks[k][0]
             if lacks_target(loads, study.target):
-                _stop_for_target(study, ev, loads, error)
-            if study.store is not None:
-                study.store.record_result(ev, value, error, loads=loads)
-            results[k][ev.index] = (value, error)
-            tell_ready(k)
-            if failure is not None and executor is None:
-                break  # in this process: no oracle call after the limit
+                try:
+                    _stop_for_target(study, ev, loads, error_text)
+                except ValueError as exc:
+                    error = error or exc
+            else:
+                if study.store is not None:
+                    study.store.record_result(ev, value, error_text, loads=loads)
+                results[k][ev.index] = (value, error_text)
+                if error is None:
+                    try:
+                        tell_ready(k)
+                    except Exception as exc:  # noqa: BLE001 - raised below, once stored
+                        error = exc
+            if (failure is not None or error is not None) and executor is None:
+                break  # in this process: no oracle call after the limit or an error
+        if error is not None:
+            raise error
     if failure is not None:
         raise failure
 

@@ -136,7 +136,7 @@ OTHER_STUDY_SETTINGS = ("seed", "stop_on_convergence", "adaptive_threshold", "th
 """Study settings that are keywords of :func:`pas.make_study` and of
 :class:`~pas.study.study.Study` (no object of their own)."""
 STOP_LIMITS = {"eps1": "a limit in load units, the paper's rule",
-               "precision": "e.g. 10 %: stop once the U95 of the MPM is within ±10 % of it"}
+               "precision": "e.g. 0.10: stop once the U95 of the MPM is within ±10 % of it"}
 """The :class:`Stopping` settings that can each end a study by itself: a study needs one at
 least (:func:`lacks_a_limit`)."""
 

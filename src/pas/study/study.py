@@ -17,7 +17,9 @@ import numpy as np
 import pandas as pd
 
 from .._support.checks import check_int, check_setting, draw_seed
+from .._support.moved import keywords_moved
 from ..strategies.base import Pairs, Prediction, Strategy
+from ..strategies.flat import SETTINGS_PAGE
 from ..strategies.screening import Event, LFSet
 from ..strategies.stopping import StoppingRule, range_grid
 from . import loop, precision
@@ -26,11 +28,22 @@ from .corrections import Corrections
 from .factory import LF_SETTINGS, STUDY_SETTINGS, make_strategy, study_options, study_settings
 from .replay import attach
 from .result import ScreeningResult
-from .settings import OTHER_STUDY_SETTINGS, Budget, Stopping, lacks_a_limit
+from .settings import (
+    BUDGET_NAMES,
+    OTHER_STUDY_SETTINGS,
+    STOPPING_NAMES,
+    Budget,
+    Stopping,
+    lacks_a_limit,
+)
 from .state import EventState
 from .store import read_settings
 
 __all__ = ["Study"]
+
+_MOVED = {**{flat: f"stopping=Stopping({field}=...)" for field, flat in STOPPING_NAMES.items()},
+          **{flat: f"budget=Budget({field}=...)" for field, flat in BUDGET_NAMES.items()}}
+"""Where each flat study setting the constructor took before its settings objects lives."""
 
 
 class Study(Corrections):
@@ -43,11 +56,12 @@ class Study(Corrections):
     strategy : Strategy
         :class:`~pas.strategies.pas.PAS` or :class:`~pas.strategies.as_.AS`.
     stopping : Stopping, optional
-        The stopping rule (App. C, and the precision target); default
-        :class:`~pas.study.settings.Stopping`'s.
+        The stopping rule (App. C, and the precision target); it needs
+        ``eps1`` or ``precision``.  Default ``Stopping()``
+        (``Stopping.paper()`` for :meth:`PAS.paper() <pas.strategies.pas.PAS.paper>`).
     budget : Budget, optional
         HF evaluations and failed oracle calls the study may spend; default
-        :class:`~pas.study.settings.Budget`'s.
+        ``Budget()`` (``Budget.paper()``, no budget, for ``PAS.paper()``).
     seed : int, optional
         Seed of every random draw; drawn from the OS when None and reported.
     target : str, optional
@@ -75,20 +89,26 @@ class Study(Corrections):
         the study lives in memory only.
     """
 
+    @keywords_moved(_MOVED, SETTINGS_PAGE, "Study")
     def __init__(self, lfset: LFSet, strategy: Strategy, *, stopping: Stopping | None = None,
                  budget: Budget | None = None, seed=None, target=None, stop_on_convergence=True,
                  adaptive_threshold=True, threshold_step=0.02, fp_run=5, legacy_md=False,
                  store=None):
         self.lfset = lfset
         self.strategy = strategy
-        self.budget = Budget() if budget is None else budget
+        paper = getattr(strategy, "paper_study", False)  # PAS.paper(): the paper's defaults
+        budget = (Budget.paper if paper else Budget)() if budget is None else budget
+        stopping = (Stopping.paper if paper else Stopping)() if stopping is None else stopping
+        for name, value, cls in (("stopping", stopping, Stopping), ("budget", budget, Budget)):
+            if not isinstance(value, cls):
+                raise TypeError(f"Study: {name} must be {cls.__name__}(...), got {value!r}")
         # its least value is the strategy's, stricter than the budget's own rule
-        self.max_hf = (None if self.budget.max_hf is None
-                       else check_int(self.budget.max_hf, "max_hf", strategy.n_initial))
-        self.max_failures = self.budget.max_failures
-        stopping = Stopping() if stopping is None else stopping
-        if (missing := lacks_a_limit(stopping.flat())) is not None:
-            raise ValueError(missing)
+        self.max_hf = (None if budget.max_hf is None
+                       else check_int(budget.max_hf, "max_hf", strategy.n_initial))
+        self.max_failures = budget.max_failures
+        missing = lacks_a_limit(stopping.flat(), spell=lambda n: f"stopping=Stopping({n}=...)")
+        if missing is not None:
+            raise ValueError(f"Study: {missing}")
         self.stopping = StoppingRule(**asdict(stopping))
         self.seed = draw_seed(check_setting("seed", seed))
         strategy.reset(self.seed)
