@@ -11,7 +11,7 @@ positives (paper Step 6), failed oracle calls, the adaptive threshold
 from __future__ import annotations
 
 import warnings
-from dataclasses import asdict, fields
+from dataclasses import asdict
 
 import numpy as np
 import pandas as pd
@@ -25,19 +25,17 @@ from ..strategies.stopping import StoppingRule, range_grid
 from . import loop, precision
 from .answers import check_hf_answer, check_target, lacks_target
 from .corrections import Corrections
-from .factory import LF_SETTINGS, STUDY_SETTINGS, make_strategy, study_options, study_settings
 from .replay import attach
 from .result import ScreeningResult
 from .settings import (
     BUDGET_NAMES,
-    OTHER_STUDY_SETTINGS,
     STOPPING_NAMES,
     Budget,
     Stopping,
     lacks_a_limit,
 )
 from .state import EventState
-from .store import read_settings
+from .study_settings import StudySettings
 
 __all__ = ["Study"]
 
@@ -46,7 +44,7 @@ _MOVED = {**{flat: f"stopping=Stopping({field}=...)" for field, flat in STOPPING
 """Where each flat study setting the constructor took before its settings objects lives."""
 
 
-class Study(Corrections):
+class Study(StudySettings, Corrections):
     """One screening campaign.
 
     Parameters
@@ -136,52 +134,6 @@ class Study(Corrections):
         self.store = None
         if store is not None:
             attach(self, store)
-
-    @classmethod
-    def from_peaks(cls, strategy: Strategy, lf_peaks, *, n_waves, p_exp, threshold=None,
-                   ids=None, meta=None, store=None, seed=None, **options) -> Study:
-        """A study of ``strategy`` on the LF peaks ``lf_peaks`` (its :class:`LFSet` built here).
-
-        ``options`` are the constructor's keywords; with ``seed=None`` an
-        existing store's seed is used.
-        """
-        lfset = LFSet(lf_peaks, n_waves=n_waves, p_exp=p_exp, threshold=threshold, ids=ids,
-                      meta=meta, min_peaks=max(4, strategy.n_initial),
-                      sea_state=getattr(store, "scope", None) or None)
-        if store is not None and seed is None:
-            seed = read_settings(store).get("seed")
-        return cls(lfset, strategy, store=store, seed=seed, **options)
-
-    @classmethod
-    def from_settings(cls, settings: dict, lf_peaks, *, ids=None, meta=None,
-                      store=None) -> Study:
-        """Build a study from its flat settings, the dict :meth:`settings` returns (a store's).
-
-        Parameters
-        ----------
-        settings : dict
-            ``strategy`` (a name, class or instance), ``strategy_settings``,
-            ``n_waves``, ``p_exp``, ``threshold`` and the study settings by
-            their flat names (:mod:`pas.study.factory`); unknown keys raise
-            ``ValueError``.
-        lf_peaks : array-like
-            LF peak of every wave event.
-        ids, meta : sequence, optional
-            User ids / metadata per event.
-        store : str, os.PathLike or StudyStore, optional
-            As for the constructor; with no ``seed`` in ``settings`` an
-            existing store's seed is used.
-        """
-        known = {"strategy", "strategy_settings", *LF_SETTINGS, *STUDY_SETTINGS}
-        unknown = sorted(set(settings) - known)
-        if unknown:
-            raise ValueError(f"unknown study settings {unknown}; known: {', '.join(sorted(known))}")
-        strategy = make_strategy(settings["strategy"], settings.get("strategy_settings"))
-        return cls.from_peaks(strategy, lf_peaks, n_waves=settings["n_waves"],
-                              p_exp=settings["p_exp"], threshold=settings.get("threshold"),
-                              ids=ids, meta=meta, store=store,
-                              **study_options({k: v for k, v in settings.items()
-                                               if k in STUDY_SETTINGS}))
 
     # -- bookkeeping -------------------------------------------------------
     def _positions(self, status) -> list[int]:
@@ -419,18 +371,6 @@ class Study(Corrections):
         """
         return loop.optimize(self, oracle, batch_size=batch_size, callback=callback,
                              executor=executor, n_workers=n_workers, pending=pending)
-
-    def settings(self) -> dict:
-        """Everything that defines this study, by flat names (what its store keeps)."""
-        return study_settings(self)
-
-    def options(self) -> dict:
-        """The constructor's keywords that rebuild this study's settings (``stopping`` and
-        ``budget`` as objects)."""
-        rule = self.stopping
-        return {"stopping": Stopping(**{f.name: getattr(rule, f.name) for f in fields(Stopping)}),
-                "budget": Budget(max_hf=self.max_hf, max_failures=self.max_failures),
-                **{name: getattr(self, name) for name in OTHER_STUDY_SETTINGS}}
 
     # -- results -----------------------------------------------------------
     def history(self) -> pd.DataFrame:
