@@ -131,7 +131,7 @@ def test_study_file_takes_precision_as_text_or_number(files, capsys, stop, expec
     (files / "s.toml").write_text(STUDY_TOML.format(stop=stop))
     code, _, err = _cli(capsys, "study", "create", files / "s.db", "--config", files / "s.toml")
     assert code == 0, err
-    assert pas.study.open_study(files / "s.db").stopping.precision == expected
+    assert pas.study.open_study(files / "s.db").rule.precision == expected
 
 
 @pytest.mark.parametrize("stop, needle", [("", "give eps1 ("),

@@ -138,7 +138,7 @@ def test_paper_preset_through_the_api():
     assert pas.make_study("paper", lf, n_waves=2000, p_exp=1e-2, eps1=0.1, seed=0).settings() == s
     own = pas.make_study(pas.PAS.paper(), lf, n_waves=2000, p_exp=1e-2, max_hf=40,
                          stopping=pas.Stopping(eps1=0.1, k1=9))
-    assert own.max_hf == 40 and own.stopping.measure == "window"     # given settings win
+    assert own.max_hf == 40 and own.rule.measure == "window"     # given settings win
     assert pas.make_study("pas", lf, n_waves=2000, p_exp=1e-2, eps1=0.1).max_hf == 160
     from pas.study.flat import from_flat
     with pytest.raises(ValueError, match="preset must be one of"):

@@ -99,7 +99,7 @@ def test_arguments_and_objects_give_the_same_study():
                                 stopping=pas.Stopping(eps1=0.1, eps2=0.2),
                                 budget=pas.Budget(max_hf=30))
     assert by_args.settings() == by_objects.settings()
-    assert (by_args.stopping.eps2, by_args.max_hf, by_args.max_failures) == (0.2, 30, 10)
+    assert (by_args.rule.eps2, by_args.max_hf, by_args.max_failures) == (0.2, 30, 10)
 
 
 def test_the_paper_preset_is_the_settings_of_pas_0_1():
@@ -123,7 +123,7 @@ def test_the_paper_preset_is_the_settings_of_pas_0_1():
     assert (objects["stopping"].measure, objects["budget"].max_hf) == ("step", None)
     # the strategy alone is only the model: its stopping and budget may be given
     given = pas.make_study(pas.PAS.paper(), LF, n_waves=600, p_exp=1e-2, eps1=0.1, max_hf=20)
-    assert given.max_hf == 20 and given.stopping.measure == "step"
+    assert given.max_hf == 20 and given.rule.measure == "step"
 
 
 def test_one_source_of_names():

@@ -95,7 +95,7 @@ class Progress:
             fam = f" {row['family']}" if row.get("family") else ""
             model = (f"MPM {row['mpm']:.4g} (sampling band {_num(row.get('mpm_low'), '.4g')}–"
                      f"{_num(row.get('mpm_high'), '.4g')}){fam}")
-            rule = study.stopping
+            rule = study.rule
             if rule.eps1 is not None:
                 model += (f"  E_bar {_num(row.get('E_bar'))} (eps1 {rule.eps1:g})  "
                           f"COV {_num(row.get('COV'))} (eps2 {rule.eps2:g})")

@@ -52,7 +52,7 @@ class Corrections:
     def _remember_model_state(self, row) -> None:
         """Keep the strategy and stopping state before the fit ``row`` makes (for a replacement)."""
         self._before_fit = (row["row"], copy.deepcopy(
-            (vars(self.strategy), self.stopping, self.converged), {id(self.lfset): self.lfset}))
+            (vars(self.strategy), self.rule, self.converged), {id(self.lfset): self.lfset}))
 
     def _loads_alone(self, pos, ev, value, error, loads) -> dict | None:
         """The event's last history row when a replacement changes only its other named
@@ -69,7 +69,7 @@ class Corrections:
         if self._before_fit is not None and self._before_fit[0] == old["row"] == len(self.rows) - 1:
             # the last fit was this event's: refit from the model state before it, as if the
             # new value had been told in the first place
-            strategy_vars, self.stopping, self.converged = self._before_fit[1]
+            strategy_vars, self.rule, self.converged = self._before_fit[1]
             vars(self.strategy).clear()
             vars(self.strategy).update(strategy_vars)
         row = self._row(pos, ev, value, error)

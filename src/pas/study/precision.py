@@ -146,7 +146,7 @@ def judge(study, pred, pairs, row: dict, paper_stop: bool) -> bool:
     ``model_low``/``model_high`` and ``halfwidth`` (the U95's relative
     half-width); and the forecast's further HF evaluations (:func:`forecast_row`).
     """
-    rule = study.stopping
+    rule = study.rule
     floor = relative_half_width(pred.mpm, pred.mpm_band)
     row["halfwidth_sampling"] = floor
     gate = paper_stop and rule.precision_gate(pred.mpm, pred.mpm_band)
@@ -206,7 +206,7 @@ def forecast_row(study, forecast, n_pairs: int) -> dict:
 def final_forecast(study, pairs, pred, model) -> dict | None:
     """The forecast of a result: the study's band widths and the final band's (``model``),
     with ``out_of_reach`` saying whether an infinite forecast was meant (JSON keeps no inf)."""
-    rule = study.stopping
+    rule = study.rule
     if rule.precision is None:
         return None
     sampling = relative_half_width(pred.mpm, pred.mpm_band)
@@ -227,5 +227,5 @@ def holds(study, mpm: float, band, model_band: bool) -> bool:
     """For the result of a study that stopped: whether its reported band still meets the
     precision target (True without one, or without the model band: the stop was judged on
     the U95).  Told results after the stop (the rest of a batch) can widen it."""
-    rule = study.stopping
+    rule = study.rule
     return rule.precision is None or not model_band or rule.precision_met(mpm, band)

@@ -85,6 +85,13 @@ class Study(StudySettings, Corrections):
         happens; an existing one is checked against these settings and
         replayed, so the study continues where it stopped.  Without a store
         the study lives in memory only.
+
+    Attributes
+    ----------
+    rule : StoppingRule
+        The running stopping rule made from ``stopping``
+        (:class:`~pas.strategies.stopping.StoppingRule`): its limits and the
+        measures of every fit so far.
     """
 
     @keywords_moved(_MOVED, SETTINGS_PAGE, "Study")
@@ -107,7 +114,7 @@ class Study(StudySettings, Corrections):
         missing = lacks_a_limit(stopping.flat(), spell=lambda n: f"stopping=Stopping({n}=...)")
         if missing is not None:
             raise ValueError(f"Study: {missing}")
-        self.stopping = StoppingRule(**asdict(stopping))
+        self.rule = StoppingRule(**asdict(stopping))
         self.seed = draw_seed(check_setting("seed", seed))
         strategy.reset(self.seed)
         self.stop_on_convergence = check_setting("stop_on_convergence", stop_on_convergence)
@@ -326,11 +333,11 @@ class Study(StudySettings, Corrections):
             return
         self.last = pred
         h_range = pred.at(self.grid)
-        e, e_bar, cov, stop = self.stopping.update(h_range, pred.mpm)
+        e, e_bar, cov, stop = self.rule.update(h_range, pred.mpm)
         if self.range_short(pred):
             stop = False
             row["range_short"] = True
-        if self.stopping.precision is not None:  # may compute the model band
+        if self.rule.precision is not None:  # may compute the model band
             stop = precision.judge(self, pred, pairs, row, stop)
         self.curves[row["row"]] = h_range
         row.update(pred.record)

@@ -76,7 +76,7 @@ class StudySettings:
     def options(self) -> dict:
         """The constructor's keywords that rebuild this study's settings (``stopping`` and
         ``budget`` as objects)."""
-        rule = self.stopping
+        rule = self.rule
         return {"stopping": Stopping(**{f.name: getattr(rule, f.name) for f in fields(Stopping)}),
                 "budget": Budget(max_hf=self.max_hf, max_failures=self.max_failures),
                 **{name: getattr(self, name) for name in OTHER_STUDY_SETTINGS}}
