@@ -150,9 +150,14 @@ def _abandon(pool: ProcessPoolExecutor) -> None:
     its result.
     """
     workers = list((getattr(pool, "_processes", None) or {}).values())  # shutdown forgets them
+    manager = getattr(pool, "_executor_manager_thread", None)
     for proc in workers:
         proc.terminate()
     pool.shutdown(wait=False, cancel_futures=True)
+    # the pool's manager thread sees its workers gone and closes its pipes; let it finish
+    # now, or its clean-up can race the interpreter's exit and print an OSError traceback
+    if manager is not None:
+        manager.join(timeout=5.0)
 
 
 def failure_limit(study) -> OracleFailureLimit | None:
