@@ -20,10 +20,9 @@ import numpy as np
 from .._support.checks import draw_seed
 from ..strategies.screening import LFSet
 from ..study import precision as study_precision
-from ..study.command_oracle import CommandOracle
 from ..study.corrections import check_retry
 from ..study.factory import study_options
-from ..study.loop import failure_limit, run_batch
+from ..study.loop import check_command, failure_limit, run_batch
 from ..study.oracles import OracleFailureLimit, check_oracle
 from ..study.schema import StoreError, dumps
 from ..study.store import StudyStore
@@ -155,9 +154,7 @@ def run_long_term(sea_states, lf_peaks, oracle, *, p_exceed=None, return_period=
     run = _Run(states, weights, studies, oracle, executor, callback, max_hf, target=target,
                model_band=model_band, root=root)
     try:
-        live = [st for st in studies if st is not None and (st.pending or not st.finished)]
-        if live and isinstance(oracle, CommandOracle):  # a typo'd command
-            oracle.check(live[0].lfset.event(0))  # fails here, not every event
+        check_command(oracle, studies)
         run.left_over()
         run.allocate(p, batch_size, top)
     finally:

@@ -49,7 +49,8 @@ from .oracles import OracleFailureLimit, call_oracle_loads, check_oracle
 from .signals import terminate_as_interrupt
 from .state import EventState
 
-__all__ = ["optimize", "run_batch", "execute", "failure_limit", "PENDING_POLICIES"]
+__all__ = ["optimize", "run_batch", "execute", "check_command", "failure_limit",
+           "PENDING_POLICIES"]
 
 PENDING_POLICIES = ("resubmit", "wait")
 
@@ -92,8 +93,7 @@ def optimize(study, oracle, *, batch_size: int = 1, executor: Executor | None = 
         result so far.
     """
     check_oracle(oracle)
-    if isinstance(oracle, CommandOracle) and (study.pending or not study.finished):
-        oracle.check(study.lfset.event(0))  # a typo'd command fails here, not every event
+    check_command(oracle, [study])
     check_option(pending, "pending", PENDING_POLICIES)
     batch_size = check_positive_int(batch_size, "batch_size")
     own = None
@@ -287,10 +287,7 @@ def run_batch(asks, oracle, executor, tell) -> None:
             k = where[id(ev)]
             study = asks[k][0]
             if lacks_target(loads, study.target):
-                try:
-                    _stop_for_target(study, ev, loads, error_text)
-                except ValueError as exc:
-                    error = error or exc
+                error = error or _loads_kept_for_target(study, ev, loads, error_text)
             else:
                 if study.store is not None:
                     study.store.record_result(ev, value, error_text, loads=loads)
@@ -308,8 +305,9 @@ def run_batch(asks, oracle, executor, tell) -> None:
         raise failure
 
 
-def _stop_for_target(study, event, loads, error):
-    """An answer of several loads and no target: keep its loads, stop before the next call.
+def _loads_kept_for_target(study, event, loads, error) -> ValueError:
+    """An answer of several loads and no target: keep its loads; the error that stops the run
+    before the next call.
 
     The event stays pending; rerun with the target and its stored loads give its
     result (:func:`pas.study.loads.adopt_target`), no HF run is repeated.
@@ -318,7 +316,16 @@ def _stop_for_target(study, event, loads, error):
     if study.store is not None:
         record_loads(study.store, event, loads)
         where = f"; its loads are kept in {study.store.path}, rerun with the target to use them"
-    raise ValueError(f"event {event.id}: {error}{where}")
+    return ValueError(f"event {event.id}: {error}{where}")
+
+
+def check_command(oracle, studies) -> None:
+    """Refuse a :class:`~pas.study.command_oracle.CommandOracle` that cannot run these studies'
+    events (a typo'd placeholder, a missing script) before any event runs, unless none of
+    them has anything left to run (a finished study reopened to read it)."""
+    live = [st for st in studies if st is not None and (st.pending or not st.finished)]
+    if live and isinstance(oracle, CommandOracle):
+        oracle.check(live[0].lfset.event(0))
 
 
 def execute(oracle, events, target=None, executor: Executor | None = None):
