@@ -87,6 +87,48 @@ def test_fitted_dnv_model_binned_back_reproduces_the_table(rec34, fitted):
     assert mean_hs(binned) == pytest.approx(mean_hs(rec34), rel=0.03)
 
 
+def test_binning_a_weibull_whose_location_lies_inside_the_first_bin():
+    # DNV-RP-C205's North-Atlantic model, fixed parameters: Hs 3-p Weibull (location 0.661 m,
+    # inside the first 2 m bin, where the density has a kink), ln Tz | Hs normal.  Reference:
+    # adaptive quadrature of f_Hs(h) [F_T(t1 | h) - F_T(t0 | h)] from the location on.
+    from scipy import integrate
+    from virocon import (
+        DependenceFunction,
+        GlobalHierarchicalModel,
+        LogNormalDistribution,
+        WeibullDistribution,
+    )
+
+    def fixed(func, abc):
+        dependence = DependenceFunction(func)
+        dependence.parameters = dict(zip("abc", abc))
+        return dependence
+
+    def mu(h):
+        return 0.70 + 1.27 * h**0.131
+
+    def sigma(h):
+        return 0.1334 + 0.0264 * np.exp(-0.1906 * h)
+
+    model = GlobalHierarchicalModel([
+        {"distribution": WeibullDistribution(alpha=3.041, beta=1.484, gamma=0.661)},
+        {"distribution": LogNormalDistribution(), "conditional_on": 0,
+         "parameters": {"mu": fixed(lambda h, a, b, c: a + b * h**c, (0.70, 1.27, 0.131)),
+                        "sigma": fixed(lambda h, a, b, c: a + b * np.exp(c * h),
+                                       (0.1334, 0.0264, -0.1906))}}])
+    weibull = stats.weibull_min(1.484, loc=0.661, scale=3.041)
+    edges_h, edges_t = np.array([0.0, 2.0, 4.0]), np.array([3.0, 5.0, 7.0, 9.0])
+    binned = W.ScatterDiagram.from_joint_model(model, edges_h, edges_t)
+    for i, (a, b) in enumerate(zip(edges_h[:-1], edges_h[1:])):
+        for j, (t0, t1) in enumerate(zip(edges_t[:-1], edges_t[1:])):
+            def f(h, t0=t0, t1=t1):
+                z = (np.log([t0, t1]) - mu(h)) / sigma(h)
+                return weibull.pdf(h) * np.diff(stats.norm.cdf(z))[0]
+            exact = integrate.quad(f, max(a, 0.661), b, epsabs=0.0, epsrel=1e-10)[0]
+            got = binned.probability[i, j] * binned.coverage
+            assert got == pytest.approx(exact, rel=2e-3)
+
+
 def test_iform_contour_hs_maximum_is_the_marginal_quantile(fitted):
     # On an IFORM contour the largest Hs is where u = (beta, 0): the Hs
     # marginal's quantile Phi(beta), and beta = Phi^-1(1 - alpha).

@@ -181,8 +181,9 @@ class ScatterDiagram:
         ``P(bin) = integral_{Hs bin} f_Hs(h) [F_T(t1 | h) - F_T(t0 | h)] dh``:
         the Hs marginal ``F_Hs(b) - F_Hs(a)`` exactly, times the mean of the
         conditional mass over the Hs bin weighted by ``f_Hs`` (Gauss-Legendre,
-        ``n_gauss`` nodes per bin). The mass outside the edges is dropped and
-        reported as ``coverage``.
+        ``n_gauss`` nodes on the part of the bin where Hs can lie, so a
+        3-parameter Weibull's location inside a bin does not spoil it). The mass
+        outside the edges is dropped and reported as ``coverage``.
 
         Parameters
         ----------
@@ -200,7 +201,11 @@ class ScatterDiagram:
         dist_hs, dist_t = model.distributions[0], model.distributions[1]
         x, w = np.polynomial.legendre.leggauss(n_gauss)
         prob = np.zeros((he.size - 1, te.size - 1))
+        lowest = float(np.nan_to_num(dist_hs.icdf(0.0), nan=0.0))  # e.g. a Weibull's location
         for i, (a, b) in enumerate(zip(he[:-1], he[1:])):
+            a = max(a, lowest)
+            if b <= a:
+                continue
             h = 0.5 * (a + b) + 0.5 * (b - a) * x
             mass = float(dist_hs.cdf(b) - dist_hs.cdf(a))
             weight = w * dist_hs.pdf(h)
