@@ -6,16 +6,19 @@ import numpy as np
 import pandas as pd
 import pytest
 from harness.long_term_data_sets import p_exceed_of_return_period, pool_data_sets
+from scipy.stats import norm
 
 from pas.validation.long_term import (
     generate_cell,
+    joint_model,
     long_term_exceedance,
     scatter_diagram,
     tz_over_tp,
     value_at_exceedance_long_term,
 )
-from pas.validation.long_term_compare import combine_curves, iform_contour
+from pas.validation.long_term_compare import combine_curves
 from pas.validation.long_term_data import LongTermData, generate_long_term
+from pas.waves.contour import iform_contour
 
 
 def _two_states():
@@ -91,12 +94,20 @@ def test_scatter_rejects_bad_edges():
         scatter_diagram(hs_edges=[2.0, 1.0])
 
 
-def test_iform_contour_points():
-    pts = iform_contour(3.0, n=4)   # theta 0, 90, 180, 270 degrees
-    from scipy.stats import norm
-    hs0 = 0.661 + 3.041 * (-math.log(norm.sf(3.0))) ** (1 / 1.484)
+def test_joint_model_is_the_dnv_model_on_its_iform_contour():
+    # the first contour point (theta = 0) lies at u = (beta, 0): Hs = F^-1(Phi(beta)) of the
+    # 3-p Weibull and ln Tz = mu(Hs), the closed forms of DNV-RP-C205 3.6.3
+    pts = iform_contour(joint_model(), 100.0, state_duration=3.0, n_points=4)
+    beta = pts["beta"][0]
+    assert beta == pytest.approx(norm.isf(3.0 / (100.0 * 8766.0)), rel=1e-9)
+    hs0 = 0.661 + 3.041 * (-math.log(norm.sf(beta))) ** (1 / 1.484)
     assert pts["hs"][0] == pytest.approx(hs0, rel=1e-9)
     assert pts["tz"][0] == pytest.approx(math.exp(0.70 + 1.27 * hs0 ** 0.131), rel=1e-9)
+    # theta = 90 degrees: u = (0, beta), ln Tz = mu + sigma beta at the median Hs
+    hs1 = 0.661 + 3.041 * math.log(2.0) ** (1 / 1.484)
+    sigma = 0.1334 + 0.0264 * math.exp(-0.1906 * hs1)
+    assert pts["tz"][1] == pytest.approx(math.exp(0.70 + 1.27 * hs1 ** 0.131 + sigma * beta),
+                                         rel=1e-9)
 
 
 def test_combine_curves_two_exponentials():

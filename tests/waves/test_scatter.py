@@ -7,8 +7,6 @@ from scipy import stats
 
 import pas.waves as W
 
-virocon = pytest.importorskip("virocon")
-
 
 @pytest.fixture(scope="module")
 def rec34():

@@ -4,7 +4,8 @@ The scatter diagram
 -------------------
 :func:`scatter_diagram` bins the joint Hs–Tz model of DNV-RP-C205 (DNV 2010,
 §3.6.3, its North-Atlantic parameters: Hs a 3-parameter Weibull, ln Tz given
-Hs normal) into Hs × Tz cells; each cell is one JONSWAP sea state at its
+Hs normal; :func:`joint_model`, a virocon model) into Hs × Tz cells with
+:meth:`pas.waves.ScatterDiagram.from_joint_model`; each cell is one JONSWAP sea state at its
 centre, with ``Tp = Tz / r(γ)`` (``r(γ) = 0.6673 + 0.05037 γ − 0.006230 γ² +
 0.0003341 γ³``, DNV-RP-C205 §3.5.5).  Cells steeper than the DNV limit
 (``2π Hs / (g Tp²)`` ≤ 1/15 at Tp ≤ 8 s, ≤ 1/25 at Tp ≥ 15 s, linear between)
@@ -40,14 +41,13 @@ import hashlib
 import json
 import os
 from dataclasses import replace
-from itertools import pairwise
-from math import erf
 
 import numpy as np
 import pandas as pd
 
 from .._version import __version__
 from ..waves import GRAVITY
+from ..waves.scatter import ScatterDiagram
 from . import case_impacts, case_vbm
 from ._common import SEED_LENGTH
 from .generate import cache_dir
@@ -58,6 +58,7 @@ __all__ = [
     "NORTH_ATLANTIC",
     "cell_seed",
     "generate_cell",
+    "joint_model",
     "long_term_exceedance",
     "scatter_diagram",
     "tz_over_tp",
@@ -94,20 +95,32 @@ def _steepness_limit(tp):
     return np.interp(tp, [8.0, 15.0], [1.0 / 15.0, 1.0 / 25.0])
 
 
-def _hs_cdf(h, m):
-    x = np.maximum(np.asarray(h, float) - m["hs_location"], 0.0) / m["hs_scale"]
-    return 1.0 - np.exp(-x ** m["hs_shape"])
+def joint_model(model=None):
+    """The joint Hs–Tz model (:data:`NORTH_ATLANTIC` by default) as a virocon model."""
+    from virocon import (
+        DependenceFunction,
+        GlobalHierarchicalModel,
+        LogNormalDistribution,
+        WeibullDistribution,
+    )
 
+    m = NORTH_ATLANTIC if model is None else model
 
-def _tz_cdf(tz, hs, m):
-    a0, a1, a2 = m["mu"]
-    b0, b1, b2 = m["sigma"]
-    z = (np.log(tz) - (a0 + a1 * hs**a2)) / (b0 + b1 * np.exp(b2 * hs))
-    return 0.5 * (1.0 + np.vectorize(erf)(z / np.sqrt(2.0)))
+    def fixed(func, abc):
+        dependence = DependenceFunction(func)
+        dependence.parameters = dict(zip("abc", abc))
+        return dependence
+
+    hs = WeibullDistribution(alpha=m["hs_scale"], beta=m["hs_shape"], gamma=m["hs_location"])
+    ln_tz = {"mu": fixed(lambda h, a, b, c: a + b * h**c, m["mu"]),
+             "sigma": fixed(lambda h, a, b, c: a + b * np.exp(c * h), m["sigma"])}
+    return GlobalHierarchicalModel([
+        {"distribution": hs},
+        {"distribution": LogNormalDistribution(), "conditional_on": 0, "parameters": ln_tz}])
 
 
 def scatter_diagram(*, hs_edges=None, tz_edges=None, gamma=3.3, model=None,
-                    min_probability=1e-7, n_sub=20):
+                    min_probability=1e-7):
     """Bin the joint Hs–Tz model into sea states (one row per kept cell).
 
     Parameters
@@ -120,8 +133,6 @@ def scatter_diagram(*, hs_edges=None, tz_edges=None, gamma=3.3, model=None,
         Parameters as :data:`NORTH_ATLANTIC` (the default).
     min_probability : float, default 1e-7
         Cells with less probability are dropped.
-    n_sub : int, default 20
-        Hs sub-intervals per cell for the integral over Hs.
 
     Returns
     -------
@@ -133,33 +144,25 @@ def scatter_diagram(*, hs_edges=None, tz_edges=None, gamma=3.3, model=None,
         Probability of the steep cells, of the cells under
         ``min_probability`` and outside the edges.
     """
-    m = dict(NORTH_ATLANTIC if model is None else model)
-    he = np.asarray(np.arange(0.0, 20.01, 2.0) if hs_edges is None else hs_edges, float)
-    te = np.asarray(np.arange(3.0, 17.01, 2.0) if tz_edges is None else tz_edges, float)
-    if he.ndim != 1 or te.ndim != 1 or he.size < 2 or te.size < 2 or np.any(np.diff(he) <= 0) \
-            or np.any(np.diff(te) <= 0) or te[0] <= 0:
-        raise ValueError("hs_edges and tz_edges must be increasing 1-D edges (tz_edges > 0)")
-    rows, steep, small = [], 0.0, 0.0
-    for h0, h1 in pairwise(he):
-        hsub = np.linspace(h0, h1, n_sub + 1)
-        w = np.diff(_hs_cdf(hsub, m))
-        hmid = 0.5 * (hsub[:-1] + hsub[1:])
-        for t0, t1 in pairwise(te):
-            p = float(np.sum(w * (_tz_cdf(t1, hmid, m) - _tz_cdf(t0, hmid, m))))
-            hs, tz = 0.5 * (h0 + h1), 0.5 * (t0 + t1)
-            tp = tz / tz_over_tp(gamma)
-            s = 2.0 * np.pi * hs / (GRAVITY * tp**2)
-            if s > _steepness_limit(tp):
-                steep += p
-            elif p < min_probability:
-                small += p
-            else:
-                rows.append({"name": f"hs{hs:04.1f}_tz{tz:04.1f}".replace(".", "p"), "hs": hs,
-                             "tz": tz, "tp": tp, "probability": p, "steepness": s})
-    total = float(_hs_cdf(he[-1], m) - _hs_cdf(he[0], m))
-    inside = sum(r["probability"] for r in rows) + steep + small
-    return pd.DataFrame(rows), {"steep": steep, "small": small,
-                                "outside": max(0.0, 1.0 - total) + max(0.0, total - inside)}
+    he = np.arange(0.0, 20.01, 2.0) if hs_edges is None else hs_edges
+    te = np.arange(3.0, 17.01, 2.0) if tz_edges is None else tz_edges
+    try:
+        sd = ScatterDiagram.from_joint_model(joint_model(model), he, te)
+    except ValueError:
+        raise ValueError("hs_edges and tz_edges must be increasing non-negative 1-D edges, "
+                         "at least two each") from None
+    hs, tz = (a.ravel() for a in np.meshgrid(sd.hs, sd.period, indexing="ij"))
+    p = sd.probability.ravel() * sd.coverage
+    tp = tz / tz_over_tp(gamma)
+    s = 2.0 * np.pi * hs / (GRAVITY * tp**2)
+    steep = s > _steepness_limit(tp)
+    small = ~steep & (p < min_probability)
+    keep = ~steep & ~small
+    names = [f"hs{h:04.1f}_tz{t:04.1f}".replace(".", "p") for h, t in zip(hs[keep], tz[keep])]
+    cells = pd.DataFrame({"name": names, "hs": hs[keep], "tz": tz[keep], "tp": tp[keep],
+                          "probability": p[keep], "steepness": s[keep]})
+    return cells, {"steep": float(p[steep].sum()), "small": float(p[small].sum()),
+                   "outside": 1.0 - sd.coverage}
 
 
 def cell_seed(seed, cell_no):
@@ -174,10 +177,10 @@ def _cell_spec(analogue, row):
     return replace(get_case(a["case"]), condition=cond)
 
 
-def _model_key(analogue):
+def _cell_key(analogue, row):
     mod = case_impacts if analogue == "3" else case_vbm
-    blob = json.dumps([__version__, mod.VERSION, mod.COEFFICIENTS, ANALOGUES[analogue]],
-                      sort_keys=True, default=str)
+    blob = json.dumps([__version__, mod.VERSION, mod.COEFFICIENTS, ANALOGUES[analogue],
+                       float(row["hs"]), float(row["tp"])], sort_keys=True, default=str)
     return hashlib.sha1(blob.encode()).hexdigest()[:10]
 
 
@@ -189,7 +192,8 @@ def generate_cell(analogue, row, seed, cell_no, hours, *, cache=True, path=None)
     dict
         ``lf``, ``hf``, ``seed_no``, ``t_start``, ``t_end`` (one entry per
         wave event) and ``duration`` (s).  Cached as
-        ``<cache>/lt<analogue>_<name>_seed<seed>_h<hours>_<key>.npz``.
+        ``<cache>/lt<analogue>_<name>_seed<seed>_h<hours>_<key>.npz``, ``key`` a hash of
+        the HF model and the cell's Hs and Tp.
     """
     if analogue not in ANALOGUES:
         raise ValueError(f"analogue must be one of {', '.join(ANALOGUES)}, got {analogue!r}")
@@ -198,7 +202,7 @@ def generate_cell(analogue, row, seed, cell_no, hours, *, cache=True, path=None)
         raise ValueError(f"hours must be a whole number of one-hour realisations >= 1, "
                          f"got {hours!r}")
     file = cache_dir(path) / (f"lt{analogue}_{row['name']}_seed{int(seed)}_h{hours}_"
-                              f"{_model_key(analogue)}.npz")
+                              f"{_cell_key(analogue, row)}.npz")
     if cache and file.exists():
         try:
             with np.load(file) as z:

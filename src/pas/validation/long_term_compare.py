@@ -26,22 +26,22 @@ import time
 
 import numpy as np
 import pandas as pd
-from scipy.stats import norm
 
 from ..api import run_pas
 from ..study.settings import Stopping
+from ..waves.contour import iform_contour
 from . import case_impacts
 from .data import table_oracle
 from .long_term import (
     ANALOGUES,
-    NORTH_ATLANTIC,
     generate_cell,
+    joint_model,
     tz_over_tp,
     value_at_exceedance_long_term,
 )
 from .registry import get_case
 
-__all__ = ["METHODS", "combine_curves", "compare", "iform_contour", "run_method"]
+__all__ = ["METHODS", "combine_curves", "compare", "run_method"]
 
 METHODS = ("pas-long-term", "uniform", "contour", "lf-only")
 FRACTILE = 0.9
@@ -132,32 +132,16 @@ def _cell_study(data, s, n, p_s, seed, max_hf):
     return None, note
 
 
-def iform_contour(beta, *, model=None, n=12):
-    """IFORM contour points ``(hs, tz)`` at reliability index ``beta`` (Winterstein et al. 1993).
-
-    ``u1 = β cos θ``, ``u2 = β sin θ``, ``Hs = F⁻¹(Φ(u1))``,
-    ``ln Tz = μ(Hs) + σ(Hs) u2`` with the joint model of :data:`NORTH_ATLANTIC`.
-    """
-    m = dict(NORTH_ATLANTIC if model is None else model)
-    th = np.linspace(0.0, 2.0 * np.pi, n, endpoint=False)
-    u1, u2 = beta * np.cos(th), beta * np.sin(th)
-    hs = m["hs_location"] + m["hs_scale"] * (-np.log(norm.sf(u1))) ** (1.0 / m["hs_shape"])
-    a0, a1, a2 = m["mu"]
-    b0, b1, b2 = m["sigma"]
-    tz = np.exp(a0 + a1 * hs**a2 + (b0 + b1 * np.exp(b2 * hs)) * u2)
-    return pd.DataFrame({"hs": hs, "tz": tz})
-
-
 def _contour(data, p_exceed, seed, max_hf):
     a = ANALOGUES[data.analogue]
     t = data.sea_states
     nu_bar = float(np.sum(t["probability"] * t["n_waves"] / t["duration"])
                    / np.sum(t["probability"]))
-    n_sea_states = 1.0 / (p_exceed * nu_bar * SEA_STATE_HOURS * 3600.0)
-    beta = float(norm.isf(1.0 / n_sea_states))
-    pts = iform_contour(beta)
+    years = 1.0 / (p_exceed * nu_bar * 3600.0 * 8766.0)  # return period of p_exceed
+    pts = iform_contour(joint_model(), years, state_duration=SEA_STATE_HOURS, n_points=12)
+    beta = float(pts["beta"].iloc[0])
     pts = pts[pts["hs"] > np.median(pts["hs"])].reset_index(drop=True)  # the upper half
-    pts["tp"] = pts["tz"] / tz_over_tp(a["gamma"])
+    pts["tp"] = pts["tz"] / tz_over_tp(a["gamma"])  # the scatter's DNV ratio, as its cells
     pts["name"] = [f"contour{i:02d}" for i in range(len(pts))]
     best, best_mpm = None, -np.inf
     for i, row in pts.iterrows():
