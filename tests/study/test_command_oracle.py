@@ -286,3 +286,4 @@ def test_a_resumed_pas_run_refuses_a_missing_script_before_recording_it(campaign
         assert store.get("oracle_command") == [sys.executable, "cfd.py", "{lf}",
                                                "{cwd}/factor.txt", "{result}"]
         assert store.get("oracle_command_changes") is None
+        assert store.settings()["max_hf"] == 4 and store.get("settings_changes") is None

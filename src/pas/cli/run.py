@@ -257,7 +257,7 @@ def run(args) -> int:
     from ..strategies.screening import check_n_waves
     from ..study.command_oracle import CommandOracle
     from ..study.inputs import lf_table, read_lf_peaks
-    from ..study.oracle_spec import keep_start_dir
+    from ..study.oracle_spec import keep_start_dir, recorded_start_dir, started_oracle
     from ..study.oracles import OracleFailureLimit
     from ..study.replay import attach
     from ..study.settings import lacks_a_limit
@@ -291,16 +291,16 @@ def run(args) -> int:
                            n_waves=args.n_waves, p_exp=args.p_exp, threshold=args.threshold,
                            seed=seed, target=args.target, **objects,
                            n_waves_convention="spectral")  # checked above, with option names
-        # a new study's command before its folder is made (a resumed one's by keep_start_dir,
-        # against the folder the study was started in)
-        if not stored and isinstance(oracle, CommandOracle):
-            oracle.check(study.lfset.event(0))
+        # the command, against the folder the study was started in, before anything is
+        # recorded (a new study's before its folder is made)
+        if isinstance(oracle, CommandOracle):
+            started_oracle(oracle, recorded_start_dir(store))[0].check(study.lfset.event(0))
         if store is not None:  # only now: bad inputs leave no output folder behind
             out.mkdir(parents=True, exist_ok=True)
             for ch in attach(study, store):
                 print(f"pas run: {ch['key']} changed from {ch['old']} to {ch['new']} on resuming "
                       f"(recorded in {store})", file=sys.stderr)
-            oracle, note = keep_start_dir(oracle, study.store, study.lfset.event(0))
+            oracle, note = keep_start_dir(oracle, study.store)
             for line in (note or "").splitlines():
                 print(f"pas run: {line}", file=sys.stderr)
             if args.retry_failed:

@@ -20,7 +20,8 @@ from pathlib import Path
 from .command_oracle import CommandOracle
 from .oracles import TableOracle
 
-__all__ = ["oracle_from_spec", "parse_oracle_spec", "keep_start_dir", "START_DIR_KEY",
+__all__ = ["oracle_from_spec", "parse_oracle_spec", "keep_start_dir", "started_oracle",
+           "recorded_start_dir", "START_DIR_KEY",
            "COMMAND_KEY", "COMMAND_CHANGES_KEY", "ROOT_KEY"]
 
 START_DIR_KEY = "oracle_cwd"
@@ -123,18 +124,41 @@ def oracle_from_spec(spec, *, root=None, timeout=None, cwd=None):
     raise ValueError(f"an oracle needs one of command, table or python, got {sorted(o)}")
 
 
-def keep_start_dir(oracle, store, event=None):
-    """``oracle`` resolved against the directory its study was first started from.
+def started_oracle(oracle, recorded):
+    """``oracle`` resolved against ``recorded``, the directory its study was started from
+    (None for a new study), and the line saying so (None when nothing moved)."""
+    if recorded is None or recorded == oracle.cwd:
+        return oracle, None
+    try:
+        return oracle.with_cwd(recorded), (f"the command's relative paths resolve against "
+                                           f"{recorded}, where the study was started")
+    except ValueError:  # the first run's folder is gone: use this one, and say so
+        return oracle, (f"the study was started in {recorded}, which no longer exists; the "
+                        f"command's relative paths resolve against {oracle.cwd}")
+
+
+def recorded_start_dir(path):
+    """The directory the study in the store file ``path`` was started from (None: none yet)."""
+    from .store import StudyStore
+
+    if path is None or not Path(path).exists():
+        return None
+    with StudyStore(path, create=False) as store:
+        return store.get(START_DIR_KEY)
+
+
+def keep_start_dir(oracle, store):
+    """``oracle`` resolved against the directory its study was first started from, recorded.
 
     A :class:`CommandOracle` bound to a new study store records its ``cwd``
     there (under :data:`START_DIR_KEY`); on a store holding another one it is
-    rebuilt with that one (its ``root`` kept), so relative script paths keep
-    meaning the files of the first run.  With ``event`` (one of the study's)
-    it is then checked (:meth:`CommandOracle.check`): a command that cannot
-    run is a :class:`ValueError` before anything of it is recorded.  Its
+    rebuilt with that one (its ``root`` kept, :func:`started_oracle`), so
+    relative script paths keep meaning the files of the first run.  Its
     argument list is recorded (:data:`COMMAND_KEY`): one that differs from the
     stored one is a change, appended to :data:`COMMAND_CHANGES_KEY` and said
-    once.  Other oracles are returned as they are.
+    once.  Other oracles are returned as they are.  Check the command
+    (:meth:`CommandOracle.check`) before: nothing of a command that cannot run
+    should be recorded.
 
     Returns
     -------
@@ -144,24 +168,12 @@ def keep_start_dir(oracle, store, event=None):
     """
     if not isinstance(oracle, CommandOracle) or store is None:
         return oracle, None
-    notes = []
     recorded = store.get(START_DIR_KEY)
-    if recorded is not None and recorded != oracle.cwd:
-        try:
-            oracle = oracle.with_cwd(recorded)
-        except ValueError:  # the first run's folder is gone: use this one, and say so
-            notes.append(f"the study was started in {recorded}, which no longer exists; "
-                         f"the command's relative paths resolve against {oracle.cwd}")
-        else:
-            notes.append(f"the command's relative paths resolve against {recorded}, where "
-                         "the study was started")
-    if event is not None:
-        oracle.check(event)
-    notes.append(_command_change(oracle, store))
+    oracle, moved = started_oracle(oracle, recorded)
+    notes = [n for n in (moved, _command_change(oracle, store)) if n]
     store.put(ROOT_KEY, oracle.root)
     if recorded is None:
         store.put(START_DIR_KEY, oracle.cwd)
-    notes = [n for n in notes if n]
     return oracle, "\n".join(notes) if notes else None
 
 
