@@ -86,21 +86,10 @@ def test_fitted_dnv_model_binned_back_reproduces_the_table(rec34, fitted):
 
 
 def test_binning_a_weibull_whose_location_lies_inside_the_first_bin():
-    # DNV-RP-C205's North-Atlantic model, fixed parameters: Hs 3-p Weibull (location 0.661 m,
+    # DNV-RP-C205's North-Atlantic model (dnv_joint_model): Hs 3-p Weibull (location 0.661 m,
     # inside the first 2 m bin, where the density has a kink), ln Tz | Hs normal.  Reference:
     # adaptive quadrature of f_Hs(h) [F_T(t1 | h) - F_T(t0 | h)] from the location on.
     from scipy import integrate
-    from virocon import (
-        DependenceFunction,
-        GlobalHierarchicalModel,
-        LogNormalDistribution,
-        WeibullDistribution,
-    )
-
-    def fixed(func, abc):
-        dependence = DependenceFunction(func)
-        dependence.parameters = dict(zip("abc", abc))
-        return dependence
 
     def mu(h):
         return 0.70 + 1.27 * h**0.131
@@ -108,12 +97,8 @@ def test_binning_a_weibull_whose_location_lies_inside_the_first_bin():
     def sigma(h):
         return 0.1334 + 0.0264 * np.exp(-0.1906 * h)
 
-    model = GlobalHierarchicalModel([
-        {"distribution": WeibullDistribution(alpha=3.041, beta=1.484, gamma=0.661)},
-        {"distribution": LogNormalDistribution(), "conditional_on": 0,
-         "parameters": {"mu": fixed(lambda h, a, b, c: a + b * h**c, (0.70, 1.27, 0.131)),
-                        "sigma": fixed(lambda h, a, b, c: a + b * np.exp(c * h),
-                                       (0.1334, 0.0264, -0.1906))}}])
+    model = W.dnv_joint_model(hs_weibull=(3.041, 1.484, 0.661), mu=(0.70, 1.27, 0.131),
+                              sigma=(0.1334, 0.0264, -0.1906))
     weibull = stats.weibull_min(1.484, loc=0.661, scale=3.041)
     edges_h, edges_t = np.array([0.0, 2.0, 4.0]), np.array([3.0, 5.0, 7.0, 9.0])
     binned = W.ScatterDiagram.from_joint_model(model, edges_h, edges_t)
@@ -174,3 +159,5 @@ def test_joint_model_input_errors(rec34):
         W.fit_joint_model(np.ones((10, 2)))
     with pytest.raises(ValueError, match="hs_edges"):
         W.ScatterDiagram.from_joint_model(None, [1.0], [1.0, 2.0])
+    with pytest.raises(ValueError, match=r"^hs_weibull must be \(scale > 0"):
+        W.dnv_joint_model(hs_weibull=(3.0, 0.0, 0.5))

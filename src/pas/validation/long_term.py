@@ -47,7 +47,7 @@ import pandas as pd
 
 from .._version import __version__
 from ..waves import GRAVITY
-from ..waves.scatter import ScatterDiagram
+from ..waves.scatter import ScatterDiagram, dnv_joint_model
 from . import case_impacts, case_vbm
 from ._common import SEED_LENGTH
 from .generate import cache_dir
@@ -97,26 +97,9 @@ def _steepness_limit(tp):
 
 def joint_model(model=None):
     """The joint Hs–Tz model (:data:`NORTH_ATLANTIC` by default) as a virocon model."""
-    from virocon import (
-        DependenceFunction,
-        GlobalHierarchicalModel,
-        LogNormalDistribution,
-        WeibullDistribution,
-    )
-
     m = NORTH_ATLANTIC if model is None else model
-
-    def fixed(func, abc):
-        dependence = DependenceFunction(func)
-        dependence.parameters = dict(zip("abc", abc))
-        return dependence
-
-    hs = WeibullDistribution(alpha=m["hs_scale"], beta=m["hs_shape"], gamma=m["hs_location"])
-    ln_tz = {"mu": fixed(lambda h, a, b, c: a + b * h**c, m["mu"]),
-             "sigma": fixed(lambda h, a, b, c: a + b * np.exp(c * h), m["sigma"])}
-    return GlobalHierarchicalModel([
-        {"distribution": hs},
-        {"distribution": LogNormalDistribution(), "conditional_on": 0, "parameters": ln_tz}])
+    return dnv_joint_model(hs_weibull=(m["hs_scale"], m["hs_shape"], m["hs_location"]),
+                           mu=m["mu"], sigma=m["sigma"])
 
 
 def scatter_diagram(*, hs_edges=None, tz_edges=None, gamma=3.3, model=None,

@@ -17,7 +17,13 @@ from .linear_longterm import (
     short_term_linear,
 )
 from .realisation import ComponentSea, LinearSea, linear_sea, period_domain_sea, synthesise
-from .scatter import ScatterDiagram, fit_joint_model, north_atlantic, tz_over_tp
+from .scatter import (
+    ScatterDiagram,
+    dnv_joint_model,
+    fit_joint_model,
+    north_atlantic,
+    tz_over_tp,
+)
 from .second_order import (
     SecondOrderKernel,
     direct_second_order,
@@ -51,7 +57,8 @@ __all__ = [
     "Ship", "FERRY_190M", "ShipRAO", "ship_rao", "relative_elevation_rao", "ship_responses",
     "ResponseSurrogate", "response_surrogate", "mler_amplitudes", "mler", "FormResult",
     "form_rcw", "rayleigh_target", "Episode", "design_episode",
-    "TransferFunction", "ScatterDiagram", "north_atlantic", "fit_joint_model", "tz_over_tp",
+    "TransferFunction", "ScatterDiagram", "north_atlantic", "fit_joint_model", "dnv_joint_model",
+    "tz_over_tp",
     "iform_contour", "design_sea_state", "linear_design_sea_state", "HOURS_PER_YEAR",
     "short_term_linear", "LinearLongTerm", "linear_long_term", "rayleigh_extreme",
     "response_spectrum",

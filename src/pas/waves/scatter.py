@@ -43,7 +43,8 @@ from scipy import integrate
 
 from .spectra import _jonswap_shape
 
-__all__ = ["ScatterDiagram", "north_atlantic", "tz_over_tp", "fit_joint_model"]
+__all__ = ["ScatterDiagram", "north_atlantic", "tz_over_tp", "fit_joint_model",
+           "dnv_joint_model"]
 
 _PERIODS = ("tz", "tp")
 
@@ -302,6 +303,50 @@ def north_atlantic(*, gamma=3.3):
     with resources.as_file(path) as p:
         return ScatterDiagram.from_csv(p, period="tz", gamma=gamma,
                                        name="IACS Rec. 34 North Atlantic")
+
+
+def dnv_joint_model(*, hs_weibull=(3.041, 1.484, 0.661), mu=(0.70, 1.27, 0.131),
+                    sigma=(0.1334, 0.0264, -0.1906)):
+    """The joint Hs-Tz model of DNV-RP-C205 Sec. 3.6.3 with given parameters, as virocon's.
+
+    Hs is a 3-parameter Weibull; ln Tz given Hs is normal with mean
+    ``a0 + a1 Hs^a2`` and standard deviation ``b0 + b1 exp(b2 Hs)``.  The
+    defaults are DNV's North Atlantic parameters (DNV-RP-C205, 2010); pass a
+    site's published ones to bin them (:meth:`ScatterDiagram.from_joint_model`)
+    or draw their contour (:func:`pas.waves.iform_contour`) without fitting.
+
+    Parameters
+    ----------
+    hs_weibull : (scale, shape, location)
+        Of Hs (m, -, m).
+    mu, sigma : (a0, a1, a2), (b0, b1, b2)
+        Of ln Tz given Hs.
+
+    Returns
+    -------
+    virocon.GlobalHierarchicalModel
+    """
+    from virocon import (
+        DependenceFunction,
+        GlobalHierarchicalModel,
+        LogNormalDistribution,
+        WeibullDistribution,
+    )
+
+    def fixed(func, abc):
+        dependence = DependenceFunction(func)
+        dependence.parameters = dict(zip("abc", map(float, abc)))
+        return dependence
+
+    scale, shape, location = map(float, hs_weibull)
+    if not (scale > 0 and shape > 0 and location >= 0):
+        raise ValueError(f"hs_weibull must be (scale > 0, shape > 0, location >= 0), "
+                         f"got {hs_weibull!r}")
+    ln_tz = {"mu": fixed(lambda h, a, b, c: a + b * h**c, mu),
+             "sigma": fixed(lambda h, a, b, c: a + b * np.exp(c * h), sigma)}
+    return GlobalHierarchicalModel([
+        {"distribution": WeibullDistribution(alpha=scale, beta=shape, gamma=location)},
+        {"distribution": LogNormalDistribution(), "conditional_on": 0, "parameters": ln_tz}])
 
 
 def fit_joint_model(data, *, model="DNV"):
