@@ -133,7 +133,7 @@ def scatter_diagram(*, hs_edges=None, tz_edges=None, gamma=3.3, model=None,
         sd = ScatterDiagram.from_joint_model(joint_model(model), he, te)
     except ValueError:
         raise ValueError("hs_edges and tz_edges must be increasing non-negative 1-D edges, "
-                         "at least two each") from None
+                         "at least two each, around some of the model's probability") from None
     hs, tz = (a.ravel() for a in np.meshgrid(sd.hs, sd.period, indexing="ij"))
     p = sd.probability.ravel() * sd.coverage
     tp = tz / tz_over_tp(gamma)
