@@ -144,8 +144,9 @@ def _make_study(where, strategy, lf_peaks, *, n_waves, p_exp, threshold, eps1, e
                         max_hf=max_hf)
     stopping, budget = resolve(where, strategy, stopping, budget, eps1=eps1, eps2=eps2,
                                precision=precision, max_hf=max_hf)
-    if store is not None:
-        stopping, budget = keep_stored(stopping, budget, read_settings(store), given)
+    stored = {} if store is None else read_settings(store)  # read once: the seed too
+    stopping, budget = keep_stored(stopping, budget, stored, given)
+    seed = stored.get("seed") if seed is None else seed
     if (missing := lacks_a_limit(stopping.flat())) is not None:
         raise ValueError(f"{where}: {missing}")
     return Study.from_peaks(make_strategy(strategy), lf, n_waves=n_waves, p_exp=p_exp,

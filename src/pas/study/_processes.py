@@ -55,4 +55,3 @@ def kill_group(proc) -> None:
         killpg(proc.pid, signal.SIGKILL)
     except ProcessLookupError:
         pass  # the group is gone: the program has already ended
-

@@ -274,13 +274,13 @@ def run_batch(asks, oracle, executor, tell) -> None:
     todo = [(k, ev) for k, (_, events) in enumerate(asks) for ev in events
             if ev.index not in results[k]]
     if failure is None and todo:
+        targets = {asks[k][0].target for k, _ in todo}
+        if len(targets) > 1:  # before any event is marked as submitted
+            raise ValueError(f"one batch of studies screening different loads {sorted(targets)}")
         for k in dict.fromkeys(k for k, _ in todo):
             if asks[k][0].store is not None:
                 asks[k][0].store.mark_submitted([ev for j, ev in todo if j == k])
         where = {id(ev): k for k, ev in todo}
-        targets = {asks[k][0].target for k, _ in todo}
-        if len(targets) > 1:
-            raise ValueError(f"one batch of studies screening different loads {sorted(targets)}")
         error = None  # an error while telling: the results still arriving are stored first
         for ev, (value, error_text, loads) in execute(oracle, [ev for _, ev in todo],
                                                       targets.pop(), executor):
